@@ -1,0 +1,23 @@
+/*
+ * luz/error.h: how luz reports a failure.
+ *
+ * Functions that can fail on bad input (a file, a size, a number) return a
+ * status and fill a luz_error with one line that names the culprit and what
+ * was expected, in the style "textures/wood.png: not an image (corrupt PNG
+ * header)". Callers print it as it is. Internal invariants use assert().
+ */
+#ifndef LUZ_ERROR_H
+#define LUZ_ERROR_H
+
+typedef struct luz_error {
+    char message[512];
+} luz_error;
+
+/* printf-style; a NULL error is allowed and ignored. Returns -1 so that a
+ * failing function can end with `return luz_error_set(error, ...);`. */
+#if defined(__GNUC__)
+__attribute__((format(printf, 2, 3)))
+#endif
+int luz_error_set(luz_error *error, const char *format, ...);
+
+#endif

@@ -1,0 +1,26 @@
+/*
+ * luz/luz.h: the whole public API of libluz in one include.
+ *
+ *   vecmath.h      vectors and matrices (OpenGL / gl-matrix conventions)
+ *   scene.h        SCENE.md's cubes, camera and lights; frames to draw
+ *   texture.h      textures, mip chains, sampling, a directory of them
+ *   shade.h        the fragment shader: six light terms
+ *   framebuffer.h  colour, depth and visibility buffers
+ *   renderer.h     the threaded pipeline that draws a frame
+ *   image.h        PNG output that never leaves a partial file
+ *   options.h      the command-line and scene-file options both programs share
+ */
+#ifndef LUZ_LUZ_H
+#define LUZ_LUZ_H
+
+#include "luz/error.h"
+#include "luz/vecmath.h"
+#include "luz/scene.h"
+#include "luz/texture.h"
+#include "luz/shade.h"
+#include "luz/framebuffer.h"
+#include "luz/renderer.h"
+#include "luz/image.h"
+#include "luz/options.h"
+
+#endif

@@ -1,0 +1,75 @@
+/*
+ * luz/texture.h: textures, their mip chains, and sampling.
+ *
+ * A luz_texture is an RGBA8 image and its mip chain, built exactly as
+ * SCENE.md says: level k+1 is max(1, floor(w/2)) x max(1, floor(h/2)), each
+ * texel the 2x2 box average (a + b + c + d + 2) / 4 of level k (an odd last
+ * row or column is dropped). Texel values are used as stored: no sRGB decode.
+ *
+ * Sampling follows OpenGL with wrap mode REPEAT: texel i of a level of width
+ * w has its centre at u = (i + 0.5) / w, and v = 0 is the image's top row.
+ *
+ * A luz_texture_set is the sorted list of image files of a directory (the
+ * cube textures); cube i uses image i mod N.
+ */
+#ifndef LUZ_TEXTURE_H
+#define LUZ_TEXTURE_H
+
+#include <stdint.h>
+
+#include "luz/error.h"
+#include "luz/scene.h"
+#include "luz/vecmath.h"
+
+#define LUZ_TEXTURE_MAX_SIZE 8192   /* per side; bounds memory for any file */
+#define LUZ_TEXTURE_MAX_LEVELS 14   /* log2(8192) + 1 */
+
+typedef struct luz_texture_level {
+    int width;
+    int height;
+    const uint8_t *texels;  /* RGBA8, row 0 first */
+} luz_texture_level;
+
+typedef struct luz_texture {
+    int level_count;
+    luz_texture_level levels[LUZ_TEXTURE_MAX_LEVELS];
+    uint8_t *storage;       /* all levels, one allocation */
+} luz_texture;
+
+/* Builds a texture and its mip chain from RGBA8 texels (copied). */
+luz_texture *luz_texture_create(int width, int height, const uint8_t *rgba, luz_error *error);
+/* Loads a .png/.jpg/.bmp/.tga file through stb_image. */
+luz_texture *luz_texture_load(const char *path, luz_error *error);
+void luz_texture_destroy(luz_texture *texture);
+
+/* The level of detail lambda = log2(rho) from the derivatives of (u, v) in
+ * texture coordinates per pixel; rho is measured in texels of level 0:
+ * rho = max(|(du/dx, dv/dx)|, |(du/dy, dv/dy)|) * (width, height). */
+float luz_texture_level_of_detail(const luz_texture *texture,
+                                  float du_dx, float dv_dx, float du_dy, float dv_dy);
+
+luz_vec3 luz_texture_sample_nearest(const luz_texture *texture, int level, luz_vec2 uv);
+luz_vec3 luz_texture_sample_bilinear(const luz_texture *texture, int level, luz_vec2 uv);
+/* Trilinear (GL_LINEAR_MIPMAP_LINEAR) at the given level of detail. */
+luz_vec3 luz_texture_sample_trilinear(const luz_texture *texture, luz_vec2 uv, float lambda);
+/* Dispatches on the filter; a NULL texture samples white. */
+luz_vec3 luz_texture_sample(const luz_texture *texture, luz_filter filter, luz_vec2 uv,
+                            float lambda);
+
+/* ---- a directory of textures ------------------------------------------ */
+
+typedef struct luz_texture_set {
+    luz_texture **textures;
+    char **names;            /* file names, sorted by their bytes */
+    int count;
+} luz_texture_set;
+
+/* Loads every image (.png .jpg .jpeg .bmp .tga, case-insensitive; names
+ * starting with a dot skipped) of a directory, sorted by name. A directory
+ * with none gives an error; use an empty set for SCENE.md's `none`. */
+int luz_texture_set_load(luz_texture_set *set, const char *directory, luz_error *error);
+/* The index of a file name in the set, or -1. */
+int luz_texture_set_find(const luz_texture_set *set, const char *name);
+void luz_texture_set_free(luz_texture_set *set);
+
+#endif

@@ -1,0 +1,16 @@
+/* error.c: filling a luz_error (see luz/error.h). */
+#include <stdarg.h>
+#include <stdio.h>
+
+#include "luz/error.h"
+
+int luz_error_set(luz_error *error, const char *format, ...)
+{
+    if (error) {
+        va_list arguments;
+        va_start(arguments, format);
+        vsnprintf(error->message, sizeof error->message, format, arguments);
+        va_end(arguments);
+    }
+    return -1;
+}

@@ -1,0 +1,424 @@
+/*
+ * scene_file.c: scene files, read and written.
+ *
+ * A scene file is the command line written down, one option a line:
+ *
+ *     # the spot alone, seen from the side
+ *     camera-pos = 4, 0, 3
+ *     camera-yaw = -135
+ *     only       = spot
+ *     cube = 0, 0, 0
+ *     cube = 2, 0, -1  colour 1, 0.5, 0  texture wood.png
+ *
+ * Keys are the long options without their dashes (everything but help,
+ * version and scene), each set at most once; `#` starts a comment anywhere
+ * on a line; blank lines are ignored. `cube = x, y, z` lines, optionally
+ * followed by `colour r,g,b` and `texture NAME`, replace the cube list with
+ * the user's own cubes. A texture NAME is kept as text until the textures
+ * are loaded (luz_options_resolve_textures), since the file is read before
+ * the textures directory is known.
+ *
+ * Values go through luz_options_set(), the command line's own parser, so a
+ * file accepts exactly what the command line accepts. Every error names
+ * FILE:LINE.
+ */
+#include "luz/options.h"
+
+#include <errno.h>
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/types.h>
+
+/* Longer than any key, so that a key that does not fit is not a key. */
+#define KEY_MAX 24
+#define SEEN_KEYS_MAX 64
+
+typedef struct scene_reader {
+    luz_options *options;
+    const char *path;
+    int line;
+    int first_cube_line;   /* 0 until the file's first `cube` line */
+    int cubes_key_line;    /* 0 until the file's `cubes = N` line */
+    int seen_count;
+    struct {
+        char name[KEY_MAX];
+        int line;
+    } seen[SEEN_KEYS_MAX];
+} scene_reader;
+
+/* Strips blanks (and the line's \r\n) at both ends, in place. */
+static char *trim(char *text)
+{
+    while (*text == ' ' || *text == '\t')
+        text++;
+    size_t length = strlen(text);
+    while (length > 0 && strchr(" \t\r\n", text[length - 1]) != NULL)
+        text[--length] = '\0';
+    return text;
+}
+
+/* A short, one-line copy of the user's text for a message. */
+typedef struct quoted {
+    char text[72];
+} quoted;
+
+static quoted quote(const char *text)
+{
+    quoted result;
+    size_t length = 0;
+    for (; text[length] != '\0' && length < 60; length++) {
+        unsigned char c = (unsigned char)text[length];
+        result.text[length] = (c < 0x20 || c == 0x7f) ? '?' : (char)c;
+    }
+    if (text[length] != '\0') {
+        memcpy(result.text + length, "...", 3);
+        length += 3;
+    }
+    result.text[length] = '\0';
+    return result;
+}
+
+/* ---- cube lines ---------------------------------------------------------------- */
+
+typedef enum number_result { NUMBERS_OK, NUMBERS_MALFORMED, NUMBERS_NOT_FINITE } number_result;
+
+/* Reads `count` comma-separated float-sized numbers that make up the whole
+ * of text, blanks allowed around each (as options.c does for the command
+ * line's x,y,z). */
+static number_result read_numbers(const char *text, float *values, int count)
+{
+    const char *cursor = text;
+    for (int i = 0; i < count; i++) {
+        cursor += strspn(cursor, " \t");
+        if (*cursor == '\0' || *cursor == ',')
+            return NUMBERS_MALFORMED;
+        char *end;
+        double value = strtod(cursor, &end);
+        if (end == cursor)
+            return NUMBERS_MALFORMED;
+        if (!isfinite(value) || fabs(value) > FLT_MAX)
+            return NUMBERS_NOT_FINITE;
+        values[i] = (float)value;
+        cursor = end + strspn(end, " \t");
+        if (i + 1 < count) {
+            if (*cursor != ',')
+                return NUMBERS_MALFORMED;
+            cursor++;
+        }
+    }
+    return *cursor == '\0' ? NUMBERS_OK : NUMBERS_MALFORMED;
+}
+
+/* Where the next field (`colour` or `texture`) of a cube line starts: the
+ * first word that begins with a letter which is not a number. strtod is
+ * asked, so that "inf" and "nan" stay numbers and are refused as such. */
+static char *find_field(char *text)
+{
+    for (size_t i = 0; text[i] != '\0'; i++) {
+        bool word_start = i == 0 || text[i - 1] == ' ' || text[i - 1] == '\t' ||
+                          text[i - 1] == ',';
+        bool letter = (text[i] >= 'a' && text[i] <= 'z') || (text[i] >= 'A' && text[i] <= 'Z');
+        if (word_start && letter) {
+            char *end;
+            (void)strtod(text + i, &end);
+            if (end == text + i)
+                return text + i;
+        }
+    }
+    return text + strlen(text);
+}
+
+static int add_cube(scene_reader *reader, const luz_cube *cube, const char *texture_name,
+                    luz_error *error)
+{
+    luz_options *options = reader->options;
+    int count = options->scene.custom_cube_count;
+    if (count >= LUZ_MAX_CUBES)
+        return luz_error_set(error, "%s:%d: cube: too many cubes (at most %d)", reader->path,
+                             reader->line, LUZ_MAX_CUBES);
+    if (count == options->cube_capacity) {
+        int capacity = count ? count * 2 : 16;
+        luz_cube *cubes = realloc(options->cubes, (size_t)capacity * sizeof *cubes);
+        if (cubes == NULL)
+            return luz_error_set(error, "%s:%d: out of memory", reader->path, reader->line);
+        options->cubes = cubes;
+        luz_cube_source *sources =
+            realloc(options->cube_sources, (size_t)capacity * sizeof *sources);
+        if (sources == NULL)
+            return luz_error_set(error, "%s:%d: out of memory", reader->path, reader->line);
+        options->cube_sources = sources;
+        options->cube_capacity = capacity;
+    }
+    char *name = NULL;
+    if (texture_name != NULL && (name = strdup(texture_name)) == NULL)
+        return luz_error_set(error, "%s:%d: out of memory", reader->path, reader->line);
+    options->cubes[count] = *cube;
+    options->cube_sources[count] = (luz_cube_source){.texture_name = name, .line = reader->line};
+    options->scene.custom_cubes = options->cubes;
+    options->scene.custom_cube_count = count + 1;
+    return 0;
+}
+
+/* `cube = x, y, z [colour r,g,b] [texture NAME]`, the fields in any order. */
+static int read_cube(scene_reader *reader, char *value, luz_error *error)
+{
+    const char *path = reader->path;
+    int line = reader->line;
+    if (reader->cubes_key_line != 0)
+        return luz_error_set(error,
+                             "%s:%d: cube: expected either `cubes = N` or `cube` lines, not both "
+                             "(cubes is set on line %d)",
+                             path, line, reader->cubes_key_line);
+    if (value[0] == '\0')
+        return luz_error_set(error,
+                             "%s:%d: cube: missing value (expected x,y,z [colour r,g,b] "
+                             "[texture NAME])",
+                             path, line);
+    quoted original = quote(value);
+
+    luz_cube cube = {.texture = LUZ_TEXTURE_BY_INDEX};
+    const char *texture_name = NULL;
+    char *fields = find_field(value);
+    char saved = *fields;
+    *fields = '\0';
+    float numbers[3];
+    number_result position = read_numbers(value, numbers, 3);
+    *fields = saved;
+    if (position == NUMBERS_NOT_FINITE)
+        return luz_error_set(error, "%s:%d: cube: expected finite numbers, got '%s'", path, line,
+                             original.text);
+    if (position != NUMBERS_OK)
+        return luz_error_set(error,
+                             "%s:%d: cube: expected x,y,z (three numbers) then optional colour "
+                             "r,g,b and texture NAME, got '%s'",
+                             path, line, original.text);
+    cube.position = luz_vec3_make(numbers[0], numbers[1], numbers[2]);
+
+    while (*fields != '\0') {
+        size_t length = strcspn(fields, " \t");
+        char *rest = fields + length + strspn(fields + length, " \t");
+        bool is_colour = (length == 6 && memcmp(fields, "colour", 6) == 0) ||
+                         (length == 5 && memcmp(fields, "color", 5) == 0);
+        bool is_texture = length == 7 && memcmp(fields, "texture", 7) == 0;
+        if (is_colour) {
+            if (cube.has_colour)
+                return luz_error_set(error, "%s:%d: cube: duplicate colour field in '%s'", path,
+                                     line, original.text);
+            char *next = find_field(rest);
+            saved = *next;
+            *next = '\0';
+            number_result colour = read_numbers(rest, numbers, 3);
+            *next = saved;
+            bool in_range = colour == NUMBERS_OK;
+            for (int i = 0; i < 3 && in_range; i++)
+                in_range = numbers[i] >= 0.0f && numbers[i] <= 1.0f;
+            if (!in_range)
+                return luz_error_set(error,
+                                     "%s:%d: cube: expected colour r,g,b, each in [0, 1], got "
+                                     "'%s'",
+                                     path, line, original.text);
+            cube.has_colour = true;
+            cube.colour = luz_vec3_make(numbers[0], numbers[1], numbers[2]);
+            fields = next;
+        } else if (is_texture) {
+            if (texture_name != NULL)
+                return luz_error_set(error, "%s:%d: cube: duplicate texture field in '%s'", path,
+                                     line, original.text);
+            size_t name_length = strcspn(rest, " \t");
+            if (name_length == 0)
+                return luz_error_set(error,
+                                     "%s:%d: cube: expected texture NAME, a file of the textures "
+                                     "directory, got '%s'",
+                                     path, line, original.text);
+            char *after = rest + name_length;
+            fields = after + strspn(after, " \t");
+            *after = '\0';
+            texture_name = rest;
+        } else {
+            fields[length] = '\0';
+            return luz_error_set(error,
+                                 "%s:%d: cube: unknown field '%s' (expected colour r,g,b or "
+                                 "texture NAME)",
+                                 path, line, quote(fields).text);
+        }
+    }
+
+    /* The file's first cube line replaces whatever cubes came before (an
+     * earlier file, the tiling); the later ones add to it. */
+    if (reader->first_cube_line == 0) {
+        luz_options_clear_cubes(reader->options);
+        reader->first_cube_line = line;
+    }
+    return add_cube(reader, &cube, texture_name, error);
+}
+
+/* ---- reading ------------------------------------------------------------------------- */
+
+static int read_line(scene_reader *reader, char *text, luz_error *error)
+{
+    const char *path = reader->path;
+    int line = reader->line;
+    char *comment = strchr(text, '#');
+    if (comment != NULL)
+        *comment = '\0';
+    text = trim(text);
+    if (text[0] == '\0')
+        return 0;
+
+    quoted original = quote(text);
+    char *equals = strchr(text, '=');
+    if (equals == NULL)
+        return luz_error_set(error, "%s:%d: expected `name = value`, got '%s'", path, line,
+                             original.text);
+    *equals = '\0';
+    char *name = trim(text);
+    char *value = trim(equals + 1);
+    if (name[0] == '\0')
+        return luz_error_set(error, "%s:%d: expected `name = value`, got '%s'", path, line,
+                             original.text);
+
+    if (strcmp(name, "cube") == 0)
+        return read_cube(reader, value, error);
+    if (strcmp(name, "help") == 0 || strcmp(name, "version") == 0 || strcmp(name, "scene") == 0)
+        return luz_error_set(error, "%s:%d: `%s` is not allowed in a scene file", path, line,
+                             name);
+    if (!luz_options_is_scene_key(name) || strlen(name) >= KEY_MAX)
+        return luz_error_set(error,
+                             "%s:%d: unknown key '%s' (expected a long option of luz-render "
+                             "--help without its dashes, or cube)",
+                             path, line, quote(name).text);
+
+    /* A key set twice is almost always an edit that forgot the first one;
+     * saying so beats silently taking the last. */
+    for (int i = 0; i < reader->seen_count; i++) {
+        if (strcmp(reader->seen[i].name, name) == 0)
+            return luz_error_set(error, "%s:%d: duplicate key `%s` (already set on line %d)",
+                                 path, line, name, reader->seen[i].line);
+    }
+    if (reader->seen_count < SEEN_KEYS_MAX) {
+        snprintf(reader->seen[reader->seen_count].name, KEY_MAX, "%s", name);
+        reader->seen[reader->seen_count].line = line;
+        reader->seen_count++;
+    }
+    if (strcmp(name, "cubes") == 0) {
+        if (reader->first_cube_line != 0)
+            return luz_error_set(error,
+                                 "%s:%d: cubes: expected either `cubes = N` or `cube` lines, "
+                                 "not both (the first cube line is line %d)",
+                                 path, line, reader->first_cube_line);
+        reader->cubes_key_line = line;
+    }
+
+    char where[600];
+    snprintf(where, sizeof where, "%s:%d: %s", path, line, name);
+    return luz_options_set(reader->options, name, value, where, error);
+}
+
+int luz_options_read_scene_file(luz_options *options, const char *path, luz_error *error)
+{
+    char *path_copy = strdup(path);
+    if (path_copy == NULL)
+        return luz_error_set(error, "%s: out of memory", path);
+    free(options->scene_path);
+    options->scene_path = path_copy;
+
+    FILE *file = fopen(path, "r");
+    if (file == NULL)
+        return luz_error_set(error, "%s: cannot open the scene file (%s)", path, strerror(errno));
+
+    scene_reader reader = {.options = options, .path = options->scene_path};
+    char *text = NULL;
+    size_t capacity = 0;
+    ssize_t length;
+    int status = 0;
+    while (status == 0 && (length = getline(&text, &capacity, file)) != -1) {
+        reader.line++;
+        if ((size_t)length != strlen(text))
+            status = luz_error_set(error, "%s:%d: expected text, found a NUL byte", path,
+                                   reader.line);
+        else
+            status = read_line(&reader, text, error);
+    }
+    /* getline's -1 means the end or an error (a directory gives EISDIR). */
+    if (status == 0 && ferror(file))
+        status = luz_error_set(error, "%s: cannot read the scene file (%s)", path,
+                               strerror(errno));
+    free(text);
+    fclose(file);
+    return status;
+}
+
+/* ---- textures named by cube lines --------------------------------------------------- */
+
+int luz_options_resolve_textures(luz_options *options, const luz_texture_set *textures,
+                                 luz_error *error)
+{
+    for (int i = 0; i < options->scene.custom_cube_count; i++) {
+        const luz_cube_source *source = &options->cube_sources[i];
+        if (source->texture_name == NULL) {
+            options->cubes[i].texture = LUZ_TEXTURE_BY_INDEX;
+            continue;
+        }
+        int index = textures ? luz_texture_set_find(textures, source->texture_name) : -1;
+        if (index >= 0) {
+            options->cubes[i].texture = index;
+            continue;
+        }
+        /* Name a few of the images that are there, which is usually enough to
+         * spot the typo. */
+        char available[200] = "";
+        int count = textures ? textures->count : 0;
+        for (int k = 0; k < count && k < 6; k++) {
+            size_t used = strlen(available);
+            snprintf(available + used, sizeof available - used, "%s%s", k ? ", " : "",
+                     quote(textures->names[k]).text);
+        }
+        if (count > 6) {
+            size_t used = strlen(available);
+            snprintf(available + used, sizeof available - used, ", ...");
+        }
+        return luz_error_set(error,
+                             "%s:%d: cube: texture '%s' is not an image of the textures "
+                             "directory (expected one of: %s)",
+                             options->scene_path ? options->scene_path : "scene", source->line,
+                             quote(source->texture_name).text,
+                             count ? available : "none, textures are off");
+    }
+    return 0;
+}
+
+/* ---- writing ------------------------------------------------------------------------ */
+
+void luz_options_write_scene(const luz_options *options, FILE *out)
+{
+    /* The scene, in the order of --help; not the program's own settings
+     * (threads, output, frames, fps, bench), which belong to a run, and not
+     * `only`, whose effect the strengths already carry. */
+    static const char *const keys[] = {
+        "size",       "time",        "seed",     "cubes",     "camera-pos",
+        "camera-yaw", "camera-pitch", "fov",     "ambient",   "diffuse",
+        "specular",   "shininess",   "point",    "spot",      "spot-inner",
+        "spot-outer", "spot-reach",  "directional", "filter", "textures",
+    };
+    char value[4200];
+    fprintf(out, "# luz scene: render it with luz-render --scene FILE (see docs/cli.md)\n");
+    for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++) {
+        if (strcmp(keys[i], "cubes") == 0 && options->scene.custom_cube_count > 0)
+            continue;
+        if (luz_options_format(options, keys[i], value, sizeof value) == 0)
+            fprintf(out, "%s = %s\n", keys[i], value);
+    }
+    for (int i = 0; i < options->scene.custom_cube_count; i++) {
+        const luz_cube *cube = &options->cubes[i];
+        fprintf(out, "cube = %.9g, %.9g, %.9g", (double)cube->position.x,
+                (double)cube->position.y, (double)cube->position.z);
+        if (cube->has_colour)
+            fprintf(out, " colour %.9g, %.9g, %.9g", (double)cube->colour.x,
+                    (double)cube->colour.y, (double)cube->colour.z);
+        if (options->cube_sources[i].texture_name != NULL)
+            fprintf(out, " texture %s", options->cube_sources[i].texture_name);
+        fputc('\n', out);
+    }
+}

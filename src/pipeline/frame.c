@@ -1,0 +1,328 @@
+/*
+ * frame.c: the renderer, and the draw function that reads as the pipeline.
+ *
+ * luz_renderer_draw() runs the stages in two phases:
+ *
+ *   1. Geometry, per object (draws are split into chunks, one job each):
+ *        vertex stage    every vertex to clip space, with its varyings
+ *        clipping        each triangle against the near, far and guard planes
+ *        setup           each clipped triangle to edges and planes; back
+ *                        faces culled
+ *      Chunks keep the submission order, and triangles get ids 1, 2, ... in
+ *      that order.
+ *
+ *   2. Bands, per band of rows (one job each):
+ *        clear           the band's colour, depth and visibility
+ *        raster + depth  every triangle touching the band, in id order
+ *        fragment        each visible pixel shaded once
+ *
+ * A band touches only its own rows and draws triangles in submission order,
+ * so the image is the same byte for byte whichever thread draws which band
+ * and however many threads there are.
+ */
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "pipeline/pipeline.h"
+#include "luz/renderer.h"
+
+/* Rows per band: small enough to balance two or more threads and keep a
+ * band's depth and visibility rows in cache, large enough that walking the
+ * triangle list once per band stays cheap. */
+#define BAND_HEIGHT 16
+#define CHUNKS_PER_THREAD 4
+
+/* The set-up triangles of one chunk of draws. */
+typedef struct triangle_list {
+    luz_triangle *triangles;
+    size_t count;
+    size_t capacity;
+    luz_clip_vertex *vertices;      /* vertex-stage output, reused per draw */
+    int vertex_capacity;
+    bool out_of_memory;
+    uint64_t submitted, clipped, culled;
+} triangle_list;
+
+typedef struct band_counters {
+    uint64_t fragments_tested;
+    uint64_t fragments_shaded;
+} band_counters;
+
+struct luz_renderer {
+    luz_thread_pool *pool;
+    triangle_list *chunks;
+    int chunk_capacity;
+    const luz_triangle **by_id;     /* by_id[id] for id = 1 .. triangle_count */
+    size_t by_id_capacity;
+    band_counters *bands;
+    int band_capacity;
+};
+
+/* What the jobs of one frame share; read-only for the jobs except their
+ * own chunk or band slot. */
+typedef struct frame_job {
+    luz_renderer *renderer;
+    const luz_frame *frame;
+    luz_framebuffer *framebuffer;
+    luz_mat4 view_projection;
+    int chunk_count;
+    int draws_per_chunk;
+    size_t triangle_count;
+} frame_job;
+
+static double now_ms(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return t.tv_sec * 1e3 + t.tv_nsec / 1e6;
+}
+
+/* ---- phase 1: geometry ------------------------------------------------- */
+
+static bool reserve_triangles(triangle_list *list, size_t extra)
+{
+    if (list->count + extra <= list->capacity) return true;
+    size_t capacity = list->capacity ? list->capacity : 256;
+    while (capacity < list->count + extra) capacity *= 2;
+    luz_triangle *triangles = realloc(list->triangles, capacity * sizeof *triangles);
+    if (!triangles) return false;
+    list->triangles = triangles;
+    list->capacity = capacity;
+    return true;
+}
+
+static void set_up(triangle_list *list, const luz_clip_vertex *a, const luz_clip_vertex *b,
+                   const luz_clip_vertex *c, const luz_framebuffer *framebuffer,
+                   uint32_t draw_index)
+{
+    luz_triangle *out = &list->triangles[list->count];
+    luz_setup_result result = luz_setup_triangle(a, b, c, framebuffer->width,
+                                                 framebuffer->height, draw_index, out);
+    if (result == LUZ_SETUP_VISIBLE) list->count++;
+    else if (result == LUZ_SETUP_CULLED) list->culled++;
+}
+
+static void geometry_of_draw(triangle_list *list, const luz_draw *draw, uint32_t draw_index,
+                             luz_mat4 view_projection, const luz_framebuffer *framebuffer)
+{
+    const luz_mesh *mesh = draw->mesh;
+    if (mesh->vertex_count > list->vertex_capacity) {
+        luz_clip_vertex *vertices =
+            realloc(list->vertices, (size_t)mesh->vertex_count * sizeof *vertices);
+        if (!vertices) {
+            list->out_of_memory = true;
+            return;
+        }
+        list->vertices = vertices;
+        list->vertex_capacity = mesh->vertex_count;
+    }
+
+    /* Vertex stage. */
+    luz_vertex_stage(draw, view_projection, list->vertices);
+
+    for (int i = 0; i + 2 < mesh->index_count; i += 3) {
+        const luz_clip_vertex *a = &list->vertices[mesh->indices[i]];
+        const luz_clip_vertex *b = &list->vertices[mesh->indices[i + 1]];
+        const luz_clip_vertex *c = &list->vertices[mesh->indices[i + 2]];
+        list->submitted++;
+        /* A fan of a clipped triangle has at most this many triangles. */
+        if (!reserve_triangles(list, LUZ_CLIP_MAX_VERTICES - 2)) {
+            list->out_of_memory = true;
+            return;
+        }
+
+        /* Clipping: trivially accept, trivially reject, or cut. */
+        unsigned code_a = luz_clip_outcode(a->position);
+        unsigned code_b = luz_clip_outcode(b->position);
+        unsigned code_c = luz_clip_outcode(c->position);
+        if ((code_a | code_b | code_c) == 0) {
+            set_up(list, a, b, c, framebuffer, draw_index);
+            continue;
+        }
+        if (code_a & code_b & code_c) continue;   /* all outside one plane */
+        list->clipped++;
+        luz_clip_polygon polygon;
+        int count = luz_clip_triangle(a, b, c, &polygon);
+        /* Setup, for each triangle of the polygon's fan. */
+        for (int k = 1; k + 1 < count; k++)
+            set_up(list, &polygon.vertices[0], &polygon.vertices[k], &polygon.vertices[k + 1],
+                   framebuffer, draw_index);
+    }
+}
+
+static void geometry_job(void *context, int chunk_index, int worker_index)
+{
+    (void)worker_index;
+    frame_job *job = context;
+    triangle_list *list = &job->renderer->chunks[chunk_index];
+    int first = chunk_index * job->draws_per_chunk;
+    int end = first + job->draws_per_chunk;
+    if (end > job->frame->draw_count) end = job->frame->draw_count;
+    for (int d = first; d < end && !list->out_of_memory; d++)
+        geometry_of_draw(list, &job->frame->draws[d], (uint32_t)d, job->view_projection,
+                         job->framebuffer);
+}
+
+/* ---- phase 2: bands ---------------------------------------------------- */
+
+static void band_job(void *context, int band_index, int worker_index)
+{
+    (void)worker_index;
+    frame_job *job = context;
+    luz_framebuffer *framebuffer = job->framebuffer;
+    const luz_triangle **by_id = job->renderer->by_id;
+    int first_row = band_index * BAND_HEIGHT;
+    int end_row = first_row + BAND_HEIGHT;
+    if (end_row > framebuffer->height) end_row = framebuffer->height;
+    band_counters *counters = &job->renderer->bands[band_index];
+
+    /* Clear. */
+    luz_framebuffer_clear_rows(framebuffer, first_row, end_row,
+                               job->frame->uniforms.clear_colour);
+
+    /* Raster and depth test, in submission order. */
+    uint64_t tested = 0;
+    for (size_t id = 1; id <= job->triangle_count; id++) {
+        const luz_triangle *triangle = by_id[id];
+        if (triangle->max_y < first_row || triangle->min_y >= end_row) continue;
+        tested += luz_raster_triangle(triangle, (uint32_t)id, framebuffer, first_row, end_row);
+    }
+
+    /* Fragment stage: shade each visible pixel once. */
+    counters->fragments_shaded = luz_fragment_shade_rows(job->frame, by_id, framebuffer,
+                                                         first_row, end_row);
+    counters->fragments_tested = tested;
+}
+
+/* ---- the renderer ------------------------------------------------------ */
+
+static int online_cpus(void)
+{
+    long count = sysconf(_SC_NPROCESSORS_ONLN);
+    if (count < 1) return 1;
+    return count > LUZ_MAX_THREADS ? LUZ_MAX_THREADS : (int)count;
+}
+
+luz_renderer *luz_renderer_create(const luz_renderer_desc *desc, luz_error *error)
+{
+    int threads = desc ? desc->thread_count : LUZ_THREADS_AUTO;
+    if (threads == LUZ_THREADS_AUTO) threads = online_cpus();
+    if (threads < 0 || threads > LUZ_MAX_THREADS) {
+        luz_error_set(error, "thread count %d: expected 0 to %d", threads, LUZ_MAX_THREADS);
+        return NULL;
+    }
+    if (threads == 0) threads = 1;   /* 0 and 1 both mean the caller's thread */
+
+    luz_renderer *renderer = calloc(1, sizeof *renderer);
+    if (!renderer) {
+        luz_error_set(error, "out of memory for the renderer");
+        return NULL;
+    }
+    renderer->chunk_capacity = threads * CHUNKS_PER_THREAD;
+    renderer->chunks = calloc((size_t)renderer->chunk_capacity, sizeof *renderer->chunks);
+    renderer->pool = luz_thread_pool_create(threads);
+    if (!renderer->chunks || !renderer->pool) {
+        luz_error_set(error, "cannot start %d rendering threads", threads);
+        luz_renderer_destroy(renderer);
+        return NULL;
+    }
+    return renderer;
+}
+
+void luz_renderer_destroy(luz_renderer *renderer)
+{
+    if (!renderer) return;
+    luz_thread_pool_destroy(renderer->pool);
+    for (int i = 0; renderer->chunks && i < renderer->chunk_capacity; i++) {
+        free(renderer->chunks[i].triangles);
+        free(renderer->chunks[i].vertices);
+    }
+    free(renderer->chunks);
+    free(renderer->by_id);
+    free(renderer->bands);
+    free(renderer);
+}
+
+int luz_renderer_thread_count(const luz_renderer *renderer)
+{
+    return luz_thread_pool_thread_count(renderer->pool);
+}
+
+int luz_renderer_draw(luz_renderer *renderer, const luz_frame *frame,
+                      luz_framebuffer *framebuffer, luz_frame_stats *stats, luz_error *error)
+{
+    const double start = now_ms();
+    frame_job job = {
+        .renderer = renderer,
+        .frame = frame,
+        .framebuffer = framebuffer,
+        .view_projection = luz_mat4_multiply(frame->uniforms.projection, frame->uniforms.view),
+    };
+
+    /* Phase 1: geometry, in chunks of consecutive draws. */
+    job.chunk_count = frame->draw_count < renderer->chunk_capacity ? frame->draw_count
+                                                                   : renderer->chunk_capacity;
+    if (job.chunk_count < 1) job.chunk_count = 1;
+    job.draws_per_chunk = (frame->draw_count + job.chunk_count - 1) / job.chunk_count;
+    if (job.draws_per_chunk < 1) job.draws_per_chunk = 1;
+    for (int c = 0; c < job.chunk_count; c++) {
+        triangle_list *list = &renderer->chunks[c];
+        list->count = 0;
+        list->out_of_memory = false;
+        list->submitted = list->clipped = list->culled = 0;
+    }
+    luz_thread_pool_run(renderer->pool, job.chunk_count, geometry_job, &job);
+
+    /* Number the triangles 1, 2, ... in submission order. */
+    size_t total = 0;
+    for (int c = 0; c < job.chunk_count; c++) {
+        if (renderer->chunks[c].out_of_memory)
+            return luz_error_set(error, "out of memory for the frame's triangles");
+        total += renderer->chunks[c].count;
+    }
+    if (total >= UINT32_MAX)
+        return luz_error_set(error, "%zu triangles: more than a frame supports", total);
+    if (total + 1 > renderer->by_id_capacity) {
+        const luz_triangle **by_id = realloc(renderer->by_id, (total + 1) * sizeof *by_id);
+        if (!by_id) return luz_error_set(error, "out of memory for the frame's triangles");
+        renderer->by_id = by_id;
+        renderer->by_id_capacity = total + 1;
+    }
+    size_t id = 1;
+    for (int c = 0; c < job.chunk_count; c++)
+        for (size_t k = 0; k < renderer->chunks[c].count; k++)
+            renderer->by_id[id++] = &renderer->chunks[c].triangles[k];
+    job.triangle_count = total;
+    const double geometry_end = now_ms();
+
+    /* Phase 2: bands of rows. */
+    int band_count = (framebuffer->height + BAND_HEIGHT - 1) / BAND_HEIGHT;
+    if (band_count > renderer->band_capacity) {
+        band_counters *bands = realloc(renderer->bands, (size_t)band_count * sizeof *bands);
+        if (!bands) return luz_error_set(error, "out of memory for the frame's bands");
+        renderer->bands = bands;
+        renderer->band_capacity = band_count;
+    }
+    luz_thread_pool_run(renderer->pool, band_count, band_job, &job);
+    const double end = now_ms();
+
+    if (stats) {
+        memset(stats, 0, sizeof *stats);
+        stats->geometry_ms = geometry_end - start;
+        stats->raster_ms = end - geometry_end;
+        stats->total_ms = end - start;
+        for (int c = 0; c < job.chunk_count; c++) {
+            stats->triangles_submitted += renderer->chunks[c].submitted;
+            stats->triangles_clipped += renderer->chunks[c].clipped;
+            stats->triangles_culled += renderer->chunks[c].culled;
+        }
+        stats->triangles_rasterised = total;
+        for (int b = 0; b < band_count; b++) {
+            stats->fragments_tested += renderer->bands[b].fragments_tested;
+            stats->fragments_shaded += renderer->bands[b].fragments_shaded;
+        }
+    }
+    return 0;
+}

@@ -1,0 +1,159 @@
+/*
+ * pipeline.h: the stages of luz's pipeline and the plain structs that flow
+ * between them. Private to the library (and its tests).
+ *
+ *   luz_draw (mesh + model)                              scene.h
+ *     -> vertex.c    luz_clip_vertex per mesh vertex     clip space + varyings
+ *     -> clip.c      luz_clip_polygon per triangle       inside the clip volume
+ *     -> setup.c     luz_triangle per fan triangle       fixed-point edges, planes
+ *     -> raster.c    depth + visibility per pixel        who is nearest
+ *     -> fragment.c  colour per visible pixel            interpolate, sample, shade
+ *                      (texture.c samples, shade.c lights)
+ *
+ * frame.c runs them in that order, and bands.c spreads the work over
+ * threads. Each stage is a function of its inputs: no globals.
+ */
+#ifndef LUZ_PIPELINE_H
+#define LUZ_PIPELINE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "luz/framebuffer.h"
+#include "luz/scene.h"
+#include "luz/vecmath.h"
+
+/* ---- vertex stage ------------------------------------------------------ */
+
+/* The varyings: what is interpolated across a triangle for the fragment
+ * shader. World-space position and normal, and texture coordinates. */
+enum {
+    LUZ_VARYING_POSITION = 0,   /* x, y, z */
+    LUZ_VARYING_NORMAL = 3,     /* x, y, z */
+    LUZ_VARYING_UV = 6,         /* u, v */
+    LUZ_VARYING_COUNT = 8
+};
+
+typedef struct luz_clip_vertex {
+    luz_vec4 position;                       /* clip space */
+    float varyings[LUZ_VARYING_COUNT];
+} luz_clip_vertex;
+
+/* Transforms every vertex of draw->mesh: out[i] gets clip-space position
+ * view_projection * model * p and world-space varyings. */
+void luz_vertex_stage(const luz_draw *draw, luz_mat4 view_projection, luz_clip_vertex *out);
+
+/* ---- clipping ---------------------------------------------------------- */
+
+/* x and y are clipped to a guard band GUARD times wider than the viewport,
+ * which keeps window coordinates inside the range setup.c proves safe. */
+#define LUZ_CLIP_GUARD_BAND 4.0f
+#define LUZ_CLIP_PLANE_COUNT 6
+/* Each plane can add one vertex to a convex polygon. */
+#define LUZ_CLIP_MAX_VERTICES (3 + LUZ_CLIP_PLANE_COUNT)
+
+typedef struct luz_clip_polygon {
+    int vertex_count;
+    luz_clip_vertex vertices[LUZ_CLIP_MAX_VERTICES];
+} luz_clip_polygon;
+
+/* One bit per clip plane the point is outside of (0: inside them all). */
+unsigned luz_clip_outcode(luz_vec4 position);
+
+/* Sutherland-Hodgman: clips triangle (a, b, c) against the near, far and
+ * guard-band planes. Returns the number of vertices of the result (0 if
+ * nothing is left); the polygon is convex and keeps the winding. */
+int luz_clip_triangle(const luz_clip_vertex *a, const luz_clip_vertex *b,
+                      const luz_clip_vertex *c, luz_clip_polygon *out);
+
+/* ---- triangle setup ---------------------------------------------------- */
+
+/* Window coordinates are snapped to 1/256 of a pixel (8 bits of sub-pixel
+ * precision, as llvmpipe). */
+#define LUZ_SUBPIXEL_BITS 8
+#define LUZ_SUBPIXEL_ONE (1 << LUZ_SUBPIXEL_BITS)
+
+/* An edge function E(X, Y) = a X + b Y + c in fixed-point units, positive
+ * inside; the top-left rule is folded into c, so a sample is covered by
+ * the edge exactly when E >= 0. */
+typedef struct luz_edge {
+    int64_t a, b, c;
+} luz_edge;
+
+/* A quantity that varies linearly across the screen: its value at the
+ * triangle's reference point (vertex 0) and its screen-space gradient. */
+typedef struct luz_plane {
+    float value, dx, dy;
+} luz_plane;
+
+typedef struct luz_triangle {
+    int min_x, min_y, max_x, max_y;  /* pixels that may be covered, inclusive */
+    luz_edge edges[3];
+    float reference_x, reference_y;  /* vertex 0 in window coordinates */
+    luz_plane depth;                 /* window depth, linear on the screen */
+    luz_plane inverse_w;             /* 1/w, linear on the screen */
+    luz_plane varyings[LUZ_VARYING_COUNT];  /* varying/w, linear on the screen */
+    uint32_t draw_index;
+} luz_triangle;
+
+typedef enum luz_setup_result {
+    LUZ_SETUP_VISIBLE,
+    LUZ_SETUP_CULLED,      /* back face or zero area */
+    LUZ_SETUP_OFFSCREEN,   /* covers no pixel centre of the viewport */
+} luz_setup_result;
+
+/* Projects, snaps and sets up triangle (v0, v1, v2) for a width x height
+ * viewport. */
+luz_setup_result luz_setup_triangle(const luz_clip_vertex *v0, const luz_clip_vertex *v1,
+                                    const luz_clip_vertex *v2, int width, int height,
+                                    uint32_t draw_index, luz_triangle *out);
+
+/* ---- rasterisation and depth test -------------------------------------- */
+
+/* Covers the pixel centres of rows [first_row, end_row) that lie inside the
+ * triangle; where a sample is nearer than the depth buffer (LESS), writes
+ * its depth and triangle_id into the visibility buffer. Returns the number
+ * of depth tests made. */
+uint64_t luz_raster_triangle(const luz_triangle *triangle, uint32_t triangle_id,
+                             luz_framebuffer *framebuffer, int first_row, int end_row);
+
+/* ---- fragment stage ---------------------------------------------------- */
+
+/* Shades rows [first_row, end_row): each pixel whose visibility id is not 0
+ * gets its varyings interpolated perspective-correctly, its texel sampled
+ * and the fragment shader's colour; by_id[id] is the triangle with that id.
+ * Returns the number of pixels shaded. */
+uint64_t luz_fragment_shade_rows(const luz_frame *frame, const luz_triangle *const *by_id,
+                                 luz_framebuffer *framebuffer, int first_row, int end_row);
+
+/* The varyings and texture-coordinate derivatives at a pixel centre. */
+typedef struct luz_fragment {
+    luz_vec3 position;
+    luz_vec3 normal;
+    luz_vec2 uv;
+    float du_dx, dv_dx, du_dy, dv_dy;
+    float depth;
+} luz_fragment;
+
+void luz_fragment_interpolate(const luz_triangle *triangle, int x, int y, luz_fragment *out);
+
+/* ---- threads ----------------------------------------------------------- */
+
+typedef struct luz_thread_pool luz_thread_pool;
+
+/* job(context, job_index, worker_index) for every job_index in
+ * [0, job_count); worker_index < the pool's thread count says which thread
+ * runs it (0 is the caller). */
+typedef void luz_job_function(void *context, int job_index, int worker_index);
+
+/* thread_count threads in all, the caller's included (so thread_count - 1
+ * workers are started); 1 runs every job on the caller's thread. */
+luz_thread_pool *luz_thread_pool_create(int thread_count);
+void luz_thread_pool_destroy(luz_thread_pool *pool);
+int luz_thread_pool_thread_count(const luz_thread_pool *pool);
+/* Runs the jobs and returns when all are done. */
+void luz_thread_pool_run(luz_thread_pool *pool, int job_count, luz_job_function *job,
+                         void *context);
+
+#endif

@@ -1,0 +1,304 @@
+/*
+ * luz-render: the batch renderer. Renders SCENE.md's scene (or a scene
+ * file's) into PNG files, or times it.
+ *
+ *   luz-render --size 640x360 --time 2 -o lab.png
+ *   luz-render --frames 60 --fps 30 -o frames/lab_%04d.png
+ *   luz-render --bench 20 --threads 2
+ *
+ * The program is a thin shell around libluz: luz_options_parse() reads and
+ * checks every option (and the scene file) before anything is rendered, so
+ * a bad option never leaves a file behind; the frames are drawn by
+ * luz_renderer_draw() and written by luz_framebuffer_write_png(), which
+ * writes a temporary file and renames it into place.
+ *
+ * Exit status: 0 on success; 2 for a usage error (an option, a scene file or
+ * a textures directory that is not right), with one line on stderr; 1 when
+ * rendering or writing fails for another reason (out of memory, a disk
+ * error). docs/cli.md is the user's reference.
+ */
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "luz/luz.h"
+
+#ifndef LUZ_VERSION
+#error "src/meson.build passes LUZ_VERSION"
+#endif
+
+enum {
+    EXIT_OK = 0,
+    EXIT_RUNTIME = 1,   /* rendering or writing failed */
+    EXIT_USAGE = 2,     /* the user asked for something we refuse */
+};
+
+/* Prints an error as one line: whatever a message holds (a file name with a
+ * newline in it, say), the user and the tests see exactly one line. */
+static void print_error(const char *message)
+{
+    fputs("luz-render: ", stderr);
+    for (const char *c = message; *c != '\0'; c++)
+        fputc(((unsigned char)*c < 0x20 || *c == 0x7f) ? '?' : *c, stderr);
+    fputc('\n', stderr);
+}
+
+static void print_usage(FILE *out)
+{
+    fprintf(out,
+            "Usage: luz-render [OPTION]...\n"
+            "Render the luz lighting lab (rotating textured cubes lit by six lights, as\n"
+            "SCENE.md describes) into a PNG file, a numbered sequence of them, or a\n"
+            "benchmark line. Options take `--name value` or `--name=value`.\n"
+            "\n");
+    luz_options_print_help(out);
+    fprintf(out,
+            "\n"
+            "Without --textures the images come from $LUZ_TEXTURES if it is set, else from\n"
+            "the source tree's textures/ for a luz-render run from its build directory,\n"
+            "else from the installed textures.\n"
+            "\n"
+            "A scene file holds `name = value` lines (the long options without their\n"
+            "dashes), `#` comments, and `cube = x, y, z [colour r,g,b] [texture NAME]`\n"
+            "lines that replace the cube list. The command line overrides the file.\n"
+            "\n"
+            "Exit status: 0 on success, 2 for a bad option, scene file or textures\n"
+            "directory, 1 if rendering or writing failed.\n");
+}
+
+/* ---- timing --------------------------------------------------------------------- */
+
+static double seconds_of(clockid_t clock)
+{
+    struct timespec now;
+    clock_gettime(clock, &now);
+    return (double)now.tv_sec + (double)now.tv_nsec * 1e-9;
+}
+
+static int compare_doubles(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* The median of count values; sorts them. */
+static double median(double *values, int count)
+{
+    qsort(values, (size_t)count, sizeof *values, compare_doubles);
+    return count % 2 ? values[count / 2] : 0.5 * (values[count / 2 - 1] + values[count / 2]);
+}
+
+/* ---- rendering -------------------------------------------------------------------- */
+
+/* What every frame needs, made once. */
+typedef struct render_context {
+    const luz_options *options;
+    const luz_texture_set *textures;
+    luz_framebuffer *framebuffer;
+    luz_frame frame;
+} render_context;
+
+/* Draws the scene at the given time into the context's framebuffer. */
+static int render_at(render_context *context, luz_renderer *renderer, double time_seconds,
+                     luz_frame_stats *stats, luz_error *error)
+{
+    luz_scene scene = context->options->scene;
+    scene.time_seconds = time_seconds;
+    float aspect = (float)context->options->width / (float)context->options->height;
+    if (luz_scene_build_frame(&scene, context->textures, aspect, &context->frame) != 0)
+        return luz_error_set(error, "out of memory building the frame");
+    return luz_renderer_draw(renderer, &context->frame, context->framebuffer, stats, error);
+}
+
+/* A bar that redraws itself on one line; only on a terminal, where it helps
+ * a person, and never in a log, where it would be noise. */
+static void show_progress(int done, int total)
+{
+    enum { BAR_WIDTH = 40 };
+    int filled = (int)((long long)done * BAR_WIDTH / total);
+    fputs("\rluz-render: [", stderr);
+    for (int i = 0; i < BAR_WIDTH; i++)
+        fputc(i < filled ? '#' : ' ', stderr);
+    fprintf(stderr, "] %d/%d frames", done, total);
+    if (done == total)
+        fputc('\n', stderr);
+    fflush(stderr);
+}
+
+/* Renders frame_count frames (one, or a --frames sequence) to PNG files. */
+static int render_files(render_context *context, luz_renderer *renderer, luz_error *error)
+{
+    const luz_options *options = context->options;
+    bool progress = options->frame_count > 1 && isatty(STDERR_FILENO);
+    char path[4096];
+    for (int k = 0; k < options->frame_count; k++) {
+        double time_seconds = options->scene.time_seconds + k / options->frames_per_second;
+        if (luz_options_output_path(options, k, path, sizeof path, error) != 0 ||
+            render_at(context, renderer, time_seconds, NULL, error) != 0 ||
+            luz_framebuffer_write_png(context->framebuffer, path, error) != 0) {
+            if (progress)
+                fputc('\n', stderr);   /* the error goes on its own line */
+            return -1;
+        }
+        if (progress)
+            show_progress(k + 1, options->frame_count);
+    }
+    return 0;
+}
+
+/* The per-frame measurements of one benchmark run, each over bench_frames. */
+typedef struct bench_samples {
+    double *wall_ms, *cpu_ms, *geometry_ms, *raster_ms;
+} bench_samples;
+
+/* Renders the benchmark's frames with one renderer, after one warm-up frame
+ * that fills the caches and lets the worker threads start. */
+static int bench_run(render_context *context, luz_renderer *renderer, bench_samples *samples,
+                     luz_error *error)
+{
+    const luz_options *options = context->options;
+    if (render_at(context, renderer, options->scene.time_seconds, NULL, error) != 0)
+        return -1;
+    for (int k = 0; k < options->bench_frames; k++) {
+        double time_seconds = options->scene.time_seconds + k / options->frames_per_second;
+        luz_frame_stats stats;
+        double wall = seconds_of(CLOCK_MONOTONIC);
+        double cpu = seconds_of(CLOCK_PROCESS_CPUTIME_ID);
+        if (render_at(context, renderer, time_seconds, &stats, error) != 0)
+            return -1;
+        samples->cpu_ms[k] = (seconds_of(CLOCK_PROCESS_CPUTIME_ID) - cpu) * 1e3;
+        samples->wall_ms[k] = (seconds_of(CLOCK_MONOTONIC) - wall) * 1e3;
+        samples->geometry_ms[k] = stats.geometry_ms;
+        samples->raster_ms[k] = stats.raster_ms;
+    }
+    return 0;
+}
+
+static int bench(render_context *context, luz_renderer *renderer, luz_error *error)
+{
+    const luz_options *options = context->options;
+    int count = options->bench_frames;
+    double *storage = calloc((size_t)count * 4, sizeof *storage);
+    if (storage == NULL)
+        return luz_error_set(error, "--bench: out of memory for %d frames", count);
+    bench_samples samples = {storage, storage + count, storage + 2 * count, storage + 3 * count};
+    int threads = luz_renderer_thread_count(renderer);
+    int status = 0;
+
+    /* With threads, the same frames on the caller's thread alone first, so
+     * that the line says what the threads bought. */
+    double single_thread_median = 0.0;
+    if (threads > 1) {
+        luz_renderer *single = luz_renderer_create(&(luz_renderer_desc){.thread_count = 1}, error);
+        status = single ? bench_run(context, single, &samples, error) : -1;
+        if (single != NULL)
+            luz_renderer_destroy(single);
+        if (status == 0)
+            single_thread_median = median(samples.wall_ms, count);
+    }
+    if (status == 0)
+        status = bench_run(context, renderer, &samples, error);
+    if (status == 0) {
+        double median_ms = median(samples.wall_ms, count);
+        double min_ms = samples.wall_ms[0];   /* sorted by median() */
+        int cubes = options->scene.custom_cubes ? options->scene.custom_cube_count
+                                                : options->scene.cube_count;
+        printf("frames=%d size=%dx%d threads=%d cubes=%d filter=%s ", count, options->width, options->height, threads, cubes,
+               luz_filter_name(options->scene.filter));
+        printf("median_ms=%.3f min_ms=%.3f fps=%.2f cpu_ms=%.3f geometry_ms=%.3f raster_ms=%.3f",
+               median_ms, min_ms, median_ms > 0.0 ? 1000.0 / median_ms : 0.0,
+               median(samples.cpu_ms, count), median(samples.geometry_ms, count),
+               median(samples.raster_ms, count));
+        if (threads > 1)
+            printf(" single_thread_median_ms=%.3f speedup=%.2f", single_thread_median,
+                   median_ms > 0.0 ? single_thread_median / median_ms : 0.0);
+        printf("\n");
+    }
+    free(storage);
+    return status;
+}
+
+/* ---- textures ---------------------------------------------------------------------- */
+
+/* Loads the textures directory that the options (or the environment, or the
+ * build) name; "none" leaves the set empty, every texel white. */
+static int load_textures(luz_options *options, luz_texture_set *textures, luz_error *error)
+{
+    char default_directory[4096];
+    const char *directory = options->textures_directory;
+    const char *source = "--textures";
+    if (directory == NULL) {
+        const char *environment = getenv("LUZ_TEXTURES");
+        source = environment && environment[0] ? "LUZ_TEXTURES"
+                                               : "default textures (see --textures)";
+        directory = luz_default_textures_directory(default_directory, sizeof default_directory);
+    }
+    if (strcmp(directory, "none") != 0) {
+        luz_error load_error = {{0}};
+        if (luz_texture_set_load(textures, directory, &load_error) != 0)
+            return luz_error_set(error, "%s: %s", source, load_error.message);
+    }
+    return luz_options_resolve_textures(options, textures, error);
+}
+
+/* ---- main ----------------------------------------------------------------------------- */
+
+int main(int argc, char **argv)
+{
+    luz_options options;
+    luz_texture_set textures = {0};
+    luz_renderer *renderer = NULL;
+    render_context context = {.options = &options, .textures = &textures};
+    luz_error error = {{0}};
+    int status = EXIT_OK;
+
+    luz_options_init(&options);
+    if (luz_options_parse(&options, argc, argv, &error) != 0) {
+        status = EXIT_USAGE;
+        goto done;
+    }
+    if (options.help) {
+        print_usage(stdout);
+        goto done;
+    }
+    if (options.version) {
+        printf("luz-render %s\n", LUZ_VERSION);
+        goto done;
+    }
+    if (load_textures(&options, &textures, &error) != 0) {
+        status = EXIT_USAGE;
+        goto done;
+    }
+
+    status = EXIT_RUNTIME;
+    renderer = luz_renderer_create(&(luz_renderer_desc){.thread_count = options.thread_count},
+                                   &error);
+    if (renderer == NULL)
+        goto done;
+    context.framebuffer = luz_framebuffer_create(options.width, options.height, &error);
+    if (context.framebuffer == NULL)
+        goto done;
+    if ((options.bench_frames > 0 ? bench(&context, renderer, &error)
+                                  : render_files(&context, renderer, &error)) != 0)
+        goto done;
+    status = EXIT_OK;
+
+done:
+    if (status != EXIT_OK)
+        print_error(error.message[0] ? error.message : "failed");
+    luz_frame_free(&context.frame);
+    if (context.framebuffer != NULL)
+        luz_framebuffer_destroy(context.framebuffer);
+    if (renderer != NULL)
+        luz_renderer_destroy(renderer);
+    luz_texture_set_free(&textures);
+    luz_options_free(&options);
+    if (fflush(stdout) != 0 && status == EXIT_OK) {
+        print_error("cannot write to standard output");
+        status = EXIT_RUNTIME;
+    }
+    return status;
+}
