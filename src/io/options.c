@@ -320,14 +320,12 @@ static int set_size(luz_options *options, const char *value, const char *where, 
                              where, quote(value).text);
     /* The check works on ints; anything beyond INT_MAX is too large anyway,
      * and is refused here without allocating anything. */
-    luz_error size_error = {{0}};
     if (luz_framebuffer_check_size(width > INT_MAX ? INT_MAX : (int)width,
-                                   height > INT_MAX ? INT_MAX : (int)height, &size_error) != 0)
+                                   height > INT_MAX ? INT_MAX : (int)height, NULL) != 0)
         return luz_error_set(error,
                              "%s: expected a size the renderer supports (at most %d a side and "
-                             "%d pixels in all), got '%s' (%s)",
-                             where, LUZ_MAX_DIMENSION, LUZ_MAX_PIXELS, quote(value).text,
-                             size_error.message);
+                             "%d pixels in all, such as 8192x8192), got '%s'",
+                             where, LUZ_MAX_DIMENSION, LUZ_MAX_PIXELS, quote(value).text);
     options->width = (int)width;
     options->height = (int)height;
     return 0;

@@ -1,0 +1,1197 @@
+/*
+ * test_cli.c: luz-render as a user runs it, and the scene-file functions.
+ *
+ * Most tests run the real luz-render binary (its path in $LUZ_RENDER, set
+ * by tests/meson.build) in a fresh temporary directory, with stdout and
+ * stderr captured in files outside that directory, and then look at what a
+ * user would see: the exit status, the one line on stderr, and the files
+ * left behind. Every refused input must give exit status 2, exactly one
+ * line naming the flag (or FILE:LINE) and what was expected, and no file at
+ * all: neither the PNG nor the writer's temporary.
+ *
+ * The work directory holds the same fixtures for every test: tex/ (two
+ * small BMP images written by hand here), empty/ (no image), corrupt/ (a
+ * .png that is not one), and, per test, a scene file s.luz.
+ *
+ * The last tests call the option functions directly (linking libluz): the
+ * scene-file round trip, precedence, --only, and the -o pattern.
+ */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <dirent.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <stb_image.h>
+
+#include "luz/luz.h"
+
+/* ---- files and directories ----------------------------------------------------- */
+
+static char *read_file(const char *path, size_t *length_out)
+{
+    FILE *file = fopen(path, "rb");
+    if (file == NULL)
+        return NULL;
+    size_t capacity = 4096, length = 0;
+    char *data = malloc(capacity + 1);
+    size_t got;
+    while (data != NULL && (got = fread(data + length, 1, capacity - length, file)) > 0) {
+        length += got;
+        if (length == capacity) {
+            capacity *= 2;
+            char *grown = realloc(data, capacity + 1);
+            if (grown == NULL)
+                free(data);
+            data = grown;
+        }
+    }
+    fclose(file);
+    if (data == NULL)
+        return NULL;
+    data[length] = '\0';
+    if (length_out)
+        *length_out = length;
+    return data;
+}
+
+static void write_file(const char *path, const void *data, size_t length)
+{
+    FILE *file = fopen(path, "wb");
+    assert_non_null(file);
+    assert_int_equal(fwrite(data, 1, length, file), length);
+    assert_int_equal(fclose(file), 0);
+}
+
+static void write_text(const char *directory, const char *name, const char *text)
+{
+    char path[600];
+    snprintf(path, sizeof path, "%s/%s", directory, name);
+    write_file(path, text, strlen(text));
+}
+
+/* A 24-bit uncompressed BMP, the simplest image format stb_image reads:
+ * a 14-byte file header, a 40-byte info header, then rows bottom-up, each
+ * padded to a multiple of 4 bytes. */
+static void write_bmp(const char *path, int width, int height, uint8_t red, uint8_t green,
+                      uint8_t blue)
+{
+    int row_size = (width * 3 + 3) & ~3;
+    int pixel_bytes = row_size * height;
+    size_t size = 54 + (size_t)pixel_bytes;
+    uint8_t *data = calloc(1, size);
+    assert_non_null(data);
+    uint32_t header[] = {(uint32_t)size, 0, 54, 40, (uint32_t)width, (uint32_t)height};
+    data[0] = 'B';
+    data[1] = 'M';
+    for (int i = 0; i < 6; i++)
+        for (int b = 0; b < 4; b++)
+            data[2 + 4 * i + b] = (uint8_t)(header[i] >> (8 * b));
+    data[26] = 1;    /* planes */
+    data[28] = 24;   /* bits per pixel; compression (30..33) stays 0 */
+    for (int y = 0; y < height; y++) {
+        for (int x = 0; x < width; x++) {
+            uint8_t *pixel = data + 54 + y * row_size + x * 3;
+            /* A checker so that the image is not flat. */
+            bool dark = (x + y) % 2;
+            pixel[0] = dark ? blue / 2 : blue;
+            pixel[1] = dark ? green / 2 : green;
+            pixel[2] = dark ? red / 2 : red;
+        }
+    }
+    write_file(path, data, size);
+    free(data);
+}
+
+static void remove_tree(const char *path)
+{
+    struct stat info;
+    if (lstat(path, &info) != 0)
+        return;
+    if (S_ISDIR(info.st_mode)) {
+        DIR *directory = opendir(path);
+        if (directory != NULL) {
+            struct dirent *entry;
+            while ((entry = readdir(directory)) != NULL) {
+                if (strcmp(entry->d_name, ".") == 0 || strcmp(entry->d_name, "..") == 0)
+                    continue;
+                char child[1024];
+                snprintf(child, sizeof child, "%s/%s", path, entry->d_name);
+                remove_tree(child);
+            }
+            closedir(directory);
+        }
+        rmdir(path);
+    } else {
+        unlink(path);
+    }
+}
+
+static int compare_strings(const void *a, const void *b)
+{
+    return strcmp(*(char *const *)a, *(char *const *)b);
+}
+
+/* Every path under directory, sorted, one a line: what a test compares to
+ * see that nothing was created (a PNG, or the writer's temporary file). */
+static void list_tree(const char *directory, const char *prefix, char *out, size_t size)
+{
+    DIR *handle = opendir(directory);
+    assert_non_null(handle);
+    char *names[256];
+    int count = 0;
+    struct dirent *entry;
+    while ((entry = readdir(handle)) != NULL && count < 256) {
+        if (strcmp(entry->d_name, ".") != 0 && strcmp(entry->d_name, "..") != 0)
+            names[count++] = strdup(entry->d_name);
+    }
+    closedir(handle);
+    qsort(names, (size_t)count, sizeof *names, compare_strings);
+    for (int i = 0; i < count; i++) {
+        char path[1024], relative[1024];
+        snprintf(path, sizeof path, "%s/%s", directory, names[i]);
+        snprintf(relative, sizeof relative, "%s%s", prefix, names[i]);
+        size_t used = strlen(out);
+        snprintf(out + used, size - used, "%s\n", relative);
+        struct stat info;
+        if (lstat(path, &info) == 0 && S_ISDIR(info.st_mode)) {
+            strcat(relative, "/");
+            list_tree(path, relative, out, size);
+        }
+        free(names[i]);
+    }
+}
+
+/* ---- running luz-render ------------------------------------------------------------ */
+
+/* A fresh temporary directory: work/ is where luz-render runs, the captured
+ * output lies beside it so that work/ holds only what the program made. */
+typedef struct sandbox {
+    char root[256];
+    char work[300];
+} sandbox;
+
+static void sandbox_create(sandbox *box)
+{
+    const char *tmp = getenv("TMPDIR");
+    snprintf(box->root, sizeof box->root, "%s/luz-cli-XXXXXX", tmp && *tmp ? tmp : "/tmp");
+    assert_non_null(mkdtemp(box->root));
+    snprintf(box->work, sizeof box->work, "%s/work", box->root);
+    assert_int_equal(mkdir(box->work, 0755), 0);
+
+    char path[600];
+    snprintf(path, sizeof path, "%s/tex", box->work);
+    assert_int_equal(mkdir(path, 0755), 0);
+    snprintf(path, sizeof path, "%s/tex/a.bmp", box->work);
+    write_bmp(path, 4, 4, 255, 128, 0);
+    snprintf(path, sizeof path, "%s/tex/b.bmp", box->work);
+    write_bmp(path, 8, 2, 0, 100, 255);
+    snprintf(path, sizeof path, "%s/empty", box->work);
+    assert_int_equal(mkdir(path, 0755), 0);
+    write_text(path, "readme.txt", "no images here\n");
+    snprintf(path, sizeof path, "%s/corrupt", box->work);
+    assert_int_equal(mkdir(path, 0755), 0);
+    write_text(path, "bad.png", "this is not a PNG file at all");
+}
+
+static void sandbox_destroy(sandbox *box)
+{
+    remove_tree(box->root);
+}
+
+static void sandbox_path(const sandbox *box, const char *name, char *out, size_t size)
+{
+    snprintf(out, size, "%s/%s", box->work, name);
+}
+
+typedef struct run_result {
+    int status;       /* the exit status, or 128 + signal */
+    char *out;        /* stdout */
+    char *err;        /* stderr */
+    double seconds;
+} run_result;
+
+static double now_seconds(void)
+{
+    struct timespec now;
+    clock_gettime(CLOCK_MONOTONIC, &now);
+    return (double)now.tv_sec + (double)now.tv_nsec * 1e-9;
+}
+
+/* Runs luz-render with the NULL-terminated arguments in box->work.
+ * textures_environment sets $LUZ_TEXTURES; NULL unsets it, so that no test
+ * depends on the caller's environment. */
+static run_result run_in(const sandbox *box, const char *const *arguments,
+                         const char *textures_environment)
+{
+    const char *program = getenv("LUZ_RENDER");
+    if (program == NULL)
+        fail_msg("LUZ_RENDER is not set (tests/meson.build sets it to luz-render's path)");
+    char out_path[400], err_path[400];
+    snprintf(out_path, sizeof out_path, "%s/stdout", box->root);
+    snprintf(err_path, sizeof err_path, "%s/stderr", box->root);
+
+    char *argv[64];
+    int argc = 0;
+    argv[argc++] = (char *)program;
+    for (int i = 0; arguments[i] != NULL && argc < 63; i++)
+        argv[argc++] = (char *)arguments[i];
+    argv[argc] = NULL;
+
+    double start = now_seconds();
+    fflush(NULL);
+    pid_t child = fork();
+    assert_true(child >= 0);
+    if (child == 0) {
+        int out = open(out_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        int err = open(err_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (out < 0 || err < 0 || chdir(box->work) != 0 || dup2(out, STDOUT_FILENO) < 0 ||
+            dup2(err, STDERR_FILENO) < 0)
+            _exit(127);
+        if (textures_environment)
+            setenv("LUZ_TEXTURES", textures_environment, 1);
+        else
+            unsetenv("LUZ_TEXTURES");
+        execv(program, argv);
+        _exit(127);
+    }
+    int status;
+    while (waitpid(child, &status, 0) < 0)
+        assert_int_equal(errno, EINTR);
+    run_result result;
+    result.seconds = now_seconds() - start;
+    result.status = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    result.out = read_file(out_path, NULL);
+    result.err = read_file(err_path, NULL);
+    assert_non_null(result.out);
+    assert_non_null(result.err);
+    return result;
+}
+
+static void run_result_free(run_result *result)
+{
+    free(result->out);
+    free(result->err);
+}
+
+#define ARGS(...) ((const char *const[]){__VA_ARGS__, NULL})
+
+/* Exit status 0 with nothing on stderr; shows stderr if not. */
+static void assert_success(const run_result *result)
+{
+    if (result->status != 0 || result->err[0] != '\0')
+        fail_msg("luz-render exited %d, stderr: %s", result->status, result->err);
+}
+
+/* The PNG signature, then the IHDR chunk (length 13) whose first eight
+ * bytes are the width and height, big-endian (PNG specification 11.2.2). */
+static void assert_png_size(const sandbox *box, const char *name, uint32_t width,
+                            uint32_t height)
+{
+    static const unsigned char signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    static const unsigned char ihdr[8] = {0, 0, 0, 13, 'I', 'H', 'D', 'R'};
+    char path[600];
+    size_t length = 0;
+    sandbox_path(box, name, path, sizeof path);
+    unsigned char *data = (unsigned char *)read_file(path, &length);
+    if (data == NULL)
+        fail_msg("%s was not written", name);
+    assert_true(length >= 33);
+    assert_memory_equal(data, signature, 8);
+    assert_memory_equal(data + 8, ihdr, 8);
+    uint32_t file_width = (uint32_t)data[16] << 24 | (uint32_t)data[17] << 16 |
+                          (uint32_t)data[18] << 8 | data[19];
+    uint32_t file_height = (uint32_t)data[20] << 24 | (uint32_t)data[21] << 16 |
+                           (uint32_t)data[22] << 8 | data[23];
+    assert_int_equal(file_width, width);
+    assert_int_equal(file_height, height);
+    free(data);
+}
+
+/* ---- every refused input -------------------------------------------------------------- */
+
+typedef struct error_case {
+    const char *name;
+    const char *arguments[16];       /* NULL-terminated */
+    const char *scene;               /* the text of s.luz, or NULL */
+    const char *textures_environment;
+    const char *needles[4];          /* each must appear in the one line */
+} error_case;
+
+static const error_case error_cases[] = {
+    /* the shape of the command line */
+    {"unknown-option", {"--bogus"}, NULL, NULL, {"--bogus", "unknown"}},
+    {"unknown-option-with-value", {"--colour=red"}, NULL, NULL, {"--colour", "unknown"}},
+    {"unknown-short-option", {"-x"}, NULL, NULL, {"-x", "unknown"}},
+    {"stray-argument", {"picture.png"}, NULL, NULL, {"picture.png", "unexpected"}},
+    {"missing-value-at-end", {"--size", "16x9", "--time"}, NULL, NULL, {"--time", "missing"}},
+    {"missing-value-after-equals", {"--time="}, NULL, NULL, {"--time", "missing"}},
+    {"missing-value-empty", {"--textures", ""}, NULL, NULL, {"--textures", "missing"}},
+    {"missing-output", {"-o"}, NULL, NULL, {"-o", "missing"}},
+    {"flag-with-value", {"--help=yes"}, NULL, NULL, {"--help", "no value"}},
+    /* numbers */
+    {"time-malformed", {"--time", "abc"}, NULL, NULL, {"--time", "number"}},
+    {"time-trailing-junk", {"--time", "1.5s"}, NULL, NULL, {"--time", "number"}},
+    {"time-nan", {"--time", "nan"}, NULL, NULL, {"--time", "finite"}},
+    {"time-inf", {"--time=-inf"}, NULL, NULL, {"--time", "finite"}},
+    {"time-overflow", {"--time", "1e400"}, NULL, NULL, {"--time", "finite"}},
+    {"seed-trailing-junk", {"--seed", "12abc"}, NULL, NULL, {"--seed", "integer"}},
+    {"seed-negative", {"--seed", "-1"}, NULL, NULL, {"--seed", "0 to 4294967295"}},
+    {"seed-too-large", {"--seed", "4294967296"}, NULL, NULL, {"--seed", "0 to 4294967295"}},
+    {"seed-fraction", {"--seed", "1.5"}, NULL, NULL, {"--seed", "integer"}},
+    {"camera-pos-two", {"--camera-pos", "1,2"}, NULL, NULL, {"--camera-pos", "x,y,z"}},
+    {"camera-pos-four", {"--camera-pos", "1,2,3,4"}, NULL, NULL, {"--camera-pos", "x,y,z"}},
+    {"camera-pos-empty-field", {"--camera-pos", "1,,3"}, NULL, NULL, {"--camera-pos", "x,y,z"}},
+    {"camera-pos-inf", {"--camera-pos", "0,0,-inf"}, NULL, NULL, {"--camera-pos", "finite"}},
+    {"camera-yaw-beyond-float", {"--camera-yaw", "1e39"}, NULL, NULL,
+     {"--camera-yaw", "finite"}},
+    {"camera-yaw-nan", {"--camera-yaw", "NaN"}, NULL, NULL, {"--camera-yaw", "finite"}},
+    {"camera-pitch-above", {"--camera-pitch", "90"}, NULL, NULL,
+     {"--camera-pitch", "[-89, 89]"}},
+    {"camera-pitch-below", {"--camera-pitch=-89.5"}, NULL, NULL,
+     {"--camera-pitch", "[-89, 89]"}},
+    {"fov-zero", {"--fov", "0"}, NULL, NULL, {"--fov", "(0, 180)"}},
+    {"fov-180", {"--fov", "180"}, NULL, NULL, {"--fov", "(0, 180)"}},
+    {"fov-negative", {"--fov", "-5"}, NULL, NULL, {"--fov", "(0, 180)"}},
+    {"fov-inf", {"--fov=inf"}, NULL, NULL, {"--fov", "finite"}},
+    {"shininess-negative", {"--shininess", "-1"}, NULL, NULL, {"--shininess", "at least 0"}},
+    {"spot-reach-zero", {"--spot-reach", "0"}, NULL, NULL, {"--spot-reach", "above 0"}},
+    {"spot-reach-negative", {"--spot-reach", "-2"}, NULL, NULL, {"--spot-reach", "above 0"}},
+    {"spot-inner-negative", {"--spot-inner", "-1"}, NULL, NULL, {"--spot-inner", "[0, 89]"}},
+    {"spot-outer-above", {"--spot-outer", "90"}, NULL, NULL, {"--spot-outer", "[0, 89]"}},
+    {"spot-inner-wider-than-default-outer", {"--spot-inner", "20"}, NULL, NULL,
+     {"--spot-inner", "--spot-outer"}},
+    {"spot-inner-wider-than-outer", {"--spot-inner", "10", "--spot-outer", "5"}, NULL, NULL,
+     {"--spot-inner", "--spot-outer"}},
+    /* colours and strengths */
+    {"ambient-strength-above-one", {"--ambient", "1,1,1,1.5"}, NULL, NULL,
+     {"--ambient", "[0, 1]"}},
+    {"diffuse-negative", {"--diffuse", "-0.1,1,1,1"}, NULL, NULL, {"--diffuse", "[0, 1]"}},
+    {"specular-colour-above-one", {"--specular=2,0,0,1"}, NULL, NULL,
+     {"--specular", "[0, 1]"}},
+    {"point-three-values", {"--point", "1,1,1"}, NULL, NULL, {"--point", "r,g,b,a"}},
+    {"spot-nan", {"--spot", "1,nan,1,1"}, NULL, NULL, {"--spot", "finite"}},
+    {"directional-trailing-junk", {"--directional", "1,1,1,1x"}, NULL, NULL,
+     {"--directional", "r,g,b,a"}},
+    /* sizes */
+    {"size-zero", {"--size", "0x5"}, NULL, NULL, {"--size", "at least 1"}},
+    {"size-negative", {"--size", "-16x9"}, NULL, NULL, {"--size", "at least 1"}},
+    {"size-no-height", {"--size", "1280"}, NULL, NULL, {"--size", "WIDTHxHEIGHT"}},
+    {"size-trailing-junk", {"--size", "16x9px"}, NULL, NULL, {"--size", "WIDTHxHEIGHT"}},
+    {"size-fraction", {"--size", "16.5x9"}, NULL, NULL, {"--size", "WIDTHxHEIGHT"}},
+    {"size-too-wide", {"--size", "16385x1"}, NULL, NULL, {"--size", "16384"}},
+    {"size-too-many-pixels", {"--size", "10000x10000"}, NULL, NULL, {"--size", "67108864"}},
+    {"size-huge", {"--size", "100000x100000"}, NULL, NULL, {"--size", "supports"}},
+    {"size-beyond-int", {"--size", "99999999999999999999x9"}, NULL, NULL,
+     {"--size", "supports"}},
+    /* counts */
+    {"cubes-zero", {"--cubes", "0"}, NULL, NULL, {"--cubes", "from 1 to 100000"}},
+    {"cubes-above", {"--cubes", "100001"}, NULL, NULL, {"--cubes", "from 1 to 100000"}},
+    {"cubes-fraction", {"--cubes", "2.5"}, NULL, NULL, {"--cubes", "integer"}},
+    {"threads-negative", {"--threads", "-1"}, NULL, NULL, {"--threads", "from 0 to 256"}},
+    {"threads-above", {"--threads", "257"}, NULL, NULL, {"--threads", "from 0 to 256"}},
+    {"fps-zero", {"--fps", "0"}, NULL, NULL, {"--fps", "above 0"}},
+    {"fps-negative", {"--fps", "-30"}, NULL, NULL, {"--fps", "above 0"}},
+    {"frames-zero", {"--frames", "0"}, NULL, NULL, {"--frames", "from 1"}},
+    {"frames-negative", {"--frames", "-2"}, NULL, NULL, {"--frames", "from 1"}},
+    {"bench-zero", {"--bench", "0"}, NULL, NULL, {"--bench", "from 1"}},
+    {"bench-junk", {"--bench", "two"}, NULL, NULL, {"--bench", "integer"}},
+    /* names */
+    {"filter-unknown", {"--filter", "cubic"}, NULL, NULL, {"--filter", "trilinear"}},
+    {"only-unknown-term", {"--only", "spot,moon"}, NULL, NULL, {"--only", "directional"}},
+    {"only-trailing-comma", {"--only", "spot,"}, NULL, NULL, {"--only", "ambient"}},
+    /* the -o pattern */
+    {"output-frames-without-conversion", {"--frames", "3", "-o", "out.png"}, NULL, NULL,
+     {"-o", "%d"}},
+    {"output-two-conversions", {"--frames", "2", "-o", "a%d_%d.png"}, NULL, NULL, {"-o", "%d"}},
+    {"output-string-conversion", {"-o", "out_%s.png"}, NULL, NULL, {"-o", "%d"}},
+    {"output-minus-flag", {"--frames", "2", "-o", "out_%-4d.png"}, NULL, NULL, {"-o", "%d"}},
+    {"output-trailing-percent", {"-o", "out%"}, NULL, NULL, {"-o", "%d"}},
+    {"output-default-pattern-long-option", {"--frames", "2", "--output", "x%5x.png"}, NULL, NULL,
+     {"-o", "%d"}},
+    /* textures */
+    {"textures-missing-directory", {"--size", "8x8", "--textures", "nowhere"}, NULL, NULL,
+     {"--textures", "nowhere"}},
+    {"textures-no-images", {"--size", "8x8", "--textures", "empty"}, NULL, NULL,
+     {"--textures", "empty", "image"}},
+    {"textures-corrupt-image", {"--size", "8x8", "--textures=corrupt"}, NULL, NULL,
+     {"--textures", "bad.png"}},
+    {"textures-environment-no-images", {"--size", "8x8"}, NULL, "empty",
+     {"LUZ_TEXTURES", "empty"}},
+    {"texture-name-unknown", {"--size", "8x8", "--textures", "tex", "--scene", "s.luz"},
+     "cube = 0, 0, 0 texture nope.png\n", NULL, {"s.luz:1", "nope.png", "a.bmp"}},
+    {"texture-name-with-textures-off", {"--textures", "none", "--scene", "s.luz"},
+     "# one cube\ncube = 0, 0, 0 texture a.bmp\n", NULL, {"s.luz:2", "a.bmp"}},
+    /* scene files */
+    {"scene-missing", {"--scene", "nope.luz"}, NULL, NULL, {"nope.luz", "cannot open"}},
+    {"scene-is-a-directory", {"--scene", "tex"}, NULL, NULL, {"tex", "cannot read"}},
+    {"scene-syntax", {"--scene", "s.luz"}, "size = 16x9\nthis is not an option\n", NULL,
+     {"s.luz:2", "name = value"}},
+    {"scene-empty-name", {"--scene", "s.luz"}, "= 5\n", NULL, {"s.luz:1", "name = value"}},
+    {"scene-unknown-key", {"--scene", "s.luz"}, "colour = 1, 0, 0\n", NULL,
+     {"s.luz:1", "unknown key", "colour"}},
+    {"scene-short-output-key", {"--scene", "s.luz"}, "o = x.png\n", NULL,
+     {"s.luz:1", "unknown key"}},
+    {"scene-help-key", {"--scene", "s.luz"}, "\n\nhelp = 1\n", NULL, {"s.luz:3", "not allowed"}},
+    {"scene-version-key", {"--scene", "s.luz"}, "version = 1\n", NULL,
+     {"s.luz:1", "not allowed"}},
+    {"scene-scene-key", {"--scene", "s.luz"}, "scene = other.luz\n", NULL,
+     {"s.luz:1", "not allowed"}},
+    {"scene-bad-value", {"--scene", "s.luz"}, "# a comment\nfov = 200  # too wide\n", NULL,
+     {"s.luz:2", "fov", "(0, 180)"}},
+    {"scene-malformed-number", {"--scene", "s.luz"}, "seed = 12abc\n", NULL,
+     {"s.luz:1", "seed", "integer"}},
+    {"scene-missing-value", {"--scene", "s.luz"}, "fov =\n", NULL, {"s.luz:1", "missing"}},
+    {"scene-duplicate-key", {"--scene", "s.luz"}, "seed = 1\nseed = 2\n", NULL,
+     {"s.luz:2", "duplicate", "line 1"}},
+    {"scene-spot-cone", {"--scene", "s.luz"}, "spot-inner = 30\n", NULL,
+     {"--spot-inner", "--spot-outer"}},
+    {"scene-cube-duplicate-colour", {"--scene", "s.luz"},
+     "cube = 0, 0, 0 colour 1, 0, 0 colour 0, 1, 0\n", NULL, {"s.luz:1", "duplicate colour"}},
+    {"scene-cube-duplicate-texture", {"--textures", "tex", "--scene", "s.luz"},
+     "cube = 0,0,0 texture a.bmp texture b.bmp\n", NULL, {"s.luz:1", "duplicate texture"}},
+    {"scene-cube-unknown-field", {"--scene", "s.luz"}, "cube = 0, 0, 0 shiny\n", NULL,
+     {"s.luz:1", "shiny", "colour"}},
+    {"scene-cube-two-numbers", {"--scene", "s.luz"}, "\ncube = 0, 0\n", NULL,
+     {"s.luz:2", "x,y,z"}},
+    {"scene-cube-colour-range", {"--scene", "s.luz"}, "cube = 0,0,0 colour 2, 0, 0\n", NULL,
+     {"s.luz:1", "[0, 1]"}},
+    {"scene-cube-infinite", {"--scene", "s.luz"}, "cube = inf, 0, 0\n", NULL,
+     {"s.luz:1", "finite"}},
+    {"scene-cube-texture-without-name", {"--scene", "s.luz"}, "cube = 0,0,0 texture\n", NULL,
+     {"s.luz:1", "texture NAME"}},
+    {"scene-cubes-and-cube-lines", {"--scene", "s.luz"}, "cubes = 20\ncube = 0, 0, 0\n", NULL,
+     {"s.luz:2", "cubes"}},
+    {"scene-cube-lines-then-cubes", {"--scene", "s.luz"}, "cube = 0, 0, 0\ncubes = 20\n", NULL,
+     {"s.luz:2", "cubes"}},
+    {"scene-error-before-command-line", {"--size", "8x8", "--scene", "s.luz"}, "time = soon\n",
+     NULL, {"s.luz:1", "time", "number"}},
+};
+
+#define ERROR_CASE_COUNT (sizeof error_cases / sizeof error_cases[0])
+
+static void test_refused(void **state)
+{
+    const error_case *test = *state;
+    sandbox box;
+    sandbox_create(&box);
+    if (test->scene != NULL)
+        write_text(box.work, "s.luz", test->scene);
+    char before[8192] = "", after[8192] = "";
+    list_tree(box.work, "", before, sizeof before);
+
+    run_result result = run_in(&box, test->arguments, test->textures_environment);
+
+    if (result.status != 2)
+        fail_msg("exit status %d, expected 2; stderr: %s", result.status, result.err);
+    /* exactly one line, with the program's name in front */
+    size_t length = strlen(result.err);
+    if (length < 2 || result.err[length - 1] != '\n' || strchr(result.err, '\n') != result.err + length - 1)
+        fail_msg("stderr is not exactly one line: '%s'", result.err);
+    if (strncmp(result.err, "luz-render: ", 12) != 0)
+        fail_msg("stderr does not start with 'luz-render: ': %s", result.err);
+    for (int i = 0; i < 4 && test->needles[i] != NULL; i++) {
+        if (strstr(result.err, test->needles[i]) == NULL)
+            fail_msg("stderr lacks '%s': %s", test->needles[i], result.err);
+    }
+    assert_string_equal(result.out, "");
+    /* no PNG, no temporary file, nothing */
+    list_tree(box.work, "", after, sizeof after);
+    assert_string_equal(before, after);
+
+    run_result_free(&result);
+    sandbox_destroy(&box);
+}
+
+/* 100000x100000 would be 130 GB: the refusal must come from the check, at
+ * once, not from an allocation that fails (or, worse, succeeds). */
+static void test_huge_size_refused_at_once(void **state)
+{
+    (void)state;
+    sandbox box;
+    sandbox_create(&box);
+    run_result result = run_in(&box, ARGS("--size", "100000x100000", "--textures", "none"), NULL);
+    assert_int_equal(result.status, 2);
+    if (result.seconds > 2.0)
+        fail_msg("took %.2f s to refuse the size", result.seconds);
+    run_result_free(&result);
+    sandbox_destroy(&box);
+}
+
+/* ---- what works ---------------------------------------------------------------------------- */
+
+static void test_help(void **state)
+{
+    (void)state;
+    static const char *const options[] = {
+        "--size",         "--time",       "--seed",        "--camera-pos", "--camera-yaw",
+        "--camera-pitch", "--fov",        "--ambient",     "--diffuse",    "--specular",
+        "--shininess",    "--point",      "--spot",        "--spot-inner", "--spot-outer",
+        "--spot-reach",   "--directional", "--filter",     "--textures",   "--cubes",
+        "--threads",      "--only",       "-o",            "--frames",     "--fps",
+        "--bench",        "--scene",      "--help",        "--version",
+    };
+    /* defaults that SCENE.md and the issue fix */
+    static const char *const defaults[] = {
+        "1280x720", "default: 0, 0, 3", "default: -90", "default: 45", "default: 1, 1, 1, 0.2",
+        "default: 32", "default: 12.5", "default: 17.5", "default: 10", "default: trilinear",
+        "default: luz.png", "default: 30", "default: 1, 1, 1, 0.4",
+    };
+    sandbox box;
+    sandbox_create(&box);
+    run_result result = run_in(&box, ARGS("--help"), NULL);
+    assert_success(&result);
+    for (size_t i = 0; i < sizeof options / sizeof options[0]; i++) {
+        if (strstr(result.out, options[i]) == NULL)
+            fail_msg("--help does not mention %s", options[i]);
+    }
+    for (size_t i = 0; i < sizeof defaults / sizeof defaults[0]; i++) {
+        if (strstr(result.out, defaults[i]) == NULL)
+            fail_msg("--help does not show '%s'", defaults[i]);
+    }
+    run_result_free(&result);
+    sandbox_destroy(&box);
+}
+
+static void test_version(void **state)
+{
+    (void)state;
+    sandbox box;
+    sandbox_create(&box);
+    run_result result = run_in(&box, ARGS("--version"), NULL);
+    assert_success(&result);
+    assert_string_equal(result.out, "luz-render 0.1.0\n");
+    run_result_free(&result);
+    sandbox_destroy(&box);
+}
+
+static void test_tiny_render(void **state)
+{
+    (void)state;
+    sandbox box;
+    sandbox_create(&box);
+    char before[8192] = "", after[8192] = "";
+    list_tree(box.work, "", before, sizeof before);
+    run_result result = run_in(&box, ARGS("--size", "16x9", "--textures", "none", "-o", "tiny.png"),
+                               NULL);
+    assert_success(&result);
+    assert_string_equal(result.out, "");
+    assert_png_size(&box, "tiny.png", 16, 9);
+    /* exactly one new file: no temporary left behind */
+    list_tree(box.work, "", after, sizeof after);
+    strcat(before, "tiny.png\n");
+    char *expected = before;
+    /* tiny.png sorts after corrupt/ and empty/ but before... sort by hand */
+    char sorted[8192] = "";
+    {
+        char *lines[64];
+        int count = 0;
+        for (char *line = strtok(expected, "\n"); line && count < 64; line = strtok(NULL, "\n"))
+            lines[count++] = line;
+        qsort(lines, (size_t)count, sizeof *lines, compare_strings);
+        for (int i = 0; i < count; i++) {
+            strcat(sorted, lines[i]);
+            strcat(sorted, "\n");
+        }
+    }
+    assert_string_equal(after, sorted);
+    run_result_free(&result);
+    sandbox_destroy(&box);
+}
+
+/* --name=value works as --name value does, and the default output is luz.png. */
+static void test_equals_form_and_default_output(void **state)
+{
+    (void)state;
+    sandbox box;
+    sandbox_create(&box);
+    run_result result = run_in(&box, ARGS("--size=16x9", "--textures=none", "--time=2"), NULL);
+    assert_success(&result);
+    assert_png_size(&box, "luz.png", 16, 9);
+    run_result_free(&result);
+    sandbox_destroy(&box);
+}
+
+static void test_textures_directory(void **state)
+{
+    (void)state;
+    sandbox box;
+    sandbox_create(&box);
+    run_result result = run_in(&box, ARGS("--size", "12x10", "--textures", "tex", "-o", "t.png"),
+                               NULL);
+    assert_success(&result);
+    assert_png_size(&box, "t.png", 12, 10);
+    run_result_free(&result);
+
+    /* $LUZ_TEXTURES is used without --textures, and --textures beats it */
+    result = run_in(&box, ARGS("--size", "10x10", "-o", "env.png"), "tex");
+    assert_success(&result);
+    assert_png_size(&box, "env.png", 10, 10);
+    run_result_free(&result);
+    result = run_in(&box, ARGS("--size", "10x10", "--textures", "tex", "-o", "beats.png"), "empty");
+    assert_success(&result);
+    assert_png_size(&box, "beats.png", 10, 10);
+    run_result_free(&result);
+    sandbox_destroy(&box);
+}
+
+static bool file_exists(const sandbox *box, const char *name)
+{
+    char path[600];
+    struct stat info;
+    sandbox_path(box, name, path, sizeof path);
+    return stat(path, &info) == 0;
+}
+
+static void test_frame_sequence(void **state)
+{
+    (void)state;
+    sandbox box;
+    sandbox_create(&box);
+    char before[8192] = "", after[8192] = "";
+    list_tree(box.work, "", before, sizeof before);
+    run_result result = run_in(&box,
+                               ARGS("--frames", "3", "--fps", "10", "--size", "8x6", "--textures",
+                                    "none", "-o", "out_%04d.png"),
+                               NULL);
+    assert_success(&result);
+    assert_string_equal(result.out, "");
+    assert_png_size(&box, "out_0000.png", 8, 6);
+    assert_png_size(&box, "out_0001.png", 8, 6);
+    assert_png_size(&box, "out_0002.png", 8, 6);
+    list_tree(box.work, "", after, sizeof after);
+    /* the three files and nothing else (the fixtures sort first: c, e, t < o? no) */
+    int new_files = 0;
+    for (char *line = strtok(after, "\n"); line; line = strtok(NULL, "\n")) {
+        char needle[300];
+        snprintf(needle, sizeof needle, "%s\n", line);
+        if (strstr(before, needle) == NULL) {
+            new_files++;
+            if (strncmp(line, "out_000", 7) != 0)
+                fail_msg("unexpected file %s", line);
+        }
+    }
+    assert_int_equal(new_files, 3);
+    assert_false(file_exists(&box, "out_0003.png"));
+    run_result_free(&result);
+
+    /* %% is a percent sign; no -o with --frames gives luz_%04d.png */
+    result = run_in(&box, ARGS("--frames", "2", "--size", "8x6", "--textures", "none", "-o",
+                               "p%%_%2d.png"),
+                    NULL);
+    assert_success(&result);
+    assert_png_size(&box, "p%_ 0.png", 8, 6);
+    assert_png_size(&box, "p%_ 1.png", 8, 6);
+    run_result_free(&result);
+    result = run_in(&box, ARGS("--frames", "2", "--size", "8x6", "--textures", "none"), NULL);
+    assert_success(&result);
+    assert_png_size(&box, "luz_0000.png", 8, 6);
+    assert_png_size(&box, "luz_0001.png", 8, 6);
+    run_result_free(&result);
+    sandbox_destroy(&box);
+}
+
+static bool files_equal(const sandbox *box, const char *a, const char *b)
+{
+    char path_a[600], path_b[600];
+    size_t length_a = 0, length_b = 0;
+    sandbox_path(box, a, path_a, sizeof path_a);
+    sandbox_path(box, b, path_b, sizeof path_b);
+    char *data_a = read_file(path_a, &length_a), *data_b = read_file(path_b, &length_b);
+    assert_non_null(data_a);
+    assert_non_null(data_b);
+    bool equal = length_a == length_b && memcmp(data_a, data_b, length_a) == 0;
+    free(data_a);
+    free(data_b);
+    return equal;
+}
+
+/* Frame k of a sequence is the scene at time + k / fps: the second frame
+ * of a sequence from t = 1 at 2 fps is the single frame at t = 1.5. */
+static void test_sequence_times(void **state)
+{
+    (void)state;
+    sandbox box;
+    sandbox_create(&box);
+    run_result result = run_in(&box, ARGS("--frames", "2", "--fps", "2", "--time", "1", "--size",
+                                           "48x32", "--textures", "tex", "-o", "seq_%d.png"),
+                               NULL);
+    assert_success(&result);
+    run_result_free(&result);
+    result = run_in(&box, ARGS("--time", "1.5", "--size", "48x32", "--textures", "tex", "-o",
+                               "single.png"),
+                    NULL);
+    assert_success(&result);
+    run_result_free(&result);
+    assert_true(files_equal(&box, "seq_1.png", "single.png"));
+    assert_false(files_equal(&box, "seq_0.png", "seq_1.png"));
+    sandbox_destroy(&box);
+}
+
+static void assert_contains(const char *text, const char *needle)
+{
+    if (strstr(text, needle) == NULL)
+        fail_msg("'%s' lacks '%s'", text, needle);
+}
+
+static void test_bench(void **state)
+{
+    (void)state;
+    sandbox box;
+    sandbox_create(&box);
+    char before[8192] = "", after[8192] = "";
+    list_tree(box.work, "", before, sizeof before);
+    run_result result = run_in(&box, ARGS("--bench", "2", "--size", "16x9", "--textures", "none",
+                                          "--threads", "1", "--cubes", "20"),
+                               NULL);
+    assert_success(&result);
+    /* one line */
+    assert_non_null(strchr(result.out, '\n'));
+    assert_string_equal(strchr(result.out, '\n'), "\n");
+    static const char *const fields[] = {"frames=2 ", "size=16x9 ", "threads=1 ", "cubes=20 ",
+                                         "filter=trilinear ", "median_ms=", "min_ms=", "fps=",
+                                         "cpu_ms=", "geometry_ms=", "raster_ms="};
+    for (size_t i = 0; i < sizeof fields / sizeof fields[0]; i++)
+        assert_contains(result.out, fields[i]);
+    assert_null(strstr(result.out, "speedup="));
+    double median_ms = atof(strstr(result.out, "median_ms=") + 10);
+    double min_ms = atof(strstr(result.out, "min_ms=") + 7);
+    assert_true(median_ms > 0.0);
+    assert_true(min_ms > 0.0 && min_ms <= median_ms);
+    run_result_free(&result);
+
+    /* with threads, the single-thread comparison */
+    result = run_in(&box, ARGS("--bench=2", "--size", "16x9", "--textures", "none", "--threads",
+                               "2", "--filter", "nearest"),
+                    NULL);
+    assert_success(&result);
+    assert_contains(result.out, "threads=2 ");
+    assert_contains(result.out, "filter=nearest ");
+    assert_contains(result.out, "single_thread_median_ms=");
+    assert_contains(result.out, "speedup=");
+    run_result_free(&result);
+
+    /* no file written */
+    list_tree(box.work, "", after, sizeof after);
+    assert_string_equal(before, after);
+    sandbox_destroy(&box);
+}
+
+/* The command line overrides the scene file whatever the order. */
+static void test_scene_file_and_precedence(void **state)
+{
+    (void)state;
+    sandbox box;
+    sandbox_create(&box);
+    write_text(box.work, "s.luz",
+               "# a small scene\n"
+               "size = 20x10\n"
+               "textures = none   # all white\n"
+               "\n"
+               "camera-pos = 0, 0, 4\n");
+    run_result result = run_in(&box, ARGS("--scene", "s.luz", "-o", "file.png"), NULL);
+    assert_success(&result);
+    assert_png_size(&box, "file.png", 20, 10);
+    run_result_free(&result);
+
+    result = run_in(&box, ARGS("--size", "16x9", "--scene", "s.luz", "-o", "before.png"), NULL);
+    assert_success(&result);
+    assert_png_size(&box, "before.png", 16, 9);
+    run_result_free(&result);
+    result = run_in(&box, ARGS("--scene", "s.luz", "--size=16x9", "-o", "after.png"), NULL);
+    assert_success(&result);
+    assert_png_size(&box, "after.png", 16, 9);
+    run_result_free(&result);
+
+    /* --textures on the command line beats the file's `none` */
+    write_text(box.work, "cubes.luz",
+               "size = 24x16\n"
+               "textures = none\n"
+               "cube = 0, 0, 0 colour 1, 0, 0 texture b.bmp\n"
+               "cube = 1.5, 0.5, -1   texture a.bmp colour 0, 1, 0.5\n"
+               "cube = -1.5, -0.5, -1\n");
+    result = run_in(&box, ARGS("--scene", "cubes.luz", "--textures", "tex", "-o", "cubes.png"),
+                    NULL);
+    assert_success(&result);
+    assert_png_size(&box, "cubes.png", 24, 16);
+    run_result_free(&result);
+    sandbox_destroy(&box);
+}
+
+/* The options reach the picture: with --only ambient and a black ambient
+ * light, every cube is black and the background keeps SCENE.md's clear
+ * colour 0.1 (26 of 255); the point light's marker is not drawn since its
+ * strength is 0. With the default lights some pixel is something else. */
+static void test_options_reach_the_image(void **state)
+{
+    (void)state;
+    sandbox box;
+    sandbox_create(&box);
+    run_result result = run_in(&box, ARGS("--size", "64x36", "--textures", "none", "--only",
+                                          "ambient", "--ambient", "0,0,0,1", "-o", "dark.png"),
+                               NULL);
+    assert_success(&result);
+    run_result_free(&result);
+    result = run_in(&box, ARGS("--size", "64x36", "--textures", "none", "-o", "lit.png"), NULL);
+    assert_success(&result);
+    run_result_free(&result);
+
+    char path[600];
+    int width, height, channels;
+    sandbox_path(&box, "dark.png", path, sizeof path);
+    unsigned char *dark = stbi_load(path, &width, &height, &channels, 3);
+    assert_non_null(dark);
+    assert_int_equal(width, 64);
+    assert_int_equal(height, 36);
+    int black = 0, background = 0;
+    for (int i = 0; i < width * height; i++) {
+        const unsigned char *p = dark + 3 * i;
+        if (p[0] == 0 && p[1] == 0 && p[2] == 0)
+            black++;
+        else if (p[0] == 26 && p[1] == 26 && p[2] == 26)
+            background++;
+        else
+            fail_msg("pixel %d is %d,%d,%d: neither black cube nor background", i, p[0], p[1],
+                     p[2]);
+    }
+    assert_true(black > 0);
+    assert_true(background > 0);
+    stbi_image_free(dark);
+
+    sandbox_path(&box, "lit.png", path, sizeof path);
+    unsigned char *lit = stbi_load(path, &width, &height, &channels, 3);
+    assert_non_null(lit);
+    int other = 0;
+    for (int i = 0; i < width * height * 3; i++)
+        other += lit[i] != 0 && lit[i] != 26;
+    assert_true(other > 0);
+    stbi_image_free(lit);
+    sandbox_destroy(&box);
+}
+
+/* ---- the option functions, in process ------------------------------------------------------- */
+
+static void assert_float_same(float a, float b)
+{
+    if (memcmp(&a, &b, sizeof a) != 0)
+        fail_msg("%.9g != %.9g", (double)a, (double)b);
+}
+
+static void assert_light_same(const luz_light *a, const luz_light *b)
+{
+    assert_float_same(a->colour.x, b->colour.x);
+    assert_float_same(a->colour.y, b->colour.y);
+    assert_float_same(a->colour.z, b->colour.z);
+    assert_float_same(a->strength, b->strength);
+}
+
+/* Everything luz_options_write_scene promises to keep. */
+static void assert_scene_options_equal(const luz_options *a, const luz_options *b)
+{
+    assert_int_equal(a->width, b->width);
+    assert_int_equal(a->height, b->height);
+    assert_memory_equal(&a->scene.time_seconds, &b->scene.time_seconds, sizeof(double));
+    assert_int_equal(a->scene.seed, b->scene.seed);
+    assert_float_same(a->scene.camera.position.x, b->scene.camera.position.x);
+    assert_float_same(a->scene.camera.position.y, b->scene.camera.position.y);
+    assert_float_same(a->scene.camera.position.z, b->scene.camera.position.z);
+    assert_float_same(a->scene.camera.yaw_degrees, b->scene.camera.yaw_degrees);
+    assert_float_same(a->scene.camera.pitch_degrees, b->scene.camera.pitch_degrees);
+    assert_float_same(a->scene.camera.fov_degrees, b->scene.camera.fov_degrees);
+    const luz_lights *la = &a->scene.lights, *lb = &b->scene.lights;
+    assert_light_same(&la->ambient, &lb->ambient);
+    assert_light_same(&la->diffuse, &lb->diffuse);
+    assert_light_same(&la->specular, &lb->specular);
+    assert_light_same(&la->point, &lb->point);
+    assert_light_same(&la->spot, &lb->spot);
+    assert_light_same(&la->directional, &lb->directional);
+    assert_float_same(la->shininess, lb->shininess);
+    assert_float_same(la->spot_inner_degrees, lb->spot_inner_degrees);
+    assert_float_same(la->spot_outer_degrees, lb->spot_outer_degrees);
+    assert_float_same(la->spot_reach, lb->spot_reach);
+    assert_int_equal(a->scene.filter, b->scene.filter);
+    if (a->textures_directory == NULL || b->textures_directory == NULL)
+        assert_ptr_equal(a->textures_directory, b->textures_directory);
+    else
+        assert_string_equal(a->textures_directory, b->textures_directory);
+    assert_int_equal(a->scene.custom_cube_count, b->scene.custom_cube_count);
+    if (a->scene.custom_cube_count == 0)
+        assert_int_equal(a->scene.cube_count, b->scene.cube_count);
+    for (int i = 0; i < a->scene.custom_cube_count; i++) {
+        const luz_cube *ca = &a->scene.custom_cubes[i], *cb = &b->scene.custom_cubes[i];
+        assert_float_same(ca->position.x, cb->position.x);
+        assert_float_same(ca->position.y, cb->position.y);
+        assert_float_same(ca->position.z, cb->position.z);
+        assert_int_equal(ca->has_colour, cb->has_colour);
+        if (ca->has_colour) {
+            assert_float_same(ca->colour.x, cb->colour.x);
+            assert_float_same(ca->colour.y, cb->colour.y);
+            assert_float_same(ca->colour.z, cb->colour.z);
+        }
+        const char *na = a->cube_sources[i].texture_name, *nb = b->cube_sources[i].texture_name;
+        if (na == NULL || nb == NULL)
+            assert_ptr_equal(na, nb);
+        else
+            assert_string_equal(na, nb);
+    }
+}
+
+static void write_scene_to(const luz_options *options, const char *path)
+{
+    FILE *file = fopen(path, "w");
+    assert_non_null(file);
+    luz_options_write_scene(options, file);
+    assert_int_equal(fclose(file), 0);
+}
+
+static void read_scene_from(luz_options *options, const char *path)
+{
+    luz_error error = {{0}};
+    luz_options_init(options);
+    if (luz_options_read_scene_file(options, path, &error) != 0 ||
+        luz_options_finish(options, &error) != 0)
+        fail_msg("reading %s back: %s", path, error.message);
+}
+
+static void parse_or_fail(luz_options *options, int argc, char **argv)
+{
+    luz_error error = {{0}};
+    luz_options_init(options);
+    if (luz_options_parse(options, argc, argv, &error) != 0)
+        fail_msg("%s", error.message);
+}
+
+/* Every value that is not the shortest decimal of its float (0.1, 1/3,
+ * 12345.678) must come back with the same bits. */
+static void test_scene_round_trip(void **state)
+{
+    (void)state;
+    sandbox box;
+    sandbox_create(&box);
+    char *argv[] = {
+        "luz-render",     "--size",        "33x17",      "--time",
+        "1.2345678901234567", "--seed",    "4294967295", "--camera-pos",
+        "0.1,-2.5e-3,3.3333333", "--camera-yaw", "-100.7", "--camera-pitch",
+        "-88.9",          "--fov",         "33.333333",  "--ambient",
+        "0.1,0.2,0.3,0.4", "--diffuse",    "0.7,0.11,0.13,0.6", "--specular",
+        "1,0.5,0.25,0.125", "--shininess", "12345.678",  "--point",
+        "0.3,0.3,0.9,0.7", "--spot",       "1,1,0.9,1",  "--spot-inner",
+        "5.5",            "--spot-outer",  "20.25",      "--spot-reach",
+        "7.7",            "--directional", "0.9,0.8,0.7,0.33333334", "--filter",
+        "nearest",        "--textures",    "some/dir",   "--cubes",
+        "25",             "--only",        "ambient,spot,point,directional,diffuse",
+    };
+    luz_options original, copy, again;
+    parse_or_fail(&original, (int)(sizeof argv / sizeof argv[0]), argv);
+    assert_float_same(original.scene.lights.specular.strength, 0.0f);   /* --only */
+
+    char first[600], second[600];
+    snprintf(first, sizeof first, "%s/first.luz", box.root);
+    snprintf(second, sizeof second, "%s/second.luz", box.root);
+    write_scene_to(&original, first);
+    read_scene_from(&copy, first);
+    assert_scene_options_equal(&original, &copy);
+    /* and writing the copy gives the same text */
+    write_scene_to(&copy, second);
+    char *text_first = read_file(first, NULL), *text_second = read_file(second, NULL);
+    assert_string_equal(text_first, text_second);
+    free(text_first);
+    free(text_second);
+    luz_options_free(&copy);
+    luz_options_free(&original);
+
+    /* custom cubes: colours and texture names survive */
+    char scene[600];
+    snprintf(scene, sizeof scene, "%s/cubes.luz", box.root);
+    write_text(box.root, "cubes.luz",
+               "cube = 0.1, 0.2, 0.3 colour 0.1, 0.7, 1 texture wood.png\n"
+               "cube = -1, 2, -3.75 texture stone.png\n"
+               "cube = 5, 5, 5 colour 0, 0, 0.333\n"
+               "cube = 1e-3, 0, 0\n"
+               "seed = 7\n");
+    read_scene_from(&original, scene);
+    assert_int_equal(original.scene.custom_cube_count, 4);
+    assert_ptr_equal(original.scene.custom_cubes, original.cubes);
+    write_scene_to(&original, first);
+    read_scene_from(&again, first);
+    assert_scene_options_equal(&original, &again);
+    assert_string_equal(again.cube_sources[0].texture_name, "wood.png");
+    assert_null(again.cube_sources[2].texture_name);
+    luz_options_free(&again);
+    luz_options_free(&original);
+    sandbox_destroy(&box);
+}
+
+static void test_parse_precedence_and_forms(void **state)
+{
+    (void)state;
+    sandbox box;
+    sandbox_create(&box);
+    char scene[600];
+    snprintf(scene, sizeof scene, "%s/p.luz", box.root);
+    write_text(box.root, "p.luz", "fov = 30\ntime = 5\ncube = 1, 2, 3\n");
+
+    /* --scene read first, the command line applied over it in any order */
+    char *argv_a[] = {"luz-render", "--fov", "60", "--scene", scene};
+    char *argv_b[] = {"luz-render", "--scene", scene, "--fov=60"};
+    luz_options a, b;
+    parse_or_fail(&a, 5, argv_a);
+    parse_or_fail(&b, 4, argv_b);
+    assert_float_same(a.scene.camera.fov_degrees, 60.0f);
+    assert_float_same(b.scene.camera.fov_degrees, 60.0f);
+    assert_true(a.scene.time_seconds == 5.0);
+    assert_scene_options_equal(&a, &b);
+    assert_int_equal(a.scene.custom_cube_count, 1);
+    assert_string_equal(a.scene_path, scene);
+    luz_options_free(&b);
+
+    /* --cubes on the command line replaces the file's cube lines */
+    char *argv_c[] = {"luz-render", "--cubes", "30", "--scene", scene};
+    parse_or_fail(&b, 5, argv_c);
+    assert_int_equal(b.scene.custom_cube_count, 0);
+    assert_null(b.scene.custom_cubes);
+    assert_int_equal(b.scene.cube_count, 30);
+    luz_options_free(&b);
+    luz_options_free(&a);
+
+    /* --only zeroes the other terms whatever the order, and keeps a set
+     * strength of a kept term */
+    char *argv_d[] = {"luz-render", "--spot", "1,0,0,0.5", "--only", "spot, point",
+                      "--ambient", "1,1,1,1"};
+    parse_or_fail(&a, 7, argv_d);
+    assert_float_same(a.scene.lights.ambient.strength, 0.0f);
+    assert_float_same(a.scene.lights.diffuse.strength, 0.0f);
+    assert_float_same(a.scene.lights.specular.strength, 0.0f);
+    assert_float_same(a.scene.lights.directional.strength, 0.0f);
+    assert_float_same(a.scene.lights.spot.strength, 0.5f);
+    assert_float_same(a.scene.lights.point.strength, luz_scene_defaults().lights.point.strength);
+    luz_options_free(&a);
+
+    /* the spot's cone is checked once both angles are known */
+    char *argv_e[] = {"luz-render", "--spot-inner", "20", "--spot-outer", "25"};
+    parse_or_fail(&a, 5, argv_e);
+    assert_float_same(a.scene.lights.spot_inner_degrees, 20.0f);
+    luz_options_free(&a);
+
+    /* the defaults: SCENE.md's scene, 1280x720, luz.png, automatic threads */
+    char *argv_f[] = {"luz-render"};
+    parse_or_fail(&a, 1, argv_f);
+    luz_scene defaults = luz_scene_defaults();
+    assert_int_equal(a.width, 1280);
+    assert_int_equal(a.height, 720);
+    assert_string_equal(a.output_path, "luz.png");
+    assert_int_equal(a.thread_count, LUZ_THREADS_AUTO);
+    assert_null(a.textures_directory);
+    assert_int_equal(a.frame_count, 1);
+    assert_true(a.frames_per_second == 30.0);
+    assert_int_equal(a.scene.cube_count, defaults.cube_count);
+    assert_float_same(a.scene.lights.ambient.strength, defaults.lights.ambient.strength);
+    luz_options_free(&a);
+    sandbox_destroy(&box);
+}
+
+static void test_output_pattern(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *pattern;
+        int frame;
+        const char *expected;
+    } cases[] = {
+        {"out_%04d.png", 7, "out_0007.png"},
+        {"out_%04d.png", 12345, "out_12345.png"},
+        {"%d.png", 42, "42.png"},
+        {"x%%y%3d.png", 5, "x%y  5.png"},
+        {"100%%.png", 3, "100%.png"},
+        {"plain.png", 9, "plain.png"},
+        {"f%0d", 3, "f3"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        luz_options options;
+        luz_error error = {{0}};
+        char path[64];
+        luz_options_init(&options);
+        options.output_path = strdup(cases[i].pattern);
+        if (luz_options_output_path(&options, cases[i].frame, path, sizeof path, &error) != 0)
+            fail_msg("%s: %s", cases[i].pattern, error.message);
+        assert_string_equal(path, cases[i].expected);
+        luz_options_free(&options);
+    }
+    /* a name that does not fit is refused, not cut */
+    luz_options options;
+    luz_error error = {{0}};
+    char small[8];
+    luz_options_init(&options);
+    options.output_path = strdup("longer_than_eight_%d.png");
+    assert_int_equal(luz_options_output_path(&options, 1, small, sizeof small, &error), -1);
+    luz_options_free(&options);
+}
+
+/* Built in the build tree, this test program finds the source textures;
+ * $LUZ_TEXTURES beats that. */
+static void test_default_textures_directory(void **state)
+{
+    (void)state;
+    char buffer[4096];
+    char *saved = getenv("LUZ_TEXTURES") ? strdup(getenv("LUZ_TEXTURES")) : NULL;
+    unsetenv("LUZ_TEXTURES");
+    assert_string_equal(luz_default_textures_directory(buffer, sizeof buffer),
+                        LUZ_SOURCE_TEXTURES);
+    setenv("LUZ_TEXTURES", "/some/where", 1);
+    assert_string_equal(luz_default_textures_directory(buffer, sizeof buffer), "/some/where");
+    setenv("LUZ_TEXTURES", "", 1);   /* empty counts as unset */
+    assert_string_equal(luz_default_textures_directory(buffer, sizeof buffer),
+                        LUZ_SOURCE_TEXTURES);
+    if (saved) {
+        setenv("LUZ_TEXTURES", saved, 1);
+        free(saved);
+    } else {
+        unsetenv("LUZ_TEXTURES");
+    }
+}
+
+int main(void)
+{
+    static const struct CMUnitTest fixed_tests[] = {
+        cmocka_unit_test(test_help),
+        cmocka_unit_test(test_version),
+        cmocka_unit_test(test_tiny_render),
+        cmocka_unit_test(test_equals_form_and_default_output),
+        cmocka_unit_test(test_textures_directory),
+        cmocka_unit_test(test_frame_sequence),
+        cmocka_unit_test(test_sequence_times),
+        cmocka_unit_test(test_bench),
+        cmocka_unit_test(test_scene_file_and_precedence),
+        cmocka_unit_test(test_options_reach_the_image),
+        cmocka_unit_test(test_huge_size_refused_at_once),
+        cmocka_unit_test(test_scene_round_trip),
+        cmocka_unit_test(test_parse_precedence_and_forms),
+        cmocka_unit_test(test_output_pattern),
+        cmocka_unit_test(test_default_textures_directory),
+    };
+    enum { FIXED = sizeof fixed_tests / sizeof fixed_tests[0] };
+    /* One named test per refused input, so that a failure says which. */
+    static struct CMUnitTest tests[FIXED + ERROR_CASE_COUNT];
+    for (size_t i = 0; i < FIXED; i++)
+        tests[i] = fixed_tests[i];
+    for (size_t i = 0; i < ERROR_CASE_COUNT; i++) {
+        tests[FIXED + i] = (struct CMUnitTest){
+            .name = error_cases[i].name,
+            .test_func = test_refused,
+            .initial_state = (void *)&error_cases[i],
+        };
+    }
+    return _cmocka_run_group_tests("cli", tests, FIXED + ERROR_CASE_COUNT, NULL, NULL);
+}
