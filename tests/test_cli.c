@@ -16,6 +16,9 @@
  * The last tests call the option functions directly (linking libluz): the
  * scene-file round trip, precedence, --only, and the -o pattern.
  */
+/* posix_openpt and friends, for the progress bar's terminal */
+#define _XOPEN_SOURCE 700
+
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -77,7 +80,7 @@ static void write_file(const char *path, const void *data, size_t length)
 
 static void write_text(const char *directory, const char *name, const char *text)
 {
-    char path[600];
+    char path[2048];
     snprintf(path, sizeof path, "%s/%s", directory, name);
     write_file(path, text, strlen(text));
 }
@@ -172,6 +175,48 @@ static void list_tree(const char *directory, const char *prefix, char *out, size
         }
         free(names[i]);
     }
+}
+
+/* Is `line` one of the lines of text? */
+static bool has_line(const char *text, const char *line, size_t length)
+{
+    for (const char *start = text; *start != '\0';) {
+        const char *end = strchr(start, '\n');
+        size_t size = end ? (size_t)(end - start) : strlen(start);
+        if (size == length && memcmp(start, line, length) == 0)
+            return true;
+        if (end == NULL)
+            break;
+        start = end + 1;
+    }
+    return false;
+}
+
+/* The paths of `after` that are not in `before` are exactly `expected`, a
+ * NULL-terminated list: the files a run made, and no temporary beside them. */
+static void assert_new_files(const char *before, const char *after, const char *const *expected)
+{
+    int expected_count = 0;
+    while (expected[expected_count] != NULL)
+        expected_count++;
+    int new_count = 0;
+    for (const char *start = after; *start != '\0';) {
+        const char *end = strchr(start, '\n');
+        size_t length = end ? (size_t)(end - start) : strlen(start);
+        if (!has_line(before, start, length)) {
+            bool wanted = false;
+            for (int i = 0; i < expected_count; i++)
+                wanted = wanted || (strlen(expected[i]) == length &&
+                                    memcmp(expected[i], start, length) == 0);
+            if (!wanted)
+                fail_msg("unexpected new file '%.*s'", (int)length, start);
+            new_count++;
+        }
+        if (end == NULL)
+            break;
+        start = end + 1;
+    }
+    assert_int_equal(new_count, expected_count);
 }
 
 /* ---- running luz-render ------------------------------------------------------------ */
@@ -287,6 +332,12 @@ static void run_result_free(run_result *result)
 }
 
 #define ARGS(...) ((const char *const[]){__VA_ARGS__, NULL})
+
+static void assert_contains(const char *text, const char *needle)
+{
+    if (strstr(text, needle) == NULL)
+        fail_msg("'%s' lacks '%s'", text, needle);
+}
 
 /* Exit status 0 with nothing on stderr; shows stderr if not. */
 static void assert_success(const run_result *result)
@@ -498,7 +549,8 @@ static void test_refused(void **state)
         fail_msg("exit status %d, expected 2; stderr: %s", result.status, result.err);
     /* exactly one line, with the program's name in front */
     size_t length = strlen(result.err);
-    if (length < 2 || result.err[length - 1] != '\n' || strchr(result.err, '\n') != result.err + length - 1)
+    if (length < 2 || result.err[length - 1] != '\n' ||
+        strchr(result.err, '\n') != result.err + length - 1)
         fail_msg("stderr is not exactly one line: '%s'", result.err);
     if (strncmp(result.err, "luz-render: ", 12) != 0)
         fail_msg("stderr does not start with 'luz-render: ': %s", result.err);
@@ -591,22 +643,7 @@ static void test_tiny_render(void **state)
     assert_png_size(&box, "tiny.png", 16, 9);
     /* exactly one new file: no temporary left behind */
     list_tree(box.work, "", after, sizeof after);
-    strcat(before, "tiny.png\n");
-    char *expected = before;
-    /* tiny.png sorts after corrupt/ and empty/ but before... sort by hand */
-    char sorted[8192] = "";
-    {
-        char *lines[64];
-        int count = 0;
-        for (char *line = strtok(expected, "\n"); line && count < 64; line = strtok(NULL, "\n"))
-            lines[count++] = line;
-        qsort(lines, (size_t)count, sizeof *lines, compare_strings);
-        for (int i = 0; i < count; i++) {
-            strcat(sorted, lines[i]);
-            strcat(sorted, "\n");
-        }
-    }
-    assert_string_equal(after, sorted);
+    assert_new_files(before, after, ARGS("tiny.png"));
     run_result_free(&result);
     sandbox_destroy(&box);
 }
@@ -672,18 +709,7 @@ static void test_frame_sequence(void **state)
     assert_png_size(&box, "out_0001.png", 8, 6);
     assert_png_size(&box, "out_0002.png", 8, 6);
     list_tree(box.work, "", after, sizeof after);
-    /* the three files and nothing else (the fixtures sort first: c, e, t < o? no) */
-    int new_files = 0;
-    for (char *line = strtok(after, "\n"); line; line = strtok(NULL, "\n")) {
-        char needle[300];
-        snprintf(needle, sizeof needle, "%s\n", line);
-        if (strstr(before, needle) == NULL) {
-            new_files++;
-            if (strncmp(line, "out_000", 7) != 0)
-                fail_msg("unexpected file %s", line);
-        }
-    }
-    assert_int_equal(new_files, 3);
+    assert_new_files(before, after, ARGS("out_0000.png", "out_0001.png", "out_0002.png"));
     assert_false(file_exists(&box, "out_0003.png"));
     run_result_free(&result);
 
@@ -700,6 +726,65 @@ static void test_frame_sequence(void **state)
     assert_png_size(&box, "luz_0000.png", 8, 6);
     assert_png_size(&box, "luz_0001.png", 8, 6);
     run_result_free(&result);
+    sandbox_destroy(&box);
+}
+
+/* On a terminal a sequence draws a progress bar on stderr, redrawn in
+ * place with \r; the test gives luz-render a pseudo-terminal as stderr. */
+static void test_progress_bar_on_a_terminal(void **state)
+{
+    (void)state;
+    const char *program = getenv("LUZ_RENDER");
+    assert_non_null(program);
+    sandbox box;
+    sandbox_create(&box);
+    int master = posix_openpt(O_RDWR | O_NOCTTY);
+    assert_true(master >= 0);
+    assert_int_equal(grantpt(master), 0);
+    assert_int_equal(unlockpt(master), 0);
+    const char *terminal = ptsname(master);
+    assert_non_null(terminal);
+    char terminal_path[256];
+    snprintf(terminal_path, sizeof terminal_path, "%s", terminal);
+
+    fflush(NULL);
+    pid_t child = fork();
+    assert_true(child >= 0);
+    if (child == 0) {
+        int err = open(terminal_path, O_RDWR | O_NOCTTY);
+        int out = open("/dev/null", O_WRONLY);
+        if (err < 0 || out < 0 || chdir(box.work) != 0 || dup2(err, STDERR_FILENO) < 0 ||
+            dup2(out, STDOUT_FILENO) < 0)
+            _exit(127);
+        close(master);
+        execl(program, program, "--frames", "3", "--size", "8x6", "--textures", "none", "-o",
+              "bar_%d.png", (char *)NULL);
+        _exit(127);
+    }
+    /* Read until the terminal hangs up (EIO once the child has exited). */
+    char text[4096];
+    size_t length = 0;
+    for (;;) {
+        ssize_t got = read(master, text + length, sizeof text - 1 - length);
+        if (got > 0)
+            length += (size_t)got;
+        else if (got < 0 && errno == EINTR)
+            continue;
+        else
+            break;
+        if (length == sizeof text - 1)
+            break;
+    }
+    text[length] = '\0';
+    close(master);
+    int status;
+    assert_int_equal(waitpid(child, &status, 0), child);
+    assert_true(WIFEXITED(status));
+    assert_int_equal(WEXITSTATUS(status), 0);
+    assert_contains(text, "\rluz-render: [");
+    assert_contains(text, "1/3 frames");
+    assert_contains(text, "3/3 frames");
+    assert_png_size(&box, "bar_2.png", 8, 6);
     sandbox_destroy(&box);
 }
 
@@ -738,12 +823,6 @@ static void test_sequence_times(void **state)
     assert_true(files_equal(&box, "seq_1.png", "single.png"));
     assert_false(files_equal(&box, "seq_0.png", "seq_1.png"));
     sandbox_destroy(&box);
-}
-
-static void assert_contains(const char *text, const char *needle)
-{
-    if (strstr(text, needle) == NULL)
-        fail_msg("'%s' lacks '%s'", text, needle);
 }
 
 static void test_bench(void **state)
@@ -1172,6 +1251,7 @@ int main(void)
         cmocka_unit_test(test_textures_directory),
         cmocka_unit_test(test_frame_sequence),
         cmocka_unit_test(test_sequence_times),
+        cmocka_unit_test(test_progress_bar_on_a_terminal),
         cmocka_unit_test(test_bench),
         cmocka_unit_test(test_scene_file_and_precedence),
         cmocka_unit_test(test_options_reach_the_image),

@@ -32,6 +32,7 @@
 
 #include "luz/framebuffer.h"
 #include "luz/renderer.h"
+#include "io/option_text.h"
 
 #if !defined(LUZ_SOURCE_TEXTURES) || !defined(LUZ_INSTALLED_TEXTURES) || !defined(LUZ_BUILD_ROOT)
 #error "src/meson.build passes LUZ_SOURCE_TEXTURES, LUZ_INSTALLED_TEXTURES and LUZ_BUILD_ROOT"
@@ -95,7 +96,7 @@ static const option_spec option_table[] = {
      .summary = "vertical field of view in degrees, above 0 and below 180"},
     {.name = "ambient", .kind = OPTION_LIGHT, .offset = FIELD(scene.lights.ambient),
      .in_scene_file = true, .syntax = "r,g,b,a",
-     .summary = "ambient light: colour and strength, each in [0, 1]"},
+     .summary = "ambient light: colour and strength, each from 0 to 1"},
     {.name = "diffuse", .kind = OPTION_LIGHT, .offset = FIELD(scene.lights.diffuse),
      .in_scene_file = true, .syntax = "r,g,b,a", .summary = "diffuse headlight at the camera"},
     {.name = "specular", .kind = OPTION_LIGHT, .offset = FIELD(scene.lights.specular),
@@ -135,7 +136,7 @@ static const option_spec option_table[] = {
     {.name = "output", .kind = OPTION_PATH, .offset = FIELD(output_path), .in_scene_file = true,
      .syntax = "FILE.png",
      .summary = "output PNG; with --frames a pattern such as out_%04d.png",
-     .default_text = "luz.png, or luz_%04d.png for more than one frame"},
+     .default_text = "luz.png; luz_%04d.png for frames"},
     {.name = "frames", .kind = OPTION_INTEGER, .offset = FIELD(frame_count), .min = 1,
      .max = LUZ_MAX_FRAMES, .in_scene_file = true, .syntax = "N",
      .summary = "render N frames, frame k at time T + k / fps, into the -o pattern"},
@@ -182,75 +183,12 @@ static const void *option_field_const(const luz_options *options, const option_s
 
 /* ---- reading numbers ------------------------------------------------------- */
 
-/* A user's text quoted in a message: at most 60 bytes of it, and control
- * characters shown as '?' so that the message stays on one line. */
-typedef struct quoted {
-    char text[72];
-} quoted;
-
-static quoted quote(const char *text)
-{
-    quoted result;
-    size_t length = 0;
-    for (; text[length] != '\0' && length < 60; length++) {
-        unsigned char c = (unsigned char)text[length];
-        result.text[length] = (c < 0x20 || c == 0x7f) ? '?' : (char)c;
-    }
-    if (text[length] != '\0') {
-        memcpy(result.text + length, "...", 3);
-        length += 3;
-    }
-    result.text[length] = '\0';
-    return result;
-}
-
-typedef enum parse_result {
-    PARSE_OK,
-    PARSE_MALFORMED,   /* not the expected shape, or something after it */
-    PARSE_NOT_FINITE,  /* NaN, infinity, or beyond a float's range */
-} parse_result;
-
-static const char *skip_blanks(const char *text)
-{
-    while (*text == ' ' || *text == '\t')
-        text++;
-    return text;
-}
-
-/* Reads `count` comma-separated numbers, blanks allowed around each, and
- * nothing after the last. With single_precision the numbers must also fit a
- * float: 1e39 is finite as a double but would become infinity. */
-static parse_result read_numbers(const char *text, double *values, int count,
-                                 bool single_precision)
-{
-    const char *cursor = text;
-    for (int i = 0; i < count; i++) {
-        cursor = skip_blanks(cursor);
-        /* strtod would skip newlines too and take the next line's number */
-        if (*cursor == '\0' || *cursor == ',' || isspace((unsigned char)*cursor))
-            return PARSE_MALFORMED;
-        char *end;
-        values[i] = strtod(cursor, &end);
-        if (end == cursor)
-            return PARSE_MALFORMED;
-        if (!isfinite(values[i]) || (single_precision && fabs(values[i]) > FLT_MAX))
-            return PARSE_NOT_FINITE;
-        cursor = skip_blanks(end);
-        if (i + 1 < count) {
-            if (*cursor != ',')
-                return PARSE_MALFORMED;
-            cursor++;
-        }
-    }
-    return *cursor == '\0' ? PARSE_OK : PARSE_MALFORMED;
-}
-
 /* Reads a decimal integer at *cursor (blanks before it allowed) and moves
  * the cursor past it. Values beyond long long saturate, so that "1e30"-sized
  * digits are reported as out of range rather than malformed. */
 static bool read_integer_prefix(const char **cursor, long long *value)
 {
-    const char *start = skip_blanks(*cursor);
+    const char *start = option_skip_blanks(*cursor);
     const char *digits = start;
     if (*digits == '+' || *digits == '-')
         digits++;
@@ -269,7 +207,7 @@ static bool read_integer(const char *text, long long min, long long max, long lo
     const char *cursor = text;
     if (!read_integer_prefix(&cursor, value))
         return false;
-    if (errno == ERANGE || *skip_blanks(cursor) != '\0')
+    if (errno == ERANGE || *option_skip_blanks(cursor) != '\0')
         return false;
     return *value >= min && *value <= max;
 }
@@ -305,19 +243,19 @@ static int set_size(luz_options *options, const char *value, const char *where, 
     long long width, height;
     bool well_formed = read_integer_prefix(&cursor, &width);
     if (well_formed) {
-        cursor = skip_blanks(cursor);
+        cursor = option_skip_blanks(cursor);
         well_formed = *cursor == 'x' || *cursor == 'X';
     }
     if (well_formed) {
         cursor++;
-        well_formed = read_integer_prefix(&cursor, &height) && *skip_blanks(cursor) == '\0';
+        well_formed = read_integer_prefix(&cursor, &height) && *option_skip_blanks(cursor) == '\0';
     }
     if (!well_formed)
         return luz_error_set(error, "%s: expected WIDTHxHEIGHT such as 1280x720, got '%s'", where,
-                             quote(value).text);
+                             option_quote(value).text);
     if (width < 1 || height < 1)
         return luz_error_set(error, "%s: expected a width and height of at least 1, got '%s'",
-                             where, quote(value).text);
+                             where, option_quote(value).text);
     /* The check works on ints; anything beyond INT_MAX is too large anyway,
      * and is refused here without allocating anything. */
     if (luz_framebuffer_check_size(width > INT_MAX ? INT_MAX : (int)width,
@@ -325,7 +263,7 @@ static int set_size(luz_options *options, const char *value, const char *where, 
         return luz_error_set(error,
                              "%s: expected a size the renderer supports (at most %d a side and "
                              "%d pixels in all, such as 8192x8192), got '%s'",
-                             where, LUZ_MAX_DIMENSION, LUZ_MAX_PIXELS, quote(value).text);
+                             where, LUZ_MAX_DIMENSION, LUZ_MAX_PIXELS, option_quote(value).text);
     options->width = (int)width;
     options->height = (int)height;
     return 0;
@@ -337,17 +275,19 @@ static int set_number(luz_options *options, const option_spec *spec, const char 
     double number;
     char range[64];
     describe_range(spec, range, sizeof range);
-    switch (read_numbers(value, &number, 1, spec->kind == OPTION_FLOAT)) {
-    case PARSE_MALFORMED:
-        return luz_error_set(error, "%s: expected %s, got '%s'", where, range, quote(value).text);
-    case PARSE_NOT_FINITE:
+    switch (option_read_numbers(value, &number, 1, spec->kind == OPTION_FLOAT)) {
+    case OPTION_PARSE_MALFORMED:
+        return luz_error_set(error, "%s: expected %s, got '%s'", where, range,
+                             option_quote(value).text);
+    case OPTION_PARSE_NOT_FINITE:
         return luz_error_set(error, "%s: expected a finite number, got '%s'", where,
-                             quote(value).text);
-    case PARSE_OK:
+                             option_quote(value).text);
+    case OPTION_PARSE_OK:
         break;
     }
     if (!in_range(spec, number))
-        return luz_error_set(error, "%s: expected %s, got '%s'", where, range, quote(value).text);
+        return luz_error_set(error, "%s: expected %s, got '%s'", where, range,
+                             option_quote(value).text);
     if (spec->kind == OPTION_FLOAT)
         *(float *)option_field(options, spec) = (float)number;
     else
@@ -366,7 +306,7 @@ static int set_integer(luz_options *options, const option_spec *spec, const char
     if (!read_integer(value, (long long)spec->min, (long long)spec->max, &number))
         return luz_error_set(error, "%s: expected %san integer from %lld to %lld, got '%s'", where,
                              spec->kind == OPTION_THREADS ? "auto or " : "",
-                             (long long)spec->min, (long long)spec->max, quote(value).text);
+                             (long long)spec->min, (long long)spec->max, option_quote(value).text);
     switch (spec->kind) {
     case OPTION_SEED:
         options->scene.seed = (uint32_t)number;
@@ -391,14 +331,14 @@ static int set_vector(luz_options *options, const option_spec *spec, const char 
     bool light = spec->kind == OPTION_LIGHT;
     const char *expected = light ? "r,g,b,a (four numbers, each in [0, 1])"
                                  : "x,y,z (three numbers)";
-    switch (read_numbers(value, numbers, light ? 4 : 3, true)) {
-    case PARSE_MALFORMED:
+    switch (option_read_numbers(value, numbers, light ? 4 : 3, true)) {
+    case OPTION_PARSE_MALFORMED:
         return luz_error_set(error, "%s: expected %s, got '%s'", where, expected,
-                             quote(value).text);
-    case PARSE_NOT_FINITE:
+                             option_quote(value).text);
+    case OPTION_PARSE_NOT_FINITE:
         return luz_error_set(error, "%s: expected finite numbers, got '%s'", where,
-                             quote(value).text);
-    case PARSE_OK:
+                             option_quote(value).text);
+    case OPTION_PARSE_OK:
         break;
     }
     luz_vec3 vector = luz_vec3_make((float)numbers[0], (float)numbers[1], (float)numbers[2]);
@@ -409,7 +349,7 @@ static int set_vector(luz_options *options, const option_spec *spec, const char 
     for (int i = 0; i < 4; i++) {
         if (!(numbers[i] >= 0.0 && numbers[i] <= 1.0))
             return luz_error_set(error, "%s: expected %s, got '%s'", where, expected,
-                                 quote(value).text);
+                                 option_quote(value).text);
     }
     *(luz_light *)option_field(options, spec) =
         (luz_light){.colour = vector, .strength = (float)numbers[3]};
@@ -428,7 +368,7 @@ static int set_filter(luz_options *options, const char *value, const char *where
         }
     }
     return luz_error_set(error, "%s: expected nearest, bilinear or trilinear, got '%s'", where,
-                         quote(value).text);
+                         option_quote(value).text);
 }
 
 /* --only: terms separated by commas, blanks allowed around each. The
@@ -441,7 +381,7 @@ static int set_only(luz_options *options, const char *value, const char *where,
     unsigned terms = 0;
     const char *cursor = value;
     for (;;) {
-        cursor = skip_blanks(cursor);
+        cursor = option_skip_blanks(cursor);
         size_t length = strcspn(cursor, ", \t");
         int found = -1;
         for (int term = 0; term < LUZ_TERM_COUNT && length > 0; term++) {
@@ -450,23 +390,21 @@ static int set_only(luz_options *options, const char *value, const char *where,
                 found = term;
         }
         if (found < 0)
-            return luz_error_set(error,
-                                 "%s: expected light terms separated by commas (ambient, "
-                                 "diffuse, specular, point, spot, directional), got '%s'",
-                                 where, quote(value).text);
-        terms |= 1u << found;
-        cursor = skip_blanks(cursor + length);
-        if (*cursor == '\0')
             break;
+        terms |= 1u << found;
+        cursor = option_skip_blanks(cursor + length);
+        if (*cursor == '\0') {
+            options->only_terms = terms;
+            return 0;
+        }
         if (*cursor != ',')
-            return luz_error_set(error,
-                                 "%s: expected light terms separated by commas (ambient, "
-                                 "diffuse, specular, point, spot, directional), got '%s'",
-                                 where, quote(value).text);
+            break;
         cursor++;
     }
-    options->only_terms = terms;
-    return 0;
+    return luz_error_set(error,
+                         "%s: expected light terms separated by commas (ambient, diffuse, "
+                         "specular, point, spot, directional), got '%s'",
+                         where, option_quote(value).text);
 }
 
 static int set_path(luz_options *options, const option_spec *spec, const char *value,
@@ -488,14 +426,15 @@ int luz_options_set(luz_options *options, const char *name, const char *value,
     char default_where[32];
     if (spec == NULL)
         return luz_error_set(error, "%s: unknown option '%s'", where ? where : "options",
-                             quote(name).text);
+                             option_quote(name).text);
     if (where == NULL) {
         snprintf(default_where, sizeof default_where, "--%s", spec->name);
         where = default_where;
     }
     if (spec->kind == OPTION_FLAG) {
         if (value != NULL)
-            return luz_error_set(error, "%s: takes no value, got '%s'", where, quote(value).text);
+            return luz_error_set(error, "%s: takes no value, got '%s'", where,
+                                 option_quote(value).text);
         *(bool *)option_field(options, spec) = true;
         return 0;
     }
@@ -546,18 +485,22 @@ int luz_options_format(const luz_options *options, const char *name, char *buffe
     if (spec == NULL || size == 0)
         return -1;
     const void *field = option_field_const(options, spec);
+    char number[4][32];
     int written = -1;
-    /* %.9g and %.17g are the shortest formats that bring every float and
-     * every double back to the same bits through strtod. */
+    /* Numbers are written with the fewest digits that read back to the same
+     * bits (option_text.h), so that a written scene file renders the same
+     * picture and still reads well: 0.2, not 0.200000003. */
     switch (spec->kind) {
     case OPTION_SIZE:
         written = snprintf(buffer, size, "%dx%d", options->width, options->height);
         break;
     case OPTION_DOUBLE:
-        written = snprintf(buffer, size, "%.17g", *(const double *)field);
+        option_format_double(number[0], sizeof number[0], *(const double *)field);
+        written = snprintf(buffer, size, "%s", number[0]);
         break;
     case OPTION_FLOAT:
-        written = snprintf(buffer, size, "%.9g", (double)*(const float *)field);
+        option_format_float(number[0], sizeof number[0], *(const float *)field);
+        written = snprintf(buffer, size, "%s", number[0]);
         break;
     case OPTION_SEED:
         written = snprintf(buffer, size, "%lu", (unsigned long)options->scene.seed);
@@ -577,15 +520,20 @@ int luz_options_format(const luz_options *options, const char *name, char *buffe
         break;
     case OPTION_VEC3: {
         const luz_vec3 *vector = field;
-        written = snprintf(buffer, size, "%.9g, %.9g, %.9g", (double)vector->x,
-                           (double)vector->y, (double)vector->z);
+        option_format_float(number[0], sizeof number[0], vector->x);
+        option_format_float(number[1], sizeof number[1], vector->y);
+        option_format_float(number[2], sizeof number[2], vector->z);
+        written = snprintf(buffer, size, "%s, %s, %s", number[0], number[1], number[2]);
         break;
     }
     case OPTION_LIGHT: {
         const luz_light *light = field;
-        written = snprintf(buffer, size, "%.9g, %.9g, %.9g, %.9g", (double)light->colour.x,
-                           (double)light->colour.y, (double)light->colour.z,
-                           (double)light->strength);
+        option_format_float(number[0], sizeof number[0], light->colour.x);
+        option_format_float(number[1], sizeof number[1], light->colour.y);
+        option_format_float(number[2], sizeof number[2], light->colour.z);
+        option_format_float(number[3], sizeof number[3], light->strength);
+        written = snprintf(buffer, size, "%s, %s, %s, %s", number[0], number[1], number[2],
+                           number[3]);
         break;
     }
     case OPTION_FILTER:
@@ -710,7 +658,7 @@ int luz_options_output_path(const luz_options *options, int frame_index, char *b
         return luz_error_set(error,
                              "-o: expected a file name with at most one %%d conversion "
                              "(%%d, %%4d or %%04d; %%%% for a percent sign), got '%s'",
-                             quote(path).text);
+                             option_quote(path).text);
     size_t used = 0;
     for (size_t i = 0; path[i] != '\0'; i++) {
         char piece[48];
@@ -728,7 +676,8 @@ int luz_options_output_path(const luz_options *options, int frame_index, char *b
         }
         size_t length = strlen(piece);
         if (used + length >= size)
-            return luz_error_set(error, "-o: the file name '%s' is too long", quote(path).text);
+            return luz_error_set(error, "-o: the file name '%s' is too long",
+                                 option_quote(path).text);
         memcpy(buffer + used, piece, length);
         used += length;
     }
@@ -765,12 +714,12 @@ int luz_options_finish(luz_options *options, luz_error *error)
         return luz_error_set(error,
                              "-o: expected a file name with at most one %%d conversion "
                              "(%%d, %%4d or %%04d; %%%% for a percent sign), got '%s'",
-                             quote(options->output_path).text);
+                             option_quote(options->output_path).text);
     if (options->frame_count > 1 && pattern.conversions == 0)
         return luz_error_set(error,
                              "-o: expected a pattern with a %%d conversion such as out_%%04d.png "
                              "for %d frames, got '%s'",
-                             options->frame_count, quote(options->output_path).text);
+                             options->frame_count, option_quote(options->output_path).text);
     return 0;
 }
 
@@ -801,21 +750,22 @@ static int read_argument(int argc, char **argv, int *index, command_argument *ar
         if (argument->spec == NULL || length == 1) {
             char flag[64];
             snprintf(flag, sizeof flag, "%.*s", (int)(length + 2 < 60 ? length + 2 : 60), text);
-            return luz_error_set(error, "unknown option '%s' (see --help)", quote(flag).text);
+            return luz_error_set(error, "unknown option '%s' (see --help)",
+                                 option_quote(flag).text);
         }
         snprintf(argument->where, sizeof argument->where, "--%s", argument->spec->name);
     } else if (text[0] == '-' && text[1] != '\0') {
-        return luz_error_set(error, "unknown option '%s' (see --help)", quote(text).text);
+        return luz_error_set(error, "unknown option '%s' (see --help)", option_quote(text).text);
     } else {
         return luz_error_set(error,
                              "unexpected argument '%s' (options start with --; see --help)",
-                             quote(text).text);
+                             option_quote(text).text);
     }
 
     if (argument->spec->kind == OPTION_FLAG) {
         if (equals != NULL)
             return luz_error_set(error, "%s: takes no value, got '%s'", argument->where,
-                                 quote(equals + 1).text);
+                                 option_quote(equals + 1).text);
         argument->value = NULL;
         return 0;
     }
@@ -860,24 +810,66 @@ int luz_options_parse(luz_options *options, int argc, char **argv, luz_error *er
 
 /* ---- --help -------------------------------------------------------------------------- */
 
+/* A blank that print_wrapped() does not break a line at. */
+#define NON_BREAKING '\x01'
+
+/* Prints words from `text`, wrapped before column 80 and indented to
+ * `indent` on every line after the first; `column` is where the first
+ * starts. */
+static void print_wrapped(FILE *out, const char *text, int indent, int column)
+{
+    while (*text != '\0') {
+        int length = (int)strcspn(text, " ");
+        if (column > indent && column + 1 + length > 79) {
+            fprintf(out, "\n%*s", indent, "");
+            column = indent;
+        } else if (column > indent) {
+            fputc(' ', out);
+            column++;
+        }
+        for (int i = 0; i < length; i++)
+            fputc(text[i] == NON_BREAKING ? ' ' : text[i], out);
+        column += length;
+        text += length;
+        text += strspn(text, " ");
+    }
+    fputc('\n', out);
+}
+
 void luz_options_print_help(FILE *out)
 {
+    enum { INDENT = 31 };
     luz_options defaults;
     luz_options_init(&defaults);
     for (size_t i = 0; i < OPTION_COUNT; i++) {
         const option_spec *spec = &option_table[i];
-        char left[64], value[160];
-        snprintf(left, sizeof left, "%s--%s%s%s", strcmp(spec->name, "output") == 0 ? "-o, " : "",
-                 spec->name, spec->syntax ? " " : "", spec->syntax ? spec->syntax : "");
-        if (strlen(left) > 30)
-            fprintf(out, "  %s\n  %-30s %s", left, "", spec->summary);
-        else
-            fprintf(out, "  %-30s %s", left, spec->summary);
-        if (spec->default_text != NULL)
-            fprintf(out, " (default: %s)", spec->default_text);
-        else if (luz_options_format(&defaults, spec->name, value, sizeof value) == 0)
-            fprintf(out, " (default: %s)", value);
-        fputc('\n', out);
+        char left[64], value[160], directory[4096], line[512];
+        int used = snprintf(left, sizeof left, "%s--%s",
+                            strcmp(spec->name, "output") == 0 ? "-o, " : "", spec->name);
+        if (spec->syntax != NULL && used > 0 && (size_t)used < sizeof left)
+            snprintf(left + used, sizeof left - (size_t)used, " %s", spec->syntax);
+        const char *default_text = spec->default_text;
+        if (strcmp(spec->name, "textures") == 0)
+            default_text = luz_default_textures_directory(directory, sizeof directory);
+        else if (default_text == NULL &&
+                 luz_options_format(&defaults, spec->name, value, sizeof value) == 0)
+            default_text = value;
+        if (default_text != NULL) {
+            snprintf(line, sizeof line, "%s (default: %s)", spec->summary, default_text);
+            /* the default stays on one line: its blanks become unbreakable */
+            for (char *c = line + strlen(spec->summary) + 1; *c != '\0'; c++)
+                if (*c == ' ')
+                    *c = NON_BREAKING;
+        } else {
+            snprintf(line, sizeof line, "%s", spec->summary);
+        }
+
+        if (strlen(left) + 2 >= INDENT) {
+            fprintf(out, "  %s\n%*s", left, INDENT, "");
+        } else {
+            fprintf(out, "  %-*s", INDENT - 2, left);
+        }
+        print_wrapped(out, line, INDENT, INDENT);
     }
     luz_options_free(&defaults);
 }

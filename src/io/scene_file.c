@@ -25,11 +25,11 @@
 #include "luz/options.h"
 
 #include <errno.h>
-#include <float.h>
-#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/types.h>
+
+#include "io/option_text.h"
 
 /* Longer than any key, so that a key that does not fit is not a key. */
 #define KEY_MAX 24
@@ -59,57 +59,7 @@ static char *trim(char *text)
     return text;
 }
 
-/* A short, one-line copy of the user's text for a message. */
-typedef struct quoted {
-    char text[72];
-} quoted;
-
-static quoted quote(const char *text)
-{
-    quoted result;
-    size_t length = 0;
-    for (; text[length] != '\0' && length < 60; length++) {
-        unsigned char c = (unsigned char)text[length];
-        result.text[length] = (c < 0x20 || c == 0x7f) ? '?' : (char)c;
-    }
-    if (text[length] != '\0') {
-        memcpy(result.text + length, "...", 3);
-        length += 3;
-    }
-    result.text[length] = '\0';
-    return result;
-}
-
 /* ---- cube lines ---------------------------------------------------------------- */
-
-typedef enum number_result { NUMBERS_OK, NUMBERS_MALFORMED, NUMBERS_NOT_FINITE } number_result;
-
-/* Reads `count` comma-separated float-sized numbers that make up the whole
- * of text, blanks allowed around each (as options.c does for the command
- * line's x,y,z). */
-static number_result read_numbers(const char *text, float *values, int count)
-{
-    const char *cursor = text;
-    for (int i = 0; i < count; i++) {
-        cursor += strspn(cursor, " \t");
-        if (*cursor == '\0' || *cursor == ',')
-            return NUMBERS_MALFORMED;
-        char *end;
-        double value = strtod(cursor, &end);
-        if (end == cursor)
-            return NUMBERS_MALFORMED;
-        if (!isfinite(value) || fabs(value) > FLT_MAX)
-            return NUMBERS_NOT_FINITE;
-        values[i] = (float)value;
-        cursor = end + strspn(end, " \t");
-        if (i + 1 < count) {
-            if (*cursor != ',')
-                return NUMBERS_MALFORMED;
-            cursor++;
-        }
-    }
-    return *cursor == '\0' ? NUMBERS_OK : NUMBERS_MALFORMED;
-}
 
 /* Where the next field (`colour` or `texture`) of a cube line starts: the
  * first word that begins with a letter which is not a number. strtod is
@@ -144,6 +94,8 @@ static int add_cube(scene_reader *reader, const luz_cube *cube, const char *text
         if (cubes == NULL)
             return luz_error_set(error, "%s:%d: out of memory", reader->path, reader->line);
         options->cubes = cubes;
+        if (count > 0)
+            options->scene.custom_cubes = cubes;   /* never left dangling */
         luz_cube_source *sources =
             realloc(options->cube_sources, (size_t)capacity * sizeof *sources);
         if (sources == NULL)
@@ -176,25 +128,25 @@ static int read_cube(scene_reader *reader, char *value, luz_error *error)
                              "%s:%d: cube: missing value (expected x,y,z [colour r,g,b] "
                              "[texture NAME])",
                              path, line);
-    quoted original = quote(value);
+    option_quoted original = option_quote(value);
 
     luz_cube cube = {.texture = LUZ_TEXTURE_BY_INDEX};
     const char *texture_name = NULL;
     char *fields = find_field(value);
     char saved = *fields;
     *fields = '\0';
-    float numbers[3];
-    number_result position = read_numbers(value, numbers, 3);
+    double numbers[3];
+    option_parse_result position = option_read_numbers(value, numbers, 3, true);
     *fields = saved;
-    if (position == NUMBERS_NOT_FINITE)
+    if (position == OPTION_PARSE_NOT_FINITE)
         return luz_error_set(error, "%s:%d: cube: expected finite numbers, got '%s'", path, line,
                              original.text);
-    if (position != NUMBERS_OK)
+    if (position != OPTION_PARSE_OK)
         return luz_error_set(error,
                              "%s:%d: cube: expected x,y,z (three numbers) then optional colour "
                              "r,g,b and texture NAME, got '%s'",
                              path, line, original.text);
-    cube.position = luz_vec3_make(numbers[0], numbers[1], numbers[2]);
+    cube.position = luz_vec3_make((float)numbers[0], (float)numbers[1], (float)numbers[2]);
 
     while (*fields != '\0') {
         size_t length = strcspn(fields, " \t");
@@ -209,18 +161,18 @@ static int read_cube(scene_reader *reader, char *value, luz_error *error)
             char *next = find_field(rest);
             saved = *next;
             *next = '\0';
-            number_result colour = read_numbers(rest, numbers, 3);
+            option_parse_result colour = option_read_numbers(rest, numbers, 3, true);
             *next = saved;
-            bool in_range = colour == NUMBERS_OK;
+            bool in_range = colour == OPTION_PARSE_OK;
             for (int i = 0; i < 3 && in_range; i++)
-                in_range = numbers[i] >= 0.0f && numbers[i] <= 1.0f;
+                in_range = numbers[i] >= 0.0 && numbers[i] <= 1.0;
             if (!in_range)
                 return luz_error_set(error,
                                      "%s:%d: cube: expected colour r,g,b, each in [0, 1], got "
                                      "'%s'",
                                      path, line, original.text);
             cube.has_colour = true;
-            cube.colour = luz_vec3_make(numbers[0], numbers[1], numbers[2]);
+            cube.colour = luz_vec3_make((float)numbers[0], (float)numbers[1], (float)numbers[2]);
             fields = next;
         } else if (is_texture) {
             if (texture_name != NULL)
@@ -241,7 +193,7 @@ static int read_cube(scene_reader *reader, char *value, luz_error *error)
             return luz_error_set(error,
                                  "%s:%d: cube: unknown field '%s' (expected colour r,g,b or "
                                  "texture NAME)",
-                                 path, line, quote(fields).text);
+                                 path, line, option_quote(fields).text);
         }
     }
 
@@ -267,7 +219,7 @@ static int read_line(scene_reader *reader, char *text, luz_error *error)
     if (text[0] == '\0')
         return 0;
 
-    quoted original = quote(text);
+    option_quoted original = option_quote(text);
     char *equals = strchr(text, '=');
     if (equals == NULL)
         return luz_error_set(error, "%s:%d: expected `name = value`, got '%s'", path, line,
@@ -288,7 +240,7 @@ static int read_line(scene_reader *reader, char *text, luz_error *error)
         return luz_error_set(error,
                              "%s:%d: unknown key '%s' (expected a long option of luz-render "
                              "--help without its dashes, or cube)",
-                             path, line, quote(name).text);
+                             path, line, option_quote(name).text);
 
     /* A key set twice is almost always an edit that forgot the first one;
      * saying so beats silently taking the last. */
@@ -373,7 +325,7 @@ int luz_options_resolve_textures(luz_options *options, const luz_texture_set *te
         for (int k = 0; k < count && k < 6; k++) {
             size_t used = strlen(available);
             snprintf(available + used, sizeof available - used, "%s%s", k ? ", " : "",
-                     quote(textures->names[k]).text);
+                     option_quote(textures->names[k]).text);
         }
         if (count > 6) {
             size_t used = strlen(available);
@@ -383,7 +335,7 @@ int luz_options_resolve_textures(luz_options *options, const luz_texture_set *te
                              "%s:%d: cube: texture '%s' is not an image of the textures "
                              "directory (expected one of: %s)",
                              options->scene_path ? options->scene_path : "scene", source->line,
-                             quote(source->texture_name).text,
+                             option_quote(source->texture_name).text,
                              count ? available : "none, textures are off");
     }
     return 0;
@@ -412,11 +364,17 @@ void luz_options_write_scene(const luz_options *options, FILE *out)
     }
     for (int i = 0; i < options->scene.custom_cube_count; i++) {
         const luz_cube *cube = &options->cubes[i];
-        fprintf(out, "cube = %.9g, %.9g, %.9g", (double)cube->position.x,
-                (double)cube->position.y, (double)cube->position.z);
-        if (cube->has_colour)
-            fprintf(out, " colour %.9g, %.9g, %.9g", (double)cube->colour.x,
-                    (double)cube->colour.y, (double)cube->colour.z);
+        char x[32], y[32], z[32];
+        option_format_float(x, sizeof x, cube->position.x);
+        option_format_float(y, sizeof y, cube->position.y);
+        option_format_float(z, sizeof z, cube->position.z);
+        fprintf(out, "cube = %s, %s, %s", x, y, z);
+        if (cube->has_colour) {
+            option_format_float(x, sizeof x, cube->colour.x);
+            option_format_float(y, sizeof y, cube->colour.y);
+            option_format_float(z, sizeof z, cube->colour.z);
+            fprintf(out, " colour %s, %s, %s", x, y, z);
+        }
         if (options->cube_sources[i].texture_name != NULL)
             fprintf(out, " texture %s", options->cube_sources[i].texture_name);
         fputc('\n', out);

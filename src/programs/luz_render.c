@@ -206,8 +206,8 @@ static int bench(render_context *context, luz_renderer *renderer, luz_error *err
         double min_ms = samples.wall_ms[0];   /* sorted by median() */
         int cubes = options->scene.custom_cubes ? options->scene.custom_cube_count
                                                 : options->scene.cube_count;
-        printf("frames=%d size=%dx%d threads=%d cubes=%d filter=%s ", count, options->width, options->height, threads, cubes,
-               luz_filter_name(options->scene.filter));
+        printf("frames=%d size=%dx%d threads=%d cubes=%d filter=%s ", count, options->width,
+               options->height, threads, cubes, luz_filter_name(options->scene.filter));
         printf("median_ms=%.3f min_ms=%.3f fps=%.2f cpu_ms=%.3f geometry_ms=%.3f raster_ms=%.3f",
                median_ms, min_ms, median_ms > 0.0 ? 1000.0 / median_ms : 0.0,
                median(samples.cpu_ms, count), median(samples.geometry_ms, count),
