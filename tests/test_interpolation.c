@@ -1,0 +1,226 @@
+/*
+ * test_interpolation.c: perspective-correct interpolation of varyings
+ * (src/pipeline/fragment.c, luz_fragment_interpolate) against a ray-plane
+ * intersection worked out by hand.
+ *
+ * The scene: a camera at the origin looking down -z with a 90 degree
+ * vertical field of view, aspect 1, near 0.1, far 100, on a 64x64 image.
+ * A floor quad at y = -1 from x = -1 to 1 and z = -1 to -4, with
+ *   u = (x + 1) / 2,  v = (-z - 1) / 3,
+ * seen at a steep angle, so its depth changes a lot across the screen.
+ * With f = cot 45 = 1, x_ndc = x / -z and y_ndc = y / -z; the corners land
+ * on window coordinates (0, 64), (64, 64), (40, 40) and (24, 40): exact
+ * on the sub-pixel grid, so snapping changes nothing.
+ *
+ * Pixel (40, 44) has its centre at (40.5, 44.5): x_ndc = 81/64 - 1 =
+ * 17/64, y_ndc = 1 - 89/64 = -25/64. The ray t (x_ndc, y_ndc, -1) meets
+ * y = -1 at t = 64/25 = 2.56: the point (0.68, -1, -2.56), so u = 0.84 and
+ * v = 1.56 / 3 = 0.52.
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "pipeline/pipeline.h"
+
+#define SIZE 64
+#define PIXEL_X 40
+#define PIXEL_Y 44
+
+#define assert_near(got, expected, tolerance) \
+    assert_near_at((got), (expected), (tolerance), #got, __FILE__, __LINE__)
+
+static void assert_near_at(double got, double expected, double tolerance,
+                           const char *expression, const char *file, int line)
+{
+    if (fabs(got - expected) <= tolerance) return;
+    print_error("%s = %.9g, expected %.9g (tolerance %.2g)\n", expression, got, expected,
+                tolerance);
+    _fail(file, line);
+}
+
+typedef struct floor_fixture {
+    luz_triangle triangles[2];
+    luz_framebuffer *framebuffer;
+    luz_fragment fragment;   /* at (PIXEL_X, PIXEL_Y) */
+} floor_fixture;
+
+/* The vertex stage's output for a floor corner: clip position from the
+ * real projection, world position, normal +y and the uv above. */
+static luz_clip_vertex floor_vertex(luz_mat4 view_projection, float x, float z)
+{
+    luz_clip_vertex vertex;
+    vertex.position = luz_mat4_transform(view_projection, (luz_vec4){x, -1.0f, z, 1.0f});
+    const float varyings[LUZ_VARYING_COUNT] = {x, -1.0f, z, 0, 1, 0, (x + 1) / 2, (-z - 1) / 3};
+    memcpy(vertex.varyings, varyings, sizeof varyings);
+    return vertex;
+}
+
+/* Sets up the two triangles of the floor, rasterises them (ids 1 and 2)
+ * and interpolates the fragment at the test pixel from the triangle that
+ * covers it. */
+static int setup_floor(void **state)
+{
+    floor_fixture *fixture = calloc(1, sizeof *fixture);
+    luz_error error;
+    fixture->framebuffer = luz_framebuffer_create(SIZE, SIZE, &error);
+    if (!fixture->framebuffer) return -1;
+
+    luz_mat4 view = luz_mat4_look_at((luz_vec3){0, 0, 0}, (luz_vec3){0, 0, -1},
+                                     (luz_vec3){0, 1, 0});
+    luz_mat4 projection = luz_mat4_perspective(luz_radians(90.0f), 1.0f, 0.1f, 100.0f);
+    luz_mat4 view_projection = luz_mat4_multiply(projection, view);
+    /* Near left, near right, far right, far left: counter-clockwise seen
+     * from above, a front face for the camera above the floor. */
+    luz_clip_vertex a = floor_vertex(view_projection, -1, -1);
+    luz_clip_vertex b = floor_vertex(view_projection, 1, -1);
+    luz_clip_vertex c = floor_vertex(view_projection, 1, -4);
+    luz_clip_vertex d = floor_vertex(view_projection, -1, -4);
+    if (luz_setup_triangle(&a, &b, &c, SIZE, SIZE, 0, &fixture->triangles[0]) !=
+            LUZ_SETUP_VISIBLE ||
+        luz_setup_triangle(&a, &c, &d, SIZE, SIZE, 0, &fixture->triangles[1]) !=
+            LUZ_SETUP_VISIBLE)
+        return -1;
+    for (int k = 0; k < 2; k++)
+        luz_raster_triangle(&fixture->triangles[k], (uint32_t)k + 1, fixture->framebuffer, 0,
+                            SIZE);
+    *state = fixture;
+    return 0;
+}
+
+static int teardown_floor(void **state)
+{
+    floor_fixture *fixture = *state;
+    luz_framebuffer_destroy(fixture->framebuffer);
+    free(fixture);
+    return 0;
+}
+
+static const luz_fragment *fragment_at(floor_fixture *fixture, int x, int y)
+{
+    uint32_t id = fixture->framebuffer->visibility[y * SIZE + x];
+    assert_true(id == 1 || id == 2);
+    luz_fragment_interpolate(&fixture->triangles[id - 1], x, y, &fixture->fragment);
+    return &fixture->fragment;
+}
+
+/* The hand-computed u and v of the floor at the centre of pixel (x, y),
+ * from the ray-plane intersection above. */
+static double floor_u(int x, int y)
+{
+    double x_ndc = 2.0 * (x + 0.5) / SIZE - 1.0, y_ndc = 1.0 - 2.0 * (y + 0.5) / SIZE;
+    return (-x_ndc / y_ndc + 1.0) / 2.0;
+}
+
+static double floor_v(int y)
+{
+    double y_ndc = 1.0 - 2.0 * (y + 0.5) / SIZE;
+    return (-1.0 / y_ndc - 1.0) / 3.0;
+}
+
+/* u = 0.84, v = 0.52, world position (0.68, -1, -2.56), normal +y: the
+ * perspective-correct values. The centre of (40, 44) lies in the triangle
+ * (near left, near right, far right), id 1 (see the intro). */
+static void test_perspective_correct_varyings(void **state)
+{
+    floor_fixture *fixture = *state;
+    assert_int_equal(fixture->framebuffer->visibility[PIXEL_Y * SIZE + PIXEL_X], 1);
+    const luz_fragment *fragment = fragment_at(fixture, PIXEL_X, PIXEL_Y);
+    assert_near(fragment->uv.x, 0.84, 1e-5);
+    assert_near(fragment->uv.y, 0.52, 1e-5);
+    assert_near(fragment->position.x, 0.68, 1e-5);
+    assert_near(fragment->position.y, -1.0, 1e-5);
+    assert_near(fragment->position.z, -2.56, 1e-5);
+    assert_near(fragment->normal.x, 0.0, 1e-6);
+    assert_near(fragment->normal.y, 1.0, 1e-6);
+    assert_near(fragment->normal.z, 0.0, 1e-6);
+}
+
+/* Screen-linear (affine) interpolation would be far off here, which shows
+ * the test above can tell the two apart. In window coordinates the
+ * triangle is A (0, 64), B (64, 64), C (40, 40), area 768; the pixel
+ * centre P (40.5, 44.5) has barycentric weights area(PBC) / 768 = 48/768 =
+ * 0.0625 for A and area(ABP) / 768 = 624/768 = 0.8125 for C, so affine u =
+ * 1 - 0.0625 = 0.9375 and affine v = 0.8125, against 0.84 and 0.52. */
+static void test_affine_interpolation_would_differ(void **state)
+{
+    floor_fixture *fixture = *state;
+    const luz_fragment *fragment = fragment_at(fixture, PIXEL_X, PIXEL_Y);
+    assert_true(fabs(fragment->uv.x - 0.9375) > 0.09);
+    assert_true(fabs(fragment->uv.y - 0.8125) > 0.29);
+}
+
+/* Every pixel of a row and a column through the test pixel matches the
+ * ray-plane intersection, in both triangles. Row 44 of the floor runs from
+ * the left side, x = 64 - 44.5 = 19.5, to the right side, x = 44.5 (the
+ * diagonal between the triangles crosses it at 32.5); column 40 from the
+ * right side, y = 40.5, to the bottom of the image. */
+static void test_varyings_along_a_row_and_a_column(void **state)
+{
+    floor_fixture *fixture = *state;
+    for (int x = 20; x <= 43; x++) {
+        const luz_fragment *fragment = fragment_at(fixture, x, PIXEL_Y);
+        assert_near(fragment->uv.x, floor_u(x, PIXEL_Y), 1e-5);
+        assert_near(fragment->uv.y, floor_v(PIXEL_Y), 1e-5);
+    }
+    for (int y = 42; y <= 60; y++) {
+        const luz_fragment *fragment = fragment_at(fixture, PIXEL_X, y);
+        assert_near(fragment->uv.x, floor_u(PIXEL_X, y), 1e-5);
+        assert_near(fragment->uv.y, floor_v(y), 1e-5);
+    }
+}
+
+/* The analytic derivatives at the test pixel, by hand: with
+ * X = -x_ndc / y_ndc, dx_ndc/dx = 2/64 and dy_ndc/dy = -2/64,
+ *   du/dx = (1/2)(-1 / y_ndc)(1/32) = (64/25) / 64 = 0.04 (u is linear
+ *           along a row of the floor: constant depth),
+ *   dv/dx = 0,
+ *   du/dy = (1/2)(x_ndc / y_ndc^2)(-1/32) = -(17 * 64 / 625) / 64 = -0.0272,
+ *   dv/dy = (1/3)(1 / y_ndc^2)(-1/32) = -(4096 / 625) / 96 = -0.068266667.
+ * Finite differences of the hand-computed u and v between neighbouring
+ * pixels agree: (u(41) - u(39)) / 2 = (0.88 - 0.80) / 2 = 0.04 exactly, and
+ * (v(45) - v(43)) / 2 = (37/81 - 41/69) / 2 = -0.068706, within 1 % of the
+ * derivative (v is not linear down a column). */
+static void test_texture_coordinate_derivatives(void **state)
+{
+    floor_fixture *fixture = *state;
+    const luz_fragment *fragment = fragment_at(fixture, PIXEL_X, PIXEL_Y);
+    assert_near(fragment->du_dx, 0.04, 1e-5);
+    assert_near(fragment->dv_dx, 0.0, 1e-5);
+    assert_near(fragment->du_dy, -0.0272, 1e-5);
+    assert_near(fragment->dv_dy, -0.068266667, 1e-5);
+
+    double du_dx = (floor_u(PIXEL_X + 1, PIXEL_Y) - floor_u(PIXEL_X - 1, PIXEL_Y)) / 2;
+    double dv_dy = (floor_v(PIXEL_Y + 1) - floor_v(PIXEL_Y - 1)) / 2;
+    assert_near(fragment->du_dx, du_dx, 1e-5);
+    assert_near(fragment->dv_dy, dv_dy, 0.01 * fabs(dv_dy));
+}
+
+/* Depth, unlike the varyings, is affine on the screen and equals
+ * (z_ndc + 1) / 2 with z_ndc = (f + n)/(f - n) + 2 f n / ((f - n) z_eye):
+ * at z_eye = -2.56, 100.1/99.9 - 20/(99.9 * 2.56) = 0.92379880, depth
+ * 0.96189940. The depth buffer holds the same value. */
+static void test_depth_at_the_pixel(void **state)
+{
+    floor_fixture *fixture = *state;
+    const luz_fragment *fragment = fragment_at(fixture, PIXEL_X, PIXEL_Y);
+    assert_near(fragment->depth, 0.96189940, 1e-5);
+    assert_near(fixture->framebuffer->depth[PIXEL_Y * SIZE + PIXEL_X], 0.96189940, 1e-5);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_perspective_correct_varyings),
+        cmocka_unit_test(test_affine_interpolation_would_differ),
+        cmocka_unit_test(test_varyings_along_a_row_and_a_column),
+        cmocka_unit_test(test_texture_coordinate_derivatives),
+        cmocka_unit_test(test_depth_at_the_pixel),
+    };
+    return cmocka_run_group_tests(tests, setup_floor, teardown_floor);
+}

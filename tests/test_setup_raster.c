@@ -1,0 +1,358 @@
+/*
+ * test_setup_raster.c: triangle setup and rasterisation (src/pipeline/
+ * setup.c, raster.c) on a 16x16 framebuffer, driven directly with clip
+ * vertices placed on exact window coordinates. With w = 1 clip space is
+ * NDC, and x_ndc = 2 x_win / 16 - 1, y_ndc = 1 - 2 y_win / 16 (SCENE.md's
+ * viewport); every coordinate used is a multiple of 1/2, so it is exact in
+ * float and lands on the 1/256 sub-pixel grid without rounding.
+ *
+ * Pixel (x, y) samples its centre (x + 0.5, y + 0.5); the fill rule is
+ * top-left in image coordinates (y down). A triangle is a front face when
+ * counter-clockwise in NDC, i.e. clockwise as listed in window coordinates
+ * with y down: (0, 0), (0, 1), (1, 0) is a front face.
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "pipeline/pipeline.h"
+
+#define SIZE 16
+
+typedef struct window_point {
+    double x, y;
+} window_point;
+
+static luz_clip_vertex vertex_at(window_point p, float z_ndc)
+{
+    luz_clip_vertex vertex;
+    memset(&vertex, 0, sizeof vertex);
+    vertex.position = (luz_vec4){(float)(2.0 * p.x / SIZE - 1.0), (float)(1.0 - 2.0 * p.y / SIZE),
+                                 z_ndc, 1.0f};
+    return vertex;
+}
+
+static int setup_framebuffer(void **state)
+{
+    luz_error error;
+    luz_framebuffer *framebuffer = luz_framebuffer_create(SIZE, SIZE, &error);
+    *state = framebuffer;
+    return framebuffer ? 0 : -1;
+}
+
+static int teardown_framebuffer(void **state)
+{
+    luz_framebuffer_destroy(*state);
+    return 0;
+}
+
+static void clear(luz_framebuffer *framebuffer)
+{
+    luz_framebuffer_clear_rows(framebuffer, 0, SIZE, (luz_vec3){0, 0, 0});
+}
+
+static luz_setup_result set_up(window_point a, window_point b, window_point c, float z_ndc,
+                               luz_triangle *triangle)
+{
+    luz_clip_vertex va = vertex_at(a, z_ndc), vb = vertex_at(b, z_ndc), vc = vertex_at(c, z_ndc);
+    return luz_setup_triangle(&va, &vb, &vc, SIZE, SIZE, 0, triangle);
+}
+
+/* Adds 1 to hits[] at every pixel the triangle covers, found alone in a
+ * cleared buffer. */
+static void add_coverage(luz_framebuffer *framebuffer, window_point a, window_point b,
+                         window_point c, int hits[SIZE * SIZE])
+{
+    luz_triangle triangle;
+    assert_int_equal(set_up(a, b, c, 0.0f, &triangle), LUZ_SETUP_VISIBLE);
+    clear(framebuffer);
+    luz_raster_triangle(&triangle, 1, framebuffer, 0, SIZE);
+    for (int i = 0; i < SIZE * SIZE; i++) hits[i] += framebuffer->visibility[i] == 1;
+}
+
+/* THE FILL RULE on a mesh: a rectangle from (2.5, 1.5) to (14.5, 10.5),
+ * cut into a 4 x 3 grid of 3x3-pixel quads, each split into two triangles
+ * along a diagonal that alternates from quad to quad, and each triangle
+ * listed from a different starting vertex. Every vertex and every shared
+ * edge (horizontal, vertical, both diagonals) runs through pixel centres.
+ * The rectangle's left and top sides are left and top edges, its right
+ * and bottom sides are not, so the pixels covered are exactly those with
+ * centres in [2.5, 14.5) x [1.5, 10.5): x = 2..13, y = 1..9, each once. */
+static void test_fill_rule_tiles_a_rectangle_exactly_once(void **state)
+{
+    luz_framebuffer *framebuffer = *state;
+    int hits[SIZE * SIZE] = {0};
+    for (int row = 0; row < 3; row++) {
+        for (int column = 0; column < 4; column++) {
+            double x0 = 2.5 + 3 * column, x1 = x0 + 3, y0 = 1.5 + 3 * row, y1 = y0 + 3;
+            window_point top_left = {x0, y0}, top_right = {x1, y0};
+            window_point bottom_left = {x0, y1}, bottom_right = {x1, y1};
+            /* Front faces, clockwise in window coordinates. */
+            const window_point split_top_left_to_bottom_right[2][3] = {
+                {top_left, bottom_left, bottom_right}, {top_left, bottom_right, top_right}};
+            const window_point split_bottom_left_to_top_right[2][3] = {
+                {top_left, bottom_left, top_right}, {bottom_left, bottom_right, top_right}};
+            const window_point(*triangles)[3] = (row + column) % 2 == 0
+                                                     ? split_top_left_to_bottom_right
+                                                     : split_bottom_left_to_top_right;
+            for (int t = 0; t < 2; t++) {
+                int first = (row + 2 * column + t) % 3;
+                add_coverage(framebuffer, triangles[t][first], triangles[t][(first + 1) % 3],
+                             triangles[t][(first + 2) % 3], hits);
+            }
+        }
+    }
+    for (int y = 0; y < SIZE; y++) {
+        for (int x = 0; x < SIZE; x++) {
+            int expected = x >= 2 && x <= 13 && y >= 1 && y <= 9;
+            if (hits[y * SIZE + x] != expected)
+                fail_msg("pixel (%d, %d) covered %d times, expected %d", x, y,
+                         hits[y * SIZE + x], expected);
+        }
+    }
+}
+
+/* THE FILL RULE on a fan: eight triangles around (8.5, 8.5) to a convex
+ * rim of vertices at whole-pixel offsets from it, so the eight shared
+ * edges (slopes 0, -1/2, -5/3, 5/2, 1/3, -1/2, -6, 5/4) and the rim pass
+ * through many pixel centres. Expected, from the polygon alone: a centre
+ * strictly inside is covered once, one strictly outside never; one on the
+ * rim is covered only if every rim edge through it is a left edge
+ * (interior at larger x: it runs downwards, dy > 0, in window
+ * coordinates) or a top edge (horizontal with the interior below: it runs
+ * right to left, dx < 0), as SCENE.md's rule says. The rim is listed in the
+ * front-face order (clockwise in window coordinates), so inside means
+ * cross(edge, point - start) < 0 for every edge. */
+static void test_fill_rule_on_a_fan(void **state)
+{
+    luz_framebuffer *framebuffer = *state;
+    enum { RIM = 8 };
+    const int rim[RIM][2] = {{6, 0}, {6, -3}, {3, -5}, {-2, -5},
+                             {-6, -2}, {-6, 3}, {-1, 6}, {4, 5}};
+    const window_point centre = {8.5, 8.5};
+    int hits[SIZE * SIZE] = {0};
+    for (int k = 0; k < RIM; k++) {
+        window_point a = {centre.x + rim[k][0], centre.y + rim[k][1]};
+        window_point b = {centre.x + rim[(k + 1) % RIM][0], centre.y + rim[(k + 1) % RIM][1]};
+        add_coverage(framebuffer, centre, a, b, hits);
+    }
+    int inside_count = 0;
+    for (int y = 0; y < SIZE; y++) {
+        for (int x = 0; x < SIZE; x++) {
+            /* The pixel centre as a whole-number offset from the centre. */
+            int px = x - 8, py = y - 8;
+            bool outside = false, excluded_by_rule = false;
+            for (int k = 0; k < RIM; k++) {
+                int sx = rim[k][0], sy = rim[k][1];
+                int ex = rim[(k + 1) % RIM][0] - sx, ey = rim[(k + 1) % RIM][1] - sy;
+                int cross = ex * (py - sy) - ey * (px - sx);
+                if (cross > 0) outside = true;
+                bool top_or_left = ey > 0 || (ey == 0 && ex < 0);
+                if (cross == 0 && !top_or_left) excluded_by_rule = true;
+            }
+            int expected = !outside && !excluded_by_rule;
+            inside_count += expected;
+            if (hits[y * SIZE + x] != expected)
+                fail_msg("pixel (%d, %d) covered %d times, expected %d", x, y,
+                         hits[y * SIZE + x], expected);
+        }
+    }
+    assert_true(inside_count > 100);   /* the fan is not trivially small */
+}
+
+/* Covered pixels of one triangle in a row or a column. */
+static int covered_in_row(const luz_framebuffer *framebuffer, int y, int x_first, int x_last)
+{
+    int count = 0;
+    for (int x = x_first; x <= x_last; x++) count += framebuffer->visibility[y * SIZE + x] != 0;
+    return count;
+}
+
+static void raster_alone(luz_framebuffer *framebuffer, window_point a, window_point b,
+                         window_point c)
+{
+    luz_triangle triangle;
+    assert_int_equal(set_up(a, b, c, 0.0f, &triangle), LUZ_SETUP_VISIBLE);
+    clear(framebuffer);
+    luz_raster_triangle(&triangle, 1, framebuffer, 0, SIZE);
+}
+
+/* Top edge against bottom edge on the row of centres y = 4.5:
+ * A = (2.5, 4.5), (6.5, 10.5), (10.5, 4.5) has it as its top edge; its
+ * vertex (2.5, 4.5) also lies on a left edge (in), its vertex (10.5, 4.5)
+ * on a right edge (out), so row 4 has x = 2..9 covered.
+ * B = (2.5, 4.5), (10.5, 4.5), (6.5, 0.5) has it as its bottom edge:
+ * nothing of row 4. Together, row 4 is covered once. */
+static void test_top_edge_in_bottom_edge_out(void **state)
+{
+    luz_framebuffer *framebuffer = *state;
+    raster_alone(framebuffer, (window_point){2.5, 4.5}, (window_point){6.5, 10.5},
+                 (window_point){10.5, 4.5});
+    assert_int_equal(covered_in_row(framebuffer, 4, 0, SIZE - 1), 8);
+    assert_int_equal(covered_in_row(framebuffer, 4, 2, 9), 8);
+
+    raster_alone(framebuffer, (window_point){2.5, 4.5}, (window_point){10.5, 4.5},
+                 (window_point){6.5, 0.5});
+    assert_int_equal(covered_in_row(framebuffer, 4, 0, SIZE - 1), 0);
+    assert_int_equal(covered_in_row(framebuffer, 3, 0, SIZE - 1), 6);   /* 3.5..8.5 */
+}
+
+/* Left edge against right edge on the column of centres x = 6.5:
+ * L = (6.5, 2.5), (2.5, 6.5), (6.5, 10.5) has it as its right edge: none
+ * of column 6. R = (6.5, 2.5), (6.5, 10.5), (10.5, 6.5) has it as its left
+ * edge: rows 3..9 of column 6; rows 2 and 10 are its vertices, which also
+ * lie on R's right-hand edges, so they stay out. */
+static void test_left_edge_in_right_edge_out(void **state)
+{
+    luz_framebuffer *framebuffer = *state;
+    raster_alone(framebuffer, (window_point){6.5, 2.5}, (window_point){2.5, 6.5},
+                 (window_point){6.5, 10.5});
+    for (int y = 0; y < SIZE; y++) assert_int_equal(framebuffer->visibility[y * SIZE + 6], 0);
+    assert_int_equal(framebuffer->visibility[6 * SIZE + 5], 1);
+
+    raster_alone(framebuffer, (window_point){6.5, 2.5}, (window_point){6.5, 10.5},
+                 (window_point){10.5, 6.5});
+    for (int y = 0; y < SIZE; y++)
+        assert_int_equal(framebuffer->visibility[y * SIZE + 6], y >= 3 && y <= 9 ? 1 : 0);
+}
+
+/* Culling: the clockwise (in NDC) order of a front face is a back face;
+ * three collinear vertices have zero area; both are CULLED. A tiny front
+ * face between pixel centres, (1, 1), (1, 1.4), (1.4, 1), and one right of
+ * the viewport cover no centre: OFFSCREEN. */
+static void test_back_faces_and_degenerate_triangles_are_culled(void **state)
+{
+    (void)state;
+    luz_triangle triangle;
+    const window_point a = {2.5, 4.5}, b = {6.5, 10.5}, c = {10.5, 4.5};
+    assert_int_equal(set_up(a, b, c, 0.0f, &triangle), LUZ_SETUP_VISIBLE);
+    assert_int_equal(set_up(a, c, b, 0.0f, &triangle), LUZ_SETUP_CULLED);
+    assert_int_equal(set_up((window_point){2.5, 2.5}, (window_point){6.5, 6.5},
+                            (window_point){10.5, 10.5}, 0.0f, &triangle),
+                     LUZ_SETUP_CULLED);
+    assert_int_equal(set_up((window_point){1, 1}, (window_point){1, 1.4}, (window_point){1.4, 1},
+                            0.0f, &triangle),
+                     LUZ_SETUP_OFFSCREEN);
+    assert_int_equal(set_up((window_point){20, 2}, (window_point){20, 8}, (window_point){26, 2},
+                            0.0f, &triangle),
+                     LUZ_SETUP_OFFSCREEN);
+}
+
+/* The front face (0, 0), (0, 16), (16, 0) covers the centres with
+ * x + y + 1 < 16 (its hypotenuse is a right edge, so centres on it, where
+ * x + y = 15, stay out): x + y <= 14, 1 + 2 + ... + 15 = 120 pixels. */
+static const window_point big_a = {0, 0}, big_b = {0, 16}, big_c = {16, 0};
+#define BIG_TRIANGLE_PIXELS 120
+
+static void raster_big(luz_framebuffer *framebuffer, float z_ndc, uint32_t id)
+{
+    luz_triangle triangle;
+    assert_int_equal(set_up(big_a, big_b, big_c, z_ndc, &triangle), LUZ_SETUP_VISIBLE);
+    assert_int_equal(luz_raster_triangle(&triangle, id, framebuffer, 0, SIZE),
+                     BIG_TRIANGLE_PIXELS);
+}
+
+static int count_id(const luz_framebuffer *framebuffer, uint32_t id)
+{
+    int count = 0;
+    for (int i = 0; i < SIZE * SIZE; i++) count += framebuffer->visibility[i] == id;
+    return count;
+}
+
+/* The depth test is LESS: of two triangles over the same pixels, at
+ * z_ndc 0.2 (depth 0.6, id 1) and -0.4 (depth 0.3, id 2), the nearer one,
+ * id 2, wins in either draw order, and the depth buffer holds 0.3. At equal
+ * depth the first one drawn stays (LEQUAL would let the second win). */
+static void test_depth_test_less(void **state)
+{
+    luz_framebuffer *framebuffer = *state;
+    clear(framebuffer);
+    raster_big(framebuffer, 0.2f, 1);
+    raster_big(framebuffer, -0.4f, 2);
+    assert_int_equal(count_id(framebuffer, 2), BIG_TRIANGLE_PIXELS);
+    assert_true(fabsf(framebuffer->depth[3 * SIZE + 3] - 0.3f) < 1e-6f);
+
+    clear(framebuffer);
+    raster_big(framebuffer, -0.4f, 2);
+    raster_big(framebuffer, 0.2f, 1);
+    assert_int_equal(count_id(framebuffer, 2), BIG_TRIANGLE_PIXELS);
+
+    clear(framebuffer);
+    raster_big(framebuffer, 0.2f, 1);
+    raster_big(framebuffer, 0.2f, 2);
+    assert_int_equal(count_id(framebuffer, 1), BIG_TRIANGLE_PIXELS);
+}
+
+/* Depth = (z_ndc + 1) / 2, affine on the screen. With z_ndc -1, 0 and 1 at
+ * (0, 0), (0, 16) and (16, 0), depth = x / 16 + y / 32: at the centre of
+ * pixel (3, 5), 3.5 / 16 + 5.5 / 32 = 0.390625; of (10, 2),
+ * 10.5 / 16 + 2.5 / 32 = 0.734375; of (0, 0), 0.5 / 16 + 0.5 / 32 =
+ * 0.046875. */
+static void test_depth_is_interpolated_linearly(void **state)
+{
+    luz_framebuffer *framebuffer = *state;
+    luz_clip_vertex a = vertex_at(big_a, -1.0f), b = vertex_at(big_b, 0.0f);
+    luz_clip_vertex c = vertex_at(big_c, 1.0f);
+    luz_triangle triangle;
+    assert_int_equal(luz_setup_triangle(&a, &b, &c, SIZE, SIZE, 0, &triangle), LUZ_SETUP_VISIBLE);
+    clear(framebuffer);
+    luz_raster_triangle(&triangle, 7, framebuffer, 0, SIZE);
+    assert_int_equal(framebuffer->visibility[5 * SIZE + 3], 7);
+    assert_true(fabsf(framebuffer->depth[5 * SIZE + 3] - 0.390625f) < 1e-6f);
+    assert_true(fabsf(framebuffer->depth[2 * SIZE + 10] - 0.734375f) < 1e-6f);
+    assert_true(fabsf(framebuffer->depth[0] - 0.046875f) < 1e-6f);
+}
+
+/* Rasterising in bands of rows (as the threads do) covers the same pixels
+ * with the same depths as one pass over all rows. */
+static void test_bands_match_one_pass(void **state)
+{
+    luz_framebuffer *framebuffer = *state;
+    luz_clip_vertex a = vertex_at((window_point){1.3, 0.7}, -0.5f);
+    luz_clip_vertex b = vertex_at((window_point){4.1, 15.2}, 0.3f);
+    luz_clip_vertex c = vertex_at((window_point){14.9, 6.6}, 0.8f);
+    luz_triangle triangle;
+    assert_int_equal(luz_setup_triangle(&a, &b, &c, SIZE, SIZE, 0, &triangle), LUZ_SETUP_VISIBLE);
+    clear(framebuffer);
+    luz_raster_triangle(&triangle, 1, framebuffer, 0, SIZE);
+    float depth[SIZE * SIZE];
+    uint32_t visibility[SIZE * SIZE];
+    memcpy(depth, framebuffer->depth, sizeof depth);
+    memcpy(visibility, framebuffer->visibility, sizeof visibility);
+
+    clear(framebuffer);
+    const int band_starts[4] = {0, 5, 6, 11};
+    for (int band = 0; band < 4; band++) {
+        int end = band < 3 ? band_starts[band + 1] : SIZE;
+        luz_raster_triangle(&triangle, 1, framebuffer, band_starts[band], end);
+    }
+    assert_memory_equal(visibility, framebuffer->visibility, sizeof visibility);
+    assert_memory_equal(depth, framebuffer->depth, sizeof depth);
+    assert_true(count_id(framebuffer, 1) > 50);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test_setup_teardown(test_fill_rule_tiles_a_rectangle_exactly_once,
+                                        setup_framebuffer, teardown_framebuffer),
+        cmocka_unit_test_setup_teardown(test_fill_rule_on_a_fan, setup_framebuffer,
+                                        teardown_framebuffer),
+        cmocka_unit_test_setup_teardown(test_top_edge_in_bottom_edge_out, setup_framebuffer,
+                                        teardown_framebuffer),
+        cmocka_unit_test_setup_teardown(test_left_edge_in_right_edge_out, setup_framebuffer,
+                                        teardown_framebuffer),
+        cmocka_unit_test(test_back_faces_and_degenerate_triangles_are_culled),
+        cmocka_unit_test_setup_teardown(test_depth_test_less, setup_framebuffer,
+                                        teardown_framebuffer),
+        cmocka_unit_test_setup_teardown(test_depth_is_interpolated_linearly, setup_framebuffer,
+                                        teardown_framebuffer),
+        cmocka_unit_test_setup_teardown(test_bands_match_one_pass, setup_framebuffer,
+                                        teardown_framebuffer),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
