@@ -28,9 +28,10 @@
  *    the other edges' constant makes "covered" simply E >= 0.
  * 5. Planes: depth is affine in window coordinates, and so are 1/w and
  *    every varying divided by w; their gradients are solved once here from
- *    the snapped vertex positions. Dividing the interpolated varying/w by
- *    the interpolated 1/w gives the perspective-correct value (Heckbert and
- *    Moreton, "Interpolation for polygon texture mapping and shading").
+ *    the exact (unsnapped) vertex positions. Dividing the interpolated
+ *    varying/w by the interpolated 1/w gives the perspective-correct
+ *    value (Heckbert and Moreton, "Interpolation for polygon texture
+ *    mapping and shading").
  *
  * Fixed-point range, the proof that int64 cannot overflow: the guard band
  * keeps |x_ndc|, |y_ndc| <= 4, so -1.5 W <= x_win <= 2.5 W with W <=
@@ -47,12 +48,18 @@
  * leave and that keeps the proof above true for any input. */
 #define COORDINATE_LIMIT 16777216.0
 
+/* Keeps a window coordinate within +-2^24 sub-pixel units. */
+static double clamp_to_limit(double window_coordinate)
+{
+    const double limit = COORDINATE_LIMIT / LUZ_SUBPIXEL_ONE;
+    if (window_coordinate > limit) return limit;
+    if (window_coordinate < -limit) return -limit;
+    return window_coordinate;
+}
+
 static int64_t snap(double window_coordinate)
 {
-    double fixed = window_coordinate * LUZ_SUBPIXEL_ONE;
-    if (fixed > COORDINATE_LIMIT) fixed = COORDINATE_LIMIT;
-    if (fixed < -COORDINATE_LIMIT) fixed = -COORDINATE_LIMIT;
-    return (int64_t)llrint(fixed);
+    return (int64_t)llrint(window_coordinate * LUZ_SUBPIXEL_ONE);
 }
 
 /* floor(a / b) and ceil(a / b) for b > 0; C's "/" truncates towards 0. */
@@ -80,16 +87,18 @@ static luz_edge make_edge(int64_t xi, int64_t yi, int64_t xj, int64_t yj)
     return edge;
 }
 
-/* The plane through (x_k, y_k, value_k), k = 0..2, given relative to
- * vertex 0 (Cramer's rule on the two edge vectors). */
+/* The plane through (x_k, y_k, value_k), k = 0..2 (Cramer's rule on the
+ * two edge vectors), given by its value at the reference point (rx, ry). */
 static luz_plane make_plane(const double x[3], const double y[3], double inverse_determinant,
-                            double value0, double value1, double value2)
+                            double rx, double ry, double value0, double value1, double value2)
 {
     double d1 = value1 - value0, d2 = value2 - value0;
+    double dx = (d1 * (y[2] - y[0]) - d2 * (y[1] - y[0])) * inverse_determinant;
+    double dy = (d2 * (x[1] - x[0]) - d1 * (x[2] - x[0])) * inverse_determinant;
     luz_plane plane;
-    plane.value = (float)value0;
-    plane.dx = (float)((d1 * (y[2] - y[0]) - d2 * (y[1] - y[0])) * inverse_determinant);
-    plane.dy = (float)((d2 * (x[1] - x[0]) - d1 * (x[2] - x[0])) * inverse_determinant);
+    plane.value = (float)(value0 + dx * (rx - x[0]) + dy * (ry - y[0]));
+    plane.dx = (float)dx;
+    plane.dy = (float)dy;
     return plane;
 }
 
@@ -99,7 +108,7 @@ luz_setup_result luz_setup_triangle(const luz_clip_vertex *v0, const luz_clip_ve
 {
     const luz_clip_vertex *vertex[3] = {v0, v1, v2};
     int64_t fixed_x[3], fixed_y[3];
-    double x[3], y[3], depth[3], inverse_w[3];
+    double x[3], y[3], depth[3], inverse_w[3];   /* x, y: exact, not snapped */
 
     /* 1-2. Divide, viewport, snap. */
     for (int k = 0; k < 3; k++) {
@@ -108,10 +117,10 @@ luz_setup_result luz_setup_triangle(const luz_clip_vertex *v0, const luz_clip_ve
             return LUZ_SETUP_CULLED;   /* unreachable after clipping, unless NaN */
         inverse_w[k] = 1.0 / p.w;
         double x_ndc = p.x * inverse_w[k], y_ndc = p.y * inverse_w[k];
-        fixed_x[k] = snap((x_ndc + 1.0) * 0.5 * width);
-        fixed_y[k] = snap((1.0 - y_ndc) * 0.5 * height);
-        x[k] = (double)fixed_x[k] / LUZ_SUBPIXEL_ONE;
-        y[k] = (double)fixed_y[k] / LUZ_SUBPIXEL_ONE;
+        x[k] = clamp_to_limit((x_ndc + 1.0) * 0.5 * width);
+        y[k] = clamp_to_limit((1.0 - y_ndc) * 0.5 * height);
+        fixed_x[k] = snap(x[k]);
+        fixed_y[k] = snap(y[k]);
         depth[k] = (p.z * inverse_w[k] + 1.0) * 0.5;
     }
 
@@ -149,16 +158,22 @@ luz_setup_result luz_setup_triangle(const luz_clip_vertex *v0, const luz_clip_ve
     out->edges[1] = make_edge(fixed_x[2], fixed_y[2], fixed_x[0], fixed_y[0]);
     out->edges[2] = make_edge(fixed_x[0], fixed_y[0], fixed_x[1], fixed_y[1]);
 
-    /* 5. Planes, from the snapped positions the edges use. */
+    /* 5. Planes. Snapping is for coverage only: the planes are solved from
+     * the exact window positions (as llvmpipe's lp_setup_tri.c does), or
+     * every varying would be read as if its vertices had moved by up to
+     * 1/512 pixel, enough to flip a nearest-filtered texel. They are stored
+     * relative to the snapped vertex 0, which a float holds exactly. */
     double determinant = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
+    if (!(determinant != 0.0) || !isfinite(determinant)) return LUZ_SETUP_CULLED;
     double inverse_determinant = 1.0 / determinant;
-    out->reference_x = (float)x[0];
-    out->reference_y = (float)y[0];
-    out->depth = make_plane(x, y, inverse_determinant, depth[0], depth[1], depth[2]);
-    out->inverse_w = make_plane(x, y, inverse_determinant,
+    double rx = (double)fixed_x[0] / LUZ_SUBPIXEL_ONE, ry = (double)fixed_y[0] / LUZ_SUBPIXEL_ONE;
+    out->reference_x = (float)rx;
+    out->reference_y = (float)ry;
+    out->depth = make_plane(x, y, inverse_determinant, rx, ry, depth[0], depth[1], depth[2]);
+    out->inverse_w = make_plane(x, y, inverse_determinant, rx, ry,
                                 inverse_w[0], inverse_w[1], inverse_w[2]);
     for (int i = 0; i < LUZ_VARYING_COUNT; i++) {
-        out->varyings[i] = make_plane(x, y, inverse_determinant,
+        out->varyings[i] = make_plane(x, y, inverse_determinant, rx, ry,
                                       v0->varyings[i] * inverse_w[0],
                                       v1->varyings[i] * inverse_w[1],
                                       v2->varyings[i] * inverse_w[2]);
