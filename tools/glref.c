@@ -1,0 +1,845 @@
+/*
+ * glref: SCENE.md's scene through OpenGL 3.3 core on Mesa's llvmpipe.
+ *
+ * This is the reference luz is measured against, picture for picture
+ * (tools/conformance) and millisecond for millisecond (tools/bench). It
+ * renders headless, on EGL's surfaceless platform into a framebuffer object
+ * (RGBA8 colour, 24-bit depth), and takes luz-render's options through the
+ * library's own parser, so the two programs are always asked the same thing:
+ *
+ *   glref --size 640x360 --time 2 -o gl.png
+ *   glref --bench 20 --threads 1          (llvmpipe's LP_NUM_THREADS=1)
+ *
+ * What it shares with luz, and what it deliberately does not:
+ *
+ *   - shared: option parsing, the scene's parameters (defaults, the tiled
+ *     cube positions, the seeded colours) and the texture files with their
+ *     mip chains, which SCENE.md defines to the bit;
+ *   - its own: the cube's vertices (copied from SCENE.md's table), every
+ *     transform (camera front, lookAt, perspective, the cubes' rotation, the
+ *     orbits), written here in double precision, and the fragment shader,
+ *     GLSL that follows SCENE.md's equations line by line. A mistake in
+ *     luz's math therefore shows up as a difference instead of hiding in
+ *     both renderers.
+ *
+ * Making the two images comparable pixel for pixel:
+ *
+ *   - luz's row 0 is the top, OpenGL's window origin is the bottom-left.
+ *     The vertex shader negates clip-space y, so GL's row 0 (the first row
+ *     glReadPixels returns) is luz's row 0 and the rasteriser sees the very
+ *     geometry luz sees (flipping the rows afterwards would mirror the fill
+ *     rule's ties on horizontal edges). Mirroring y turns counter-clockwise
+ *     into clockwise, hence glFrontFace(GL_CW).
+ *   - Texture rows are uploaded as the file stores them (t = 0 is the first
+ *     row, as luz's v = 0), every mip level from luz's chain with its own
+ *     glTexImage2D (glGenerateMipmap's filter is not SCENE.md's), as GL_RGBA8
+ *     (no sRGB decoding).
+ *   - llvmpipe's default texture path filters with 8-bit weights and takes
+ *     an approximate log2 for the level of detail; GALLIVM_PERF=no_aos_sampling
+ *     makes it filter in float. tools/conformance shows the difference.
+ *
+ * It refuses (exit 2) to run on anything but llvmpipe: a GPU's driver would
+ * make neither the pictures nor the timings mean what the tools say. Exit
+ * status otherwise as luz-render: 0, 1 when rendering or writing fails, 2 for
+ * a usage error.
+ */
+#define GL_GLEXT_PROTOTYPES 1
+
+#include <stdbool.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+#include <GL/glcorearb.h>
+
+#include "luz/luz.h"
+
+#ifndef LUZ_VERSION
+#error "tools/meson.build passes LUZ_VERSION"
+#endif
+
+enum {
+    EXIT_OK = 0,
+    EXIT_RUNTIME = 1,
+    EXIT_USAGE = 2,   /* a bad option, or not llvmpipe */
+};
+
+#define PI 3.14159265358979323846
+
+/* ---- the cube of SCENE.md, copied from its table ------------------------------------ */
+
+typedef struct cube_vertex {
+    float position[3], normal[3], uv[2];
+} cube_vertex;
+
+/* Face by face in SCENE.md's order (+Z, -Z, +X, -X, +Y, -Y); the corners of
+ * each with uv (0,1), (1,1), (1,0), (0,0). */
+static const float face_normals[6][3] = {
+    {0, 0, 1}, {0, 0, -1}, {1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0},
+};
+static const float face_corners[6][4][3] = {
+    {{-.5f, -.5f, .5f}, {.5f, -.5f, .5f}, {.5f, .5f, .5f}, {-.5f, .5f, .5f}},
+    {{.5f, -.5f, -.5f}, {-.5f, -.5f, -.5f}, {-.5f, .5f, -.5f}, {.5f, .5f, -.5f}},
+    {{.5f, -.5f, .5f}, {.5f, -.5f, -.5f}, {.5f, .5f, -.5f}, {.5f, .5f, .5f}},
+    {{-.5f, -.5f, -.5f}, {-.5f, -.5f, .5f}, {-.5f, .5f, .5f}, {-.5f, .5f, -.5f}},
+    {{-.5f, .5f, .5f}, {.5f, .5f, .5f}, {.5f, .5f, -.5f}, {-.5f, .5f, -.5f}},
+    {{-.5f, -.5f, -.5f}, {.5f, -.5f, -.5f}, {.5f, -.5f, .5f}, {-.5f, -.5f, .5f}},
+};
+static const float corner_uvs[4][2] = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
+
+/* ---- transforms, in double precision, independent of luz's vecmath.c ------------- */
+
+/* Column-major like GL: element (row r, column c) is m[c * 4 + r]. */
+typedef struct matrix {
+    double m[16];
+} matrix;
+
+#define M(a, r, c) ((a).m[(c) * 4 + (r)])
+
+static matrix matrix_identity(void)
+{
+    matrix a = {{0}};
+    M(a, 0, 0) = M(a, 1, 1) = M(a, 2, 2) = M(a, 3, 3) = 1.0;
+    return a;
+}
+
+static void normalize3(double v[3])
+{
+    double length = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    for (int k = 0; k < 3; k++) v[k] /= length;
+}
+
+static void cross3(const double a[3], const double b[3], double out[3])
+{
+    out[0] = a[1] * b[2] - a[2] * b[1];
+    out[1] = a[2] * b[0] - a[0] * b[2];
+    out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* T(p) * R(angle, axis) * S(s): glm::translate, glm::rotate (the
+ * right-handed rotation about a unit axis, Rodrigues), glm::scale. */
+static matrix model_matrix(const double position[3], double angle_radians, double scale)
+{
+    double axis[3] = {1.0, 0.5, 1.0};   /* SCENE.md: normalize(1, 0.5, 1) */
+    normalize3(axis);
+    double c = cos(angle_radians), s = sin(angle_radians), t = 1.0 - c;
+    double x = axis[0], y = axis[1], z = axis[2];
+    matrix a = matrix_identity();
+    M(a, 0, 0) = t * x * x + c;     M(a, 0, 1) = t * x * y - s * z; M(a, 0, 2) = t * x * z + s * y;
+    M(a, 1, 0) = t * x * y + s * z; M(a, 1, 1) = t * y * y + c;     M(a, 1, 2) = t * y * z - s * x;
+    M(a, 2, 0) = t * x * z - s * y; M(a, 2, 1) = t * y * z + s * x; M(a, 2, 2) = t * z * z + c;
+    for (int r = 0; r < 3; r++) {
+        for (int k = 0; k < 3; k++) M(a, r, k) *= scale;
+        M(a, r, 3) = position[r];
+    }
+    return a;
+}
+
+/* glm::lookAt(eye, eye + front, up). */
+static matrix look_along(const double eye[3], const double front[3])
+{
+    const double up[3] = {0.0, 1.0, 0.0};
+    double f[3] = {front[0], front[1], front[2]}, s[3], u[3];
+    normalize3(f);
+    cross3(f, up, s);
+    normalize3(s);
+    cross3(s, f, u);
+    matrix a = matrix_identity();
+    for (int k = 0; k < 3; k++) {
+        M(a, 0, k) = s[k];
+        M(a, 1, k) = u[k];
+        M(a, 2, k) = -f[k];
+    }
+    M(a, 0, 3) = -(s[0] * eye[0] + s[1] * eye[1] + s[2] * eye[2]);
+    M(a, 1, 3) = -(u[0] * eye[0] + u[1] * eye[1] + u[2] * eye[2]);
+    M(a, 2, 3) = f[0] * eye[0] + f[1] * eye[1] + f[2] * eye[2];
+    return a;
+}
+
+/* glm::perspective (OpenGL's clip z in [-w, w]). */
+static matrix perspective(double fovy_radians, double aspect, double near, double far)
+{
+    double f = 1.0 / tan(fovy_radians / 2.0);
+    matrix a = {{0}};
+    M(a, 0, 0) = f / aspect;
+    M(a, 1, 1) = f;
+    M(a, 2, 2) = (far + near) / (near - far);
+    M(a, 2, 3) = 2.0 * far * near / (near - far);
+    M(a, 3, 2) = -1.0;
+    return a;
+}
+
+static void matrix_to_floats(matrix a, float out[16])
+{
+    for (int k = 0; k < 16; k++) out[k] = (float)a.m[k];
+}
+
+/* ---- shaders: SCENE.md's equations in GLSL --------------------------------------- */
+
+static const char *const vertex_shader_source =
+    "#version 330 core\n"
+    "layout(location = 0) in vec3 position;\n"
+    "layout(location = 1) in vec3 normal;\n"
+    "layout(location = 2) in vec2 uv;\n"
+    "uniform mat4 model;\n"
+    "uniform mat4 view;\n"
+    "uniform mat4 projection;\n"
+    "out vec3 world_position;\n"
+    "out vec3 world_normal;\n"
+    "out vec2 texture_coordinate;\n"
+    "void main()\n"
+    "{\n"
+    "    vec4 world = model * vec4(position, 1.0);\n"
+    "    world_position = world.xyz;\n"
+    "    world_normal = transpose(inverse(mat3(model))) * normal;\n"
+    "    texture_coordinate = uv;\n"
+    "    gl_Position = projection * view * world;\n"
+    "    gl_Position.y = -gl_Position.y;   // luz's row 0 is the top\n"
+    "}\n";
+
+/* Each light is vec4(colour, strength). The comments are SCENE.md's lines. */
+static const char *const fragment_shader_source =
+    "#version 330 core\n"
+    "in vec3 world_position;\n"
+    "in vec3 world_normal;\n"
+    "in vec2 texture_coordinate;\n"
+    "out vec4 fragment_colour;\n"
+    "uniform vec4 A, D, S, Pt, Sp, Dl;\n"
+    "uniform float shininess;\n"
+    "uniform vec3 camera_position, camera_front, point_position, sun_direction;\n"
+    "uniform float cos_inner, cos_outer, reach;\n"
+    "uniform vec3 object_colour;\n"
+    "uniform int unlit, textured;\n"
+    "uniform sampler2D image;\n"
+    "void main()\n"
+    "{\n"
+    "    if (unlit != 0) {          // the point light's marker: Pt.rgb as it is\n"
+    "        fragment_colour = vec4(object_colour, 1.0);\n"
+    "        return;\n"
+    "    }\n"
+    "    vec3 P = world_position, N = normalize(world_normal);\n"
+    "    vec3 E = camera_position, F = camera_front, C = object_colour;\n"
+    "    vec3 T = textured != 0 ? texture(image, texture_coordinate).rgb : vec3(1.0);\n"
+    "    vec3 ambient = A.a * A.rgb;\n"
+    "    vec3 L = normalize(E - P);\n"
+    "    vec3 diffuse = max(dot(N, L), 0.0) * D.rgb * D.a;\n"
+    "    vec3 V = normalize(E - P);\n"
+    "    vec3 R = reflect(-L, N);\n"
+    "    // pow follows C: pow(0, 0) is 1 (GLSL leaves it undefined)\n"
+    "    float highlight = shininess == 0.0 ? 1.0 : pow(max(dot(V, R), 0.0), shininess);\n"
+    "    vec3 specular = S.a * highlight * S.rgb;\n"
+    "    vec3 Lp = normalize(point_position - P);\n"
+    "    vec3 point = max(dot(N, Lp), 0.0) * Pt.rgb * Pt.a;\n"
+    "    float c = dot(normalize(P - E), normalize(F));\n"
+    "    float ci = cos_inner, co = cos_outer;\n"
+    "    float f_dir;\n"
+    "    if (c > ci) {\n"
+    "        f_dir = 1.0;\n"
+    "    } else if (co < c) {\n"
+    "        float s = sqrt((c - co) / (ci - co));\n"
+    "        f_dir = s * s * (3.0 - 2.0 * s);\n"
+    "    } else {\n"
+    "        f_dir = 0.0;\n"
+    "    }\n"
+    "    float dn = length(E - P) / reach;\n"
+    "    float dn2 = dn * dn;\n"
+    "    float window = max(1.0 - dn2 * dn2, 0.0);   // max(1 - dn^4, 0)\n"
+    "    float f_win = window * window;\n"
+    "    float f_dist = f_win * Sp.a * Sp.a / (dn2 + 1.0);\n"
+    "    vec3 spot = Sp.rgb * f_dir * f_dist;\n"
+    "    vec3 directional = max(dot(N, normalize(-sun_direction)), 0.0) * Dl.rgb * Dl.a;\n"
+    "    vec3 colour = (ambient + diffuse + specular + point + spot + directional) * C * T;\n"
+    "    fragment_colour = vec4(colour, 1.0);   // GL clamps and rounds to 8 bits\n"
+    "}\n";
+
+/* ---- the GL state ---------------------------------------------------------------------- */
+
+typedef struct uniform_locations {
+    GLint model, view, projection;
+    GLint lights[LUZ_TERM_COUNT];
+    GLint shininess, camera_position, camera_front, point_position, sun_direction;
+    GLint cos_inner, cos_outer, reach, object_colour, unlit, textured, image;
+} uniform_locations;
+
+typedef struct gl_reference {
+    EGLDisplay display;
+    EGLContext context;
+    GLuint framebuffer, colour_buffer, depth_buffer;
+    GLuint program, vertex_array, vertex_buffer, index_buffer;
+    GLuint *textures;   /* one per texture in the set */
+    int texture_count;
+    uniform_locations uniforms;
+    int width, height;
+} gl_reference;
+
+static const char *egl_error_name(EGLint code)
+{
+    switch (code) {
+    case EGL_NOT_INITIALIZED: return "EGL_NOT_INITIALIZED";
+    case EGL_BAD_ALLOC: return "EGL_BAD_ALLOC";
+    case EGL_BAD_CONFIG: return "EGL_BAD_CONFIG";
+    case EGL_BAD_CONTEXT: return "EGL_BAD_CONTEXT";
+    case EGL_BAD_DISPLAY: return "EGL_BAD_DISPLAY";
+    case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
+    case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
+    case EGL_BAD_ATTRIBUTE: return "EGL_BAD_ATTRIBUTE";
+    default: return "an EGL error";
+    }
+}
+
+/* EGL's surfaceless platform on Mesa's software rasteriser; GL 3.3 core with
+ * no window and no config (EGL_KHR_no_config_context). Returns 0, or -1 with
+ * a message; the caller reports it as a usage error, since it means this
+ * machine has no llvmpipe to compare with. */
+static int open_context(gl_reference *gl, luz_error *error)
+{
+    const char *client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+    if (client == NULL || strstr(client, "EGL_MESA_platform_surfaceless") == NULL)
+        return luz_error_set(error, "EGL has no surfaceless platform "
+                                    "(EGL_MESA_platform_surfaceless): is Mesa's EGL "
+                                    "(libegl-mesa0) installed?");
+    gl->display = eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA,
+                                        (void *)EGL_DEFAULT_DISPLAY, NULL);
+    EGLint major, minor;
+    if (gl->display == EGL_NO_DISPLAY || !eglInitialize(gl->display, &major, &minor)) {
+        gl->display = EGL_NO_DISPLAY;
+        return luz_error_set(error, "cannot initialise EGL's surfaceless display (%s)",
+                             egl_error_name(eglGetError()));
+    }
+    const char *extensions = eglQueryString(gl->display, EGL_EXTENSIONS);
+    if (extensions == NULL || strstr(extensions, "EGL_KHR_no_config_context") == NULL ||
+        strstr(extensions, "EGL_KHR_surfaceless_context") == NULL)
+        return luz_error_set(error, "EGL lacks EGL_KHR_no_config_context or "
+                                    "EGL_KHR_surfaceless_context");
+    if (!eglBindAPI(EGL_OPENGL_API))
+        return luz_error_set(error, "EGL offers no desktop OpenGL (%s)",
+                             egl_error_name(eglGetError()));
+    const EGLint attributes[] = {
+        EGL_CONTEXT_MAJOR_VERSION, 3,
+        EGL_CONTEXT_MINOR_VERSION, 3,
+        EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+        EGL_NONE,
+    };
+    gl->context = eglCreateContext(gl->display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attributes);
+    if (gl->context == EGL_NO_CONTEXT)
+        return luz_error_set(error, "cannot create an OpenGL 3.3 core context (%s)",
+                             egl_error_name(eglGetError()));
+    if (!eglMakeCurrent(gl->display, EGL_NO_SURFACE, EGL_NO_SURFACE, gl->context))
+        return luz_error_set(error, "cannot make the OpenGL context current (%s)",
+                             egl_error_name(eglGetError()));
+    return 0;
+}
+
+static int compile_shader(GLenum kind, const char *source, GLuint *out, luz_error *error)
+{
+    GLuint shader = glCreateShader(kind);
+    glShaderSource(shader, 1, &source, NULL);
+    glCompileShader(shader);
+    GLint ok = GL_FALSE;
+    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[400] = "";
+        glGetShaderInfoLog(shader, sizeof log, NULL, log);
+        glDeleteShader(shader);
+        return luz_error_set(error, "the %s shader does not compile: %s",
+                             kind == GL_VERTEX_SHADER ? "vertex" : "fragment", log);
+    }
+    *out = shader;
+    return 0;
+}
+
+static int build_program(gl_reference *gl, luz_error *error)
+{
+    GLuint vertex, fragment;
+    if (compile_shader(GL_VERTEX_SHADER, vertex_shader_source, &vertex, error) != 0)
+        return -1;
+    if (compile_shader(GL_FRAGMENT_SHADER, fragment_shader_source, &fragment, error) != 0) {
+        glDeleteShader(vertex);
+        return -1;
+    }
+    gl->program = glCreateProgram();
+    glAttachShader(gl->program, vertex);
+    glAttachShader(gl->program, fragment);
+    glLinkProgram(gl->program);
+    glDeleteShader(vertex);
+    glDeleteShader(fragment);
+    GLint ok = GL_FALSE;
+    glGetProgramiv(gl->program, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        char log[400] = "";
+        glGetProgramInfoLog(gl->program, sizeof log, NULL, log);
+        return luz_error_set(error, "the shaders do not link: %s", log);
+    }
+    glUseProgram(gl->program);
+
+    uniform_locations *u = &gl->uniforms;
+    GLuint p = gl->program;
+    u->model = glGetUniformLocation(p, "model");
+    u->view = glGetUniformLocation(p, "view");
+    u->projection = glGetUniformLocation(p, "projection");
+    static const char *const light_names[LUZ_TERM_COUNT] = {"A", "D", "S", "Pt", "Sp", "Dl"};
+    for (int term = 0; term < LUZ_TERM_COUNT; term++)
+        u->lights[term] = glGetUniformLocation(p, light_names[term]);
+    u->shininess = glGetUniformLocation(p, "shininess");
+    u->camera_position = glGetUniformLocation(p, "camera_position");
+    u->camera_front = glGetUniformLocation(p, "camera_front");
+    u->point_position = glGetUniformLocation(p, "point_position");
+    u->sun_direction = glGetUniformLocation(p, "sun_direction");
+    u->cos_inner = glGetUniformLocation(p, "cos_inner");
+    u->cos_outer = glGetUniformLocation(p, "cos_outer");
+    u->reach = glGetUniformLocation(p, "reach");
+    u->object_colour = glGetUniformLocation(p, "object_colour");
+    u->unlit = glGetUniformLocation(p, "unlit");
+    u->textured = glGetUniformLocation(p, "textured");
+    u->image = glGetUniformLocation(p, "image");
+    glUniform1i(u->image, 0);
+    return 0;
+}
+
+static void upload_cube(gl_reference *gl)
+{
+    cube_vertex vertices[24];
+    uint16_t indices[36];
+    for (int face = 0; face < 6; face++) {
+        for (int corner = 0; corner < 4; corner++) {
+            cube_vertex *v = &vertices[face * 4 + corner];
+            memcpy(v->position, face_corners[face][corner], sizeof v->position);
+            memcpy(v->normal, face_normals[face], sizeof v->normal);
+            memcpy(v->uv, corner_uvs[corner], sizeof v->uv);
+        }
+        /* SCENE.md: triangles (4k, 4k+1, 4k+2) and (4k, 4k+2, 4k+3). */
+        static const int pattern[6] = {0, 1, 2, 0, 2, 3};
+        for (int k = 0; k < 6; k++) indices[face * 6 + k] = (uint16_t)(face * 4 + pattern[k]);
+    }
+    glGenVertexArrays(1, &gl->vertex_array);
+    glBindVertexArray(gl->vertex_array);
+    glGenBuffers(1, &gl->vertex_buffer);
+    glBindBuffer(GL_ARRAY_BUFFER, gl->vertex_buffer);
+    glBufferData(GL_ARRAY_BUFFER, sizeof vertices, vertices, GL_STATIC_DRAW);
+    glGenBuffers(1, &gl->index_buffer);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, gl->index_buffer);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, sizeof indices, indices, GL_STATIC_DRAW);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(cube_vertex),
+                          (void *)offsetof(cube_vertex, position));
+    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(cube_vertex),
+                          (void *)offsetof(cube_vertex, normal));
+    glVertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, sizeof(cube_vertex),
+                          (void *)offsetof(cube_vertex, uv));
+    for (GLuint k = 0; k < 3; k++) glEnableVertexAttribArray(k);
+}
+
+/* Every level of luz's chain (SCENE.md's box filter) as it is, rows in file
+ * order, with the filter --filter names. */
+static int upload_textures(gl_reference *gl, const luz_texture_set *set, luz_filter filter,
+                           luz_error *error)
+{
+    gl->texture_count = set->count;
+    if (set->count == 0) return 0;
+    gl->textures = calloc((size_t)set->count, sizeof *gl->textures);
+    if (gl->textures == NULL) return luz_error_set(error, "out of memory for the textures");
+    glGenTextures(set->count, gl->textures);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    GLint minify = filter == LUZ_FILTER_NEAREST    ? GL_NEAREST
+                   : filter == LUZ_FILTER_BILINEAR ? GL_LINEAR
+                                                   : GL_LINEAR_MIPMAP_LINEAR;
+    GLint magnify = filter == LUZ_FILTER_NEAREST ? GL_NEAREST : GL_LINEAR;
+    for (int i = 0; i < set->count; i++) {
+        const luz_texture *texture = set->textures[i];
+        glBindTexture(GL_TEXTURE_2D, gl->textures[i]);
+        for (int level = 0; level < texture->level_count; level++) {
+            const luz_texture_level *l = &texture->levels[level];
+            glTexImage2D(GL_TEXTURE_2D, level, GL_RGBA8, l->width, l->height, 0, GL_RGBA,
+                         GL_UNSIGNED_BYTE, l->texels);
+        }
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, 0);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, texture->level_count - 1);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, minify);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, magnify);
+    }
+    if (glGetError() != GL_NO_ERROR)
+        return luz_error_set(error, "OpenGL refused the textures");
+    return 0;
+}
+
+static int create_framebuffer(gl_reference *gl, int width, int height, luz_error *error)
+{
+    GLint limit = 0, viewport[2] = {0, 0};
+    glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &limit);
+    glGetIntegerv(GL_MAX_VIEWPORT_DIMS, viewport);
+    if (width > limit || height > limit || width > viewport[0] || height > viewport[1])
+        return luz_error_set(error, "--size: %dx%d is larger than llvmpipe's %dx%d", width,
+                             height, viewport[0] < limit ? viewport[0] : limit,
+                             viewport[1] < limit ? viewport[1] : limit);
+    gl->width = width;
+    gl->height = height;
+    glGenRenderbuffers(1, &gl->colour_buffer);
+    glBindRenderbuffer(GL_RENDERBUFFER, gl->colour_buffer);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
+    glGenRenderbuffers(1, &gl->depth_buffer);
+    glBindRenderbuffer(GL_RENDERBUFFER, gl->depth_buffer);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
+    glGenFramebuffers(1, &gl->framebuffer);
+    glBindFramebuffer(GL_FRAMEBUFFER, gl->framebuffer);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
+                              gl->colour_buffer);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
+                              gl->depth_buffer);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        return luz_error_set(error, "cannot make a %dx%d RGBA8 + depth24 framebuffer", width,
+                             height);
+    glViewport(0, 0, width, height);
+
+    /* SCENE.md's fixed state: depth LESS cleared to 1, back faces culled
+     * (front faces are clockwise once y is mirrored), clear colour 0.1. */
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glClearDepth(1.0);
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
+    glFrontFace(GL_CW);
+    glClearColor(0.1f, 0.1f, 0.1f, 1.0f);
+    return 0;
+}
+
+static void close_reference(gl_reference *gl)
+{
+    if (gl->display == EGL_NO_DISPLAY) return;
+    if (gl->context != EGL_NO_CONTEXT) {
+        if (gl->textures != NULL) glDeleteTextures(gl->texture_count, gl->textures);
+        if (gl->program != 0) glDeleteProgram(gl->program);
+        glDeleteBuffers(1, &gl->vertex_buffer);
+        glDeleteBuffers(1, &gl->index_buffer);
+        glDeleteVertexArrays(1, &gl->vertex_array);
+        glDeleteFramebuffers(1, &gl->framebuffer);
+        glDeleteRenderbuffers(1, &gl->colour_buffer);
+        glDeleteRenderbuffers(1, &gl->depth_buffer);
+        eglMakeCurrent(gl->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+        eglDestroyContext(gl->display, gl->context);
+    }
+    eglTerminate(gl->display);
+    free(gl->textures);
+}
+
+/* ---- one frame ---------------------------------------------------------------------------- */
+
+typedef struct scene_data {
+    const luz_options *options;
+    luz_vec3 *colours;   /* objectColor per cube */
+    int cube_count;
+} scene_data;
+
+static void set_light(GLint location, const luz_light *light)
+{
+    glUniform4f(location, light->colour.x, light->colour.y, light->colour.z, light->strength);
+}
+
+/* Times are split for --bench: issuing the draws (where llvmpipe shades
+ * vertices and bins triangles) and glFinish (where it rasterises and
+ * shades fragments). */
+typedef struct frame_times {
+    double submit_ms, finish_ms;
+} frame_times;
+
+static double seconds_of(clockid_t clock)
+{
+    struct timespec now;
+    clock_gettime(clock, &now);
+    return (double)now.tv_sec + (double)now.tv_nsec * 1e-9;
+}
+
+static void draw_frame(gl_reference *gl, const scene_data *data, double t, frame_times *times)
+{
+    const luz_scene *scene = &data->options->scene;
+    luz_lights lights_copy = scene->lights;   /* luz_lights_term takes a non-const */
+    const luz_lights *lights = &lights_copy;
+    const uniform_locations *u = &gl->uniforms;
+    double start = seconds_of(CLOCK_MONOTONIC);
+
+    /* Camera: SCENE.md's front from yaw and pitch, lookAt and perspective. */
+    double yaw = scene->camera.yaw_degrees * (PI / 180.0);
+    double pitch = scene->camera.pitch_degrees * (PI / 180.0);
+    double front[3] = {cos(yaw) * cos(pitch), sin(pitch), sin(yaw) * cos(pitch)};
+    normalize3(front);
+    double eye[3] = {scene->camera.position.x, scene->camera.position.y,
+                     scene->camera.position.z};
+    float view[16], projection[16];
+    matrix_to_floats(look_along(eye, front), view);
+    matrix_to_floats(perspective(scene->camera.fov_degrees * (PI / 180.0),
+                                 (double)gl->width / gl->height, 0.1, 100.0),
+                     projection);
+
+    /* The orbits: point light radius 3 at y = 0.5, the sun d(t). */
+    double point[3] = {3.0 * cos(0.5 * t), 0.5, 3.0 * sin(0.5 * t)};
+
+    glUniformMatrix4fv(u->view, 1, GL_FALSE, view);
+    glUniformMatrix4fv(u->projection, 1, GL_FALSE, projection);
+    for (int term = 0; term < LUZ_TERM_COUNT; term++)
+        set_light(u->lights[term], luz_lights_term(&lights_copy, (luz_term)term));
+    glUniform1f(u->shininess, lights->shininess);
+    glUniform3f(u->camera_position, (float)eye[0], (float)eye[1], (float)eye[2]);
+    glUniform3f(u->camera_front, (float)front[0], (float)front[1], (float)front[2]);
+    glUniform3f(u->point_position, (float)point[0], (float)point[1], (float)point[2]);
+    glUniform3f(u->sun_direction, (float)cos(0.1 * t), (float)sin(0.1 * t), 0.0f);
+    glUniform1f(u->cos_inner, (float)cos(lights->spot_inner_degrees * (PI / 180.0)));
+    glUniform1f(u->cos_outer, (float)cos(lights->spot_outer_degrees * (PI / 180.0)));
+    glUniform1f(u->reach, lights->spot_reach);
+    glUniform1i(u->unlit, 0);
+
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+
+    /* Cubes 0 .. N-1 in order: M_i = T(p_i) R((i + 1) / 3 * t * 50 degrees). */
+    const luz_cube *custom = scene->custom_cubes;
+    int textured = -1;
+    for (int i = 0; i < data->cube_count; i++) {
+        luz_vec3 p = custom ? custom[i].position : luz_scene_tiled_position(i);
+        luz_vec3 colour = custom && custom[i].has_colour ? custom[i].colour : data->colours[i];
+        double position[3] = {p.x, p.y, p.z};
+        double degrees = fmod((i + 1) / 3.0 * t * 50.0, 360.0);
+        float model[16];
+        matrix_to_floats(model_matrix(position, degrees * (PI / 180.0), 1.0), model);
+        glUniformMatrix4fv(u->model, 1, GL_FALSE, model);
+        glUniform3f(u->object_colour, colour.x, colour.y, colour.z);
+        int has_texture = gl->texture_count > 0;
+        if (has_texture) {
+            int index = custom && custom[i].texture != LUZ_TEXTURE_BY_INDEX ? custom[i].texture : i;
+            glBindTexture(GL_TEXTURE_2D, gl->textures[index % gl->texture_count]);
+        }
+        if (has_texture != textured) {
+            glUniform1i(u->textured, has_texture);
+            textured = has_texture;
+        }
+        glDrawElements(GL_TRIANGLES, 36, GL_UNSIGNED_SHORT, NULL);
+    }
+
+    /* The point light's marker: scale 0.2, unrotated, unlit, Pt.rgb, drawn
+     * while the light shines. */
+    if (lights->point.strength > 0.0f) {
+        float model[16];
+        matrix_to_floats(model_matrix(point, 0.0, 0.2), model);
+        glUniformMatrix4fv(u->model, 1, GL_FALSE, model);
+        glUniform3f(u->object_colour, lights->point.colour.x, lights->point.colour.y,
+                    lights->point.colour.z);
+        glUniform1i(u->unlit, 1);
+        glDrawElements(GL_TRIANGLES, 36, GL_UNSIGNED_SHORT, NULL);
+    }
+
+    double submitted = seconds_of(CLOCK_MONOTONIC);
+    glFinish();
+    if (times != NULL) {
+        times->submit_ms = (submitted - start) * 1e3;
+        times->finish_ms = (seconds_of(CLOCK_MONOTONIC) - submitted) * 1e3;
+    }
+}
+
+/* ---- programs: files and --bench -------------------------------------------------------- */
+
+static int write_frame(gl_reference *gl, uint8_t *pixels, const char *path, luz_error *error)
+{
+    /* GL's row 0 is luz's row 0 (y is mirrored in clip space). */
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, gl->width, gl->height, GL_RGBA, GL_UNSIGNED_BYTE, pixels);
+    if (glGetError() != GL_NO_ERROR) return luz_error_set(error, "glReadPixels failed");
+    return luz_png_write(path, gl->width, gl->height, pixels, error);
+}
+
+static int render_files(gl_reference *gl, const scene_data *data, luz_error *error)
+{
+    const luz_options *options = data->options;
+    uint8_t *pixels = malloc((size_t)gl->width * (size_t)gl->height * 4);
+    if (pixels == NULL) return luz_error_set(error, "out of memory for the image");
+    int status = 0;
+    char path[4096];
+    for (int k = 0; k < options->frame_count && status == 0; k++) {
+        double t = options->scene.time_seconds + k / options->frames_per_second;
+        status = luz_options_output_path(options, k, path, sizeof path, error);
+        if (status == 0) {
+            draw_frame(gl, data, t, NULL);
+            status = write_frame(gl, pixels, path, error);
+        }
+    }
+    free(pixels);
+    return status;
+}
+
+static int compare_doubles(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double median(double *values, int count)
+{
+    qsort(values, (size_t)count, sizeof *values, compare_doubles);
+    return count % 2 ? values[count / 2] : 0.5 * (values[count / 2 - 1] + values[count / 2]);
+}
+
+/* llvmpipe's thread count: LP_NUM_THREADS, else one per online CPU. */
+static int llvmpipe_threads(void)
+{
+    const char *text = getenv("LP_NUM_THREADS");
+    if (text != NULL && text[0] != '\0') return atoi(text);
+    long cpus = sysconf(_SC_NPROCESSORS_ONLN);
+    return cpus > 0 ? (int)cpus : 1;
+}
+
+/* The frames of luz-render --bench (one warm-up at --time, then frame k at
+ * time + k / fps), and its line of figures. */
+static int bench(gl_reference *gl, const scene_data *data, luz_error *error)
+{
+    const luz_options *options = data->options;
+    int count = options->bench_frames;
+    double *storage = calloc((size_t)count * 4, sizeof *storage);
+    if (storage == NULL) return luz_error_set(error, "--bench: out of memory for %d frames", count);
+    double *wall = storage, *cpu = storage + count, *submit = storage + 2 * count,
+           *finish = storage + 3 * count;
+
+    draw_frame(gl, data, options->scene.time_seconds, NULL);
+    for (int k = 0; k < count; k++) {
+        double t = options->scene.time_seconds + k / options->frames_per_second;
+        frame_times times;
+        double wall_start = seconds_of(CLOCK_MONOTONIC);
+        double cpu_start = seconds_of(CLOCK_PROCESS_CPUTIME_ID);
+        draw_frame(gl, data, t, &times);
+        cpu[k] = (seconds_of(CLOCK_PROCESS_CPUTIME_ID) - cpu_start) * 1e3;
+        wall[k] = (seconds_of(CLOCK_MONOTONIC) - wall_start) * 1e3;
+        submit[k] = times.submit_ms;
+        finish[k] = times.finish_ms;
+    }
+    double median_ms = median(wall, count);
+    printf("frames=%d size=%dx%d threads=%d cubes=%d filter=%s ", count, gl->width, gl->height,
+           llvmpipe_threads(), data->cube_count, luz_filter_name(options->scene.filter));
+    printf("median_ms=%.3f min_ms=%.3f fps=%.2f cpu_ms=%.3f geometry_ms=%.3f raster_ms=%.3f\n",
+           median_ms, wall[0], median_ms > 0.0 ? 1000.0 / median_ms : 0.0, median(cpu, count),
+           median(submit, count), median(finish, count));
+    free(storage);
+    return 0;
+}
+
+/* ---- main ------------------------------------------------------------------------------------ */
+
+static void print_error(const char *message)
+{
+    fputs("glref: ", stderr);
+    for (const char *c = message; *c != '\0'; c++)
+        fputc(((unsigned char)*c < 0x20 || *c == 0x7f) ? '?' : *c, stderr);
+    fputc('\n', stderr);
+}
+
+static void print_usage(FILE *out)
+{
+    fprintf(out,
+            "Usage: glref [OPTION]...\n"
+            "Render SCENE.md's scene through OpenGL 3.3 core on Mesa's llvmpipe (headless,\n"
+            "EGL surfaceless), the reference luz is compared with. The options are\n"
+            "luz-render's; --threads N sets llvmpipe's LP_NUM_THREADS.\n"
+            "\n");
+    luz_options_print_help(out);
+    fprintf(out,
+            "\n"
+            "GALLIVM_PERF=no_aos_sampling makes llvmpipe filter textures in float instead\n"
+            "of with 8-bit weights. glref refuses to run on any renderer but llvmpipe.\n"
+            "\n"
+            "Exit status: 0 on success, 2 for a bad option or no llvmpipe, 1 if rendering\n"
+            "or writing failed.\n");
+}
+
+static int load_textures(luz_options *options, luz_texture_set *textures, luz_error *error)
+{
+    char default_directory[4096];
+    const char *directory = options->textures_directory;
+    if (directory == NULL)
+        directory = luz_default_textures_directory(default_directory, sizeof default_directory);
+    if (strcmp(directory, "none") != 0) {
+        luz_error load_error = {{0}};
+        if (luz_texture_set_load(textures, directory, &load_error) != 0)
+            return luz_error_set(error, "--textures: %s", load_error.message);
+    }
+    return luz_options_resolve_textures(options, textures, error);
+}
+
+int main(int argc, char **argv)
+{
+    luz_options options;
+    luz_texture_set textures = {0};
+    gl_reference gl = {.display = EGL_NO_DISPLAY, .context = EGL_NO_CONTEXT};
+    scene_data data = {.options = &options};
+    luz_error error = {{0}};
+    int status = EXIT_USAGE;
+
+    luz_options_init(&options);
+    if (luz_options_parse(&options, argc, argv, &error) != 0) goto done;
+    if (options.help) {
+        print_usage(stdout);
+        status = EXIT_OK;
+        goto done;
+    }
+    if (!options.version && load_textures(&options, &textures, &error) != 0) goto done;
+
+    /* llvmpipe, whatever GPU the machine has; its thread count from
+     * --threads (0 renders on the calling thread, as luz's --threads 0). */
+    setenv("LIBGL_ALWAYS_SOFTWARE", "1", 0);
+    setenv("GALLIUM_DRIVER", "llvmpipe", 0);
+    if (options.thread_count != LUZ_THREADS_AUTO) {
+        char threads[16];
+        snprintf(threads, sizeof threads, "%d", options.thread_count);
+        setenv("LP_NUM_THREADS", threads, 1);
+    }
+    if (open_context(&gl, &error) != 0) goto done;
+    const char *renderer = (const char *)glGetString(GL_RENDERER);
+    if (renderer == NULL || strstr(renderer, "llvmpipe") == NULL) {
+        luz_error_set(&error, "the OpenGL renderer is '%s', not Mesa's "
+                      "llvmpipe; glref compares with llvmpipe only",
+                      renderer ? renderer : "unknown");
+        goto done;
+    }
+
+    if (options.version) {
+        /* The version, and which llvmpipe it runs on (tools/conformance
+         * prints it, and uses it to see whether llvmpipe is there at all). */
+        printf("glref (luz %s)\nOpenGL %s on %s\n", LUZ_VERSION,
+               (const char *)glGetString(GL_VERSION), renderer);
+        status = EXIT_OK;
+        goto done;
+    }
+
+    status = EXIT_RUNTIME;
+    data.cube_count = options.scene.custom_cubes ? options.scene.custom_cube_count
+                                                 : options.scene.cube_count;
+    data.colours = malloc((size_t)(data.cube_count > 0 ? data.cube_count : 1) *
+                          sizeof *data.colours);
+    if (data.colours == NULL) {
+        luz_error_set(&error, "out of memory for %d cubes", data.cube_count);
+        goto done;
+    }
+    luz_scene_random_colours(options.scene.seed, data.cube_count, data.colours);
+    if (build_program(&gl, &error) != 0) goto done;
+    upload_cube(&gl);
+    if (upload_textures(&gl, &textures, options.scene.filter, &error) != 0) goto done;
+    if (create_framebuffer(&gl, options.width, options.height, &error) != 0) {
+        status = EXIT_USAGE;
+        goto done;
+    }
+    if ((options.bench_frames > 0 ? bench(&gl, &data, &error)
+                                  : render_files(&gl, &data, &error)) != 0)
+        goto done;
+    status = EXIT_OK;
+
+done:
+    if (status != EXIT_OK) print_error(error.message[0] ? error.message : "failed");
+    close_reference(&gl);
+    free(data.colours);
+    luz_texture_set_free(&textures);
+    luz_options_free(&options);
+    if (fflush(stdout) != 0 && status == EXIT_OK) {
+        print_error("cannot write to standard output");
+        status = EXIT_RUNTIME;
+    }
+    return status;
+}
