@@ -843,7 +843,7 @@ void luz_options_print_help(FILE *out)
     luz_options_init(&defaults);
     for (size_t i = 0; i < OPTION_COUNT; i++) {
         const option_spec *spec = &option_table[i];
-        char left[64], value[160], directory[4096], line[512];
+        char left[64], value[160], directory[4096], line[4096 + 512];
         int used = snprintf(left, sizeof left, "%s--%s",
                             strcmp(spec->name, "output") == 0 ? "-o, " : "", spec->name);
         if (spec->syntax != NULL && used > 0 && (size_t)used < sizeof left)
