@@ -20,4 +20,9 @@ __attribute__((format(printf, 2, 3)))
 #endif
 int luz_error_set(luz_error *error, const char *format, ...);
 
+/* Prints "program: message" as one line on stderr: control characters in
+ * the message (a file name with a newline in it, say) are shown as '?', so
+ * that users and tests always see exactly one line. */
+void luz_error_print(const char *program, const char *message);
+
 #endif

@@ -9,6 +9,8 @@
  *   renderer.h     the threaded pipeline that draws a frame
  *   image.h        PNG output that never leaves a partial file
  *   options.h      the command-line and scene-file options both programs share
+ *   controls.h     the viewer's keys and mouse as functions on scene data
+ *   panel.h        the viewer's text, light panel, HUD and help, drawn into a framebuffer
  */
 #ifndef LUZ_LUZ_H
 #define LUZ_LUZ_H
@@ -22,5 +24,7 @@
 #include "luz/renderer.h"
 #include "luz/image.h"
 #include "luz/options.h"
+#include "luz/controls.h"
+#include "luz/panel.h"
 
 #endif

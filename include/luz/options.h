@@ -54,6 +54,7 @@ typedef struct luz_options {
     int bench_frames;           /* --bench N, 0 when not benchmarking */
     unsigned only_terms;        /* --only: bit (1u << luz_term) per light term
                                    kept; 0 keeps them all */
+    bool reference;             /* --reference: the plain scalar fragment stage */
     bool help;
     bool version;
     luz_cube *cubes;            /* a scene file's own cubes (owned), as many
@@ -122,6 +123,15 @@ void luz_options_write_scene(const luz_options *options, FILE *out);
  * Returns 0, or -1 naming FILE:LINE of a cube whose texture is not in it. */
 int luz_options_resolve_textures(luz_options *options, const luz_texture_set *textures,
                                  luz_error *error);
+
+/* Loads the textures the options name (--textures, else $LUZ_TEXTURES,
+ * else luz_default_textures_directory()) into an empty set, "none" leaving
+ * it empty (every texel white), then resolves the custom cubes' texture
+ * names (luz_options_resolve_textures). Both programs start this way.
+ * Returns 0, or -1 with a message that says where the directory came from.
+ * (In src/io/texture_load.c.) */
+int luz_options_load_textures(luz_options *options, luz_texture_set *textures,
+                              luz_error *error);
 
 /* The file that frame frame_index goes to: output_path with its %d
  * conversion (if any) replaced by the index and %% by %. Returns 0, or -1 if

@@ -14,6 +14,7 @@
 #ifndef LUZ_RENDERER_H
 #define LUZ_RENDERER_H
 
+#include <stdbool.h>
 #include <stdint.h>
 
 #include "luz/error.h"
@@ -26,6 +27,11 @@
 typedef struct luz_renderer_desc {
     int thread_count;   /* LUZ_THREADS_AUTO, or 0 / 1 for the caller's
                            thread only, or up to LUZ_MAX_THREADS */
+    bool reference;     /* true: shade one pixel at a time with the plain
+                           reference fragment stage; false (the default):
+                           with the SIMD one. They agree to within rounding
+                           (every channel within 1, nearly every pixel
+                           identical) */
 } luz_renderer_desc;
 
 typedef struct luz_frame_stats {

@@ -14,3 +14,11 @@ int luz_error_set(luz_error *error, const char *format, ...)
     }
     return -1;
 }
+
+void luz_error_print(const char *program, const char *message)
+{
+    fprintf(stderr, "%s: ", program);
+    for (const char *c = message; *c != '\0'; c++)
+        fputc(((unsigned char)*c < 0x20 || *c == 0x7f) ? '?' : *c, stderr);
+    fputc('\n', stderr);
+}

@@ -147,6 +147,10 @@ static const option_spec option_table[] = {
      .max = LUZ_MAX_FRAMES, .in_scene_file = true, .syntax = "N",
      .summary = "time N frames, write no file, print one line of key=value results",
      .default_text = "off"},
+    {.name = "reference", .kind = OPTION_FLAG, .offset = FIELD(reference),
+     .summary = "shade with the plain scalar fragment stage (src/pipeline/fragment.c) "
+                "instead of the SIMD one; the images agree",
+     .default_text = "off"},
     {.name = "scene", .kind = OPTION_SCENE, .syntax = "FILE",
      .summary = "read options and cubes from a scene file (the command line wins)",
      .default_text = "none"},

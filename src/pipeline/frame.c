@@ -58,6 +58,8 @@ struct luz_renderer {
     size_t by_id_capacity;
     band_counters *bands;
     int band_capacity;
+    bool reference;                 /* fragment.c's shading, not the packets */
+    luz_packet_isa packet_isa;
 };
 
 /* What the jobs of one frame share; read-only for the jobs except their
@@ -190,9 +192,16 @@ static void band_job(void *context, int band_index, int worker_index)
         tested += luz_raster_triangle(triangle, (uint32_t)id, framebuffer, first_row, end_row);
     }
 
-    /* Fragment stage: shade each visible pixel once. */
-    counters->fragments_shaded = luz_fragment_shade_rows(job->frame, by_id, framebuffer,
-                                                         first_row, end_row);
+    /* Fragment stage: shade each visible pixel once, one pixel at a time
+     * (the reference, fragment.c) or a packet of them at a time (the same
+     * equations as SIMD vectors, fragment_packet.c). */
+    if (job->renderer->reference)
+        counters->fragments_shaded = luz_fragment_shade_rows(job->frame, by_id, framebuffer,
+                                                             first_row, end_row);
+    else
+        counters->fragments_shaded =
+            luz_fragment_shade_rows_packet(job->renderer->packet_isa, job->frame, by_id,
+                                           framebuffer, first_row, end_row);
     counters->fragments_tested = tested;
 }
 
@@ -220,6 +229,8 @@ luz_renderer *luz_renderer_create(const luz_renderer_desc *desc, luz_error *erro
         luz_error_set(error, "out of memory for the renderer");
         return NULL;
     }
+    renderer->reference = desc ? desc->reference : false;
+    renderer->packet_isa = LUZ_PACKET_ISA_BEST;
     renderer->chunk_capacity = threads * CHUNKS_PER_THREAD;
     renderer->chunks = calloc((size_t)renderer->chunk_capacity, sizeof *renderer->chunks);
     renderer->pool = luz_thread_pool_create(threads);
@@ -243,6 +254,11 @@ void luz_renderer_destroy(luz_renderer *renderer)
     free(renderer->by_id);
     free(renderer->bands);
     free(renderer);
+}
+
+void luz_renderer_set_packet_isa(luz_renderer *renderer, luz_packet_isa isa)
+{
+    renderer->packet_isa = isa;
 }
 
 int luz_renderer_thread_count(const luz_renderer *renderer)

@@ -127,6 +127,29 @@ uint64_t luz_raster_triangle(const luz_triangle *triangle, uint32_t triangle_id,
 uint64_t luz_fragment_shade_rows(const luz_frame *frame, const luz_triangle *const *by_id,
                                  luz_framebuffer *framebuffer, int first_row, int end_row);
 
+/* The same stage, a packet of pixels at a time (fragment_packet.c): the
+ * same equations in the same order, as SIMD vectors. It agrees with
+ * luz_fragment_shade_rows to within rounding (the level of detail's
+ * logarithm is the one operation computed differently) and, like it,
+ * gives each pixel a colour that depends on nothing but that pixel.
+ *
+ * isa says which compiled variant runs: LUZ_PACKET_ISA_BEST the widest the
+ * CPU supports (what the renderer uses), the others for tests. A variant
+ * that the build or the CPU lacks falls back to the next narrower one. */
+typedef enum luz_packet_isa {
+    LUZ_PACKET_ISA_BEST,
+    LUZ_PACKET_ISA_BASELINE,   /* the build's target: SSE2 on x86-64, 4 lanes */
+    LUZ_PACKET_ISA_AVX2,       /* x86 AVX2 and FMA, 8 lanes */
+    LUZ_PACKET_ISA_AVX512,     /* x86 AVX-512 F, VL, BW and DQ, 16 lanes */
+} luz_packet_isa;
+
+/* Whether this build has the variant and this CPU can run it. */
+bool luz_packet_isa_supported(luz_packet_isa isa);
+uint64_t luz_fragment_shade_rows_packet(luz_packet_isa isa, const luz_frame *frame,
+                                        const luz_triangle *const *by_id,
+                                        luz_framebuffer *framebuffer, int first_row,
+                                        int end_row);
+
 /* The varyings and texture-coordinate derivatives at a pixel centre. */
 typedef struct luz_fragment {
     luz_vec3 position;
@@ -137,6 +160,14 @@ typedef struct luz_fragment {
 } luz_fragment;
 
 void luz_fragment_interpolate(const luz_triangle *triangle, int x, int y, luz_fragment *out);
+
+/* ---- the renderer (frame.c) --------------------------------------------- */
+
+struct luz_renderer;
+
+/* For tests: the instruction set of the renderer's fast fragment path
+ * (LUZ_PACKET_ISA_BEST unless set). */
+void luz_renderer_set_packet_isa(struct luz_renderer *renderer, luz_packet_isa isa);
 
 /* ---- threads ----------------------------------------------------------- */
 

@@ -36,16 +36,6 @@ enum {
     EXIT_USAGE = 2,     /* the user asked for something we refuse */
 };
 
-/* Prints an error as one line: whatever a message holds (a file name with a
- * newline in it, say), the user and the tests see exactly one line. */
-static void print_error(const char *message)
-{
-    fputs("luz-render: ", stderr);
-    for (const char *c = message; *c != '\0'; c++)
-        fputc(((unsigned char)*c < 0x20 || *c == 0x7f) ? '?' : *c, stderr);
-    fputc('\n', stderr);
-}
-
 static void print_usage(FILE *out)
 {
     fprintf(out,
@@ -192,7 +182,8 @@ static int bench(render_context *context, luz_renderer *renderer, luz_error *err
      * that the line says what the threads bought. */
     double single_thread_median = 0.0;
     if (threads > 1) {
-        luz_renderer *single = luz_renderer_create(&(luz_renderer_desc){.thread_count = 1}, error);
+        luz_renderer *single = luz_renderer_create(
+            &(luz_renderer_desc){.thread_count = 1, .reference = options->reference}, error);
         status = single ? bench_run(context, single, &samples, error) : -1;
         if (single != NULL)
             luz_renderer_destroy(single);
@@ -206,8 +197,10 @@ static int bench(render_context *context, luz_renderer *renderer, luz_error *err
         double min_ms = samples.wall_ms[0];   /* sorted by median() */
         int cubes = options->scene.custom_cubes ? options->scene.custom_cube_count
                                                 : options->scene.cube_count;
-        printf("frames=%d size=%dx%d threads=%d cubes=%d filter=%s ", count, options->width,
-               options->height, threads, cubes, luz_filter_name(options->scene.filter));
+        printf("frames=%d size=%dx%d threads=%d cubes=%d filter=%s fragment=%s ", count,
+               options->width, options->height, threads, cubes,
+               luz_filter_name(options->scene.filter),
+               options->reference ? "reference" : "packet");
         printf("median_ms=%.3f min_ms=%.3f fps=%.2f cpu_ms=%.3f geometry_ms=%.3f raster_ms=%.3f",
                median_ms, min_ms, median_ms > 0.0 ? 1000.0 / median_ms : 0.0,
                median(samples.cpu_ms, count), median(samples.geometry_ms, count),
@@ -219,29 +212,6 @@ static int bench(render_context *context, luz_renderer *renderer, luz_error *err
     }
     free(storage);
     return status;
-}
-
-/* ---- textures ---------------------------------------------------------------------- */
-
-/* Loads the textures directory that the options (or the environment, or the
- * build) name; "none" leaves the set empty, every texel white. */
-static int load_textures(luz_options *options, luz_texture_set *textures, luz_error *error)
-{
-    char default_directory[4096];
-    const char *directory = options->textures_directory;
-    const char *source = "--textures";
-    if (directory == NULL) {
-        const char *environment = getenv("LUZ_TEXTURES");
-        source = environment && environment[0] ? "LUZ_TEXTURES"
-                                               : "default textures (see --textures)";
-        directory = luz_default_textures_directory(default_directory, sizeof default_directory);
-    }
-    if (strcmp(directory, "none") != 0) {
-        luz_error load_error = {{0}};
-        if (luz_texture_set_load(textures, directory, &load_error) != 0)
-            return luz_error_set(error, "%s: %s", source, load_error.message);
-    }
-    return luz_options_resolve_textures(options, textures, error);
 }
 
 /* ---- main ----------------------------------------------------------------------------- */
@@ -268,13 +238,14 @@ int main(int argc, char **argv)
         printf("luz-render %s\n", LUZ_VERSION);
         goto done;
     }
-    if (load_textures(&options, &textures, &error) != 0) {
+    if (luz_options_load_textures(&options, &textures, &error) != 0) {
         status = EXIT_USAGE;
         goto done;
     }
 
     status = EXIT_RUNTIME;
-    renderer = luz_renderer_create(&(luz_renderer_desc){.thread_count = options.thread_count},
+    renderer = luz_renderer_create(&(luz_renderer_desc){.thread_count = options.thread_count,
+                                                      .reference = options.reference},
                                    &error);
     if (renderer == NULL)
         goto done;
@@ -288,7 +259,7 @@ int main(int argc, char **argv)
 
 done:
     if (status != EXIT_OK)
-        print_error(error.message[0] ? error.message : "failed");
+        luz_error_print("luz-render", error.message[0] ? error.message : "failed");
     luz_frame_free(&context.frame);
     if (context.framebuffer != NULL)
         luz_framebuffer_destroy(context.framebuffer);
@@ -297,7 +268,7 @@ done:
     luz_texture_set_free(&textures);
     luz_options_free(&options);
     if (fflush(stdout) != 0 && status == EXIT_OK) {
-        print_error("cannot write to standard output");
+        luz_error_print("luz-render", "cannot write to standard output");
         status = EXIT_RUNTIME;
     }
     return status;

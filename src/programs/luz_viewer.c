@@ -1,0 +1,787 @@
+/*
+ * luz: the interactive viewer. Fly through the lighting lab of SCENE.md,
+ * switch its six lights, edit them in a panel, and save what you find as a
+ * scene file that luz-render renders at any size.
+ *
+ *   luz                              the default scene in a 1280x720 window
+ *   luz --scene view.luz             a saved view
+ *   luz --render-scale 0.5           half the pixels, scaled up: for slow machines
+ *   luz --print-state > view.luz     the view at quit, as a scene file
+ *
+ * SDL2 does three things here and nothing else: it opens the window, reads
+ * the keyboard and mouse, and presents the finished framebuffer through a
+ * streaming RGBA texture. Every pixel, the HUD's text and the panel's
+ * sliders included, is drawn by libluz (luz_renderer_draw, then the 2D
+ * layer of luz/panel.h). What the keys do is in luz/controls.h and what the
+ * panel does in luz/panel.h, both tested without a window; this file maps
+ * SDL's events onto them. Frames are pipelined: a render thread draws the
+ * next frame while the main thread shows the last one (see render_thread).
+ *
+ * Options are luz-render's scene options, read by the same parser
+ * (luz_options_parse), plus two of the viewer's own, which are taken out of
+ * argv before the shared parser sees the rest: --render-scale S and
+ * --print-state. luz-render's output options (-o, --frames, --fps, --bench)
+ * are refused: the viewer writes no frames.
+ *
+ * Exit status: 0 when the window is closed or Esc is pressed; 2 for a bad
+ * option, scene file or textures directory, or when no display is
+ * available, with one line on stderr; 1 if rendering fails (out of memory).
+ */
+#include <errno.h>
+#include <math.h>
+#include <pthread.h>
+#include <stdbool.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <SDL.h>
+
+#include "luz/luz.h"
+
+#ifndef LUZ_VERSION
+#error "src/meson.build passes LUZ_VERSION"
+#endif
+
+enum {
+    EXIT_OK = 0,
+    EXIT_RUNTIME = 1,   /* rendering failed */
+    EXIT_USAGE = 2,     /* bad options or files, or no display */
+};
+
+/* ---- the viewer's own options --------------------------------------------------------- */
+
+typedef struct viewer_settings {
+    float render_scale;   /* framebuffer pixels per window pixel, in (0, 1] */
+    bool print_state;
+} viewer_settings;
+
+/* Does argument `text` name option `name`, as `--name` or `--name=value`?
+ * Sets *value to the text after '=', or NULL. */
+static bool names_option(const char *text, const char *name, const char **value)
+{
+    size_t length = strlen(name);
+    if (strncmp(text, name, length) != 0 || (text[length] != '\0' && text[length] != '='))
+        return false;
+    *value = text[length] == '=' ? text + length + 1 : NULL;
+    return true;
+}
+
+static int read_render_scale(const char *text, float *scale, luz_error *error)
+{
+    char *end;
+    errno = 0;
+    double value = text && text[0] ? strtod(text, &end) : NAN;
+    if (text == NULL || text[0] == '\0' || *end != '\0' || errno != 0 || !(value > 0.0) ||
+        value > 1.0)
+        return luz_error_set(error,
+                             "--render-scale: expected a number above 0 and at most 1, such as "
+                             "0.5, got '%s'",
+                             text ? text : "");
+    *scale = (float)value;
+    return 0;
+}
+
+/* Takes the viewer's own options out of argv into settings and leaves the
+ * rest, in order, in scene_argv for luz_options_parse(). Refuses
+ * luz-render's output options. */
+static int split_arguments(int argc, char **argv, viewer_settings *settings, char **scene_argv,
+                           int *scene_argc, luz_error *error)
+{
+    static const char *const batch_only[] = {"-o", "--output", "--frames", "--fps", "--bench"};
+    int count = 0;
+    scene_argv[count++] = argv[0];
+    for (int i = 1; i < argc; i++) {
+        const char *value;
+        if (names_option(argv[i], "--print-state", &value)) {
+            if (value != NULL)
+                return luz_error_set(error, "--print-state: takes no value, got '%s'", value);
+            settings->print_state = true;
+            continue;
+        }
+        if (names_option(argv[i], "--render-scale", &value)) {
+            if (value == NULL && i + 1 < argc)
+                value = argv[++i];
+            if (read_render_scale(value, &settings->render_scale, error) != 0)
+                return -1;
+            continue;
+        }
+        for (size_t k = 0; k < sizeof batch_only / sizeof batch_only[0]; k++) {
+            if (names_option(argv[i], batch_only[k], &value))
+                return luz_error_set(error,
+                                     "%s: the viewer writes no frames; this is a luz-render "
+                                     "option",
+                                     batch_only[k]);
+        }
+        scene_argv[count++] = argv[i];
+        /* A scene option's value goes with it, so that a value that looks
+         * like one of ours (a directory named --print-state) stays a value. */
+        if (strncmp(argv[i], "--", 2) == 0 && strchr(argv[i], '=') == NULL && i + 1 < argc &&
+            (luz_options_is_scene_key(argv[i] + 2) || strcmp(argv[i], "--scene") == 0))
+            scene_argv[count++] = argv[++i];
+    }
+    scene_argv[count] = NULL;
+    *scene_argc = count;
+    return 0;
+}
+
+static void print_usage(FILE *out)
+{
+    fprintf(out,
+            "Usage: luz [OPTION]...\n"
+            "Fly through the luz lighting lab (rotating textured cubes lit by six lights, as\n"
+            "SCENE.md describes) in a window, rendered in real time on the CPU.\n"
+            "\n"
+            "The scene options are luz-render's (-o, --frames, --fps and --bench are\n"
+            "luz-render's alone; the viewer refuses them):\n");
+    luz_options_print_help(out);
+    fprintf(out,
+            "\n"
+            "The viewer's own options:\n"
+            "  --render-scale S               render S x the window's pixels, scaled up to fill\n"
+            "                                 it, 0 < S <= 1 (default: 1)\n"
+            "  --print-state                  print the view as a scene file on stdout at quit\n"
+            "\n"
+            "Controls (H shows them in the window):\n");
+    for (int i = 0; i < luz_controls_help_count; i++)
+        fprintf(out, "  %-22s %s\n", luz_controls_help[i].keys, luz_controls_help[i].action);
+    fprintf(out,
+            "\n"
+            "F2 and F12 write into the current directory. Without a display, render the\n"
+            "same scenes to PNG files with luz-render.\n"
+            "\n"
+            "Exit status: 0 when the window is closed, 2 for a bad option, scene file or\n"
+            "textures directory or when no display is available, 1 if rendering failed.\n");
+}
+
+/* ---- the render thread --------------------------------------------------------------------- */
+
+/* Showing a frame (the overlays, the copy into the texture, the X server
+ * taking the image) costs the main thread under a millisecond of CPU and
+ * then a wait while the X server copies the image; drawing it costs the
+ * renderer's threads several. So frames are pipelined, as a GPU's are:
+ * while the main thread shows frame k, this thread draws frame k+1 into the
+ * other framebuffer, with the renderer's own worker threads. It calls
+ * nothing but luz_renderer_draw(); SDL stays on the main thread. */
+typedef struct render_thread {
+    pthread_t thread;
+    pthread_mutex_t mutex;
+    pthread_cond_t changed;
+    bool busy;                     /* a frame is handed over and not yet drawn */
+    bool quit;
+    luz_renderer *renderer;
+    const luz_frame *frame;        /* the job: read by the thread while busy */
+    luz_framebuffer *target;
+    luz_frame_stats *stats;
+    int status;
+    luz_error error;
+} render_thread;
+
+static void *render_thread_main(void *argument)
+{
+    render_thread *thread = argument;
+    pthread_mutex_lock(&thread->mutex);
+    for (;;) {
+        while (!thread->busy && !thread->quit)
+            pthread_cond_wait(&thread->changed, &thread->mutex);
+        if (thread->quit)
+            break;
+        pthread_mutex_unlock(&thread->mutex);
+        luz_error error = {{0}};
+        int status = luz_renderer_draw(thread->renderer, thread->frame, thread->target,
+                                       thread->stats, &error);
+        pthread_mutex_lock(&thread->mutex);
+        thread->status = status;
+        thread->error = error;
+        thread->busy = false;
+        pthread_cond_broadcast(&thread->changed);
+    }
+    pthread_mutex_unlock(&thread->mutex);
+    return NULL;
+}
+
+static int render_thread_start(render_thread *thread, luz_renderer *renderer, luz_error *error)
+{
+    *thread = (render_thread){.renderer = renderer};
+    if (pthread_mutex_init(&thread->mutex, NULL) != 0)
+        return luz_error_set(error, "cannot create the render thread's mutex");
+    if (pthread_cond_init(&thread->changed, NULL) != 0) {
+        pthread_mutex_destroy(&thread->mutex);
+        return luz_error_set(error, "cannot create the render thread's condition");
+    }
+    if (pthread_create(&thread->thread, NULL, render_thread_main, thread) != 0) {
+        pthread_cond_destroy(&thread->changed);
+        pthread_mutex_destroy(&thread->mutex);
+        return luz_error_set(error, "cannot start the render thread");
+    }
+    return 0;
+}
+
+/* Hands a frame to the thread; it must not be busy. */
+static void render_thread_draw(render_thread *thread, const luz_frame *frame,
+                               luz_framebuffer *target, luz_frame_stats *stats)
+{
+    pthread_mutex_lock(&thread->mutex);
+    thread->frame = frame;
+    thread->target = target;
+    thread->stats = stats;
+    thread->busy = true;
+    pthread_cond_broadcast(&thread->changed);
+    pthread_mutex_unlock(&thread->mutex);
+}
+
+/* Waits for the frame handed over last; returns luz_renderer_draw's status. */
+static int render_thread_wait(render_thread *thread, luz_error *error)
+{
+    pthread_mutex_lock(&thread->mutex);
+    while (thread->busy)
+        pthread_cond_wait(&thread->changed, &thread->mutex);
+    int status = thread->status;
+    if (status != 0 && error != NULL)
+        *error = thread->error;
+    pthread_mutex_unlock(&thread->mutex);
+    return status;
+}
+
+static void render_thread_stop(render_thread *thread)
+{
+    render_thread_wait(thread, NULL);
+    pthread_mutex_lock(&thread->mutex);
+    thread->quit = true;
+    pthread_cond_broadcast(&thread->changed);
+    pthread_mutex_unlock(&thread->mutex);
+    pthread_join(thread->thread, NULL);
+    pthread_cond_destroy(&thread->changed);
+    pthread_mutex_destroy(&thread->mutex);
+}
+
+/* ---- the viewer --------------------------------------------------------------------------- */
+
+/* One of the two frames in flight. */
+typedef struct frame_slot {
+    luz_frame frame;               /* the draw list, built on the main thread */
+    luz_framebuffer *framebuffer;
+    luz_frame_stats stats;
+    bool screenshot;               /* F12 came before it was built: save it */
+} frame_slot;
+
+typedef struct viewer {
+    luz_options *options;            /* options->scene is the live scene */
+    const luz_texture_set *textures;
+    viewer_settings settings;
+    luz_camera start_camera;         /* where C goes back to */
+    luz_light_switches switches;
+    luz_panel panel;
+    luz_panel_layout layout;         /* for the framebuffer on screen */
+
+    bool running;
+    bool panel_open;                 /* else flying: the mouse turns the camera */
+    bool paused;
+    bool hud_visible;
+    bool help_visible;
+    bool screenshot_requested;
+
+    SDL_Window *window;
+    SDL_Renderer *presenter;
+    SDL_Texture *texture;            /* the size of the framebuffer on screen, RGBA8 */
+    int texture_width, texture_height;
+    int window_width, window_height; /* the window's size in pixels */
+
+    luz_renderer *renderer;
+    render_thread drawer;
+    bool drawer_started;
+    frame_slot slots[2];
+    int shown;                       /* the slot on screen, -1 before the first */
+
+    /* frames per second, measured over half a second */
+    Uint64 last_counter;
+    double fps_seconds;
+    int fps_frames;
+    double frames_per_second, frame_ms;
+
+    char message[640];               /* shown at the bottom for a few seconds */
+    double message_seconds_left;
+    int next_shot, next_scene;       /* the numbers F12 and F2 try first */
+} viewer;
+
+static void show_message(viewer *v, const char *message)
+{
+    snprintf(v->message, sizeof v->message, "%s", message);
+    v->message_seconds_left = 4.0;
+    luz_error_print("luz", message);
+}
+
+/* The first name `prefix-NNNN.suffix` that no file has, from *number on. */
+static void free_file_name(const char *prefix, const char *suffix, int *number, char *buffer,
+                           size_t size)
+{
+    for (;; (*number)++) {
+        snprintf(buffer, size, "%s-%04d.%s", prefix, *number, suffix);
+        if (access(buffer, F_OK) != 0)
+            return;
+    }
+}
+
+/* The scene as luz-render should render it: at the window's size. */
+static void write_state(viewer *v, FILE *out)
+{
+    v->options->width = v->window_width;
+    v->options->height = v->window_height;
+    luz_options_write_scene(v->options, out);
+}
+
+/* F2: the view as a scene file, written beside the screenshots. It goes
+ * to a temporary name first, as the PNG writer does, so that a full disk
+ * never leaves half a scene under the final name. */
+static void save_scene(viewer *v)
+{
+    char path[64], temporary[80], message[200];
+    free_file_name("luz-scene", "luz", &v->next_scene, path, sizeof path);
+    snprintf(temporary, sizeof temporary, ".%s.tmp", path);
+    FILE *file = fopen(temporary, "w");
+    bool written = false;
+    if (file != NULL) {
+        write_state(v, file);
+        written = !ferror(file);
+        written = fclose(file) == 0 && written;
+        written = written && rename(temporary, path) == 0;
+        if (!written)
+            remove(temporary);
+    }
+    if (written)
+        snprintf(message, sizeof message, "saved the view to %s", path);
+    else
+        snprintf(message, sizeof message, "cannot write %s: %s", path, strerror(errno));
+    show_message(v, message);
+}
+
+/* F12: the rendered scene, before the HUD and panel are drawn over it. */
+static void save_screenshot(viewer *v, const luz_framebuffer *framebuffer)
+{
+    char path[64], message[600];
+    luz_error error = {{0}};
+    free_file_name("luz-shot", "png", &v->next_shot, path, sizeof path);
+    if (luz_framebuffer_write_png(framebuffer, path, &error) == 0)
+        snprintf(message, sizeof message, "wrote %s (%dx%d)", path, framebuffer->width,
+                 framebuffer->height);
+    else
+        snprintf(message, sizeof message, "screenshot failed: %s", error.message);
+    show_message(v, message);
+}
+
+static void set_panel_open(viewer *v, bool open)
+{
+    v->panel_open = open;
+    luz_panel_mouse_release(&v->panel);
+    /* Flying hides the cursor and reports relative motion; a failure (no
+     * pointer grab) leaves absolute motion, which still turns the camera. */
+    SDL_SetRelativeMouseMode(open ? SDL_FALSE : SDL_TRUE);
+}
+
+/* A window position in pixels of the framebuffer, which is smaller than the
+ * window with a render scale below 1. */
+static void to_framebuffer(const viewer *v, int x, int y, int *fx, int *fy)
+{
+    int window_width, window_height;
+    SDL_GetWindowSize(v->window, &window_width, &window_height);
+    *fx = window_width > 0 ? (int)((long long)x * v->texture_width / window_width) : x;
+    *fy = window_height > 0 ? (int)((long long)y * v->texture_height / window_height) : y;
+}
+
+/* ---- input ----------------------------------------------------------------------------------- */
+
+static void handle_key(viewer *v, const SDL_KeyboardEvent *key)
+{
+    luz_scene *scene = &v->options->scene;
+    bool shift = (key->keysym.mod & KMOD_SHIFT) != 0;
+    SDL_Keycode code = key->keysym.sym;
+
+    /* Keys that repeat while held: the cone and the panel's arrows. */
+    switch (code) {
+    case SDLK_p:
+        luz_spot_press(&scene->lights, shift ? LUZ_CONE_WIDEN_INNER : LUZ_CONE_WIDEN_OUTER);
+        return;
+    case SDLK_m:
+        luz_spot_press(&scene->lights, shift ? LUZ_CONE_NARROW_INNER : LUZ_CONE_NARROW_OUTER);
+        return;
+    case SDLK_UP:
+    case SDLK_DOWN:
+    case SDLK_LEFT:
+    case SDLK_RIGHT:
+        if (v->panel_open) {
+            luz_panel_key panel_key = code == SDLK_UP     ? LUZ_PANEL_UP
+                                      : code == SDLK_DOWN ? LUZ_PANEL_DOWN
+                                      : code == SDLK_LEFT ? LUZ_PANEL_LEFT
+                                                          : LUZ_PANEL_RIGHT;
+            luz_panel_key_press(&v->panel, &scene->lights, panel_key, shift);
+        }
+        return;
+    default:
+        break;
+    }
+    if (key->repeat)
+        return;
+
+    if (code >= SDLK_1 && code <= SDLK_6) {
+        luz_light_toggle(&scene->lights, &v->switches, (luz_term)(code - SDLK_1));
+        return;
+    }
+    switch (code) {
+    case SDLK_ESCAPE: v->running = false; break;
+    case SDLK_TAB: set_panel_open(v, !v->panel_open); break;
+    case SDLK_c: luz_camera_reset(&scene->camera, &v->start_camera); break;
+    case SDLK_F5: scene->seed = luz_seed_next(scene->seed, (uint32_t)SDL_GetPerformanceCounter()); break;
+    case SDLK_f: scene->filter = luz_filter_next(scene->filter); break;
+    case SDLK_t: v->paused = !v->paused; break;
+    case SDLK_i: v->hud_visible = !v->hud_visible; break;
+    case SDLK_h: v->help_visible = !v->help_visible; break;
+    case SDLK_F2: save_scene(v); break;
+    case SDLK_F12: v->screenshot_requested = true; break;
+    case SDLK_F11: {
+        bool fullscreen = (SDL_GetWindowFlags(v->window) & SDL_WINDOW_FULLSCREEN) != 0;
+        SDL_SetWindowFullscreen(v->window, fullscreen ? 0 : SDL_WINDOW_FULLSCREEN_DESKTOP);
+        break;
+    }
+    default: break;
+    }
+}
+
+static void handle_event(viewer *v, const SDL_Event *event)
+{
+    luz_lights *lights = &v->options->scene.lights;
+    int x, y;
+    switch (event->type) {
+    case SDL_QUIT:
+        v->running = false;
+        break;
+    case SDL_KEYDOWN:
+        handle_key(v, &event->key);
+        break;
+    case SDL_MOUSEMOTION:
+        if (!v->panel_open) {
+            luz_camera_turn(&v->options->scene.camera, (float)event->motion.xrel,
+                            (float)event->motion.yrel);
+        } else if (v->panel.dragging >= 0) {
+            to_framebuffer(v, event->motion.x, event->motion.y, &x, &y);
+            luz_panel_mouse_drag(&v->panel, &v->layout, lights, x);
+        }
+        break;
+    case SDL_MOUSEBUTTONDOWN:
+        if (v->panel_open && event->button.button == SDL_BUTTON_LEFT) {
+            to_framebuffer(v, event->button.x, event->button.y, &x, &y);
+            luz_panel_mouse_press(&v->panel, &v->layout, lights, &v->switches, x, y);
+        }
+        break;
+    case SDL_MOUSEBUTTONUP:
+        if (event->button.button == SDL_BUTTON_LEFT)
+            luz_panel_mouse_release(&v->panel);
+        break;
+    default:
+        break;
+    }
+}
+
+/* The motion keys held now. Letters are read by what they type (W and Z,
+ * A and Q are both there for QWERTY and AZERTY, as in the report), arrows
+ * by where they are; the arrows belong to the panel while it is open. */
+static luz_motion held_motion(const viewer *v)
+{
+    const Uint8 *keys = SDL_GetKeyboardState(NULL);
+#define HELD(keycode) (keys[SDL_GetScancodeFromKey(keycode)] != 0)
+    bool arrows = !v->panel_open;
+    bool space = HELD(SDLK_SPACE);
+    bool shift = (SDL_GetModState() & KMOD_SHIFT) != 0;
+    luz_motion motion = {
+        .forward = HELD(SDLK_w) || HELD(SDLK_z) || (arrows && keys[SDL_SCANCODE_UP]),
+        .back = HELD(SDLK_s) || (arrows && keys[SDL_SCANCODE_DOWN]),
+        .left = HELD(SDLK_a) || HELD(SDLK_q) || (arrows && keys[SDL_SCANCODE_LEFT]),
+        .right = HELD(SDLK_d) || (arrows && keys[SDL_SCANCODE_RIGHT]),
+        .up = space && !shift,
+        .down = space && shift,
+    };
+#undef HELD
+    return motion;
+}
+
+/* ---- one frame --------------------------------------------------------------------------------- */
+
+/* Seconds since the last call; the first call gives 0. */
+static double tick(viewer *v)
+{
+    Uint64 now = SDL_GetPerformanceCounter();
+    double seconds = v->last_counter ? (double)(now - v->last_counter) /
+                                           (double)SDL_GetPerformanceFrequency()
+                                     : 0.0;
+    v->last_counter = now;
+    v->fps_seconds += seconds;
+    v->fps_frames++;
+    if (v->fps_seconds >= 0.5) {
+        v->frames_per_second = v->fps_frames / v->fps_seconds;
+        v->frame_ms = 1000.0 * v->fps_seconds / v->fps_frames;
+        v->fps_seconds = 0.0;
+        v->fps_frames = 0;
+    }
+    return seconds;
+}
+
+/* The window's size in pixels (which a HiDPI screen may make larger than
+ * its size in SDL's units). */
+static void measure_window(viewer *v)
+{
+    if (SDL_GetRendererOutputSize(v->presenter, &v->window_width, &v->window_height) != 0)
+        SDL_GetWindowSize(v->window, &v->window_width, &v->window_height);
+}
+
+/* Builds the scene as it is now into a slot, at the window's size in
+ * pixels times the render scale, and hands it to the render thread. */
+static int start_frame(viewer *v, frame_slot *slot, luz_error *error)
+{
+    measure_window(v);
+    float scale = v->settings.render_scale;
+    int width = (int)lroundf((float)v->window_width * scale);
+    int height = (int)lroundf((float)v->window_height * scale);
+    if (luz_framebuffer_resize(slot->framebuffer, width < 1 ? 1 : width, height < 1 ? 1 : height,
+                               error) != 0)
+        return -1;
+    float aspect = (float)slot->framebuffer->width / (float)slot->framebuffer->height;
+    if (luz_scene_build_frame(&v->options->scene, v->textures, aspect, &slot->frame) != 0)
+        return luz_error_set(error, "out of memory building the frame");
+    slot->screenshot = v->screenshot_requested;
+    v->screenshot_requested = false;
+    render_thread_draw(&v->drawer, &slot->frame, slot->framebuffer, &slot->stats);
+    return 0;
+}
+
+/* The 2D layer over the scene: the help alone when it is open, else the
+ * panel and the HUD as they are switched; a message on top of anything. */
+static void draw_overlays(viewer *v, const frame_slot *slot)
+{
+    luz_framebuffer *framebuffer = slot->framebuffer;
+    if (v->help_visible) {
+        luz_help_draw(framebuffer);
+    } else {
+        if (v->panel_open)
+            luz_panel_draw(framebuffer, &v->layout, &v->panel, &v->options->scene.lights);
+        if (v->hud_visible) {
+            luz_hud hud = {
+                .frames_per_second = v->frames_per_second,
+                .frame_ms = v->frame_ms,
+                .geometry_ms = slot->stats.geometry_ms,
+                .raster_ms = slot->stats.raster_ms,
+                .window_width = v->window_width,
+                .window_height = v->window_height,
+                .render_scale = v->settings.render_scale,
+                .threads = luz_renderer_thread_count(v->renderer),
+                .paused = v->paused,
+                .panel_open = v->panel_open,
+                .scene = &v->options->scene,
+            };
+            luz_hud_draw(framebuffer, &hud);
+        }
+    }
+    if (v->message_seconds_left > 0.0)
+        luz_hud_draw_message(framebuffer, v->message);
+}
+
+/* Shows a drawn frame: the screenshot if one was asked for (the scene
+ * alone), the overlays, then one copy into the texture, which SDL scales to
+ * the window. */
+static int show_frame(viewer *v, frame_slot *slot, luz_error *error)
+{
+    luz_framebuffer *framebuffer = slot->framebuffer;
+    if (slot->screenshot)
+        save_screenshot(v, framebuffer);
+    if (v->texture == NULL || v->texture_width != framebuffer->width ||
+        v->texture_height != framebuffer->height) {
+        if (v->texture != NULL)
+            SDL_DestroyTexture(v->texture);
+        /* SDL_PIXELFORMAT_RGBA32 is bytes R, G, B, A in memory whatever the
+         * machine's byte order: luz's own layout, so the upload is a copy. */
+        v->texture = SDL_CreateTexture(v->presenter, SDL_PIXELFORMAT_RGBA32,
+                                       SDL_TEXTUREACCESS_STREAMING, framebuffer->width,
+                                       framebuffer->height);
+        if (v->texture == NULL)
+            return luz_error_set(error, "cannot create a %dx%d texture: %s", framebuffer->width,
+                                 framebuffer->height, SDL_GetError());
+        v->texture_width = framebuffer->width;
+        v->texture_height = framebuffer->height;
+        v->layout = luz_panel_layout_for(framebuffer->width, framebuffer->height);
+    }
+    draw_overlays(v, slot);
+    SDL_UpdateTexture(v->texture, NULL, framebuffer->colour, framebuffer->width * 4);
+    SDL_RenderCopy(v->presenter, v->texture, NULL, NULL);
+    SDL_RenderPresent(v->presenter);
+    return 0;
+}
+
+static int run(viewer *v, luz_error *error)
+{
+    int drawing = -1;   /* the slot on the render thread, -1 for none */
+    v->running = true;
+    while (v->running) {
+        SDL_Event event;
+        /* A minimised window shows nothing: wait for events instead of
+         * rendering frames nobody sees. */
+        if (SDL_GetWindowFlags(v->window) & SDL_WINDOW_MINIMIZED) {
+            if (SDL_WaitEventTimeout(&event, 100))
+                handle_event(v, &event);
+            v->last_counter = 0;   /* no time passes while hidden */
+        }
+        while (SDL_PollEvent(&event))
+            handle_event(v, &event);
+        if (!v->running || (SDL_GetWindowFlags(v->window) & SDL_WINDOW_MINIMIZED))
+            continue;
+
+        /* Motion and animation follow the clock, not the frame count. A
+         * long stall (the window dragged, the machine busy) counts as at
+         * most half a second, so the camera never leaps. */
+        double seconds = tick(v);
+        if (seconds > 0.5)
+            seconds = 0.5;
+        luz_camera_move(&v->options->scene.camera, held_motion(v), (float)seconds);
+        if (!v->paused)
+            v->options->scene.time_seconds += seconds;
+        v->message_seconds_left -= seconds;
+
+        /* Frame k is drawn: it goes on screen while frame k + 1, the scene
+         * as it is now, is drawn into the other slot. */
+        if (drawing >= 0) {
+            if (render_thread_wait(&v->drawer, error) != 0)
+                return -1;
+            v->shown = drawing;
+        }
+        drawing = v->shown < 0 ? 0 : 1 - v->shown;
+        if (start_frame(v, &v->slots[drawing], error) != 0)
+            return -1;
+        if (v->shown >= 0 && show_frame(v, &v->slots[v->shown], error) != 0)
+            return -1;
+    }
+    return render_thread_wait(&v->drawer, error);
+}
+
+/* ---- start-up ----------------------------------------------------------------------------------- */
+
+/* Opens the window and its presenter. On X11 the presenter is SDL's
+ * software renderer writing straight into the window's shared-memory
+ * image: luz's pixels are made on the CPU anyway, and where OpenGL is
+ * Mesa's llvmpipe (Xvfb, a machine without a GPU) its textured quad costs
+ * about 5 ms of CPU a frame against 1 ms for the plain copy. The
+ * environment (SDL_RENDER_DRIVER, SDL_FRAMEBUFFER_ACCELERATION) still
+ * overrides this choice. */
+static int open_window(viewer *v, luz_error *error)
+{
+    SDL_SetHint(SDL_HINT_RENDER_VSYNC, "0");          /* as fast as it renders */
+    SDL_SetHint(SDL_HINT_RENDER_SCALE_QUALITY, "nearest");   /* luz's own pixels */
+    SDL_SetHint(SDL_HINT_VIDEO_MINIMIZE_ON_FOCUS_LOSS, "0");
+    if (SDL_Init(SDL_INIT_VIDEO) != 0)
+        return luz_error_set(error,
+                             "cannot open a window: no display available (%s); luz-render "
+                             "renders the same scene to PNG files",
+                             SDL_GetError());
+    const char *driver = SDL_GetCurrentVideoDriver();
+    if (driver != NULL && strcmp(driver, "x11") == 0) {
+        SDL_SetHint(SDL_HINT_FRAMEBUFFER_ACCELERATION, "0");
+        SDL_SetHint(SDL_HINT_RENDER_DRIVER, "software");
+    }
+    v->window = SDL_CreateWindow("luz", SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED,
+                                 v->options->width, v->options->height, SDL_WINDOW_RESIZABLE);
+    if (v->window == NULL)
+        return luz_error_set(error, "cannot open a %dx%d window: %s", v->options->width,
+                             v->options->height, SDL_GetError());
+    v->presenter = SDL_CreateRenderer(v->window, -1, 0);
+    if (v->presenter == NULL)
+        return luz_error_set(error, "cannot draw into the window: %s", SDL_GetError());
+    measure_window(v);
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    luz_options options;
+    luz_texture_set textures = {0};
+    viewer v = {
+        .options = &options,
+        .textures = &textures,
+        .settings = {.render_scale = 1.0f},
+        .hud_visible = true,
+        .shown = -1,
+        .next_shot = 1,
+        .next_scene = 1,
+    };
+    luz_error error = {{0}};
+    int status = EXIT_USAGE;
+    char **scene_argv = calloc((size_t)argc + 1, sizeof *scene_argv);
+    int scene_argc = 0;
+
+    luz_options_init(&options);
+    if (scene_argv == NULL) {
+        luz_error_set(&error, "out of memory");
+        goto done;
+    }
+    if (split_arguments(argc, argv, &v.settings, scene_argv, &scene_argc, &error) != 0 ||
+        luz_options_parse(&options, scene_argc, scene_argv, &error) != 0)
+        goto done;
+    if (options.help) {
+        print_usage(stdout);
+        status = EXIT_OK;
+        goto done;
+    }
+    if (options.version) {
+        printf("luz %s\n", LUZ_VERSION);
+        status = EXIT_OK;
+        goto done;
+    }
+    if (luz_options_load_textures(&options, &textures, &error) != 0 || open_window(&v, &error) != 0)
+        goto done;
+
+    status = EXIT_RUNTIME;
+    v.start_camera = options.scene.camera;
+    luz_panel_init(&v.panel);
+    v.renderer = luz_renderer_create(&(luz_renderer_desc){.thread_count = options.thread_count},
+                                     &error);
+    if (v.renderer == NULL)
+        goto done;
+    for (int i = 0; i < 2; i++) {
+        v.slots[i].framebuffer = luz_framebuffer_create(options.width, options.height, &error);
+        if (v.slots[i].framebuffer == NULL)
+            goto done;
+    }
+    if (render_thread_start(&v.drawer, v.renderer, &error) != 0)
+        goto done;
+    v.drawer_started = true;
+    set_panel_open(&v, false);
+    if (run(&v, &error) != 0)
+        goto done;
+    if (v.settings.print_state)
+        write_state(&v, stdout);
+    status = EXIT_OK;
+
+done:
+    if (status != EXIT_OK)
+        luz_error_print("luz", error.message[0] ? error.message : "failed");
+    if (v.drawer_started)
+        render_thread_stop(&v.drawer);
+    for (int i = 0; i < 2; i++) {
+        luz_frame_free(&v.slots[i].frame);
+        if (v.slots[i].framebuffer != NULL)
+            luz_framebuffer_destroy(v.slots[i].framebuffer);
+    }
+    if (v.renderer != NULL)
+        luz_renderer_destroy(v.renderer);
+    if (v.texture != NULL)
+        SDL_DestroyTexture(v.texture);
+    if (v.presenter != NULL)
+        SDL_DestroyRenderer(v.presenter);
+    if (v.window != NULL)
+        SDL_DestroyWindow(v.window);
+    SDL_Quit();
+    luz_texture_set_free(&textures);
+    luz_options_free(&options);
+    free(scene_argv);
+    if (fflush(stdout) != 0 && status == EXIT_OK) {
+        luz_error_print("luz", "cannot write to standard output");
+        status = EXIT_RUNTIME;
+    }
+    return status;
+}

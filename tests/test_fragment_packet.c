@@ -1,0 +1,423 @@
+/*
+ * test_fragment_packet.c: the SIMD fragment stage (fragment_packet.c)
+ * against the reference (fragment.c).
+ *
+ * Both shade every visible pixel once from the same visibility buffer, so
+ * any difference between their images is a difference in shading. The
+ * packets compute the reference's operations in the reference's order, and
+ * differ only in the logarithm of the texture's level of detail; the
+ * contract checked here is looser than that, the one the fast path
+ * promises: every channel within 1 of the reference, and at least 99.9%
+ * of the pixels identical. Each case runs every compiled variant the CPU
+ * supports (baseline, AVX2, AVX-512) and prints the agreement it measured.
+ *
+ * Covered: SCENE.md's default scene at t = 0, 3 and 8 with each filter;
+ * each light term alone; a camera close enough to a cube that its texture
+ * is magnified everywhere; a far camera and many tiny cubes (heavy
+ * minification, deep mip levels); lights at the edges of their ranges
+ * (a fractional shininess, which takes powf; equal spot cones). Then two
+ * exact properties: the fast path's image is the same byte for byte for
+ * any thread count, any variant (and a width that is not a whole number
+ * of packets), and with no textures and only ambient light both paths
+ * give each cube exactly round(0.2 C 255).
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "luz/luz.h"
+#include "pipeline/pipeline.h"
+
+#define WIDTH 1280          /* the default scene's size */
+#define HEIGHT 720
+#define HALF_WIDTH 640      /* for the many variations, to keep the suite */
+#define HALF_HEIGHT 360     /* quick under the sanitizers */
+
+/* The textures of the default scene, loaded once for every test. */
+static luz_texture_set textures;
+
+static int load_textures(void **state)
+{
+    (void)state;
+    const char *directory = getenv("LUZ_TEXTURES");
+    if (directory == NULL || directory[0] == '\0') {
+        print_error("LUZ_TEXTURES is not set (meson test sets it)\n");
+        return -1;
+    }
+    luz_error error = {{0}};
+    if (luz_texture_set_load(&textures, directory, &error) != 0) {
+        print_error("%s\n", error.message);
+        return -1;
+    }
+    return 0;
+}
+
+static int free_textures(void **state)
+{
+    (void)state;
+    luz_texture_set_free(&textures);
+    return 0;
+}
+
+/* The fast path's compiled variants, and their names for the messages. */
+static const luz_packet_isa variants[] = {LUZ_PACKET_ISA_BASELINE, LUZ_PACKET_ISA_AVX2,
+                                          LUZ_PACKET_ISA_AVX512};
+static const char *const variant_names[] = {"baseline", "avx2", "avx512"};
+#define VARIANT_COUNT (sizeof variants / sizeof variants[0])
+
+/* The reference, or the fast path in one variant. */
+typedef struct stage {
+    bool reference;
+    luz_packet_isa isa;
+} stage;
+
+static const stage reference_stage = {true, LUZ_PACKET_ISA_BEST};
+
+/* Draws a scene into a new width x height framebuffer. */
+static luz_framebuffer *render(const luz_scene *scene, const luz_texture_set *texture_set,
+                               int width, int height, int thread_count, stage how)
+{
+    luz_error error = {{0}};
+    luz_renderer_desc desc = {.thread_count = thread_count, .reference = how.reference};
+    luz_renderer *renderer = luz_renderer_create(&desc, &error);
+    luz_framebuffer *framebuffer = luz_framebuffer_create(width, height, &error);
+    luz_frame frame = {0};
+    assert_non_null(renderer);
+    assert_non_null(framebuffer);
+    luz_renderer_set_packet_isa(renderer, how.isa);
+    assert_int_equal(luz_scene_build_frame(scene, texture_set, (float)width / (float)height,
+                                           &frame),
+                     0);
+    assert_int_equal(luz_renderer_draw(renderer, &frame, framebuffer, NULL, &error), 0);
+    luz_frame_free(&frame);
+    luz_renderer_destroy(renderer);
+    return framebuffer;
+}
+
+/* How two images of the same size agree, over all their pixels and over
+ * the pixels that a triangle covers (the ones the fragment stage shades). */
+typedef struct agreement {
+    size_t pixels, identical;                 /* identical: all four channels */
+    size_t shaded_pixels, shaded_identical;
+    int max_difference;                       /* over every channel */
+} agreement;
+
+static agreement compare(const luz_framebuffer *a, const luz_framebuffer *b)
+{
+    agreement result = {.pixels = (size_t)a->width * (size_t)a->height};
+    for (size_t p = 0; p < result.pixels; p++) {
+        int difference = 0;
+        for (int c = 0; c < 4; c++) {
+            int d = abs((int)a->colour[p * 4 + c] - (int)b->colour[p * 4 + c]);
+            if (d > difference) difference = d;
+        }
+        const bool shaded = a->visibility[p] != 0;
+        result.identical += difference == 0;
+        result.shaded_pixels += shaded;
+        result.shaded_identical += shaded && difference == 0;
+        if (difference > result.max_difference) result.max_difference = difference;
+    }
+    return result;
+}
+
+static double percent(size_t part, size_t whole)
+{
+    return whole ? 100.0 * (double)part / (double)whole : 100.0;
+}
+
+/* Renders the scene with the reference and with every supported variant of
+ * the fast path, and asserts the contract: each channel within 1 level,
+ * at least 99.9% of the pixels identical, and of the shaded pixels too. */
+static void assert_agreement(const char *name, const luz_scene *scene,
+                             const luz_texture_set *texture_set, int width, int height)
+{
+    luz_framebuffer *expected = render(scene, texture_set, width, height, 1, reference_stage);
+    for (size_t v = 0; v < VARIANT_COUNT; v++) {
+        if (!luz_packet_isa_supported(variants[v])) {
+            print_message("%-26s %-8s not supported by this CPU\n", name, variant_names[v]);
+            continue;
+        }
+        luz_framebuffer *got = render(scene, texture_set, width, height, 1,
+                                      (stage){false, variants[v]});
+        agreement a = compare(expected, got);
+        print_message("%-26s %-8s identical: %zu/%zu pixels (%.4f%%), %zu/%zu shaded "
+                      "(%.4f%%); max difference %d\n",
+                      name, variant_names[v], a.identical, a.pixels,
+                      percent(a.identical, a.pixels), a.shaded_identical, a.shaded_pixels,
+                      percent(a.shaded_identical, a.shaded_pixels), a.max_difference);
+        luz_framebuffer_destroy(got);
+        assert_true(a.max_difference <= 1);
+        assert_true(a.identical * 1000 >= a.pixels * 999);
+        assert_true(a.shaded_identical * 1000 >= a.shaded_pixels * 999);
+    }
+    luz_framebuffer_destroy(expected);
+}
+
+/* The number of shaded pixels whose colour differs between the reference
+ * images of the scene with bilinear and with trilinear filtering: 0 when
+ * every pixel is magnified (trilinear then samples level 0 alone). */
+static size_t minified_pixels(const luz_scene *scene, size_t *shaded)
+{
+    luz_scene bilinear = *scene, trilinear = *scene;
+    bilinear.filter = LUZ_FILTER_BILINEAR;
+    trilinear.filter = LUZ_FILTER_TRILINEAR;
+    luz_framebuffer *a = render(&bilinear, &textures, WIDTH, HEIGHT, 1, reference_stage);
+    luz_framebuffer *b = render(&trilinear, &textures, WIDTH, HEIGHT, 1, reference_stage);
+    agreement same = compare(a, b);
+    luz_framebuffer_destroy(a);
+    luz_framebuffer_destroy(b);
+    *shaded = same.shaded_pixels;
+    return same.shaded_pixels - same.shaded_identical;
+}
+
+/* ---- the default scene -------------------------------------------------- */
+
+static const luz_filter filters[] = {LUZ_FILTER_NEAREST, LUZ_FILTER_BILINEAR,
+                                     LUZ_FILTER_TRILINEAR};
+#define FILTER_COUNT (sizeof filters / sizeof filters[0])
+
+
+static void default_scene_with_each_filter(void **state)
+{
+    (void)state;
+    const double times[] = {0.0, 3.0, 8.0};
+    for (size_t t = 0; t < sizeof times / sizeof times[0]; t++) {
+        for (size_t f = 0; f < FILTER_COUNT; f++) {
+            luz_scene scene = luz_scene_defaults();
+            scene.time_seconds = times[t];
+            scene.filter = filters[f];
+            char name[64];
+            snprintf(name, sizeof name, "default t=%g %s", times[t],
+                     luz_filter_name(filters[f]));
+            assert_agreement(name, &scene, &textures, WIDTH, HEIGHT);
+        }
+    }
+}
+
+/* Each of the six terms alone: the others' strengths 0 (SCENE.md: a term
+ * at strength 0 is exactly 0). At t = 3 the point light and the sun have
+ * moved off their start positions. */
+static void each_term_alone(void **state)
+{
+    (void)state;
+    for (int term = 0; term < LUZ_TERM_COUNT; term++) {
+        luz_scene scene = luz_scene_defaults();
+        scene.time_seconds = 3.0;
+        for (int other = 0; other < LUZ_TERM_COUNT; other++)
+            if (other != term) luz_lights_term(&scene.lights, (luz_term)other)->strength = 0.0f;
+        char name[64];
+        snprintf(name, sizeof name, "only %s", luz_term_name((luz_term)term));
+        assert_agreement(name, &scene, &textures, HALF_WIDTH, HALF_HEIGHT);
+    }
+}
+
+/* ---- levels of detail -------------------------------------------------- */
+
+/* A quarter of a unit in front of cube 0's front face (z = 0.5): the face
+ * fills the screen, 256 texels over 720 rows and more, so every pixel is
+ * magnified (lambda <= 0, level 0 alone), as the first check confirms. */
+static void camera_close_to_a_cube(void **state)
+{
+    (void)state;
+    luz_scene scene = luz_scene_defaults();
+    scene.camera.position = (luz_vec3){0.1f, -0.05f, 0.75f};
+    size_t shaded;
+    assert_int_equal(minified_pixels(&scene, &shaded), 0);
+    assert_int_equal(shaded, (size_t)WIDTH * HEIGHT);
+
+    for (size_t f = 0; f < FILTER_COUNT; f++) {
+        scene.filter = filters[f];
+        char name[64];
+        snprintf(name, sizeof name, "close %s", luz_filter_name(filters[f]));
+        assert_agreement(name, &scene, &textures, WIDTH, HEIGHT);
+    }
+}
+
+/* 1000 cubes (SCENE.md's tiles) seen from 50 units away; those within the
+ * far plane (100) lie 50 to 100 units off, where a cube spans 9 to 17
+ * pixels: its 256 texels are minified 15 to 30 times (lambda about 4 to 5,
+ * deep in the mip chain; nearly every shaded pixel changes between
+ * bilinear and trilinear), and many packets straddle several cubes. */
+static void camera_far_from_tiny_cubes(void **state)
+{
+    (void)state;
+    luz_scene scene = luz_scene_defaults();
+    scene.cube_count = 1000;
+    scene.camera.position = (luz_vec3){0.0f, 0.0f, 50.0f};
+    scene.time_seconds = 5.0;
+    size_t shaded;
+    const size_t minified = minified_pixels(&scene, &shaded);
+    assert_true(shaded > 40000);
+    assert_true(minified * 10 > shaded * 9);
+
+    for (size_t f = 0; f < FILTER_COUNT; f++) {
+        scene.filter = filters[f];
+        char name[64];
+        snprintf(name, sizeof name, "far %s", luz_filter_name(filters[f]));
+        assert_agreement(name, &scene, &textures, WIDTH, HEIGHT);
+    }
+}
+
+/* ---- lights at the edges of their ranges ------------------------------- */
+
+static void lights_at_their_limits(void **state)
+{
+    (void)state;
+    /* A fractional exponent: luz_shade_power falls back to powf. */
+    luz_scene scene = luz_scene_defaults();
+    scene.lights.shininess = 7.5f;
+    assert_agreement("shininess 7.5", &scene, &textures, HALF_WIDTH, HALF_HEIGHT);
+
+    /* pow(x, 0) = 1: the highlight covers every lit pixel. */
+    scene = luz_scene_defaults();
+    scene.lights.shininess = 0.0f;
+    assert_agreement("shininess 0", &scene, &textures, HALF_WIDTH, HALF_HEIGHT);
+
+    /* Equal cones: the smooth band between them is empty (and its
+     * division by cos(inner) - cos(outer) divides by 0, unused). */
+    scene = luz_scene_defaults();
+    scene.lights.spot_inner_degrees = 10.0f;
+    scene.lights.spot_outer_degrees = 10.0f;
+    assert_agreement("spot cones equal", &scene, &textures, HALF_WIDTH, HALF_HEIGHT);
+
+    /* The widest cones, coloured lights. */
+    scene = luz_scene_defaults();
+    scene.lights.spot_inner_degrees = 0.0f;
+    scene.lights.spot_outer_degrees = 89.0f;
+    scene.lights.diffuse.colour = (luz_vec3){1.0f, 0.5f, 0.25f};
+    scene.lights.point.colour = (luz_vec3){0.2f, 1.0f, 0.6f};
+    assert_agreement("spot cones 0-89, colours", &scene, &textures, HALF_WIDTH, HALF_HEIGHT);
+}
+
+/* ---- exact properties ----------------------------------------------------- */
+
+/* Each pixel is shaded from its own position alone, so neither the bands
+ * (one per thread or not) nor where a row's last, short packet ends change
+ * a byte (1283 = 80 packets of 16 + 3 pixels; 719 rows end in a short
+ * band). And every variant performs the same operations lane by lane, so
+ * the image does not depend on the CPU either. */
+static void same_bytes_for_any_thread_count_and_variant(void **state)
+{
+    (void)state;
+    enum { ODD_WIDTH = 1283, ODD_HEIGHT = 719 };
+    luz_scene scene = luz_scene_defaults();
+    scene.time_seconds = 8.0;
+    scene.cube_count = 40;
+    luz_framebuffer *first = NULL;
+    for (size_t v = 0; v < VARIANT_COUNT; v++) {
+        if (!luz_packet_isa_supported(variants[v])) continue;
+        const stage fast = {false, variants[v]};
+        luz_framebuffer *one = render(&scene, &textures, ODD_WIDTH, ODD_HEIGHT, 1, fast);
+        const int thread_counts[] = {2, 3, 7};
+        for (size_t k = 0; k < sizeof thread_counts / sizeof thread_counts[0]; k++) {
+            luz_framebuffer *many =
+                render(&scene, &textures, ODD_WIDTH, ODD_HEIGHT, thread_counts[k], fast);
+            assert_memory_equal(one->colour, many->colour, (size_t)ODD_WIDTH * ODD_HEIGHT * 4);
+            luz_framebuffer_destroy(many);
+        }
+        if (first == NULL) {
+            first = one;
+        } else {
+            assert_memory_equal(first->colour, one->colour, (size_t)ODD_WIDTH * ODD_HEIGHT * 4);
+            luz_framebuffer_destroy(one);
+        }
+    }
+    luz_framebuffer_destroy(first);
+}
+
+/* round(c * 255) in double precision, and whether c * 255 is so close to a
+ * half that float and double evaluation could round it differently. */
+static int rounded(double c)
+{
+    return (int)floor(c * 255.0 + 0.5);
+}
+
+static bool near_a_half(double c)
+{
+    double scaled = c * 255.0;
+    return fabs(scaled - floor(scaled) - 0.5) < 1e-4;
+}
+
+/* With no textures (T = 1) and only the ambient light, a cube's colour is
+ * 0.2 C: every pixel of cube i must be exactly round(0.2 C_i 255) on both
+ * paths, and the background the clear colour round(0.1 255) = 26. Each
+ * cube is drawn alone (a custom cube list of one) so that every covered
+ * pixel is known to be its. */
+static void ambient_only_is_exact(void **state)
+{
+    (void)state;
+    enum { SMALL_WIDTH = 321, SMALL_HEIGHT = 181 };
+    luz_vec3 colours[10];
+    luz_scene_random_colours(0, 10, colours);
+    const luz_texture_set none = {0};
+
+    for (int i = 0; i < 10; i++) {
+        const luz_cube cube = {
+            .position = luz_scene_tiled_position(i),
+            .has_colour = true,
+            .colour = colours[i],
+            .texture = LUZ_TEXTURE_BY_INDEX,
+        };
+        luz_scene scene = luz_scene_defaults();
+        scene.time_seconds = 2.0;
+        scene.custom_cubes = &cube;
+        scene.custom_cube_count = 1;
+        for (int term = 0; term < LUZ_TERM_COUNT; term++)
+            if (term != LUZ_TERM_AMBIENT)
+                luz_lights_term(&scene.lights, (luz_term)term)->strength = 0.0f;
+
+        const double ambient = 0.2;
+        int expected[3];
+        for (int c = 0; c < 3; c++) {
+            const double channel = c == 0 ? colours[i].x : c == 1 ? colours[i].y : colours[i].z;
+            assert_false(near_a_half(ambient * channel));
+            expected[c] = rounded(ambient * channel);
+        }
+
+        for (size_t v = 0; v <= VARIANT_COUNT; v++) {
+            const bool reference = v == VARIANT_COUNT;
+            if (!reference && !luz_packet_isa_supported(variants[v])) continue;
+            const stage how = reference ? reference_stage : (stage){false, variants[v]};
+            luz_framebuffer *image = render(&scene, &none, SMALL_WIDTH, SMALL_HEIGHT, 1, how);
+            size_t covered = 0;
+            for (size_t p = 0; p < (size_t)SMALL_WIDTH * SMALL_HEIGHT; p++) {
+                const uint8_t *rgba = image->colour + p * 4;
+                assert_int_equal(rgba[3], 255);
+                if (image->visibility[p] == 0) {
+                    assert_int_equal(rgba[0], 26);
+                    assert_int_equal(rgba[1], 26);
+                    assert_int_equal(rgba[2], 26);
+                    continue;
+                }
+                covered++;
+                assert_int_equal(rgba[0], expected[0]);
+                assert_int_equal(rgba[1], expected[1]);
+                assert_int_equal(rgba[2], expected[2]);
+            }
+            /* Cubes 0-9 are all in view of the start camera. */
+            assert_true(covered > 0);
+            luz_framebuffer_destroy(image);
+        }
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(default_scene_with_each_filter),
+        cmocka_unit_test(each_term_alone),
+        cmocka_unit_test(camera_close_to_a_cube),
+        cmocka_unit_test(camera_far_from_tiny_cubes),
+        cmocka_unit_test(lights_at_their_limits),
+        cmocka_unit_test(same_bytes_for_any_thread_count_and_variant),
+        cmocka_unit_test(ambient_only_is_exact),
+    };
+    return cmocka_run_group_tests(tests, load_textures, free_textures);
+}

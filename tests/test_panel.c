@@ -1,0 +1,455 @@
+/*
+ * test_panel.c: the viewer's 2D layer (luz/panel.h) without a window: the
+ * sliders' table, slider edits by key and by mouse, the layout's hit
+ * rectangles, and the drawing primitives' pixels.
+ *
+ * Slider numbers follow the panel from top to bottom: ambient r, g, b,
+ * strength (0-3), diffuse (4-7), specular (8-11), shininess (12), point
+ * (13-16), spot (17-20), inner, outer, reach (21-23), directional (24-27).
+ */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <string.h>
+
+#include "luz/panel.h"
+
+enum {
+    AMBIENT_GREEN = 1,
+    AMBIENT_STRENGTH = 3,
+    DIFFUSE_GREEN = 5,
+    SHININESS = 12,
+    SPOT_INNER = 21,
+    SPOT_OUTER = 22,
+    SPOT_REACH = 23,
+};
+
+static void assert_near(float actual, float expected, float tolerance)
+{
+    if (!(fabsf(actual - expected) <= tolerance))
+        fail_msg("expected %.7g, got %.7g", (double)expected, (double)actual);
+}
+
+static luz_lights default_lights(void)
+{
+    return luz_scene_defaults().lights;
+}
+
+/* ---- the table ------------------------------------------------------------------------ */
+
+static void test_slider_table(void **state)
+{
+    (void)state;
+    int per_term[LUZ_TERM_COUNT] = {0};
+    for (int i = 0; i < LUZ_PANEL_SLIDER_COUNT; i++) {
+        const luz_slider *slider = &luz_panel_sliders[i];
+        per_term[slider->term]++;
+        assert_true(slider->min < slider->max);
+        assert_true(slider->fine_step > 0.0f && slider->fine_step <= slider->step);
+    }
+    /* Four each, plus shininess for the specular and three for the spot. */
+    int expected[LUZ_TERM_COUNT] = {4, 4, 5, 4, 7, 4};
+    assert_memory_equal(per_term, expected, sizeof expected);
+    assert_int_equal(luz_panel_sliders[SHININESS].field, LUZ_SLIDER_SHININESS);
+    assert_int_equal(luz_panel_sliders[SPOT_INNER].field, LUZ_SLIDER_SPOT_INNER);
+    assert_int_equal(luz_panel_sliders[SPOT_OUTER].field, LUZ_SLIDER_SPOT_OUTER);
+    assert_int_equal(luz_panel_sliders[SPOT_REACH].field, LUZ_SLIDER_SPOT_REACH);
+    /* The spot's reach must stay above 0. */
+    assert_true(luz_panel_sliders[SPOT_REACH].min > 0.0f);
+}
+
+/* ---- values --------------------------------------------------------------------------------- */
+
+static void test_slider_reads_and_writes_its_field(void **state)
+{
+    (void)state;
+    luz_lights lights = default_lights();
+    luz_slider_set(&lights, DIFFUSE_GREEN, 0.25f);
+    assert_near(lights.diffuse.colour.y, 0.25f, 0.0f);
+    assert_near(luz_slider_value(&lights, DIFFUSE_GREEN), 0.25f, 0.0f);
+    /* Nothing else moved. */
+    assert_near(lights.diffuse.colour.x, 1.0f, 0.0f);
+    assert_near(lights.diffuse.strength, 0.6f, 0.0f);
+    assert_near(lights.ambient.colour.y, 1.0f, 0.0f);
+
+    luz_slider_set(&lights, SHININESS, 64.0f);
+    assert_near(lights.shininess, 64.0f, 0.0f);
+    luz_slider_set(&lights, 27, 0.9f);   /* directional strength */
+    assert_near(lights.directional.strength, 0.9f, 0.0f);
+}
+
+static void test_slider_values_are_clamped(void **state)
+{
+    (void)state;
+    luz_lights lights = default_lights();
+    luz_slider_set(&lights, AMBIENT_GREEN, 2.0f);
+    assert_near(lights.ambient.colour.y, 1.0f, 0.0f);
+    luz_slider_set(&lights, AMBIENT_GREEN, -1.0f);
+    assert_near(lights.ambient.colour.y, 0.0f, 0.0f);
+    luz_slider_set(&lights, AMBIENT_GREEN, NAN);
+    assert_near(lights.ambient.colour.y, 0.0f, 0.0f);
+    luz_slider_set(&lights, SPOT_REACH, 0.0f);
+    assert_near(lights.spot_reach, 0.5f, 0.0f);
+    luz_slider_set(&lights, SPOT_OUTER, 100.0f);
+    assert_near(lights.spot_outer_degrees, 89.0f, 0.0f);
+}
+
+static void test_spot_sliders_keep_inner_within_outer(void **state)
+{
+    (void)state;
+    luz_lights lights = default_lights();   /* 12.5, 17.5 */
+    luz_slider_set(&lights, SPOT_INNER, 30.0f);
+    assert_near(lights.spot_inner_degrees, 30.0f, 0.0f);
+    assert_near(lights.spot_outer_degrees, 30.0f, 0.0f);
+    luz_slider_set(&lights, SPOT_OUTER, 5.0f);
+    assert_near(lights.spot_outer_degrees, 5.0f, 0.0f);
+    assert_near(lights.spot_inner_degrees, 5.0f, 0.0f);
+}
+
+static void test_arrow_steps(void **state)
+{
+    (void)state;
+    luz_lights lights = default_lights();
+    luz_slider_step(&lights, AMBIENT_STRENGTH, +1, false);    /* 0.2 + 0.05 */
+    assert_near(lights.ambient.strength, 0.25f, 1e-6f);
+    luz_slider_step(&lights, AMBIENT_STRENGTH, -1, true);     /* - 0.01 */
+    assert_near(lights.ambient.strength, 0.24f, 1e-6f);
+    /* A step lands on a whole number of steps: 0.24 + 0.05 = 0.29 rounds
+     * to 6 steps of 0.05, 0.30. */
+    luz_slider_step(&lights, AMBIENT_STRENGTH, +1, false);
+    assert_near(lights.ambient.strength, 0.30f, 1e-6f);
+    /* At the ends, it stays. */
+    lights.ambient.strength = 0.0f;
+    luz_slider_step(&lights, AMBIENT_STRENGTH, -1, false);
+    assert_near(lights.ambient.strength, 0.0f, 0.0f);
+    lights.ambient.strength = 1.0f;
+    luz_slider_step(&lights, AMBIENT_STRENGTH, +1, false);
+    assert_near(lights.ambient.strength, 1.0f, 0.0f);
+
+    luz_slider_step(&lights, SHININESS, +1, false);   /* 32 + 4 */
+    assert_near(lights.shininess, 36.0f, 0.0f);
+    luz_slider_step(&lights, SHININESS, -1, true);    /* - 1 */
+    assert_near(lights.shininess, 35.0f, 0.0f);
+    /* 17.5 - 1 = 16.5, a half step, which roundf takes away from 0: 17. */
+    luz_slider_step(&lights, SPOT_OUTER, -1, false);
+    assert_near(lights.spot_outer_degrees, 17.0f, 0.0f);
+}
+
+static void test_arrow_keys_choose_and_change(void **state)
+{
+    (void)state;
+    luz_lights lights = default_lights();
+    luz_panel panel;
+    luz_panel_init(&panel);
+    assert_int_equal(panel.focus, 0);
+    assert_int_equal(panel.dragging, -1);
+    luz_panel_key_press(&panel, &lights, LUZ_PANEL_UP, false);   /* wraps to the last */
+    assert_int_equal(panel.focus, LUZ_PANEL_SLIDER_COUNT - 1);
+    luz_panel_key_press(&panel, &lights, LUZ_PANEL_DOWN, false);
+    assert_int_equal(panel.focus, 0);
+    for (int i = 0; i < AMBIENT_STRENGTH; i++)
+        luz_panel_key_press(&panel, &lights, LUZ_PANEL_DOWN, false);
+    assert_int_equal(panel.focus, AMBIENT_STRENGTH);
+    luz_panel_key_press(&panel, &lights, LUZ_PANEL_LEFT, false);
+    assert_near(lights.ambient.strength, 0.15f, 1e-6f);
+    luz_panel_key_press(&panel, &lights, LUZ_PANEL_RIGHT, true);
+    assert_near(lights.ambient.strength, 0.16f, 1e-6f);
+}
+
+/* ---- layout and the mouse --------------------------------------------------------------------- */
+
+static bool rects_overlap(luz_rect a, luz_rect b)
+{
+    return a.x < b.x + b.width && b.x < a.x + a.width && a.y < b.y + b.height &&
+           b.y < a.y + a.height;
+}
+
+static bool rect_inside(luz_rect inner, luz_rect outer)
+{
+    return inner.x >= outer.x && inner.y >= outer.y &&
+           inner.x + inner.width <= outer.x + outer.width &&
+           inner.y + inner.height <= outer.y + outer.height;
+}
+
+static void check_layout(int width, int height, int expected_scale)
+{
+    luz_panel_layout layout = luz_panel_layout_for(width, height);
+    assert_int_equal(layout.scale, expected_scale);
+    luz_rect screen = {0, 0, width, height};
+    assert_true(rect_inside(layout.box, screen));
+    for (int i = 0; i < LUZ_PANEL_SLIDER_COUNT; i++) {
+        assert_true(rect_inside(layout.row[i], layout.box));
+        assert_true(rect_inside(layout.track[i], layout.row[i]));
+        assert_true(layout.track[i].width >= 20 * expected_scale);
+        for (int j = i + 1; j < LUZ_PANEL_SLIDER_COUNT; j++)
+            assert_false(rects_overlap(layout.row[i], layout.row[j]));
+        for (int term = 0; term < LUZ_TERM_COUNT; term++)
+            assert_false(rects_overlap(layout.row[i], layout.header[term]));
+    }
+    for (int term = 0; term < LUZ_TERM_COUNT; term++)
+        assert_true(rect_inside(layout.header[term], layout.box));
+    /* Top to bottom in slider order: a later slider is never above. */
+    for (int i = 1; i < LUZ_PANEL_SLIDER_COUNT; i++)
+        assert_true(layout.row[i].y >= layout.row[i - 1].y);
+}
+
+static void test_layout(void **state)
+{
+    (void)state;
+    check_layout(1280, 720, 2);
+    check_layout(640, 360, 1);   /* --render-scale 0.5 of the default */
+    check_layout(1920, 1080, 2);
+}
+
+static void test_track_value(void **state)
+{
+    (void)state;
+    luz_panel_layout layout = luz_panel_layout_for(1280, 720);
+    luz_rect track = layout.track[AMBIENT_STRENGTH];
+    assert_near(luz_panel_track_value(&layout, AMBIENT_STRENGTH, track.x), 0.0f, 0.0f);
+    assert_near(luz_panel_track_value(&layout, AMBIENT_STRENGTH, track.x + track.width - 1), 1.0f,
+                0.0f);
+    /* Beyond the ends: the ends. */
+    assert_near(luz_panel_track_value(&layout, AMBIENT_STRENGTH, track.x - 50), 0.0f, 0.0f);
+    assert_near(luz_panel_track_value(&layout, AMBIENT_STRENGTH, track.x + track.width + 50), 1.0f,
+                0.0f);
+    /* The middle pixel gives about half, snapped to hundredths. */
+    float middle = luz_panel_track_value(&layout, AMBIENT_STRENGTH, track.x + (track.width - 1) / 2);
+    assert_near(middle, 0.5f, 0.011f);
+    assert_near(middle * 100.0f, roundf(middle * 100.0f), 1e-3f);
+    /* The spot's inner angle over [0, 89]: the right end is 89. */
+    track = layout.track[SPOT_INNER];
+    assert_near(luz_panel_track_value(&layout, SPOT_INNER, track.x + track.width - 1), 89.0f, 1e-4f);
+}
+
+static int centre_x(luz_rect rect) { return rect.x + rect.width / 2; }
+static int centre_y(luz_rect rect) { return rect.y + rect.height / 2; }
+
+static void test_click_and_drag(void **state)
+{
+    (void)state;
+    luz_lights lights = default_lights();
+    luz_light_switches switches = {{0}};
+    luz_panel panel;
+    luz_panel_init(&panel);
+    luz_panel_layout layout = luz_panel_layout_for(1280, 720);
+
+    /* A press at the left end of ambient green's track sets 0 and holds
+     * the slider. */
+    luz_rect track = layout.track[AMBIENT_GREEN];
+    assert_true(luz_panel_mouse_press(&panel, &layout, &lights, &switches, track.x,
+                                      centre_y(track)));
+    assert_int_equal(panel.focus, AMBIENT_GREEN);
+    assert_int_equal(panel.dragging, AMBIENT_GREEN);
+    assert_near(lights.ambient.colour.y, 0.0f, 0.0f);
+    /* Dragging follows x only, wherever y is. */
+    luz_panel_mouse_drag(&panel, &layout, &lights, track.x + track.width + 100);
+    assert_near(lights.ambient.colour.y, 1.0f, 0.0f);
+    luz_panel_mouse_release(&panel);
+    assert_int_equal(panel.dragging, -1);
+    luz_panel_mouse_drag(&panel, &layout, &lights, track.x);   /* released: no effect */
+    assert_near(lights.ambient.colour.y, 1.0f, 0.0f);
+
+    /* A press on a row's label focuses without changing the value. */
+    luz_rect row = layout.row[SHININESS];
+    assert_true(luz_panel_mouse_press(&panel, &layout, &lights, &switches, row.x + 1,
+                                      centre_y(row)));
+    assert_int_equal(panel.focus, SHININESS);
+    assert_int_equal(panel.dragging, -1);
+    assert_near(lights.shininess, 32.0f, 0.0f);
+
+    /* Outside the panel: not taken, nothing changes. */
+    luz_lights before = lights;
+    assert_false(luz_panel_mouse_press(&panel, &layout, &lights, &switches, 5, 5));
+    assert_memory_equal(&before, &lights, sizeof lights);
+}
+
+static void test_click_a_header_switches_the_light(void **state)
+{
+    (void)state;
+    luz_lights lights = default_lights();
+    luz_light_switches switches = {{0}};
+    luz_panel panel;
+    luz_panel_init(&panel);
+    luz_panel_layout layout = luz_panel_layout_for(1280, 720);
+    luz_rect header = layout.header[LUZ_TERM_POINT];
+    assert_true(luz_panel_mouse_press(&panel, &layout, &lights, &switches, centre_x(header),
+                                      centre_y(header)));
+    assert_near(lights.point.strength, 0.0f, 0.0f);
+    assert_true(luz_panel_mouse_press(&panel, &layout, &lights, &switches, centre_x(header),
+                                      centre_y(header)));
+    assert_near(lights.point.strength, 0.7f, 0.0f);
+    assert_near(lights.spot.strength, 1.0f, 0.0f);
+}
+
+/* ---- drawing ---------------------------------------------------------------------------------- */
+
+/* A framebuffer of one grey, alpha 255 as luz's always is. */
+static luz_framebuffer *grey_framebuffer(int width, int height, uint8_t grey)
+{
+    luz_framebuffer *framebuffer = luz_framebuffer_create(width, height, NULL);
+    assert_non_null(framebuffer);
+    size_t bytes = (size_t)width * (size_t)height * 4;
+    for (size_t i = 0; i < bytes; i++)
+        framebuffer->colour[i] = (i % 4 == 3) ? 255 : grey;
+    return framebuffer;
+}
+
+static const uint8_t *pixel(const luz_framebuffer *framebuffer, int x, int y)
+{
+    return framebuffer->colour + ((size_t)y * (size_t)framebuffer->width + (size_t)x) * 4;
+}
+
+static void test_fill_blends_and_clips(void **state)
+{
+    (void)state;
+    luz_framebuffer *framebuffer = grey_framebuffer(8, 8, 100);
+    /* round((200 * 128 + 100 * 127) / 255) = round(150.2) = 150 */
+    luz_overlay_fill(framebuffer, (luz_rect){-4, -4, 6, 6}, (luz_rgba){200, 0, 255, 128});
+    assert_int_equal(pixel(framebuffer, 0, 0)[0], 150);
+    /* round((0 * 128 + 100 * 127) / 255) = round(49.8) = 50;
+     * round((255 * 128 + 100 * 127) / 255) = round(177.8) = 178 */
+    assert_int_equal(pixel(framebuffer, 1, 1)[1], 50);
+    assert_int_equal(pixel(framebuffer, 1, 1)[2], 178);
+    assert_int_equal(pixel(framebuffer, 1, 1)[3], 255);
+    /* The clipped rectangle ends at (2, 2). */
+    assert_int_equal(pixel(framebuffer, 2, 1)[0], 100);
+    assert_int_equal(pixel(framebuffer, 1, 2)[0], 100);
+
+    luz_overlay_fill(framebuffer, (luz_rect){6, 6, 100, 100}, (luz_rgba){7, 8, 9, 255});
+    assert_memory_equal(pixel(framebuffer, 7, 7), ((uint8_t[]){7, 8, 9, 255}), 4);
+    assert_int_equal(pixel(framebuffer, 5, 7)[0], 100);
+    luz_overlay_fill(framebuffer, (luz_rect){0, 0, 8, 8}, (luz_rgba){7, 8, 9, 0});
+    assert_int_equal(pixel(framebuffer, 3, 3)[0], 100);
+    /* Entirely outside, or empty: nothing, and no crash. */
+    luz_overlay_fill(framebuffer, (luz_rect){100, 100, 5, 5}, (luz_rgba){0, 0, 0, 255});
+    luz_overlay_fill(framebuffer, (luz_rect){2, 2, 0, -3}, (luz_rgba){0, 0, 0, 255});
+    assert_int_equal(pixel(framebuffer, 3, 3)[0], 100);
+    luz_framebuffer_destroy(framebuffer);
+}
+
+/* The bounding box of the pixels that are not grey any more. */
+static luz_rect changed_box(const luz_framebuffer *framebuffer, uint8_t grey)
+{
+    int x0 = framebuffer->width, y0 = framebuffer->height, x1 = -1, y1 = -1;
+    for (int y = 0; y < framebuffer->height; y++)
+        for (int x = 0; x < framebuffer->width; x++)
+            if (pixel(framebuffer, x, y)[0] != grey) {
+                x0 = x < x0 ? x : x0;
+                y0 = y < y0 ? y : y0;
+                x1 = x > x1 ? x : x1;
+                y1 = y > y1 ? y : y1;
+            }
+    return (luz_rect){x0, y0, x1 - x0 + 1, y1 - y0 + 1};
+}
+
+static void test_text(void **state)
+{
+    (void)state;
+    /* stb_easy_font's "I" is a vertical bar with serifs, within its 7-row
+     * cap height and its advance. */
+    luz_framebuffer *framebuffer = grey_framebuffer(64, 32, 0);
+    int width = luz_overlay_text(framebuffer, 10, 5, 1, "I", (luz_rgba){255, 255, 255, 255});
+    assert_int_equal(width, luz_overlay_text_width("I", 1));
+    luz_rect box = changed_box(framebuffer, 0);
+    assert_true(box.x >= 10 && box.x + box.width <= 10 + width);
+    assert_true(box.y >= 5 && box.y + box.height <= 5 + luz_overlay_text_height(1));
+    assert_true(box.height >= 5);
+
+    /* Scale 2 doubles everything. */
+    luz_framebuffer *doubled = grey_framebuffer(64, 32, 0);
+    luz_overlay_text(doubled, 20, 10, 2, "I", (luz_rgba){255, 255, 255, 255});
+    luz_rect box2 = changed_box(doubled, 0);
+    assert_int_equal(box2.x, 20 + (box.x - 10) * 2);
+    assert_int_equal(box2.y, 10 + (box.y - 5) * 2);
+    assert_int_equal(box2.width, box.width * 2);
+    assert_int_equal(box2.height, box.height * 2);
+    assert_int_equal(luz_overlay_text_width("abc", 2), 2 * luz_overlay_text_width("abc", 1));
+
+    /* Bytes outside printable ASCII draw as '?' (and read no table out of
+     * bounds), so a file name can never break the HUD. */
+    luz_framebuffer_destroy(framebuffer);
+    luz_framebuffer_destroy(doubled);
+    framebuffer = grey_framebuffer(64, 32, 0);
+    doubled = grey_framebuffer(64, 32, 0);
+    luz_overlay_text(framebuffer, 0, 0, 1, "\xff\x01\n", (luz_rgba){255, 255, 255, 255});
+    luz_overlay_text(doubled, 0, 0, 1, "???", (luz_rgba){255, 255, 255, 255});
+    assert_memory_equal(framebuffer->colour, doubled->colour, 64 * 32 * 4);
+    /* Text running off the framebuffer is clipped. */
+    luz_overlay_text(framebuffer, 50, 28, 3, "clipped", (luz_rgba){255, 255, 255, 255});
+
+    luz_framebuffer_destroy(framebuffer);
+    luz_framebuffer_destroy(doubled);
+}
+
+static void test_panel_draws_inside_its_box(void **state)
+{
+    (void)state;
+    luz_framebuffer *framebuffer = grey_framebuffer(640, 360, 77);
+    luz_panel_layout layout = luz_panel_layout_for(640, 360);
+    luz_panel panel;
+    luz_panel_init(&panel);
+    luz_lights lights = default_lights();
+    luz_panel_draw(framebuffer, &layout, &panel, &lights);
+    luz_rect changed = changed_box(framebuffer, 77);
+    assert_true(rect_inside(changed, (luz_rect){layout.box.x - layout.scale, layout.box.y,
+                                                layout.box.width + 2 * layout.scale,
+                                                layout.box.height}));
+    /* The ambient strength's bar is filled to 0.2 of its track in the
+     * light's colour, white. */
+    luz_rect track = layout.track[AMBIENT_STRENGTH];
+    int filled = (int)lroundf(0.2f * (float)track.width);
+    assert_memory_equal(pixel(framebuffer, track.x, track.y), ((uint8_t[]){255, 255, 255, 255}), 4);
+    assert_memory_equal(pixel(framebuffer, track.x + filled - 1, track.y + track.height - 1),
+                        ((uint8_t[]){255, 255, 255, 255}), 4);
+    assert_true(pixel(framebuffer, track.x + filled, track.y)[0] != 255);
+    luz_framebuffer_destroy(framebuffer);
+}
+
+static void test_hud_and_help_draw_within_the_framebuffer(void **state)
+{
+    (void)state;
+    /* Sizes down to a single pixel: nothing may be written outside. */
+    int sizes[][2] = {{1280, 720}, {640, 360}, {100, 50}, {1, 1}};
+    luz_scene scene = luz_scene_defaults();
+    for (size_t i = 0; i < sizeof sizes / sizeof sizes[0]; i++) {
+        luz_framebuffer *framebuffer = grey_framebuffer(sizes[i][0], sizes[i][1], 50);
+        luz_hud hud = {.frames_per_second = 38.5, .frame_ms = 26.0, .geometry_ms = 0.1,
+                       .raster_ms = 25.0, .window_width = sizes[i][0],
+                       .window_height = sizes[i][1], .render_scale = 1.0f, .threads = 2,
+                       .scene = &scene};
+        luz_hud_draw(framebuffer, &hud);
+        luz_hud_draw_message(framebuffer, "wrote luz-shot-0001.png");
+        luz_help_draw(framebuffer);
+        luz_panel_layout layout = luz_panel_layout_for(sizes[i][0], sizes[i][1]);
+        luz_panel panel;
+        luz_panel_init(&panel);
+        luz_panel_draw(framebuffer, &layout, &panel, &scene.lights);
+        luz_framebuffer_destroy(framebuffer);
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_slider_table),
+        cmocka_unit_test(test_slider_reads_and_writes_its_field),
+        cmocka_unit_test(test_slider_values_are_clamped),
+        cmocka_unit_test(test_spot_sliders_keep_inner_within_outer),
+        cmocka_unit_test(test_arrow_steps),
+        cmocka_unit_test(test_arrow_keys_choose_and_change),
+        cmocka_unit_test(test_layout),
+        cmocka_unit_test(test_track_value),
+        cmocka_unit_test(test_click_and_drag),
+        cmocka_unit_test(test_click_a_header_switches_the_light),
+        cmocka_unit_test(test_fill_blends_and_clips),
+        cmocka_unit_test(test_text),
+        cmocka_unit_test(test_panel_draws_inside_its_box),
+        cmocka_unit_test(test_hud_and_help_draw_within_the_framebuffer),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

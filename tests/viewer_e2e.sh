@@ -1,0 +1,161 @@
+#!/bin/sh
+# The viewer end to end: the real `luz` in a real X server (Xvfb), driven by
+# real X input (xdotool), its state read back through --print-state.
+#
+#   tests/viewer_e2e.sh LUZ LUZ_RENDER
+#
+# 1. T pauses the animation, F12 saves a screenshot: a PNG of the window's
+#    size that shows the scene (many colours, not a blank image).
+# 2. 5 switches the spot off and F12 saves a second screenshot: the two
+#    differ in the middle, where the spot shines, and not at all in a strip
+#    on the left that lies outside its cone (17.5 degrees of the 22.5 that
+#    half the view spans), where the spot adds exactly 0.
+# 3. W held for a second moves the camera forward, towards -z, by about
+#    2.5 units (motion is per second, however slow the build).
+# 4. The window is resized; the next screenshot has the new size.
+# 5. Esc quits with status 0; --print-state's scene file says where the
+#    camera went and that the spot is off, and luz-render renders it.
+#
+# Without Xvfb, xdotool or ImageMagick it reports itself skipped (77).
+set -u
+
+# Absolute paths: the test runs in a directory of its own.
+absolute() { echo "$(cd "$(dirname "$1")" && pwd)/$(basename "$1")"; }
+luz=$(absolute "$1")
+luz_render=$(absolute "$2")
+
+for tool in Xvfb xdotool convert compare identify; do
+    if ! command -v "$tool" >/dev/null 2>&1; then
+        echo "SKIP: $tool is not installed (tools/install-deps test installs xvfb, xdotool and imagemagick)"
+        exit 77
+    fi
+done
+
+work=$(mktemp -d)
+xvfb_pid=""
+luz_pid=""
+cleanup() {
+    [ -n "$luz_pid" ] && kill "$luz_pid" 2>/dev/null
+    [ -n "$xvfb_pid" ] && kill "$xvfb_pid" 2>/dev/null
+    rm -rf "$work"
+}
+trap cleanup EXIT
+
+fail() {
+    echo "FAIL: $*"
+    echo "--- luz's stderr:"
+    cat "$work/stderr" 2>/dev/null
+    exit 1
+}
+
+# Waits up to 60 s (a sanitizer build is slow) for luz to report a file on
+# stderr: "luz: wrote luz-shot-0001.png (480x270)".
+wait_for_shot() {
+    i=0
+    until grep -q "wrote $1" "$work/stderr" 2>/dev/null; do
+        i=$((i + 1))
+        [ $i -gt 600 ] && fail "no $1 after 60 s"
+        kill -0 "$luz_pid" 2>/dev/null || fail "luz exited before writing $1"
+        sleep 0.1
+    done
+}
+
+# The number of pixels that differ between the same crop of two images.
+differing_pixels() {
+    convert "$1" -crop "$3" +repage "$work/a.png" &&
+    convert "$2" -crop "$3" +repage "$work/b.png" &&
+    compare -metric AE "$work/a.png" "$work/b.png" null: 2>&1 >/dev/null
+}
+
+# ---- an X server of our own, on a free display ------------------------------
+Xvfb -displayfd 3 -screen 0 1280x800x24 -nolisten tcp 3>"$work/display" 2>"$work/xvfb.log" &
+xvfb_pid=$!
+i=0
+until [ -s "$work/display" ]; do
+    i=$((i + 1))
+    [ $i -gt 100 ] && { cat "$work/xvfb.log"; fail "Xvfb did not start"; }
+    sleep 0.1
+done
+DISPLAY=":$(cat "$work/display")"
+export DISPLAY
+unset WAYLAND_DISPLAY
+# X11 only: if the server cannot be reached, say so, rather than let SDL
+# fall through to another video backend.
+SDL_VIDEODRIVER=x11
+export SDL_VIDEODRIVER
+i=0
+until xdotool getdisplaygeometry >/dev/null 2>&1; do
+    i=$((i + 1))
+    [ $i -gt 100 ] && { cat "$work/xvfb.log"; fail "Xvfb on $DISPLAY does not answer"; }
+    sleep 0.1
+done
+
+# ---- the viewer ------------------------------------------------------------------
+cd "$work" || exit 1
+"$luz" --print-state --size 480x270 >"$work/state.luz" 2>"$work/stderr" &
+luz_pid=$!
+i=0
+until window=$(xdotool search --name '^luz$' 2>/dev/null | head -n 1) && [ -n "$window" ]; do
+    i=$((i + 1))
+    [ $i -gt 600 ] && fail "no luz window after 60 s"
+    kill -0 "$luz_pid" 2>/dev/null || fail "luz exited without opening a window"
+    sleep 0.1
+done
+xdotool windowfocus --sync "$window" || fail "cannot focus the window"
+
+# 1. Paused, a screenshot of the window's size that shows the scene.
+xdotool key t F12
+wait_for_shot luz-shot-0001.png
+size=$(identify -format '%wx%h' luz-shot-0001.png) || fail "luz-shot-0001.png is not an image"
+[ "$size" = 480x270 ] || fail "screenshot is $size, the window 480x270"
+colours=$(identify -format '%k' luz-shot-0001.png)
+[ "$colours" -gt 1000 ] || fail "screenshot has $colours colours: not the scene"
+
+# 2. The spot off: the image changes where the spot shone, and only there.
+xdotool key 5 F12
+wait_for_shot luz-shot-0002.png
+centre=$(differing_pixels luz-shot-0001.png luz-shot-0002.png 60x60+210+105)
+outside=$(differing_pixels luz-shot-0001.png luz-shot-0002.png 100x270+0+0)
+[ "$centre" -gt 1000 ] || fail "spot off changed $centre of 3600 pixels in the centre"
+[ "$outside" -eq 0 ] || fail "spot off changed $outside pixels outside its cone"
+
+# 3. W held for a second.
+xdotool keydown w
+sleep 1
+xdotool keyup w
+
+# 4. A resize, then a screenshot of the new size.
+xdotool windowsize --sync "$window" 400 300 || fail "cannot resize the window"
+sleep 0.5
+xdotool key F12
+wait_for_shot luz-shot-0003.png
+size=$(identify -format '%wx%h' luz-shot-0003.png)
+[ "$size" = 400x300 ] || fail "screenshot after the resize is $size, the window 400x300"
+
+# 5. Esc quits with status 0.
+xdotool key Escape
+i=0
+while kill -0 "$luz_pid" 2>/dev/null; do
+    i=$((i + 1))
+    [ $i -gt 300 ] && fail "luz still running 30 s after Esc"
+    sleep 0.1
+done
+wait "$luz_pid"
+status=$?
+luz_pid=""
+[ "$status" -eq 0 ] || fail "luz exited with status $status after Esc"
+
+# The state: camera moved forward along -z (from z = 3, 2.5 units a
+# second), stayed on the axis, and the spot is off.
+camera=$(sed -n 's/^camera-pos = //p' state.luz)
+[ -n "$camera" ] || fail "no camera-pos in --print-state's output"
+echo "$camera" | awk -F', *' '{ exit !($3 < 1.5 && $1 > -0.1 && $1 < 0.1 && $2 == 0) }' ||
+    fail "camera at $camera after W for a second; expected about 0, 0, 0.5"
+grep -q '^spot = 1, 1, 1, 0$' state.luz || fail "the spot is not off in the state: $(grep '^spot =' state.luz)"
+grep -q '^size = 400x300$' state.luz || fail "the state's size is not the window's: $(grep '^size =' state.luz)"
+
+# The state is a scene file that luz-render reads.
+"$luz_render" --scene state.luz --size 64x36 -o from-state.png 2>"$work/render.err" ||
+    fail "luz-render cannot render the printed state: $(cat "$work/render.err")"
+
+echo "ok: screenshots $size, spot diff $centre in the centre and 0 outside, camera $camera"
