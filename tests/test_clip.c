@@ -11,21 +11,11 @@
 
 #include <cmocka.h>
 
+#include "test_support.h"
+
 #include "pipeline/pipeline.h"
 
 #define TOLERANCE 1e-6
-
-#define assert_near(got, expected, tolerance) \
-    assert_near_at((got), (expected), (tolerance), #got, __FILE__, __LINE__)
-
-static void assert_near_at(double got, double expected, double tolerance,
-                           const char *expression, const char *file, int line)
-{
-    if (fabs(got - expected) <= tolerance) return;
-    print_error("%s = %.9g, expected %.9g (tolerance %.2g)\n", expression, got, expected,
-                tolerance);
-    _fail(file, line);
-}
 
 /* A clip vertex whose varying i is first + step * i, so that every
  * varying interpolates differently. */

@@ -26,23 +26,13 @@
 
 #include <cmocka.h>
 
+#include "test_support.h"
+
 #include "pipeline/pipeline.h"
 
 #define SIZE 64
 #define PIXEL_X 40
 #define PIXEL_Y 44
-
-#define assert_near(got, expected, tolerance) \
-    assert_near_at((got), (expected), (tolerance), #got, __FILE__, __LINE__)
-
-static void assert_near_at(double got, double expected, double tolerance,
-                           const char *expression, const char *file, int line)
-{
-    if (fabs(got - expected) <= tolerance) return;
-    print_error("%s = %.9g, expected %.9g (tolerance %.2g)\n", expression, got, expected,
-                tolerance);
-    _fail(file, line);
-}
 
 typedef struct floor_fixture {
     luz_triangle triangles[2];

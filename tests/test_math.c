@@ -11,23 +11,13 @@
 
 #include <cmocka.h>
 
+#include "test_support.h"
+
 #include "luz/scene.h"
 #include "luz/vecmath.h"
 
 /* Single-precision results of a handful of operations on values near 1. */
 #define TOLERANCE 1e-6
-
-#define assert_near(got, expected, tolerance) \
-    assert_near_at((got), (expected), (tolerance), #got, __FILE__, __LINE__)
-
-static void assert_near_at(double got, double expected, double tolerance,
-                           const char *expression, const char *file, int line)
-{
-    if (fabs(got - expected) <= tolerance) return;
-    print_error("%s = %.9g, expected %.9g (tolerance %.2g)\n", expression, got, expected,
-                tolerance);
-    _fail(file, line);
-}
 
 #define assert_vec3_near(got, expected_x, expected_y, expected_z) \
     assert_vec3_near_at((got), (expected_x), (expected_y), (expected_z), #got, __FILE__, \

@@ -13,23 +13,13 @@
 
 #include <cmocka.h>
 
+#include "test_support.h"
+
 #include "luz/scene.h"
 #include "luz/shade.h"
 
 /* The terms are a few single-precision operations on values near 1. */
 #define TOLERANCE 2e-6
-
-#define assert_near(got, expected, tolerance) \
-    assert_near_at((got), (expected), (tolerance), #got, __FILE__, __LINE__)
-
-static void assert_near_at(double got, double expected, double tolerance,
-                           const char *expression, const char *file, int line)
-{
-    if (fabs(got - expected) <= tolerance) return;
-    print_error("%s = %.9g, expected %.9g (tolerance %.2g)\n", expression, got, expected,
-                tolerance);
-    _fail(file, line);
-}
 
 /* got == factor * (0.2, 0.5, 1.0) within tolerance, channel by channel. */
 #define assert_light(got, factor, tolerance) \

@@ -11,22 +11,12 @@
 
 #include <cmocka.h>
 
+#include "test_support.h"
+
 #include "luz/texture.h"
 
 /* Bilinear weights and 1/255 scaling in single precision. */
 #define TOLERANCE 1e-6
-
-#define assert_near(got, expected, tolerance) \
-    assert_near_at((got), (expected), (tolerance), #got, __FILE__, __LINE__)
-
-static void assert_near_at(double got, double expected, double tolerance,
-                           const char *expression, const char *file, int line)
-{
-    if (fabs(got - expected) <= tolerance) return;
-    print_error("%s = %.9g, expected %.9g (tolerance %.2g)\n", expression, got, expected,
-                tolerance);
-    _fail(file, line);
-}
 
 /* A sample's red and green channels, given in bytes (0..255). */
 #define assert_red_green(got, red, green) \
