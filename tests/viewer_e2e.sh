@@ -156,6 +156,6 @@ grep -q '^size = 400x300$' state.luz || fail "the state's size is not the window
 
 # The state is a scene file that luz-render reads.
 "$luz_render" --scene state.luz --size 64x36 -o from-state.png 2>"$work/render.err" ||
-    fail "luz-render cannot render the printed state: $(cat "$work/render.err")"
+    fail "luz-render cannot render the printed state: $(cat "$work/render.err"): $(cat state.luz)"
 
 echo "ok: screenshots $size, spot diff $centre in the centre and 0 outside, camera $camera"

@@ -14,8 +14,7 @@
  * sliders included, is drawn by libluz (luz_renderer_draw, then the 2D
  * layer of luz/panel.h). What the keys do is in luz/controls.h and what the
  * panel does in luz/panel.h, both tested without a window; this file maps
- * SDL's events onto them. Frames are pipelined: a render thread draws the
- * next frame while the main thread shows the last one (see render_thread).
+ * SDL's events onto them.
  *
  * Options are luz-render's scene options, read by the same parser
  * (luz_options_parse), plus two of the viewer's own, which are taken out of
@@ -29,7 +28,6 @@
  */
 #include <errno.h>
 #include <math.h>
-#include <pthread.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -155,116 +153,7 @@ static void print_usage(FILE *out)
             "textures directory or when no display is available, 1 if rendering failed.\n");
 }
 
-/* ---- the render thread --------------------------------------------------------------------- */
-
-/* Showing a frame (the overlays, the copy into the texture, the X server
- * taking the image) costs the main thread under a millisecond of CPU and
- * then a wait while the X server copies the image; drawing it costs the
- * renderer's threads several. So frames are pipelined, as a GPU's are:
- * while the main thread shows frame k, this thread draws frame k+1 into the
- * other framebuffer, with the renderer's own worker threads. It calls
- * nothing but luz_renderer_draw(); SDL stays on the main thread. */
-typedef struct render_thread {
-    pthread_t thread;
-    pthread_mutex_t mutex;
-    pthread_cond_t changed;
-    bool busy;                     /* a frame is handed over and not yet drawn */
-    bool quit;
-    luz_renderer *renderer;
-    const luz_frame *frame;        /* the job: read by the thread while busy */
-    luz_framebuffer *target;
-    luz_frame_stats *stats;
-    int status;
-    luz_error error;
-} render_thread;
-
-static void *render_thread_main(void *argument)
-{
-    render_thread *thread = argument;
-    pthread_mutex_lock(&thread->mutex);
-    for (;;) {
-        while (!thread->busy && !thread->quit)
-            pthread_cond_wait(&thread->changed, &thread->mutex);
-        if (thread->quit)
-            break;
-        pthread_mutex_unlock(&thread->mutex);
-        luz_error error = {{0}};
-        int status = luz_renderer_draw(thread->renderer, thread->frame, thread->target,
-                                       thread->stats, &error);
-        pthread_mutex_lock(&thread->mutex);
-        thread->status = status;
-        thread->error = error;
-        thread->busy = false;
-        pthread_cond_broadcast(&thread->changed);
-    }
-    pthread_mutex_unlock(&thread->mutex);
-    return NULL;
-}
-
-static int render_thread_start(render_thread *thread, luz_renderer *renderer, luz_error *error)
-{
-    *thread = (render_thread){.renderer = renderer};
-    if (pthread_mutex_init(&thread->mutex, NULL) != 0)
-        return luz_error_set(error, "cannot create the render thread's mutex");
-    if (pthread_cond_init(&thread->changed, NULL) != 0) {
-        pthread_mutex_destroy(&thread->mutex);
-        return luz_error_set(error, "cannot create the render thread's condition");
-    }
-    if (pthread_create(&thread->thread, NULL, render_thread_main, thread) != 0) {
-        pthread_cond_destroy(&thread->changed);
-        pthread_mutex_destroy(&thread->mutex);
-        return luz_error_set(error, "cannot start the render thread");
-    }
-    return 0;
-}
-
-/* Hands a frame to the thread; it must not be busy. */
-static void render_thread_draw(render_thread *thread, const luz_frame *frame,
-                               luz_framebuffer *target, luz_frame_stats *stats)
-{
-    pthread_mutex_lock(&thread->mutex);
-    thread->frame = frame;
-    thread->target = target;
-    thread->stats = stats;
-    thread->busy = true;
-    pthread_cond_broadcast(&thread->changed);
-    pthread_mutex_unlock(&thread->mutex);
-}
-
-/* Waits for the frame handed over last; returns luz_renderer_draw's status. */
-static int render_thread_wait(render_thread *thread, luz_error *error)
-{
-    pthread_mutex_lock(&thread->mutex);
-    while (thread->busy)
-        pthread_cond_wait(&thread->changed, &thread->mutex);
-    int status = thread->status;
-    if (status != 0 && error != NULL)
-        *error = thread->error;
-    pthread_mutex_unlock(&thread->mutex);
-    return status;
-}
-
-static void render_thread_stop(render_thread *thread)
-{
-    render_thread_wait(thread, NULL);
-    pthread_mutex_lock(&thread->mutex);
-    thread->quit = true;
-    pthread_cond_broadcast(&thread->changed);
-    pthread_mutex_unlock(&thread->mutex);
-    pthread_join(thread->thread, NULL);
-    pthread_cond_destroy(&thread->changed);
-    pthread_mutex_destroy(&thread->mutex);
-}
-
 /* ---- the viewer --------------------------------------------------------------------------- */
-
-/* One of the two frames in flight. */
-typedef struct frame_slot {
-    luz_frame frame;               /* the draw list, built on the main thread */
-    luz_framebuffer *framebuffer;
-    luz_frame_stats stats;
-    bool screenshot;               /* F12 came before it was built: save it */
-} frame_slot;
 
 typedef struct viewer {
     luz_options *options;            /* options->scene is the live scene */
@@ -273,7 +162,7 @@ typedef struct viewer {
     luz_camera start_camera;         /* where C goes back to */
     luz_light_switches switches;
     luz_panel panel;
-    luz_panel_layout layout;         /* for the framebuffer on screen */
+    luz_panel_layout layout;         /* for the framebuffer's size */
 
     bool running;
     bool panel_open;                 /* else flying: the mouse turns the camera */
@@ -284,15 +173,13 @@ typedef struct viewer {
 
     SDL_Window *window;
     SDL_Renderer *presenter;
-    SDL_Texture *texture;            /* the size of the framebuffer on screen, RGBA8 */
-    int texture_width, texture_height;
+    SDL_Texture *texture;            /* the framebuffer's size, RGBA8 */
     int window_width, window_height; /* the window's size in pixels */
 
     luz_renderer *renderer;
-    render_thread drawer;
-    bool drawer_started;
-    frame_slot slots[2];
-    int shown;                       /* the slot on screen, -1 before the first */
+    luz_framebuffer *framebuffer;
+    luz_frame frame;
+    luz_frame_stats stats;
 
     /* frames per second, measured over half a second */
     Uint64 last_counter;
@@ -385,8 +272,8 @@ static void to_framebuffer(const viewer *v, int x, int y, int *fx, int *fy)
 {
     int window_width, window_height;
     SDL_GetWindowSize(v->window, &window_width, &window_height);
-    *fx = window_width > 0 ? (int)((long long)x * v->texture_width / window_width) : x;
-    *fy = window_height > 0 ? (int)((long long)y * v->texture_height / window_height) : y;
+    *fx = window_width > 0 ? (int)((long long)x * v->framebuffer->width / window_width) : x;
+    *fy = window_height > 0 ? (int)((long long)y * v->framebuffer->height / window_height) : y;
 }
 
 /* ---- input ----------------------------------------------------------------------------------- */
@@ -533,42 +420,48 @@ static void measure_window(viewer *v)
         SDL_GetWindowSize(v->window, &v->window_width, &v->window_height);
 }
 
-/* Builds the scene as it is now into a slot, at the window's size in
- * pixels times the render scale, and hands it to the render thread. */
-static int start_frame(viewer *v, frame_slot *slot, luz_error *error)
+/* Matches the framebuffer, and the texture that shows it, to the window's
+ * size in pixels times the render scale. */
+static int fit_framebuffer(viewer *v, luz_error *error)
 {
     measure_window(v);
     float scale = v->settings.render_scale;
     int width = (int)lroundf((float)v->window_width * scale);
     int height = (int)lroundf((float)v->window_height * scale);
-    if (luz_framebuffer_resize(slot->framebuffer, width < 1 ? 1 : width, height < 1 ? 1 : height,
-                               error) != 0)
+    width = width < 1 ? 1 : width;
+    height = height < 1 ? 1 : height;
+    if (v->texture != NULL && width == v->framebuffer->width && height == v->framebuffer->height)
+        return 0;
+    if (luz_framebuffer_resize(v->framebuffer, width, height, error) != 0)
         return -1;
-    float aspect = (float)slot->framebuffer->width / (float)slot->framebuffer->height;
-    if (luz_scene_build_frame(&v->options->scene, v->textures, aspect, &slot->frame) != 0)
-        return luz_error_set(error, "out of memory building the frame");
-    slot->screenshot = v->screenshot_requested;
-    v->screenshot_requested = false;
-    render_thread_draw(&v->drawer, &slot->frame, slot->framebuffer, &slot->stats);
+    if (v->texture != NULL)
+        SDL_DestroyTexture(v->texture);
+    /* SDL_PIXELFORMAT_RGBA32 is bytes R, G, B, A in memory whatever the
+     * machine's byte order: luz's own layout, so the upload is a copy. */
+    v->texture = SDL_CreateTexture(v->presenter, SDL_PIXELFORMAT_RGBA32,
+                                   SDL_TEXTUREACCESS_STREAMING, width, height);
+    if (v->texture == NULL)
+        return luz_error_set(error, "cannot create a %dx%d texture: %s", width, height,
+                             SDL_GetError());
+    v->layout = luz_panel_layout_for(width, height);
     return 0;
 }
 
 /* The 2D layer over the scene: the help alone when it is open, else the
  * panel and the HUD as they are switched; a message on top of anything. */
-static void draw_overlays(viewer *v, const frame_slot *slot)
+static void draw_overlays(viewer *v)
 {
-    luz_framebuffer *framebuffer = slot->framebuffer;
     if (v->help_visible) {
-        luz_help_draw(framebuffer);
+        luz_help_draw(v->framebuffer);
     } else {
         if (v->panel_open)
-            luz_panel_draw(framebuffer, &v->layout, &v->panel, &v->options->scene.lights);
+            luz_panel_draw(v->framebuffer, &v->layout, &v->panel, &v->options->scene.lights);
         if (v->hud_visible) {
             luz_hud hud = {
                 .frames_per_second = v->frames_per_second,
                 .frame_ms = v->frame_ms,
-                .geometry_ms = slot->stats.geometry_ms,
-                .raster_ms = slot->stats.raster_ms,
+                .geometry_ms = v->stats.geometry_ms,
+                .raster_ms = v->stats.raster_ms,
                 .window_width = v->window_width,
                 .window_height = v->window_height,
                 .render_scale = v->settings.render_scale,
@@ -577,39 +470,37 @@ static void draw_overlays(viewer *v, const frame_slot *slot)
                 .panel_open = v->panel_open,
                 .scene = &v->options->scene,
             };
-            luz_hud_draw(framebuffer, &hud);
+            luz_hud_draw(v->framebuffer, &hud);
         }
     }
     if (v->message_seconds_left > 0.0)
-        luz_hud_draw_message(framebuffer, v->message);
+        luz_hud_draw_message(v->framebuffer, v->message);
 }
 
-/* Shows a drawn frame: the screenshot if one was asked for (the scene
- * alone), the overlays, then one copy into the texture, which SDL scales to
- * the window. */
-static int show_frame(viewer *v, frame_slot *slot, luz_error *error)
+/* One frame: the scene as luz-render would draw it, the screenshot if one
+ * was asked for (the scene alone), the 2D layer, then one copy into the
+ * texture, which SDL scales to the window.
+ *
+ * Frames are drawn and shown in turn, not pipelined on a second thread:
+ * the renderer already keeps every core busy, and a render thread drawing
+ * frame k + 1 while frame k is shown measured slower under Xvfb, where
+ * showing a frame mostly waits for the X server's copy, which then has to
+ * compete with the renderer for a core. */
+static int draw_frame(viewer *v, luz_error *error)
 {
-    luz_framebuffer *framebuffer = slot->framebuffer;
-    if (slot->screenshot)
-        save_screenshot(v, framebuffer);
-    if (v->texture == NULL || v->texture_width != framebuffer->width ||
-        v->texture_height != framebuffer->height) {
-        if (v->texture != NULL)
-            SDL_DestroyTexture(v->texture);
-        /* SDL_PIXELFORMAT_RGBA32 is bytes R, G, B, A in memory whatever the
-         * machine's byte order: luz's own layout, so the upload is a copy. */
-        v->texture = SDL_CreateTexture(v->presenter, SDL_PIXELFORMAT_RGBA32,
-                                       SDL_TEXTUREACCESS_STREAMING, framebuffer->width,
-                                       framebuffer->height);
-        if (v->texture == NULL)
-            return luz_error_set(error, "cannot create a %dx%d texture: %s", framebuffer->width,
-                                 framebuffer->height, SDL_GetError());
-        v->texture_width = framebuffer->width;
-        v->texture_height = framebuffer->height;
-        v->layout = luz_panel_layout_for(framebuffer->width, framebuffer->height);
+    if (fit_framebuffer(v, error) != 0)
+        return -1;
+    float aspect = (float)v->framebuffer->width / (float)v->framebuffer->height;
+    if (luz_scene_build_frame(&v->options->scene, v->textures, aspect, &v->frame) != 0)
+        return luz_error_set(error, "out of memory building the frame");
+    if (luz_renderer_draw(v->renderer, &v->frame, v->framebuffer, &v->stats, error) != 0)
+        return -1;
+    if (v->screenshot_requested) {
+        v->screenshot_requested = false;
+        save_screenshot(v, v->framebuffer);
     }
-    draw_overlays(v, slot);
-    SDL_UpdateTexture(v->texture, NULL, framebuffer->colour, framebuffer->width * 4);
+    draw_overlays(v);
+    SDL_UpdateTexture(v->texture, NULL, v->framebuffer->colour, v->framebuffer->width * 4);
     SDL_RenderCopy(v->presenter, v->texture, NULL, NULL);
     SDL_RenderPresent(v->presenter);
     return 0;
@@ -617,7 +508,6 @@ static int show_frame(viewer *v, frame_slot *slot, luz_error *error)
 
 static int run(viewer *v, luz_error *error)
 {
-    int drawing = -1;   /* the slot on the render thread, -1 for none */
     v->running = true;
     while (v->running) {
         SDL_Event event;
@@ -644,20 +534,10 @@ static int run(viewer *v, luz_error *error)
             v->options->scene.time_seconds += seconds;
         v->message_seconds_left -= seconds;
 
-        /* Frame k is drawn: it goes on screen while frame k + 1, the scene
-         * as it is now, is drawn into the other slot. */
-        if (drawing >= 0) {
-            if (render_thread_wait(&v->drawer, error) != 0)
-                return -1;
-            v->shown = drawing;
-        }
-        drawing = v->shown < 0 ? 0 : 1 - v->shown;
-        if (start_frame(v, &v->slots[drawing], error) != 0)
-            return -1;
-        if (v->shown >= 0 && show_frame(v, &v->slots[v->shown], error) != 0)
+        if (draw_frame(v, error) != 0)
             return -1;
     }
-    return render_thread_wait(&v->drawer, error);
+    return 0;
 }
 
 /* ---- start-up ----------------------------------------------------------------------------------- */
@@ -705,7 +585,6 @@ int main(int argc, char **argv)
         .textures = &textures,
         .settings = {.render_scale = 1.0f},
         .hud_visible = true,
-        .shown = -1,
         .next_shot = 1,
         .next_scene = 1,
     };
@@ -738,18 +617,14 @@ int main(int argc, char **argv)
     status = EXIT_RUNTIME;
     v.start_camera = options.scene.camera;
     luz_panel_init(&v.panel);
-    v.renderer = luz_renderer_create(&(luz_renderer_desc){.thread_count = options.thread_count},
+    v.renderer = luz_renderer_create(&(luz_renderer_desc){.thread_count = options.thread_count,
+                                                          .reference = options.reference},
                                      &error);
     if (v.renderer == NULL)
         goto done;
-    for (int i = 0; i < 2; i++) {
-        v.slots[i].framebuffer = luz_framebuffer_create(options.width, options.height, &error);
-        if (v.slots[i].framebuffer == NULL)
-            goto done;
-    }
-    if (render_thread_start(&v.drawer, v.renderer, &error) != 0)
+    v.framebuffer = luz_framebuffer_create(options.width, options.height, &error);
+    if (v.framebuffer == NULL)
         goto done;
-    v.drawer_started = true;
     set_panel_open(&v, false);
     if (run(&v, &error) != 0)
         goto done;
@@ -760,13 +635,9 @@ int main(int argc, char **argv)
 done:
     if (status != EXIT_OK)
         luz_error_print("luz", error.message[0] ? error.message : "failed");
-    if (v.drawer_started)
-        render_thread_stop(&v.drawer);
-    for (int i = 0; i < 2; i++) {
-        luz_frame_free(&v.slots[i].frame);
-        if (v.slots[i].framebuffer != NULL)
-            luz_framebuffer_destroy(v.slots[i].framebuffer);
-    }
+    luz_frame_free(&v.frame);
+    if (v.framebuffer != NULL)
+        luz_framebuffer_destroy(v.framebuffer);
     if (v.renderer != NULL)
         luz_renderer_destroy(v.renderer);
     if (v.texture != NULL)
