@@ -370,6 +370,44 @@ static void test_seed_next(void **state)
     }
 }
 
+static void test_view_and_interpolation_keys_cycle(void **state)
+{
+    (void)state;
+    /* V visits every view once and comes back; Shift+V goes the other way. */
+    luz_view view = LUZ_VIEW_COLOR;
+    bool seen[LUZ_VIEW_COUNT] = {false};
+    for (int press = 0; press < LUZ_VIEW_COUNT; press++) {
+        assert_false(seen[view]);
+        seen[view] = true;
+        luz_view next = luz_view_next(view, false);
+        assert_int_equal(luz_view_next(next, true), view);
+        view = next;
+    }
+    assert_int_equal(view, LUZ_VIEW_COLOR);
+    assert_int_equal(luz_view_next(LUZ_VIEW_COLOR, true), LUZ_VIEW_TRIANGLES);
+    assert_int_equal(luz_interpolation_next(LUZ_INTERPOLATION_PERSPECTIVE),
+                     LUZ_INTERPOLATION_AFFINE);
+    assert_int_equal(luz_interpolation_next(LUZ_INTERPOLATION_AFFINE),
+                     LUZ_INTERPOLATION_PERSPECTIVE);
+}
+
+static void test_step_mode_adds_triangles_over_time(void **state)
+{
+    (void)state;
+    luz_step_mode step = {0};
+    assert_int_equal(luz_step_advance(&step, 0.1, 50), 0);   /* off: draw them all */
+    step.on = true;
+    assert_int_equal(luz_step_advance(&step, 0.0, 50), 1);   /* the first triangle */
+    assert_int_equal(luz_step_advance(&step, 1.0, 50), 1 + (int)LUZ_STEP_TRIANGLES_PER_SECOND);
+    /* After (50 - 1) / rate seconds every triangle is drawn, and stays so
+     * for the hold time; then it starts again from one. */
+    const double building = 49.0 / LUZ_STEP_TRIANGLES_PER_SECOND;
+    assert_int_equal(luz_step_advance(&step, building - 1.0 + 0.01, 50), 50);
+    assert_int_equal(luz_step_advance(&step, LUZ_STEP_HOLD_SECONDS - 0.02, 50), 50);
+    assert_int_equal(luz_step_advance(&step, 0.02, 50), 1);
+    assert_int_equal(luz_step_advance(&step, 0.5, 0), 0);     /* an empty frame */
+}
+
 static void test_help_lists_every_control(void **state)
 {
     (void)state;
@@ -407,6 +445,8 @@ int main(void)
         cmocka_unit_test(test_toggle_a_light_that_started_off),
         cmocka_unit_test(test_filter_cycles),
         cmocka_unit_test(test_seed_next),
+        cmocka_unit_test(test_view_and_interpolation_keys_cycle),
+        cmocka_unit_test(test_step_mode_adds_triangles_over_time),
         cmocka_unit_test(test_help_lists_every_control),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

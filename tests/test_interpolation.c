@@ -71,9 +71,10 @@ static int setup_floor(void **state)
     luz_clip_vertex b = floor_vertex(view_projection, 1, -1);
     luz_clip_vertex c = floor_vertex(view_projection, 1, -4);
     luz_clip_vertex d = floor_vertex(view_projection, -1, -4);
-    if (luz_setup_triangle(&a, &b, &c, SIZE, SIZE, 0, &fixture->triangles[0]) !=
+    const luz_interpolation perspective = LUZ_INTERPOLATION_PERSPECTIVE;
+    if (luz_setup_triangle(&a, &b, &c, SIZE, SIZE, 0, perspective, &fixture->triangles[0]) !=
             LUZ_SETUP_VISIBLE ||
-        luz_setup_triangle(&a, &c, &d, SIZE, SIZE, 0, &fixture->triangles[1]) !=
+        luz_setup_triangle(&a, &c, &d, SIZE, SIZE, 0, perspective, &fixture->triangles[1]) !=
             LUZ_SETUP_VISIBLE)
         return -1;
     for (int k = 0; k < 2; k++)

@@ -423,6 +423,12 @@ static void test_hud_and_help_draw_within_the_framebuffer(void **state)
                        .window_height = sizes[i][1], .render_scale = 1.0f, .threads = 2,
                        .scene = &scene};
         luz_hud_draw(framebuffer, &hud);
+        /* With the teaching lines too: a view's legend and the step mode. */
+        scene.view = LUZ_VIEW_OVERDRAW;
+        hud.step_shown = 12;
+        hud.step_total = 66;
+        luz_hud_draw(framebuffer, &hud);
+        scene.view = LUZ_VIEW_COLOR;
         luz_hud_draw_message(framebuffer, "wrote luz-shot-0001.png");
         luz_help_draw(framebuffer);
         luz_panel_layout layout = luz_panel_layout_for(sizes[i][0], sizes[i][1]);

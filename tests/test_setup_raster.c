@@ -59,7 +59,8 @@ static luz_setup_result set_up(window_point a, window_point b, window_point c, f
                                luz_triangle *triangle)
 {
     luz_clip_vertex va = vertex_at(a, z_ndc), vb = vertex_at(b, z_ndc), vc = vertex_at(c, z_ndc);
-    return luz_setup_triangle(&va, &vb, &vc, SIZE, SIZE, 0, triangle);
+    return luz_setup_triangle(&va, &vb, &vc, SIZE, SIZE, 0, LUZ_INTERPOLATION_PERSPECTIVE,
+                              triangle);
 }
 
 /* Adds 1 to hits[] at every pixel the triangle covers, found alone in a
@@ -298,7 +299,9 @@ static void test_depth_is_interpolated_linearly(void **state)
     luz_clip_vertex a = vertex_at(big_a, -1.0f), b = vertex_at(big_b, 0.0f);
     luz_clip_vertex c = vertex_at(big_c, 1.0f);
     luz_triangle triangle;
-    assert_int_equal(luz_setup_triangle(&a, &b, &c, SIZE, SIZE, 0, &triangle), LUZ_SETUP_VISIBLE);
+    assert_int_equal(luz_setup_triangle(&a, &b, &c, SIZE, SIZE, 0, LUZ_INTERPOLATION_PERSPECTIVE,
+                                        &triangle),
+                     LUZ_SETUP_VISIBLE);
     clear(framebuffer);
     luz_raster_triangle(&triangle, 7, framebuffer, 0, SIZE);
     assert_int_equal(framebuffer->visibility[5 * SIZE + 3], 7);
@@ -316,7 +319,9 @@ static void test_bands_match_one_pass(void **state)
     luz_clip_vertex b = vertex_at((window_point){4.1, 15.2}, 0.3f);
     luz_clip_vertex c = vertex_at((window_point){14.9, 6.6}, 0.8f);
     luz_triangle triangle;
-    assert_int_equal(luz_setup_triangle(&a, &b, &c, SIZE, SIZE, 0, &triangle), LUZ_SETUP_VISIBLE);
+    assert_int_equal(luz_setup_triangle(&a, &b, &c, SIZE, SIZE, 0, LUZ_INTERPOLATION_PERSPECTIVE,
+                                        &triangle),
+                     LUZ_SETUP_VISIBLE);
     clear(framebuffer);
     luz_raster_triangle(&triangle, 1, framebuffer, 0, SIZE);
     float depth[SIZE * SIZE];

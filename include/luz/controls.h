@@ -6,7 +6,9 @@
  * scene data (luz_camera, luz_lights), so the behaviour of every control is
  * tested without a window. The controls are those of SCENE.md (from the
  * report): motion per second, mouse look with the pitch clamped, the spot's
- * cone keys, plus the viewer's own light switches and filter key.
+ * cone keys, plus the viewer's own light switches and filter key, and the
+ * teaching controls: the pipeline's views, affine interpolation and the
+ * step mode.
  *
  * luz_controls_help lists every control of the viewer, in the order its H
  * overlay, `luz --help` and the README show them.
@@ -89,6 +91,33 @@ void luz_light_toggle(luz_lights *lights, luz_light_switches *switches, luz_term
 
 /* nearest -> bilinear -> trilinear -> nearest. */
 luz_filter luz_filter_next(luz_filter filter);
+
+/* ---- the teaching controls (README, "Guided tour") ------------------------------- */
+
+/* V / Shift+V: the next / previous --view (color, depth, normals, uv, mip,
+ * overdraw, bands, triangles, then color again). */
+luz_view luz_view_next(luz_view view, bool backwards);
+
+/* X: perspective-correct <-> affine interpolation. */
+luz_interpolation luz_interpolation_next(luz_interpolation interpolation);
+
+/* G: the step mode draws the frame triangle by triangle: it starts with
+ * the first triangle and adds LUZ_STEP_TRIANGLES_PER_SECOND, shows the
+ * whole frame for LUZ_STEP_HOLD_SECONDS and starts again. The viewer
+ * freezes the animation meanwhile, so the triangles keep their order. */
+#define LUZ_STEP_TRIANGLES_PER_SECOND 6.0
+#define LUZ_STEP_HOLD_SECONDS 2.0
+
+typedef struct luz_step_mode {
+    bool on;
+    double elapsed;      /* seconds since the first triangle */
+} luz_step_mode;
+
+/* Advances the step mode by `seconds` for a frame of `total` triangles
+ * (after clipping and culling) and returns how many to draw now, from 1 to
+ * total: the renderer's luz_uniforms.triangle_limit. Returns 0 (draw them
+ * all) when the mode is off or the frame has none. */
+uint32_t luz_step_advance(luz_step_mode *step, double seconds, uint64_t total);
 
 /* F5's new colour seed: the current one stirred with some entropy (the
  * viewer passes the clock) through SCENE.md's xorshift32, so that each press

@@ -7,6 +7,7 @@
  *   shade.h        the fragment shader: six light terms
  *   framebuffer.h  colour, depth and visibility buffers
  *   renderer.h     the threaded pipeline that draws a frame
+ *   view.h         the teaching views' palettes and legends (--view)
  *   image.h        PNG output that never leaves a partial file
  *   options.h      the command-line and scene-file options both programs share
  *   controls.h     the viewer's keys and mouse as functions on scene data
@@ -22,6 +23,7 @@
 #include "luz/shade.h"
 #include "luz/framebuffer.h"
 #include "luz/renderer.h"
+#include "luz/view.h"
 #include "luz/image.h"
 #include "luz/options.h"
 #include "luz/controls.h"

@@ -147,7 +147,10 @@ typedef struct luz_hud {
     int threads;
     bool paused;
     bool panel_open;
-    const luz_scene *scene;
+    uint32_t step_shown;      /* the step mode's triangles drawn, 0 when off */
+    uint64_t step_total;      /* and the frame's triangles */
+    const luz_scene *scene;   /* its view and interpolation are shown too, with
+                                 the view's legend (luz_view_legend) */
 } luz_hud;
 
 /* The HUD in the top-left corner. */

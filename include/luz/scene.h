@@ -95,6 +95,31 @@ typedef enum luz_filter {
 
 const char *luz_filter_name(luz_filter filter);    /* "nearest", ... */
 
+/* What the pipeline writes into the colour buffer: the shaded image, or a
+ * picture of one of its stages (src/pipeline/view.c draws them). Every view
+ * is drawn by the same pipeline, from the same triangles. */
+typedef enum luz_view {
+    LUZ_VIEW_COLOR,       /* the shaded image (the default) */
+    LUZ_VIEW_DEPTH,       /* the z-buffer, as eye distance on a log scale */
+    LUZ_VIEW_NORMALS,     /* world normal * 0.5 + 0.5 */
+    LUZ_VIEW_UV,          /* (fract(u), fract(v), 0) */
+    LUZ_VIEW_MIP,         /* the mip level the sampler read, one colour each */
+    LUZ_VIEW_OVERDRAW,    /* depth tests per pixel, as a heat map */
+    LUZ_VIEW_BANDS,       /* each band tinted by the thread that drew it */
+    LUZ_VIEW_TRIANGLES,   /* each triangle in its own colour, with its edges */
+    LUZ_VIEW_COUNT
+} luz_view;
+
+const char *luz_view_name(luz_view view);          /* "color", "depth", ... */
+
+/* How varyings are interpolated across a triangle on the screen. */
+typedef enum luz_interpolation {
+    LUZ_INTERPOLATION_PERSPECTIVE,   /* perspective-correct (the default) */
+    LUZ_INTERPOLATION_AFFINE,        /* linear in screen space: textures swim */
+} luz_interpolation;
+
+const char *luz_interpolation_name(luz_interpolation interpolation);  /* "perspective", ... */
+
 /* ---- the scene ---------------------------------------------------------- */
 
 #define LUZ_TEXTURE_BY_INDEX (-1)
@@ -119,6 +144,8 @@ typedef struct luz_scene {
     luz_camera camera;
     luz_lights lights;
     luz_filter filter;
+    luz_view view;                   /* LUZ_VIEW_COLOR */
+    luz_interpolation interpolation; /* LUZ_INTERPOLATION_PERSPECTIVE */
 } luz_scene;
 
 luz_scene luz_scene_defaults(void);
@@ -156,6 +183,13 @@ typedef struct luz_uniforms {
     float spot_cos_outer;
     luz_filter filter;
     luz_vec3 clear_colour;
+    luz_view show;                     /* what the colour buffer shows (the
+                                          scene's view; `view` is the matrix) */
+    luz_interpolation interpolation;   /* read by setup.c */
+    uint32_t triangle_limit;           /* 0: rasterise every triangle; N: only
+                                          the first N that survive clipping
+                                          and culling, in submission order
+                                          (the viewer's step mode) */
 } luz_uniforms;
 
 typedef struct luz_frame {

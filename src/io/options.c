@@ -32,6 +32,7 @@
 
 #include "luz/framebuffer.h"
 #include "luz/renderer.h"
+#include "luz/view.h"
 #include "io/option_text.h"
 
 #if !defined(LUZ_SOURCE_TEXTURES) || !defined(LUZ_INSTALLED_TEXTURES) || !defined(LUZ_BUILD_ROOT)
@@ -52,6 +53,8 @@ typedef enum option_kind {
     OPTION_VEC3,      /* x,y,z */
     OPTION_LIGHT,     /* r,g,b,a, each in [0, 1] */
     OPTION_FILTER,    /* nearest | bilinear | trilinear */
+    OPTION_VIEW,      /* color | depth | normals | ... (luz/view.h) */
+    OPTION_INTERP,    /* perspective | affine */
     OPTION_ONLY,      /* a comma-separated list of light terms */
     OPTION_PATH,      /* a string the options own */
     OPTION_SCENE,     /* a scene file, read at once */
@@ -126,6 +129,14 @@ static const option_spec option_table[] = {
      .default_text = "all six"},
     {.name = "filter", .kind = OPTION_FILTER, .in_scene_file = true,
      .syntax = "nearest|bilinear|trilinear", .summary = "texture filter"},
+    {.name = "view", .kind = OPTION_VIEW, .in_scene_file = true,
+     .syntax = "NAME",
+     .summary = "what the image shows: color, or a picture of a pipeline stage: depth, "
+                "normals, uv, mip, overdraw, bands, triangles (README, Guided tour)"},
+    {.name = "interp", .kind = OPTION_INTERP, .in_scene_file = true,
+     .syntax = "perspective|affine",
+     .summary = "interpolation of texture coordinates and the other varyings: "
+                "perspective-correct, or affine in screen space (textures swim)"},
     {.name = "textures", .kind = OPTION_PATH, .offset = FIELD(textures_directory),
      .in_scene_file = true, .syntax = "DIR|none",
      .summary = "directory of cube images (.png .jpg .jpeg .bmp .tga); none: all white",
@@ -360,6 +371,32 @@ static int set_vector(luz_options *options, const option_spec *spec, const char 
     return 0;
 }
 
+static int set_view(luz_options *options, const char *value, const char *where,
+                    luz_error *error)
+{
+    if (luz_view_from_name(value, &options->scene.view))
+        return 0;
+    return luz_error_set(error,
+                         "%s: expected color, depth, normals, uv, mip, overdraw, bands or "
+                         "triangles, got '%s'",
+                         where, option_quote(value).text);
+}
+
+static int set_interpolation(luz_options *options, const char *value, const char *where,
+                             luz_error *error)
+{
+    static const luz_interpolation modes[] = {LUZ_INTERPOLATION_PERSPECTIVE,
+                                              LUZ_INTERPOLATION_AFFINE};
+    for (size_t i = 0; i < sizeof modes / sizeof modes[0]; i++) {
+        if (strcmp(value, luz_interpolation_name(modes[i])) == 0) {
+            options->scene.interpolation = modes[i];
+            return 0;
+        }
+    }
+    return luz_error_set(error, "%s: expected perspective or affine, got '%s'", where,
+                         option_quote(value).text);
+}
+
 static int set_filter(luz_options *options, const char *value, const char *where,
                       luz_error *error)
 {
@@ -461,6 +498,10 @@ int luz_options_set(luz_options *options, const char *name, const char *value,
         return set_vector(options, spec, value, where, error);
     case OPTION_FILTER:
         return set_filter(options, value, where, error);
+    case OPTION_VIEW:
+        return set_view(options, value, where, error);
+    case OPTION_INTERP:
+        return set_interpolation(options, value, where, error);
     case OPTION_ONLY:
         return set_only(options, value, where, error);
     case OPTION_PATH:
@@ -542,6 +583,13 @@ int luz_options_format(const luz_options *options, const char *name, char *buffe
     }
     case OPTION_FILTER:
         written = snprintf(buffer, size, "%s", luz_filter_name(options->scene.filter));
+        break;
+    case OPTION_VIEW:
+        written = snprintf(buffer, size, "%s", luz_view_name(options->scene.view));
+        break;
+    case OPTION_INTERP:
+        written = snprintf(buffer, size, "%s",
+                           luz_interpolation_name(options->scene.interpolation));
         break;
     case OPTION_ONLY: {
         if (options->only_terms == 0)

@@ -362,6 +362,12 @@ void luz_options_write_scene(const luz_options *options, FILE *out)
         if (luz_options_format(options, keys[i], value, sizeof value) == 0)
             fprintf(out, "%s = %s\n", keys[i], value);
     }
+    /* The teaching settings, only when they are not the defaults: a view
+     * saved while looking at the depth buffer renders the depth buffer. */
+    if (options->scene.view != LUZ_VIEW_COLOR)
+        fprintf(out, "view = %s\n", luz_view_name(options->scene.view));
+    if (options->scene.interpolation != LUZ_INTERPOLATION_PERSPECTIVE)
+        fprintf(out, "interp = %s\n", luz_interpolation_name(options->scene.interpolation));
     for (int i = 0; i < options->scene.custom_cube_count; i++) {
         const luz_cube *cube = &options->cubes[i];
         char x[32], y[32], z[32];

@@ -14,7 +14,9 @@
  *   2. Bands, per band of rows (one job each):
  *        clear           the band's colour, depth and visibility
  *        raster + depth  every triangle touching the band, in id order
- *        fragment        each visible pixel shaded once
+ *        fragment        each visible pixel shaded once (or, for a
+ *                        --view other than color, a picture of a stage:
+ *                        view.c)
  *
  * A band touches only its own rows and draws triangles in submission order,
  * so the image is the same byte for byte whichever thread draws which band
@@ -42,6 +44,7 @@ typedef struct triangle_list {
     luz_clip_vertex *vertices;      /* vertex-stage output, reused per draw */
     int vertex_capacity;
     bool out_of_memory;
+    luz_interpolation interpolation;   /* the frame's, for setup */
     uint64_t submitted, clipped, culled;
 } triangle_list;
 
@@ -60,6 +63,9 @@ struct luz_renderer {
     int band_capacity;
     bool reference;                 /* fragment.c's shading, not the packets */
     luz_packet_isa packet_isa;
+    uint32_t *overdraw;             /* depth tests per pixel, for the overdraw
+                                       view only; allocated when first asked */
+    size_t overdraw_capacity;
 };
 
 /* What the jobs of one frame share; read-only for the jobs except their
@@ -72,6 +78,7 @@ typedef struct frame_job {
     int chunk_count;
     int draws_per_chunk;
     size_t triangle_count;
+    uint32_t *overdraw;             /* NULL unless the overdraw view */
 } frame_job;
 
 static double now_ms(void)
@@ -101,7 +108,8 @@ static void set_up(triangle_list *list, const luz_clip_vertex *a, const luz_clip
 {
     luz_triangle *out = &list->triangles[list->count];
     luz_setup_result result = luz_setup_triangle(a, b, c, framebuffer->width,
-                                                 framebuffer->height, draw_index, out);
+                                                 framebuffer->height, draw_index,
+                                                 list->interpolation, out);
     if (result == LUZ_SETUP_VISIBLE) list->count++;
     else if (result == LUZ_SETUP_CULLED) list->culled++;
 }
@@ -171,7 +179,6 @@ static void geometry_job(void *context, int chunk_index, int worker_index)
 
 static void band_job(void *context, int band_index, int worker_index)
 {
-    (void)worker_index;
     frame_job *job = context;
     luz_framebuffer *framebuffer = job->framebuffer;
     const luz_triangle **by_id = job->renderer->by_id;
@@ -184,18 +191,34 @@ static void band_job(void *context, int band_index, int worker_index)
     luz_framebuffer_clear_rows(framebuffer, first_row, end_row,
                                job->frame->uniforms.clear_colour);
 
+    /* The overdraw view counts every depth test of the band's pixels. */
+    uint32_t *overdraw = job->overdraw;
+    if (overdraw)
+        memset(overdraw + (size_t)first_row * framebuffer->width, 0,
+               (size_t)(end_row - first_row) * framebuffer->width * sizeof *overdraw);
+
     /* Raster and depth test, in submission order. */
     uint64_t tested = 0;
     for (size_t id = 1; id <= job->triangle_count; id++) {
         const luz_triangle *triangle = by_id[id];
         if (triangle->max_y < first_row || triangle->min_y >= end_row) continue;
-        tested += luz_raster_triangle(triangle, (uint32_t)id, framebuffer, first_row, end_row);
+        if (overdraw)
+            tested += luz_raster_triangle_counting(triangle, (uint32_t)id, framebuffer,
+                                                   first_row, end_row, overdraw);
+        else
+            tested += luz_raster_triangle(triangle, (uint32_t)id, framebuffer, first_row,
+                                          end_row);
     }
 
     /* Fragment stage: shade each visible pixel once, one pixel at a time
      * (the reference, fragment.c) or a packet of them at a time (the same
-     * equations as SIMD vectors, fragment_packet.c). */
-    if (job->renderer->reference)
+     * equations as SIMD vectors, fragment_packet.c). The teaching views
+     * draw a picture of a stage instead, with the reference (view.c). */
+    if (job->frame->uniforms.show != LUZ_VIEW_COLOR)
+        counters->fragments_shaded = luz_view_shade_rows(job->frame, by_id, framebuffer,
+                                                         first_row, end_row, overdraw,
+                                                         worker_index);
+    else if (job->renderer->reference)
         counters->fragments_shaded = luz_fragment_shade_rows(job->frame, by_id, framebuffer,
                                                              first_row, end_row);
     else
@@ -253,6 +276,7 @@ void luz_renderer_destroy(luz_renderer *renderer)
     free(renderer->chunks);
     free(renderer->by_id);
     free(renderer->bands);
+    free(renderer->overdraw);
     free(renderer);
 }
 
@@ -288,6 +312,7 @@ int luz_renderer_draw(luz_renderer *renderer, const luz_frame *frame,
         list->count = 0;
         list->out_of_memory = false;
         list->submitted = list->clipped = list->culled = 0;
+        list->interpolation = frame->uniforms.interpolation;
     }
     luz_thread_pool_run(renderer->pool, job.chunk_count, geometry_job, &job);
 
@@ -311,7 +336,22 @@ int luz_renderer_draw(luz_renderer *renderer, const luz_frame *frame,
         for (size_t k = 0; k < renderer->chunks[c].count; k++)
             renderer->by_id[id++] = &renderer->chunks[c].triangles[k];
     job.triangle_count = total;
+    /* The step mode rasterises only the first triangles. */
+    if (frame->uniforms.triangle_limit != 0 && frame->uniforms.triangle_limit < total)
+        job.triangle_count = frame->uniforms.triangle_limit;
     const double geometry_end = now_ms();
+
+    /* The overdraw view's counters, one per pixel. */
+    if (frame->uniforms.show == LUZ_VIEW_OVERDRAW) {
+        size_t pixels = (size_t)framebuffer->width * (size_t)framebuffer->height;
+        if (pixels > renderer->overdraw_capacity) {
+            uint32_t *overdraw = realloc(renderer->overdraw, pixels * sizeof *overdraw);
+            if (!overdraw) return luz_error_set(error, "out of memory for the overdraw view");
+            renderer->overdraw = overdraw;
+            renderer->overdraw_capacity = pixels;
+        }
+        job.overdraw = renderer->overdraw;
+    }
 
     /* Phase 2: bands of rows. */
     int band_count = (framebuffer->height + BAND_HEIGHT - 1) / BAND_HEIGHT;

@@ -9,6 +9,7 @@
  *     -> raster.c    depth + visibility per pixel        who is nearest
  *     -> fragment.c  colour per visible pixel            interpolate, sample, shade
  *                      (texture.c samples, shade.c lights)
+ *     or view.c      a picture of a stage (--view)       depth, normals, uv, ...
  *
  * frame.c runs them in that order, and bands.c spreads the work over
  * threads. Each stage is a function of its inputs: no globals.
@@ -104,10 +105,13 @@ typedef enum luz_setup_result {
 } luz_setup_result;
 
 /* Projects, snaps and sets up triangle (v0, v1, v2) for a width x height
- * viewport. */
+ * viewport. With LUZ_INTERPOLATION_AFFINE the varying planes hold the
+ * varyings themselves and inverse_w is the constant 1 (the teaching
+ * toggle); the fragment stages read both kinds the same way. */
 luz_setup_result luz_setup_triangle(const luz_clip_vertex *v0, const luz_clip_vertex *v1,
                                     const luz_clip_vertex *v2, int width, int height,
-                                    uint32_t draw_index, luz_triangle *out);
+                                    uint32_t draw_index, luz_interpolation interpolation,
+                                    luz_triangle *out);
 
 /* ---- rasterisation and depth test -------------------------------------- */
 
@@ -117,6 +121,12 @@ luz_setup_result luz_setup_triangle(const luz_clip_vertex *v0, const luz_clip_ve
  * of depth tests made. */
 uint64_t luz_raster_triangle(const luz_triangle *triangle, uint32_t triangle_id,
                              luz_framebuffer *framebuffer, int first_row, int end_row);
+
+/* The same, and adds 1 to overdraw[y * width + x] for every depth test
+ * (the overdraw view); the plain function above does no counting. */
+uint64_t luz_raster_triangle_counting(const luz_triangle *triangle, uint32_t triangle_id,
+                                      luz_framebuffer *framebuffer, int first_row,
+                                      int end_row, uint32_t *overdraw);
 
 /* ---- fragment stage ---------------------------------------------------- */
 
@@ -160,6 +170,18 @@ typedef struct luz_fragment {
 } luz_fragment;
 
 void luz_fragment_interpolate(const luz_triangle *triangle, int x, int y, luz_fragment *out);
+
+/* ---- views (view.c) ----------------------------------------------------- */
+
+/* Colours rows [first_row, end_row) as frame->uniforms.view asks (see
+ * luz/view.h), from what the raster stage left there: the visibility and
+ * depth buffers, and overdraw (depth tests per pixel, counted only for the
+ * overdraw view; NULL otherwise). worker_index is the thread drawing the
+ * band (the bands view). The colour view is fragment.c's image. Returns
+ * the number of visible pixels. */
+uint64_t luz_view_shade_rows(const luz_frame *frame, const luz_triangle *const *by_id,
+                             luz_framebuffer *framebuffer, int first_row, int end_row,
+                             const uint32_t *overdraw, int worker_index);
 
 /* ---- the renderer (frame.c) --------------------------------------------- */
 

@@ -43,8 +43,13 @@ static void clip_span_to_edge(int64_t e, int64_t s, int64_t *first, int64_t *las
     }
 }
 
-uint64_t luz_raster_triangle(const luz_triangle *triangle, uint32_t triangle_id,
-                             luz_framebuffer *framebuffer, int first_row, int end_row)
+/* The rasteriser itself. overdraw, when not NULL, counts the depth tests of
+ * every pixel (the overdraw view). The two public functions below call it
+ * with NULL or a buffer; inlined into each (always_inline, GCC and clang),
+ * the plain one is compiled without the counting at all. */
+static inline __attribute__((always_inline)) uint64_t raster_triangle(const luz_triangle *triangle, uint32_t triangle_id,
+                                       luz_framebuffer *framebuffer, int first_row,
+                                       int end_row, uint32_t *overdraw)
 {
     int y_begin = triangle->min_y > first_row ? triangle->min_y : first_row;
     int y_end = triangle->max_y + 1 < end_row ? triangle->max_y + 1 : end_row;
@@ -78,6 +83,23 @@ uint64_t luz_raster_triangle(const luz_triangle *triangle, uint32_t triangle_id,
             }
         }
         tests += (uint64_t)(last - first + 1);
+        if (overdraw != NULL) {
+            uint32_t *count_row = overdraw + (size_t)y * width;
+            for (int x = (int)first; x <= (int)last; x++) count_row[x]++;
+        }
     }
     return tests;
+}
+
+uint64_t luz_raster_triangle(const luz_triangle *triangle, uint32_t triangle_id,
+                             luz_framebuffer *framebuffer, int first_row, int end_row)
+{
+    return raster_triangle(triangle, triangle_id, framebuffer, first_row, end_row, NULL);
+}
+
+uint64_t luz_raster_triangle_counting(const luz_triangle *triangle, uint32_t triangle_id,
+                                      luz_framebuffer *framebuffer, int first_row,
+                                      int end_row, uint32_t *overdraw)
+{
+    return raster_triangle(triangle, triangle_id, framebuffer, first_row, end_row, overdraw);
 }

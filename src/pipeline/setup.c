@@ -5,7 +5,8 @@
  * In:  three clip-space vertices (already clipped, so w > 0).
  * Out: a luz_triangle: the pixel bounding box, three fixed-point edge
  *      functions with the fill rule folded in, and screen-space planes for
- *      depth, 1/w and every varying/w.
+ *      depth, 1/w and every varying/w (for affine interpolation: 1 and
+ *      every varying).
  *
  * Steps, as in OpenGL 4.6 section 13.8 (coordinate transformations) and
  * Fabian Giesen's "Triangle rasterization in practice":
@@ -32,6 +33,11 @@
  *    varying/w by the interpolated 1/w gives the perspective-correct
  *    value (Heckbert and Moreton, "Interpolation for polygon texture
  *    mapping and shading").
+ *    LUZ_INTERPOLATION_AFFINE, the teaching toggle (--interp affine), solves
+ *    the planes of the varyings themselves and makes the 1/w plane the
+ *    constant 1, so the same division in the fragment stage returns the
+ *    varying interpolated linearly in screen space, as early game consoles
+ *    did: textures bend along the diagonal and swim as the view turns.
  *
  * Fixed-point range, the proof that int64 cannot overflow: the guard band
  * keeps |x_ndc|, |y_ndc| <= 4, so -1.5 W <= x_win <= 2.5 W with W <=
@@ -104,7 +110,8 @@ static luz_plane make_plane(const double x[3], const double y[3], double inverse
 
 luz_setup_result luz_setup_triangle(const luz_clip_vertex *v0, const luz_clip_vertex *v1,
                                     const luz_clip_vertex *v2, int width, int height,
-                                    uint32_t draw_index, luz_triangle *out)
+                                    uint32_t draw_index, luz_interpolation interpolation,
+                                    luz_triangle *out)
 {
     const luz_clip_vertex *vertex[3] = {v0, v1, v2};
     int64_t fixed_x[3], fixed_y[3];
@@ -170,13 +177,17 @@ luz_setup_result luz_setup_triangle(const luz_clip_vertex *v0, const luz_clip_ve
     out->reference_x = (float)rx;
     out->reference_y = (float)ry;
     out->depth = make_plane(x, y, inverse_determinant, rx, ry, depth[0], depth[1], depth[2]);
+    /* The weight each vertex's varyings are divided by: 1/w for
+     * perspective-correct interpolation, 1 for affine. */
+    double weight[3] = {inverse_w[0], inverse_w[1], inverse_w[2]};
+    if (interpolation == LUZ_INTERPOLATION_AFFINE) weight[0] = weight[1] = weight[2] = 1.0;
     out->inverse_w = make_plane(x, y, inverse_determinant, rx, ry,
-                                inverse_w[0], inverse_w[1], inverse_w[2]);
+                                weight[0], weight[1], weight[2]);
     for (int i = 0; i < LUZ_VARYING_COUNT; i++) {
         out->varyings[i] = make_plane(x, y, inverse_determinant, rx, ry,
-                                      v0->varyings[i] * inverse_w[0],
-                                      v1->varyings[i] * inverse_w[1],
-                                      v2->varyings[i] * inverse_w[2]);
+                                      v0->varyings[i] * weight[0],
+                                      v1->varyings[i] * weight[1],
+                                      v2->varyings[i] * weight[2]);
     }
     out->draw_index = draw_index;
     return LUZ_SETUP_VISIBLE;

@@ -200,7 +200,12 @@ static int bench(render_context *context, luz_renderer *renderer, luz_error *err
         printf("frames=%d size=%dx%d threads=%d cubes=%d filter=%s fragment=%s ", count,
                options->width, options->height, threads, cubes,
                luz_filter_name(options->scene.filter),
-               options->reference ? "reference" : "packet");
+               options->reference || options->scene.view != LUZ_VIEW_COLOR ? "reference"
+                                                                            : "packet");
+        if (options->scene.view != LUZ_VIEW_COLOR)
+            printf("view=%s ", luz_view_name(options->scene.view));
+        if (options->scene.interpolation != LUZ_INTERPOLATION_PERSPECTIVE)
+            printf("interp=%s ", luz_interpolation_name(options->scene.interpolation));
         printf("median_ms=%.3f min_ms=%.3f fps=%.2f cpu_ms=%.3f geometry_ms=%.3f raster_ms=%.3f",
                median_ms, min_ms, median_ms > 0.0 ? 1000.0 / median_ms : 0.0,
                median(samples.cpu_ms, count), median(samples.geometry_ms, count),

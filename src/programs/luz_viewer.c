@@ -170,6 +170,9 @@ typedef struct viewer {
     bool hud_visible;
     bool help_visible;
     bool screenshot_requested;
+    luz_step_mode step;              /* G: the frame triangle by triangle */
+    bool paused_before_step;         /* the step mode freezes the animation */
+    uint32_t step_limit;             /* triangles to draw now, 0 for all */
 
     SDL_Window *window;
     SDL_Renderer *presenter;
@@ -320,6 +323,20 @@ static void handle_key(viewer *v, const SDL_KeyboardEvent *key)
     case SDLK_c: luz_camera_reset(&scene->camera, &v->start_camera); break;
     case SDLK_F5: scene->seed = luz_seed_next(scene->seed, (uint32_t)SDL_GetPerformanceCounter()); break;
     case SDLK_f: scene->filter = luz_filter_next(scene->filter); break;
+    case SDLK_v: scene->view = luz_view_next(scene->view, shift); break;
+    case SDLK_x: scene->interpolation = luz_interpolation_next(scene->interpolation); break;
+    case SDLK_g:
+        /* The step mode freezes the animation, so the triangles keep their
+         * order while they are drawn one by one; leaving it restores the
+         * animation as it was. */
+        v->step = (luz_step_mode){.on = !v->step.on};
+        if (v->step.on) {
+            v->paused_before_step = v->paused;
+            v->paused = true;
+        } else {
+            v->paused = v->paused_before_step;
+        }
+        break;
     case SDLK_t: v->paused = !v->paused; break;
     case SDLK_i: v->hud_visible = !v->hud_visible; break;
     case SDLK_h: v->help_visible = !v->help_visible; break;
@@ -468,6 +485,8 @@ static void draw_overlays(viewer *v)
                 .threads = luz_renderer_thread_count(v->renderer),
                 .paused = v->paused,
                 .panel_open = v->panel_open,
+                .step_shown = v->step_limit,
+                .step_total = v->stats.triangles_rasterised,
                 .scene = &v->options->scene,
             };
             luz_hud_draw(v->framebuffer, &hud);
@@ -493,6 +512,7 @@ static int draw_frame(viewer *v, luz_error *error)
     float aspect = (float)v->framebuffer->width / (float)v->framebuffer->height;
     if (luz_scene_build_frame(&v->options->scene, v->textures, aspect, &v->frame) != 0)
         return luz_error_set(error, "out of memory building the frame");
+    v->frame.uniforms.triangle_limit = v->step_limit;
     if (luz_renderer_draw(v->renderer, &v->frame, v->framebuffer, &v->stats, error) != 0)
         return -1;
     if (v->screenshot_requested) {
@@ -532,6 +552,9 @@ static int run(viewer *v, luz_error *error)
         luz_camera_move(&v->options->scene.camera, held_motion(v), (float)seconds);
         if (!v->paused)
             v->options->scene.time_seconds += seconds;
+        /* The step mode's count grows with time; the frame's triangles
+         * are the last frame's (the scene is frozen meanwhile). */
+        v->step_limit = luz_step_advance(&v->step, seconds, v->stats.triangles_rasterised);
         v->message_seconds_left -= seconds;
 
         if (draw_frame(v, error) != 0)

@@ -43,6 +43,8 @@ luz_scene luz_scene_defaults(void)
     scene.lights.spot_outer_degrees = 17.5f;
     scene.lights.spot_reach = 10.0f;
     scene.filter = LUZ_FILTER_TRILINEAR;
+    scene.view = LUZ_VIEW_COLOR;
+    scene.interpolation = LUZ_INTERPOLATION_PERSPECTIVE;
     return scene;
 }
 
@@ -82,6 +84,23 @@ const char *luz_filter_name(luz_filter filter)
     case LUZ_FILTER_NEAREST: return "nearest";
     case LUZ_FILTER_BILINEAR: return "bilinear";
     case LUZ_FILTER_TRILINEAR: return "trilinear";
+    }
+    return "unknown";
+}
+
+const char *luz_view_name(luz_view view)
+{
+    static const char *const names[LUZ_VIEW_COUNT] = {
+        "color", "depth", "normals", "uv", "mip", "overdraw", "bands", "triangles",
+    };
+    return (unsigned)view < LUZ_VIEW_COUNT ? names[view] : "unknown";
+}
+
+const char *luz_interpolation_name(luz_interpolation interpolation)
+{
+    switch (interpolation) {
+    case LUZ_INTERPOLATION_PERSPECTIVE: return "perspective";
+    case LUZ_INTERPOLATION_AFFINE: return "affine";
     }
     return "unknown";
 }
@@ -169,6 +188,8 @@ luz_uniforms luz_scene_uniforms(const luz_scene *scene, float aspect)
     uniforms.spot_cos_outer = (float)cos(scene->lights.spot_outer_degrees * (LUZ_PI / 180.0));
     uniforms.filter = scene->filter;
     uniforms.clear_colour = (luz_vec3){0.1f, 0.1f, 0.1f};
+    uniforms.show = scene->view;
+    uniforms.interpolation = scene->interpolation;
     return uniforms;
 }
 

@@ -117,6 +117,33 @@ luz_filter luz_filter_next(luz_filter filter)
     return LUZ_FILTER_NEAREST;
 }
 
+luz_view luz_view_next(luz_view view, bool backwards)
+{
+    int next = (int)view + (backwards ? LUZ_VIEW_COUNT - 1 : 1);
+    return (luz_view)(next % LUZ_VIEW_COUNT);
+}
+
+luz_interpolation luz_interpolation_next(luz_interpolation interpolation)
+{
+    return interpolation == LUZ_INTERPOLATION_PERSPECTIVE ? LUZ_INTERPOLATION_AFFINE
+                                                          : LUZ_INTERPOLATION_PERSPECTIVE;
+}
+
+uint32_t luz_step_advance(luz_step_mode *step, double seconds, uint64_t total)
+{
+    if (!step->on || total == 0)
+        return 0;
+    step->elapsed += seconds;
+    /* One cycle: the triangles one by one, then the whole frame held. */
+    const double building = (double)(total - 1) / LUZ_STEP_TRIANGLES_PER_SECOND;
+    if (step->elapsed >= building + LUZ_STEP_HOLD_SECONDS)
+        step->elapsed = 0.0;
+    double shown = 1.0 + step->elapsed * LUZ_STEP_TRIANGLES_PER_SECOND;
+    if (shown >= (double)total || shown >= (double)UINT32_MAX)
+        return total < UINT32_MAX ? (uint32_t)total : UINT32_MAX;
+    return (uint32_t)shown;
+}
+
 uint32_t luz_seed_next(uint32_t seed, uint32_t entropy)
 {
     uint32_t x = seed ^ entropy;
@@ -149,6 +176,9 @@ const luz_control_help luz_controls_help[] = {
     {"Left / Right (panel)", "change it; with Shift, in fine steps"},
     {"Click, drag (panel)", "set a slider; click a light's name to switch it"},
     {"F", "texture filter: nearest, bilinear, trilinear"},
+    {"V / Shift+V", "next / previous view of the pipeline (its legend in the HUD)"},
+    {"X", "interpolation: perspective-correct or affine"},
+    {"G", "step mode: draw the frame triangle by triangle, slowly"},
     {"T", "pause / resume the animation"},
     {"I", "HUD on / off"},
     {"H", "this help on / off"},

@@ -17,6 +17,7 @@
  * the spot.
  */
 #include "luz/panel.h"
+#include "luz/view.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -386,10 +387,10 @@ void luz_hud_draw_message(luz_framebuffer *framebuffer, const char *message)
 
 void luz_hud_draw(luz_framebuffer *framebuffer, const luz_hud *hud)
 {
-    enum { LINES = 7 };
+    enum { MAX_LINES = 10 };
     const luz_scene *scene = hud->scene;
     const luz_camera *camera = &scene->camera;
-    char lines[LINES][160];
+    char lines[MAX_LINES][160];
     snprintf(lines[0], sizeof lines[0], "%.1f fps  %.1f ms/frame", hud->frames_per_second,
              hud->frame_ms);
     snprintf(lines[1], sizeof lines[1], "geometry %.1f ms  raster+shade %.1f ms",
@@ -407,33 +408,49 @@ void luz_hud_draw(luz_framebuffer *framebuffer, const luz_hud *hud)
     snprintf(lines[4], sizeof lines[4], "time %.2f s%s  filter %s  seed %lu", scene->time_seconds,
              hud->paused ? " (paused)" : "", luz_filter_name(scene->filter),
              (unsigned long)scene->seed);
-    snprintf(lines[5], sizeof lines[5], "lights");
-    snprintf(lines[6], sizeof lines[6], "H help  I HUD  Tab %s", hud->panel_open ? "fly" : "panel");
+    /* The teaching controls: the view (V) with its legend, the
+     * interpolation (X) and the step mode (G). */
+    int count = 5;
+    snprintf(lines[count++], sizeof lines[0], "view %s (V)  interp %s (X)",
+             luz_view_name(scene->view), luz_interpolation_name(scene->interpolation));
+    if (scene->view != LUZ_VIEW_COLOR)
+        snprintf(lines[count++], sizeof lines[0], "%s", luz_view_legend(scene->view));
+    if (hud->step_shown > 0)
+        snprintf(lines[count++], sizeof lines[0], "step (G): %lu of %llu triangles",
+                 (unsigned long)hud->step_shown, (unsigned long long)hud->step_total);
+    const int lights_line = count;
+    snprintf(lines[count++], sizeof lines[0], "lights");
+    snprintf(lines[count++], sizeof lines[0], "H help  I HUD  Tab %s",
+             hud->panel_open ? "fly" : "panel");
+    const int line_count = count;
 
     /* The lights line is drawn word by word: the names of the lights that
      * are on in full colour, the others dimmed. */
     char light_names[LUZ_TERM_COUNT][24];
     int s = hud_scale(framebuffer);
-    int width = luz_overlay_text_width(lines[5], s);
+    int width = luz_overlay_text_width(lines[lights_line], s);
     for (int term = 0; term < LUZ_TERM_COUNT; term++) {
         snprintf(light_names[term], sizeof light_names[term], "  %d %s", term + 1,
                  luz_term_name((luz_term)term));
         width += luz_overlay_text_width(light_names[term], s);
     }
-    for (int i = 0; i < LINES; i++) {
+    for (int i = 0; i < line_count; i++) {
         int line_width = luz_overlay_text_width(lines[i], s);
         if (line_width > width)
             width = line_width;
     }
 
     int line = ROW * s;
-    luz_rect box = {MARGIN * s, MARGIN * s, width + 2 * PAD * s, LINES * line + 2 * PAD * s};
+    luz_rect box = {MARGIN * s, MARGIN * s, width + 2 * PAD * s,
+                    line_count * line + 2 * PAD * s};
     luz_overlay_fill(framebuffer, box, box_colour);
     int x = box.x + PAD * s, y = box.y + PAD * s + s;
-    for (int i = 0; i < LINES; i++, y += line) {
-        luz_rgba colour = i == 0 ? accent_colour : i == LINES - 1 ? dim_text_colour : text_colour;
+    for (int i = 0; i < line_count; i++, y += line) {
+        luz_rgba colour = i == 0                ? accent_colour
+                          : i == line_count - 1 ? dim_text_colour
+                                                : text_colour;
         int pen = x + luz_overlay_text(framebuffer, x, y, s, lines[i], colour);
-        if (i != 5)
+        if (i != lights_line)
             continue;
         for (int term = 0; term < LUZ_TERM_COUNT; term++)
             pen += luz_overlay_text(framebuffer, pen, y, s, light_names[term],
