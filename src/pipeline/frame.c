@@ -9,11 +9,12 @@
  *        setup           each clipped triangle to edges and planes; back
  *                        faces culled
  *      Chunks keep the submission order, and triangles get ids 1, 2, ... in
- *      that order.
+ *      that order. Each triangle is then binned to the bands of rows its
+ *      bounding box touches, still in id order.
  *
  *   2. Bands, per band of rows (one job each):
  *        clear           the band's colour, depth and visibility
- *        raster + depth  every triangle touching the band, in id order
+ *        raster + depth  the band's triangles, in id order
  *        fragment        each visible pixel shaded once (or, for a
  *                        --view other than color, a picture of a stage:
  *                        view.c)
@@ -31,8 +32,8 @@
 #include "luz/renderer.h"
 
 /* Rows per band: small enough to balance two or more threads and keep a
- * band's depth and visibility rows in cache, large enough that walking the
- * triangle list once per band stays cheap. */
+ * band's depth and visibility rows in cache, large enough that a triangle
+ * rarely spans many bands. */
 #define BAND_HEIGHT 16
 #define CHUNKS_PER_THREAD 4
 
@@ -61,6 +62,10 @@ struct luz_renderer {
     size_t by_id_capacity;
     band_counters *bands;
     int band_capacity;
+    size_t *band_start;             /* band b's ids: band_ids[band_start[b] ..
+                                       band_start[b + 1]) */
+    uint32_t *band_ids;
+    size_t band_ids_capacity;
     bool reference;                 /* fragment.c's shading, not the packets */
     luz_packet_isa packet_isa;
     uint32_t *overdraw;             /* depth tests per pixel, for the overdraw
@@ -78,6 +83,7 @@ typedef struct frame_job {
     int chunk_count;
     int draws_per_chunk;
     size_t triangle_count;
+    int band_count;
     uint32_t *overdraw;             /* NULL unless the overdraw view */
 } frame_job;
 
@@ -197,17 +203,18 @@ static void band_job(void *context, int band_index, int worker_index)
         memset(overdraw + (size_t)first_row * framebuffer->width, 0,
                (size_t)(end_row - first_row) * framebuffer->width * sizeof *overdraw);
 
-    /* Raster and depth test, in submission order. */
+    /* Raster and depth test, the band's triangles in submission order. */
     uint64_t tested = 0;
-    for (size_t id = 1; id <= job->triangle_count; id++) {
+    const luz_renderer *renderer = job->renderer;
+    for (size_t k = renderer->band_start[band_index]; k < renderer->band_start[band_index + 1];
+         k++) {
+        const uint32_t id = renderer->band_ids[k];
         const luz_triangle *triangle = by_id[id];
-        if (triangle->max_y < first_row || triangle->min_y >= end_row) continue;
         if (overdraw)
-            tested += luz_raster_triangle_counting(triangle, (uint32_t)id, framebuffer,
-                                                   first_row, end_row, overdraw);
+            tested += luz_raster_triangle_counting(triangle, id, framebuffer, first_row,
+                                                   end_row, overdraw);
         else
-            tested += luz_raster_triangle(triangle, (uint32_t)id, framebuffer, first_row,
-                                          end_row);
+            tested += luz_raster_triangle(triangle, id, framebuffer, first_row, end_row);
     }
 
     /* Fragment stage: shade each visible pixel once, one pixel at a time
@@ -276,6 +283,8 @@ void luz_renderer_destroy(luz_renderer *renderer)
     free(renderer->chunks);
     free(renderer->by_id);
     free(renderer->bands);
+    free(renderer->band_start);
+    free(renderer->band_ids);
     free(renderer->overdraw);
     free(renderer);
 }
@@ -290,6 +299,130 @@ int luz_renderer_thread_count(const luz_renderer *renderer)
     return luz_thread_pool_thread_count(renderer->pool);
 }
 
+/* Splits the frame's draws into chunks of consecutive draws, one
+ * geometry job each, and empties the chunks' triangle lists. */
+static void split_into_chunks(luz_renderer *renderer, frame_job *job)
+{
+    const luz_frame *frame = job->frame;
+    job->chunk_count = frame->draw_count < renderer->chunk_capacity ? frame->draw_count
+                                                                    : renderer->chunk_capacity;
+    if (job->chunk_count < 1) job->chunk_count = 1;
+    job->draws_per_chunk = (frame->draw_count + job->chunk_count - 1) / job->chunk_count;
+    if (job->draws_per_chunk < 1) job->draws_per_chunk = 1;
+    for (int c = 0; c < job->chunk_count; c++) {
+        triangle_list *list = &renderer->chunks[c];
+        list->count = 0;
+        list->out_of_memory = false;
+        list->submitted = list->clipped = list->culled = 0;
+        list->interpolation = frame->uniforms.interpolation;
+    }
+}
+
+/* Gives the set-up triangles ids 1, 2, ... in submission order (chunk by
+ * chunk), through renderer->by_id. */
+static int number_triangles(luz_renderer *renderer, frame_job *job, size_t *total,
+                            luz_error *error)
+{
+    *total = 0;
+    for (int c = 0; c < job->chunk_count; c++) {
+        if (renderer->chunks[c].out_of_memory)
+            return luz_error_set(error, "out of memory for the frame's triangles");
+        *total += renderer->chunks[c].count;
+    }
+    if (*total >= UINT32_MAX)
+        return luz_error_set(error, "%zu triangles: more than a frame supports", *total);
+    if (*total + 1 > renderer->by_id_capacity) {
+        const luz_triangle **by_id = realloc(renderer->by_id, (*total + 1) * sizeof *by_id);
+        if (!by_id) return luz_error_set(error, "out of memory for the frame's triangles");
+        renderer->by_id = by_id;
+        renderer->by_id_capacity = *total + 1;
+    }
+    size_t id = 1;
+    for (int c = 0; c < job->chunk_count; c++)
+        for (size_t k = 0; k < renderer->chunks[c].count; k++)
+            renderer->by_id[id++] = &renderer->chunks[c].triangles[k];
+
+    job->triangle_count = *total;
+    /* The viewer's step mode rasterises only the first triangles. */
+    const uint32_t limit = job->frame->uniforms.triangle_limit;
+    if (limit != 0 && limit < *total) job->triangle_count = limit;
+    return 0;
+}
+
+/* Bins triangles 1 .. job->triangle_count to the bands their bounding
+ * boxes touch, so that a band visits only its own triangles. Counting
+ * first, then filling in id order, keeps each band's list in submission
+ * order. */
+static int bin_triangles(luz_renderer *renderer, frame_job *job, luz_error *error)
+{
+    const int band_count = job->band_count;
+    if (band_count > renderer->band_capacity) {
+        band_counters *bands = realloc(renderer->bands, (size_t)band_count * sizeof *bands);
+        size_t *band_start = realloc(renderer->band_start,
+                                     ((size_t)band_count + 1) * sizeof *band_start);
+        if (bands) renderer->bands = bands;
+        if (band_start) renderer->band_start = band_start;
+        if (!bands || !band_start)
+            return luz_error_set(error, "out of memory for the frame's bands");
+        renderer->band_capacity = band_count;
+    }
+
+    size_t *start = renderer->band_start;
+    memset(start, 0, ((size_t)band_count + 1) * sizeof *start);
+    for (size_t id = 1; id <= job->triangle_count; id++) {
+        const luz_triangle *triangle = renderer->by_id[id];
+        for (int b = triangle->min_y / BAND_HEIGHT; b <= triangle->max_y / BAND_HEIGHT; b++)
+            start[b + 1]++;
+    }
+    for (int b = 0; b < band_count; b++) start[b + 1] += start[b];
+
+    if (start[band_count] > renderer->band_ids_capacity) {
+        uint32_t *ids = realloc(renderer->band_ids, start[band_count] * sizeof *ids);
+        if (!ids) return luz_error_set(error, "out of memory for the frame's bands");
+        renderer->band_ids = ids;
+        renderer->band_ids_capacity = start[band_count];
+    }
+    /* Fill, moving each band's start forward, then move the starts back. */
+    for (size_t id = 1; id <= job->triangle_count; id++) {
+        const luz_triangle *triangle = renderer->by_id[id];
+        for (int b = triangle->min_y / BAND_HEIGHT; b <= triangle->max_y / BAND_HEIGHT; b++)
+            renderer->band_ids[start[b]++] = (uint32_t)id;
+    }
+    for (int b = band_count; b > 0; b--) start[b] = start[b - 1];
+    start[0] = 0;
+    return 0;
+}
+
+/* The overdraw view's counters, one per pixel, allocated when first asked. */
+static int prepare_overdraw(luz_renderer *renderer, frame_job *job, luz_error *error)
+{
+    if (job->frame->uniforms.show != LUZ_VIEW_OVERDRAW) return 0;
+    size_t pixels = (size_t)job->framebuffer->width * (size_t)job->framebuffer->height;
+    if (pixels > renderer->overdraw_capacity) {
+        uint32_t *overdraw = realloc(renderer->overdraw, pixels * sizeof *overdraw);
+        if (!overdraw) return luz_error_set(error, "out of memory for the overdraw view");
+        renderer->overdraw = overdraw;
+        renderer->overdraw_capacity = pixels;
+    }
+    job->overdraw = renderer->overdraw;
+    return 0;
+}
+
+static void collect_stats(const luz_renderer *renderer, const frame_job *job,
+                          size_t triangle_total, luz_frame_stats *stats)
+{
+    for (int c = 0; c < job->chunk_count; c++) {
+        stats->triangles_submitted += renderer->chunks[c].submitted;
+        stats->triangles_clipped += renderer->chunks[c].clipped;
+        stats->triangles_culled += renderer->chunks[c].culled;
+    }
+    stats->triangles_rasterised = triangle_total;
+    for (int b = 0; b < job->band_count; b++) {
+        stats->fragments_tested += renderer->bands[b].fragments_tested;
+        stats->fragments_shaded += renderer->bands[b].fragments_shaded;
+    }
+}
+
 int luz_renderer_draw(luz_renderer *renderer, const luz_frame *frame,
                       luz_framebuffer *framebuffer, luz_frame_stats *stats, luz_error *error)
 {
@@ -299,69 +432,21 @@ int luz_renderer_draw(luz_renderer *renderer, const luz_frame *frame,
         .frame = frame,
         .framebuffer = framebuffer,
         .view_projection = luz_mat4_multiply(frame->uniforms.projection, frame->uniforms.view),
+        .band_count = (framebuffer->height + BAND_HEIGHT - 1) / BAND_HEIGHT,
     };
 
-    /* Phase 1: geometry, in chunks of consecutive draws. */
-    job.chunk_count = frame->draw_count < renderer->chunk_capacity ? frame->draw_count
-                                                                   : renderer->chunk_capacity;
-    if (job.chunk_count < 1) job.chunk_count = 1;
-    job.draws_per_chunk = (frame->draw_count + job.chunk_count - 1) / job.chunk_count;
-    if (job.draws_per_chunk < 1) job.draws_per_chunk = 1;
-    for (int c = 0; c < job.chunk_count; c++) {
-        triangle_list *list = &renderer->chunks[c];
-        list->count = 0;
-        list->out_of_memory = false;
-        list->submitted = list->clipped = list->culled = 0;
-        list->interpolation = frame->uniforms.interpolation;
-    }
+    /* Phase 1: geometry (vertex stage, clipping, setup), in chunks of
+     * consecutive draws; then number the triangles and bin them to bands. */
+    split_into_chunks(renderer, &job);
     luz_thread_pool_run(renderer->pool, job.chunk_count, geometry_job, &job);
-
-    /* Number the triangles 1, 2, ... in submission order. */
-    size_t total = 0;
-    for (int c = 0; c < job.chunk_count; c++) {
-        if (renderer->chunks[c].out_of_memory)
-            return luz_error_set(error, "out of memory for the frame's triangles");
-        total += renderer->chunks[c].count;
-    }
-    if (total >= UINT32_MAX)
-        return luz_error_set(error, "%zu triangles: more than a frame supports", total);
-    if (total + 1 > renderer->by_id_capacity) {
-        const luz_triangle **by_id = realloc(renderer->by_id, (total + 1) * sizeof *by_id);
-        if (!by_id) return luz_error_set(error, "out of memory for the frame's triangles");
-        renderer->by_id = by_id;
-        renderer->by_id_capacity = total + 1;
-    }
-    size_t id = 1;
-    for (int c = 0; c < job.chunk_count; c++)
-        for (size_t k = 0; k < renderer->chunks[c].count; k++)
-            renderer->by_id[id++] = &renderer->chunks[c].triangles[k];
-    job.triangle_count = total;
-    /* The step mode rasterises only the first triangles. */
-    if (frame->uniforms.triangle_limit != 0 && frame->uniforms.triangle_limit < total)
-        job.triangle_count = frame->uniforms.triangle_limit;
+    size_t triangle_total;
+    if (number_triangles(renderer, &job, &triangle_total, error) != 0) return -1;
+    if (bin_triangles(renderer, &job, error) != 0) return -1;
     const double geometry_end = now_ms();
 
-    /* The overdraw view's counters, one per pixel. */
-    if (frame->uniforms.show == LUZ_VIEW_OVERDRAW) {
-        size_t pixels = (size_t)framebuffer->width * (size_t)framebuffer->height;
-        if (pixels > renderer->overdraw_capacity) {
-            uint32_t *overdraw = realloc(renderer->overdraw, pixels * sizeof *overdraw);
-            if (!overdraw) return luz_error_set(error, "out of memory for the overdraw view");
-            renderer->overdraw = overdraw;
-            renderer->overdraw_capacity = pixels;
-        }
-        job.overdraw = renderer->overdraw;
-    }
-
-    /* Phase 2: bands of rows. */
-    int band_count = (framebuffer->height + BAND_HEIGHT - 1) / BAND_HEIGHT;
-    if (band_count > renderer->band_capacity) {
-        band_counters *bands = realloc(renderer->bands, (size_t)band_count * sizeof *bands);
-        if (!bands) return luz_error_set(error, "out of memory for the frame's bands");
-        renderer->bands = bands;
-        renderer->band_capacity = band_count;
-    }
-    luz_thread_pool_run(renderer->pool, band_count, band_job, &job);
+    /* Phase 2: bands of rows (clear, raster and depth test, fragments). */
+    if (prepare_overdraw(renderer, &job, error) != 0) return -1;
+    luz_thread_pool_run(renderer->pool, job.band_count, band_job, &job);
     const double end = now_ms();
 
     if (stats) {
@@ -369,16 +454,7 @@ int luz_renderer_draw(luz_renderer *renderer, const luz_frame *frame,
         stats->geometry_ms = geometry_end - start;
         stats->raster_ms = end - geometry_end;
         stats->total_ms = end - start;
-        for (int c = 0; c < job.chunk_count; c++) {
-            stats->triangles_submitted += renderer->chunks[c].submitted;
-            stats->triangles_clipped += renderer->chunks[c].clipped;
-            stats->triangles_culled += renderer->chunks[c].culled;
-        }
-        stats->triangles_rasterised = total;
-        for (int b = 0; b < band_count; b++) {
-            stats->fragments_tested += renderer->bands[b].fragments_tested;
-            stats->fragments_shaded += renderer->bands[b].fragments_shaded;
-        }
+        collect_stats(renderer, &job, triangle_total, stats);
     }
     return 0;
 }
