@@ -593,13 +593,15 @@ static void test_help(void **state)
         "--shininess",    "--point",      "--spot",        "--spot-inner", "--spot-outer",
         "--spot-reach",   "--directional", "--filter",     "--textures",   "--cubes",
         "--threads",      "--only",       "-o",            "--frames",     "--fps",
-        "--bench",        "--scene",      "--help",        "--version",
+        "--bench",        "--scene",      "--help",        "--version",    "--reference",
+        "--view",         "--interp",
     };
     /* defaults that SCENE.md and the issue fix */
     static const char *const defaults[] = {
         "1280x720", "default: 0, 0, 3", "default: -90", "default: 45", "default: 1, 1, 1, 0.2",
         "default: 32", "default: 12.5", "default: 17.5", "default: 10", "default: trilinear",
-        "default: luz.png", "default: 30", "default: 1, 1, 1, 0.4",
+        "default: luz.png", "default: 30", "default: 1, 1, 1, 0.4", "default: color",
+        "default: perspective",
     };
     sandbox box;
     sandbox_create(&box);

@@ -128,8 +128,7 @@ int luz_options_resolve_textures(luz_options *options, const luz_texture_set *te
  * else luz_default_textures_directory()) into an empty set, "none" leaving
  * it empty (every texel white), then resolves the custom cubes' texture
  * names (luz_options_resolve_textures). Both programs start this way.
- * Returns 0, or -1 with a message that says where the directory came from.
- * (In src/io/texture_load.c.) */
+ * Returns 0, or -1 with a message that says where the directory came from. */
 int luz_options_load_textures(luz_options *options, luz_texture_set *textures,
                               luz_error *error);
 

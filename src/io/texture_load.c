@@ -17,7 +17,6 @@
 
 #include <stb_image.h>
 
-#include "luz/options.h"
 #include "luz/texture.h"
 
 luz_texture *luz_texture_load(const char *path, luz_error *error)
@@ -140,23 +139,4 @@ void luz_texture_set_free(luz_texture_set *set)
     free(set->textures);
     free(set->names);
     memset(set, 0, sizeof *set);
-}
-
-int luz_options_load_textures(luz_options *options, luz_texture_set *textures, luz_error *error)
-{
-    char default_directory[4096];
-    const char *directory = options->textures_directory;
-    const char *source = "--textures";
-    if (directory == NULL) {
-        const char *environment = getenv("LUZ_TEXTURES");
-        source = environment && environment[0] ? "LUZ_TEXTURES"
-                                               : "default textures (see --textures)";
-        directory = luz_default_textures_directory(default_directory, sizeof default_directory);
-    }
-    if (strcmp(directory, "none") != 0) {
-        luz_error load_error = {{0}};
-        if (luz_texture_set_load(textures, directory, &load_error) != 0)
-            return luz_error_set(error, "%s: %s", source, load_error.message);
-    }
-    return luz_options_resolve_textures(options, textures, error);
 }
