@@ -381,6 +381,10 @@ typedef struct error_case {
     const char *needles[4];          /* each must appear in the one line */
 } error_case;
 
+/* Ten copies of a string literal: for a scene line longer than the reader
+ * accepts. */
+#define TEN(text) text text text text text text text text text text
+
 static const error_case error_cases[] = {
     /* the shape of the command line */
     {"unknown-option", {"--bogus"}, NULL, NULL, {"--bogus", "unknown"}},
@@ -487,7 +491,12 @@ static const error_case error_cases[] = {
      "# one cube\ncube = 0, 0, 0 texture a.bmp\n", NULL, {"s.luz:2", "a.bmp"}},
     /* scene files */
     {"scene-missing", {"--scene", "nope.luz"}, NULL, NULL, {"nope.luz", "cannot open"}},
-    {"scene-is-a-directory", {"--scene", "tex"}, NULL, NULL, {"tex", "cannot read"}},
+    {"scene-is-a-directory", {"--scene", "tex"}, NULL, NULL, {"tex", "not a regular file"}},
+    /* a device would feed the reader forever; a huge line must not grow it */
+    {"scene-is-a-device", {"--scene", "/dev/zero"}, NULL, NULL,
+     {"/dev/zero", "not a regular file"}},
+    {"scene-line-too-long", {"--scene", "s.luz"}, "time = 1\n" TEN(TEN(TEN("########"))), NULL,
+     {"s.luz:2", "longer than"}},
     {"scene-syntax", {"--scene", "s.luz"}, "size = 16x9\nthis is not an option\n", NULL,
      {"s.luz:2", "name = value"}},
     {"scene-empty-name", {"--scene", "s.luz"}, "= 5\n", NULL, {"s.luz:1", "name = value"}},

@@ -25,14 +25,21 @@
 #include "luz/options.h"
 
 #include <errno.h>
+#include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <sys/types.h>
 
 #include "io/option_text.h"
 
 /* Longer than any key, so that a key that does not fit is not a key. */
 #define KEY_MAX 24
+/* Bounds on what a scene file may hold: a line fits a cube with its colour
+ * and a long texture name many times over, and the lines are enough for
+ * LUZ_MAX_CUBES cube lines with comments between them. */
+#define SCENE_LINE_MAX 4096
+#define SCENE_MAX_LINES (2 * LUZ_MAX_CUBES + 1000)
 #define SEEN_KEYS_MAX 64
 
 typedef struct scene_reader {
@@ -279,25 +286,39 @@ int luz_options_read_scene_file(luz_options *options, const char *path, luz_erro
     FILE *file = fopen(path, "r");
     if (file == NULL)
         return luz_error_set(error, "%s: cannot open the scene file (%s)", path, strerror(errno));
+    /* Only regular files: a device or a pipe (/dev/zero, say) could feed
+     * the reader forever. */
+    struct stat status_of_file;
+    if (fstat(fileno(file), &status_of_file) != 0 || !S_ISREG(status_of_file.st_mode)) {
+        fclose(file);
+        return luz_error_set(error, "%s: not a regular file (expected a scene file)", path);
+    }
 
+    /* Lines are read into a fixed buffer, so no input can make the reader
+     * allocate without bound; a line that does not fit is an error. */
     scene_reader reader = {.options = options, .path = options->scene_path};
-    char *text = NULL;
-    size_t capacity = 0;
-    ssize_t length;
+    char text[SCENE_LINE_MAX + 2];
     int status = 0;
-    while (status == 0 && (length = getline(&text, &capacity, file)) != -1) {
+    while (status == 0 && fgets(text, sizeof text, file) != NULL) {
         reader.line++;
-        if ((size_t)length != strlen(text))
+        size_t length = strlen(text);
+        bool line_ended = length > 0 && text[length - 1] == '\n';
+        if (!line_ended && length + 1 == sizeof text)
+            status = luz_error_set(error, "%s:%d: line longer than %d characters", path,
+                                   reader.line, SCENE_LINE_MAX);
+        else if (!line_ended && !feof(file))
             status = luz_error_set(error, "%s:%d: expected text, found a NUL byte", path,
                                    reader.line);
+        else if (reader.line > SCENE_MAX_LINES)
+            status = luz_error_set(error, "%s:%d: more than %d lines", path, reader.line,
+                                   SCENE_MAX_LINES);
         else
             status = read_line(&reader, text, error);
     }
-    /* getline's -1 means the end or an error (a directory gives EISDIR). */
+    /* fgets's NULL means the end or an error (a directory gives EISDIR). */
     if (status == 0 && ferror(file))
         status = luz_error_set(error, "%s: cannot read the scene file (%s)", path,
                                strerror(errno));
-    free(text);
     fclose(file);
     return status;
 }
