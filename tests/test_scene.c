@@ -275,6 +275,41 @@ static void test_uniforms_at_pi(void **state)
     assert_vec3_near(uniforms.clear_colour, 0.1, 0.1, 0.1, TOLERANCE);
 }
 
+/* luz_frame_add_draw refuses a mesh the pipeline would read out of
+ * bounds, and takes a well-formed one: one triangle over three vertices. */
+static void test_frame_refuses_bad_meshes(void **state)
+{
+    (void)state;
+    static const luz_vertex vertices[3] = {{{0, 0, 0}, {0, 0, 1}, {0, 0}},
+                                           {{1, 0, 0}, {0, 0, 1}, {1, 0}},
+                                           {{0, 1, 0}, {0, 0, 1}, {0, 1}}};
+    static const uint16_t good[3] = {0, 1, 2};
+    static const uint16_t past_the_end[3] = {0, 1, 3};   /* vertex 3 does not exist */
+    const luz_mesh meshes[] = {
+        {vertices, 3, past_the_end, 3},
+        {vertices, 3, good, 2},          /* not a multiple of 3 */
+        {NULL, 3, good, 3},
+        {vertices, 3, NULL, 3},
+        {vertices, -1, good, 0},
+    };
+    luz_frame frame = {0};
+    luz_draw draw = {0};
+    draw.model = luz_mat4_identity();
+    for (size_t i = 0; i < sizeof meshes / sizeof meshes[0]; i++) {
+        draw.mesh = &meshes[i];
+        assert_int_equal(luz_frame_add_draw(&frame, &draw), -1);
+    }
+    draw.mesh = NULL;
+    assert_int_equal(luz_frame_add_draw(&frame, &draw), -1);
+    assert_int_equal(frame.draw_count, 0);
+
+    const luz_mesh triangle = {vertices, 3, good, 3};
+    draw.mesh = &triangle;
+    assert_int_equal(luz_frame_add_draw(&frame, &draw), 0);
+    assert_int_equal(frame.draw_count, 1);
+    luz_frame_free(&frame);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -286,6 +321,7 @@ int main(void)
         cmocka_unit_test(test_custom_cubes_keep_their_colour),
         cmocka_unit_test(test_cube_model_matrices),
         cmocka_unit_test(test_uniforms_at_pi),
+        cmocka_unit_test(test_frame_refuses_bad_meshes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -150,8 +150,8 @@ typedef struct luz_scene {
 
 luz_scene luz_scene_defaults(void);
 
-/* Cube i of SCENE.md's tiled set: one of the ten positions plus its tile's
- * offset. */
+/* Cube i (i >= 0) of SCENE.md's tiled set: one of the ten positions plus
+ * its tile's offset. */
 luz_vec3 luz_scene_tiled_position(int cube_index);
 
 /* objectColor for every cube index below count, from SCENE.md's xorshift32
@@ -210,7 +210,9 @@ luz_uniforms luz_scene_uniforms(const luz_scene *scene, float aspect);
 int luz_scene_build_frame(const luz_scene *scene, const struct luz_texture_set *textures,
                           float aspect, luz_frame *frame);
 
-/* Appends a draw; returns 0 or -1 if memory ran out. */
+/* Appends a draw; returns 0, or -1 if memory ran out or the draw's mesh is
+ * not one the pipeline can read (NULL arrays, an index count that is not a
+ * multiple of 3, an index past the last vertex). */
 int luz_frame_add_draw(luz_frame *frame, const luz_draw *draw);
 void luz_frame_free(luz_frame *frame);
 

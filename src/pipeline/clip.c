@@ -70,7 +70,13 @@ static luz_clip_vertex crossing(const luz_clip_vertex *inside, float inside_dist
 
 /* One Sutherland-Hodgman pass: keeps the part of the polygon inside one
  * plane. Walking each edge (previous -> current): an inside vertex is kept,
- * and an edge that crosses the plane contributes its crossing point. */
+ * and an edge that crosses the plane contributes its crossing point.
+ *
+ * A convex polygon crosses a plane at most twice, so it gains at most one
+ * vertex a plane and 3 + 6 = LUZ_CLIP_MAX_VERTICES always suffice. Only a
+ * sliver so thin that rounding zig-zags its vertices across a plane could
+ * cross more often; such a triangle covers no more than a hairline, and
+ * it is dropped (-1) rather than allowed to overrun the buffer. */
 static int clip_against_plane(const luz_clip_vertex *in, int count, int plane,
                               luz_clip_vertex *out)
 {
@@ -83,6 +89,8 @@ static int clip_against_plane(const luz_clip_vertex *in, int count, int plane,
         bool previous_inside = previous_distance >= 0.0f;
         bool current_inside = current_distance >= 0.0f;
 
+        int writes = (current_inside != previous_inside) + current_inside;
+        if (out_count + writes > LUZ_CLIP_MAX_VERTICES) return -1;
         if (current_inside != previous_inside) {
             out[out_count++] = current_inside
                 ? crossing(current, current_distance, previous, previous_distance)
@@ -105,11 +113,12 @@ int luz_clip_triangle(const luz_clip_vertex *a, const luz_clip_vertex *b,
     out->vertices[2] = *c;
     out->vertex_count = 3;
 
-    /* Ping-pong between out->vertices and scratch, one plane at a time,
-     * skipping planes no vertex is outside of. */
+    /* One plane at a time, through scratch and back, skipping planes no
+     * vertex is outside of. */
     for (int plane = 0; plane < LUZ_CLIP_PLANE_COUNT && out->vertex_count > 0; plane++) {
         if (!(any_outside & (1u << plane))) continue;
         int count = clip_against_plane(out->vertices, out->vertex_count, plane, scratch);
+        if (count < 0) return out->vertex_count = 0;
         for (int i = 0; i < count; i++) out->vertices[i] = scratch[i];
         out->vertex_count = count;
     }

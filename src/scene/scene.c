@@ -6,6 +6,7 @@
  * luz_scene_build_frame(). What comes out is a luz_frame: uniforms and a
  * list of draws, which is all the renderer sees.
  */
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -110,6 +111,7 @@ const char *luz_interpolation_name(luz_interpolation interpolation)
  * before r hold (2r - 1)^2 tiles. */
 luz_vec3 luz_scene_tiled_position(int cube_index)
 {
+    if (cube_index < 0) cube_index = 0;   /* not a cube: stay in the table */
     int tile = cube_index / 10;
     luz_vec3 base = cube_positions[cube_index % 10];
     if (tile == 0) return base;
@@ -193,9 +195,23 @@ luz_uniforms luz_scene_uniforms(const luz_scene *scene, float aspect)
     return uniforms;
 }
 
+/* A mesh the pipeline can read: every index names one of its vertices. */
+static bool mesh_is_valid(const luz_mesh *mesh)
+{
+    if (mesh == NULL || mesh->vertices == NULL || mesh->vertex_count < 0 ||
+        mesh->index_count < 0 || mesh->index_count % 3 != 0 ||
+        (mesh->index_count > 0 && mesh->indices == NULL))
+        return false;
+    for (int i = 0; i < mesh->index_count; i++)
+        if (mesh->indices[i] >= mesh->vertex_count) return false;
+    return true;
+}
+
 int luz_frame_add_draw(luz_frame *frame, const luz_draw *draw)
 {
+    if (!mesh_is_valid(draw->mesh)) return -1;
     if (frame->draw_count == frame->draw_capacity) {
+        if (frame->draw_capacity > INT_MAX / 2) return -1;
         int capacity = frame->draw_capacity ? frame->draw_capacity * 2 : 16;
         luz_draw *draws = realloc(frame->draws, (size_t)capacity * sizeof *draws);
         if (!draws) return -1;
