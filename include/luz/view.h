@@ -1,7 +1,7 @@
 /*
  * luz/view.h: the colours of the teaching views, and a legend for each.
  *
- * `--view NAME` (luz_scene.view, carried into luz_uniforms.view) makes the
+ * `--view NAME` (luz_scene.view, carried into luz_uniforms.show) makes the
  * pipeline write a picture of one of its stages into the colour buffer
  * instead of the shaded image: the same triangles, rasterised by the same
  * code, only the last step (what colour a pixel gets) differs. The

@@ -173,7 +173,7 @@ void luz_fragment_interpolate(const luz_triangle *triangle, int x, int y, luz_fr
 
 /* ---- views (view.c) ----------------------------------------------------- */
 
-/* Colours rows [first_row, end_row) as frame->uniforms.view asks (see
+/* Colours rows [first_row, end_row) as frame->uniforms.show asks (see
  * luz/view.h), from what the raster stage left there: the visibility and
  * depth buffers, and overdraw (depth tests per pixel, counted only for the
  * overdraw view; NULL otherwise). worker_index is the thread drawing the
