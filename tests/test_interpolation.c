@@ -132,18 +132,32 @@ static void test_perspective_correct_varyings(void **state)
     assert_near(fragment->normal.z, 0.0, 1e-6);
 }
 
-/* Screen-linear (affine) interpolation would be far off here, which shows
- * the test above can tell the two apart. In window coordinates the
- * triangle is A (0, 64), B (64, 64), C (40, 40), area 768; the pixel
- * centre P (40.5, 44.5) has barycentric weights area(PBC) / 768 = 48/768 =
- * 0.0625 for A and area(ABP) / 768 = 624/768 = 0.8125 for C, so affine u =
- * 1 - 0.0625 = 0.9375 and affine v = 0.8125, against 0.84 and 0.52. */
-static void test_affine_interpolation_would_differ(void **state)
+/* Screen-linear (affine) interpolation gives other values here, so the
+ * test above tells the two apart. In window coordinates the triangle is
+ * A (0, 64), B (64, 64), C (40, 40), area 768; the pixel centre P (40.5,
+ * 44.5) has barycentric weights area(PBC) / 768 = 48/768 = 0.0625 for A,
+ * area(APC) / 768 = 96/768 = 0.125 for B and area(ABP) / 768 = 624/768 =
+ * 0.8125 for C. With u = 0, 1, 1 and v = 0, 0, 1 at A, B, C, affine
+ * interpolation gives u = 0.125 + 0.8125 = 0.9375 and v = 0.8125, against
+ * the perspective-correct 0.84 and 0.52. Setting the triangle up with
+ * LUZ_INTERPOLATION_AFFINE must give exactly those. */
+static void test_affine_interpolation_is_screen_linear(void **state)
 {
     floor_fixture *fixture = *state;
-    const luz_fragment *fragment = fragment_at(fixture, PIXEL_X, PIXEL_Y);
-    assert_true(fabs(fragment->uv.x - 0.9375) > 0.09);
-    assert_true(fabs(fragment->uv.y - 0.8125) > 0.29);
+    luz_mat4 view = luz_mat4_look_at((luz_vec3){0, 0, 0}, (luz_vec3){0, 0, -1},
+                                     (luz_vec3){0, 1, 0});
+    luz_mat4 projection = luz_mat4_perspective(luz_radians(90.0f), 1.0f, 0.1f, 100.0f);
+    luz_mat4 view_projection = luz_mat4_multiply(projection, view);
+    luz_clip_vertex a = floor_vertex(view_projection, -1, -1);
+    luz_clip_vertex b = floor_vertex(view_projection, 1, -1);
+    luz_clip_vertex c = floor_vertex(view_projection, 1, -4);
+    luz_triangle affine;
+    assert_int_equal(luz_setup_triangle(&a, &b, &c, SIZE, SIZE, 0, LUZ_INTERPOLATION_AFFINE,
+                                        &affine),
+                     LUZ_SETUP_VISIBLE);
+    luz_fragment_interpolate(&affine, PIXEL_X, PIXEL_Y, &fixture->fragment);
+    assert_near(fixture->fragment.uv.x, 0.9375, 1e-5);
+    assert_near(fixture->fragment.uv.y, 0.8125, 1e-5);
 }
 
 /* Every pixel of a row and a column through the test pixel matches the
@@ -208,7 +222,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_perspective_correct_varyings),
-        cmocka_unit_test(test_affine_interpolation_would_differ),
+        cmocka_unit_test(test_affine_interpolation_is_screen_linear),
         cmocka_unit_test(test_varyings_along_a_row_and_a_column),
         cmocka_unit_test(test_texture_coordinate_derivatives),
         cmocka_unit_test(test_depth_at_the_pixel),

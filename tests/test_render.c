@@ -305,11 +305,32 @@ static void test_point_light_marker(void **state)
     luz_framebuffer_destroy(framebuffer);
 }
 
+/* Renders scene with 1, 2, 3 and 7 threads and asserts identical colour,
+ * depth and visibility buffers. */
+static void assert_same_for_any_thread_count(const luz_scene *scene,
+                                             const luz_texture_set *textures, bool reference)
+{
+    luz_framebuffer *one_thread = render(scene, textures, 1, reference);
+    const int thread_counts[3] = {2, 3, 7};
+    for (int k = 0; k < 3; k++) {
+        luz_framebuffer *framebuffer = render(scene, textures, thread_counts[k], reference);
+        assert_memory_equal(one_thread->colour, framebuffer->colour, (size_t)WIDTH * HEIGHT * 4);
+        assert_memory_equal(one_thread->depth, framebuffer->depth,
+                            (size_t)WIDTH * HEIGHT * sizeof *framebuffer->depth);
+        assert_memory_equal(one_thread->visibility, framebuffer->visibility,
+                            (size_t)WIDTH * HEIGHT * sizeof *framebuffer->visibility);
+        luz_framebuffer_destroy(framebuffer);
+    }
+    luz_framebuffer_destroy(one_thread);
+}
+
 /* Bands own disjoint rows and draw triangles in submission order, so the
  * default scene (with the textures of $LUZ_TEXTURES, if any, and all six
  * lights; at t = 2.5, so the cubes are turned and trilinear filtering
  * blends levels) at 1280x720 is identical byte for byte with 1, 2, 3 and
- * 7 threads: colour, depth and visibility. */
+ * 7 threads: colour, depth and visibility. The 100-cube scene too: its 101
+ * draws are split into 4 geometry chunks on one thread and 7 on more, so
+ * the triangle numbering across chunks is checked as well. */
 static void test_image_is_identical_for_any_thread_count(void **state)
 {
     luz_texture_set textures = {0};
@@ -320,22 +341,12 @@ static void test_image_is_identical_for_any_thread_count(void **state)
         if (luz_texture_set_load(&textures, directory, &error) != 0)
             fail_msg("%s", error.message);
     }
+    const luz_texture_set *set = have_textures ? &textures : NULL;
     luz_scene scene = luz_scene_defaults();
     scene.time_seconds = 2.5;
-    const luz_texture_set *set = have_textures ? &textures : NULL;
-    luz_framebuffer *one_thread = render(&scene, set, 1, uses_reference_stage(state));
-    const int thread_counts[3] = {2, 3, 7};
-    for (int k = 0; k < 3; k++) {
-        luz_framebuffer *framebuffer =
-            render(&scene, set, thread_counts[k], uses_reference_stage(state));
-        assert_memory_equal(one_thread->colour, framebuffer->colour, (size_t)WIDTH * HEIGHT * 4);
-        assert_memory_equal(one_thread->depth, framebuffer->depth,
-                            (size_t)WIDTH * HEIGHT * sizeof *framebuffer->depth);
-        assert_memory_equal(one_thread->visibility, framebuffer->visibility,
-                            (size_t)WIDTH * HEIGHT * sizeof *framebuffer->visibility);
-        luz_framebuffer_destroy(framebuffer);
-    }
-    luz_framebuffer_destroy(one_thread);
+    assert_same_for_any_thread_count(&scene, set, uses_reference_stage(state));
+    scene.cube_count = 100;
+    assert_same_for_any_thread_count(&scene, set, uses_reference_stage(state));
     if (have_textures) luz_texture_set_free(&textures);
 }
 
