@@ -20,6 +20,8 @@
 #ifndef LUZ_SHADE_H
 #define LUZ_SHADE_H
 
+#include <stdbool.h>
+
 #include "luz/scene.h"
 #include "luz/vecmath.h"
 
@@ -48,9 +50,14 @@ static inline float max_float(float a, float b)
 /* pow(x, s) with C's meaning (pow(0, 0) = 1). Shininess is nearly always a
  * whole number (32 by default), and then repeated squaring is exact to a
  * few ulps and several times faster than powf: for s = 32, five multiplies. */
+static inline bool luz_shade_power_is_whole(float s)
+{
+    return s >= 0.0f && s <= 1024.0f && s == (float)(int)s;
+}
+
 static inline float luz_shade_power(float x, float s)
 {
-    if (s >= 0.0f && s <= 1024.0f && s == (float)(int)s) {
+    if (luz_shade_power_is_whole(s)) {
         float result = 1.0f, square = x;
         for (unsigned e = (unsigned)s; e != 0; e >>= 1) {
             if (e & 1u) result *= square;

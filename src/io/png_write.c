@@ -6,7 +6,8 @@
  * only when every byte is written and the file closed is it renamed onto
  * the target. rename() within one file system is atomic, so a reader, or a
  * render that fails or is interrupted half-way, never sees a partial PNG
- * under the requested name.
+ * under the requested name. (A process killed mid-write can leave the
+ * temporary NAME.tmp-XXXXXX beside it; never a partial NAME.)
  */
 #include <errno.h>
 #include <stdbool.h>
@@ -47,8 +48,11 @@ int luz_png_write(const char *path, int width, int height, const uint8_t *rgba,
         free(temporary);
         return luz_error_set(error, "%s: cannot write (%s)", path, strerror(saved));
     }
-    /* mkstemp makes the file 0600; a PNG is for everyone to read. */
-    fchmod(descriptor, 0644);
+    /* mkstemp makes the file 0600; give it the mode a plain fopen would,
+     * 0666 less the umask (read back by setting it and restoring it). */
+    mode_t mask = umask(0);
+    umask(mask);
+    fchmod(descriptor, 0666 & ~mask);
     png_sink sink = {fdopen(descriptor, "wb"), false};
     if (!sink.file) {
         int saved = errno;

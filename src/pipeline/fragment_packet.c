@@ -247,7 +247,7 @@ static packet_uniforms packet_uniforms_of(const luz_uniforms *uniforms)
         .filter = uniforms->filter,
     };
     const float s = lights->shininess;
-    u.shininess_whole = s >= 0.0f && s <= 1024.0f && s == (float)(int)s;
+    u.shininess_whole = luz_shade_power_is_whole(s);
     u.shininess_exponent = u.shininess_whole ? (unsigned)s : 0;
     return u;
 }
@@ -610,9 +610,6 @@ INLINE vuint shade_triangle(const packet_uniforms *u, const luz_frame *frame,
     const float dy = centre_y - triangle->reference_y;
     const vfloat w = 1.0f / plane_at(triangle->inverse_w, dx, dy);
 
-    /* The texel first, so that its memory fetches overlap the lighting's
-     * arithmetic; with no texture T = 1, and c * 1 = c. */
-
     const luz_plane *varying = triangle->varyings;
     const vvec3 position = {
         plane_at(varying[LUZ_VARYING_POSITION + 0], dx, dy) * w,
@@ -625,6 +622,7 @@ INLINE vuint shade_triangle(const packet_uniforms *u, const luz_frame *frame,
         plane_at(varying[LUZ_VARYING_NORMAL + 2], dx, dy) * w,
     };
     const vvec3 light = shade_lighting(u, position, normal);
+    /* The texel; with no texture T = 1, and c * 1 = c, so it is skipped. */
     const luz_texture *texture = draw->texture;
     vvec3 texel = {0};
     if (texture) texel = sample_texture(u, texture, triangle, dx, dy, w, mine);

@@ -75,6 +75,20 @@ int luz_clip_triangle(const luz_clip_vertex *a, const luz_clip_vertex *b,
 #define LUZ_SUBPIXEL_BITS 8
 #define LUZ_SUBPIXEL_ONE (1 << LUZ_SUBPIXEL_BITS)
 
+/* floor(a / b) and ceil(a / b) for b > 0, exactly; C's "/" truncates
+ * towards 0, which is wrong for negative a. Setup and raster use them to
+ * turn fixed-point positions into pixel ranges. */
+static inline int64_t luz_floor_divide(int64_t a, int64_t b)
+{
+    int64_t quotient = a / b;
+    return (a % b != 0 && a < 0) ? quotient - 1 : quotient;
+}
+
+static inline int64_t luz_ceil_divide(int64_t a, int64_t b)
+{
+    return -luz_floor_divide(-a, b);
+}
+
 /* An edge function E(X, Y) = a X + b Y + c in fixed-point units, positive
  * inside; the top-left rule is folded into c, so a sample is covered by
  * the edge exactly when E >= 0. */

@@ -23,20 +23,14 @@
  */
 #include "pipeline/pipeline.h"
 
-static int64_t floor_divide(int64_t a, int64_t b)  /* b > 0 */
-{
-    int64_t quotient = a / b;
-    return (a % b != 0 && a < 0) ? quotient - 1 : quotient;
-}
-
 /* Narrows [*first, *last] to the x where edge E(x) = e + s x >= 0. */
 static void clip_span_to_edge(int64_t e, int64_t s, int64_t *first, int64_t *last)
 {
     if (s > 0) {
-        int64_t bound = -floor_divide(e, s);       /* ceil(-e / s) */
+        int64_t bound = luz_ceil_divide(-e, s);
         if (bound > *first) *first = bound;
     } else if (s < 0) {
-        int64_t bound = floor_divide(e, -s);
+        int64_t bound = luz_floor_divide(e, -s);
         if (bound < *last) *last = bound;
     } else if (e < 0) {
         *last = *first - 1;                        /* empty */

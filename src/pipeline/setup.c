@@ -68,17 +68,6 @@ static int64_t snap(double window_coordinate)
     return (int64_t)llrint(window_coordinate * LUZ_SUBPIXEL_ONE);
 }
 
-/* floor(a / b) and ceil(a / b) for b > 0; C's "/" truncates towards 0. */
-static int64_t floor_divide(int64_t a, int64_t b)
-{
-    int64_t quotient = a / b;
-    return (a % b != 0 && a < 0) ? quotient - 1 : quotient;
-}
-
-static int64_t ceil_divide(int64_t a, int64_t b)
-{
-    return -floor_divide(-a, b);
-}
 
 static luz_edge make_edge(int64_t xi, int64_t yi, int64_t xj, int64_t yj)
 {
@@ -146,10 +135,10 @@ luz_setup_result luz_setup_triangle(const luz_clip_vertex *v0, const luz_clip_ve
         if (fixed_y[k] > max_fy) max_fy = fixed_y[k];
     }
     const int64_t half = LUZ_SUBPIXEL_ONE / 2;
-    int64_t min_x = ceil_divide(min_fx - half, LUZ_SUBPIXEL_ONE);
-    int64_t max_x = floor_divide(max_fx - half, LUZ_SUBPIXEL_ONE);
-    int64_t min_y = ceil_divide(min_fy - half, LUZ_SUBPIXEL_ONE);
-    int64_t max_y = floor_divide(max_fy - half, LUZ_SUBPIXEL_ONE);
+    int64_t min_x = luz_ceil_divide(min_fx - half, LUZ_SUBPIXEL_ONE);
+    int64_t max_x = luz_floor_divide(max_fx - half, LUZ_SUBPIXEL_ONE);
+    int64_t min_y = luz_ceil_divide(min_fy - half, LUZ_SUBPIXEL_ONE);
+    int64_t max_y = luz_floor_divide(max_fy - half, LUZ_SUBPIXEL_ONE);
     if (min_x < 0) min_x = 0;
     if (min_y < 0) min_y = 0;
     if (max_x > width - 1) max_x = width - 1;

@@ -221,10 +221,9 @@ uint64_t luz_view_shade_rows(const luz_frame *frame, const luz_triangle *const *
 {
     const luz_uniforms *uniforms = &frame->uniforms;
     const luz_view view = uniforms->show;
-    if (view == LUZ_VIEW_COLOR || view == LUZ_VIEW_BANDS) {
+    if (view == LUZ_VIEW_BANDS) {
         uint64_t shaded = luz_fragment_shade_rows(frame, by_id, framebuffer, first_row, end_row);
-        if (view == LUZ_VIEW_BANDS)
-            tint_rows_by_thread(framebuffer, first_row, end_row, worker_index);
+        tint_rows_by_thread(framebuffer, first_row, end_row, worker_index);
         return shaded;
     }
 
