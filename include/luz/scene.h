@@ -154,6 +154,10 @@ luz_scene luz_scene_defaults(void);
  * its tile's offset. */
 luz_vec3 luz_scene_tiled_position(int cube_index);
 
+/* One step of Marsaglia's xorshift32 (13, 17, 5), SCENE.md's generator:
+ * every non-zero state maps to a non-zero state. */
+uint32_t luz_xorshift32(uint32_t state);
+
 /* objectColor for every cube index below count, from SCENE.md's xorshift32
  * generator; colours must hold count entries. */
 void luz_scene_random_colours(uint32_t seed, int count, luz_vec3 *colours);

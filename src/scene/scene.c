@@ -130,16 +130,21 @@ luz_vec3 luz_scene_tiled_position(int cube_index)
     return base; /* not reached: ring r has 8r cells */
 }
 
-/* xorshift32 (Marsaglia 2003), one step per float; the top 24 bits make a
- * float in [0, 1) that is exact in single precision. */
-static float next_random_float(uint32_t *state)
+/* xorshift32 (Marsaglia 2003). */
+uint32_t luz_xorshift32(uint32_t x)
 {
-    uint32_t x = *state;
     x ^= x << 13;
     x ^= x >> 17;
     x ^= x << 5;
-    *state = x;
-    return (float)(x >> 8) / 16777216.0f;
+    return x;
+}
+
+/* One step per float; the top 24 bits make a float in [0, 1) that is
+ * exact in single precision. */
+static float next_random_float(uint32_t *state)
+{
+    *state = luz_xorshift32(*state);
+    return (float)(*state >> 8) / 16777216.0f;
 }
 
 static uint32_t seed_state(uint32_t seed)

@@ -149,11 +149,7 @@ uint32_t luz_seed_next(uint32_t seed, uint32_t entropy)
     uint32_t x = seed ^ entropy;
     if (x == 0)
         x = 0x9E3779B9u;
-    /* xorshift32 maps every non-zero state to a non-zero state. */
-    x ^= x << 13;
-    x ^= x >> 17;
-    x ^= x << 5;
-    return x;
+    return luz_xorshift32(x);
 }
 
 /* ---- the list of controls ------------------------------------------------------------------ */
