@@ -50,6 +50,18 @@ float luz_texture_level_of_detail(const luz_texture *texture,
 
 luz_vec3 luz_texture_sample_nearest(const luz_texture *texture, int level, luz_vec2 uv);
 luz_vec3 luz_texture_sample_bilinear(const luz_texture *texture, int level, luz_vec2 uv);
+/* The two mip levels trilinear filtering reads at level of detail lambda
+ * and the weight of the upper one: lambda <= 0 (or NaN) reads level 0
+ * alone, lambda past the last level reads the last alone (lower == upper,
+ * blend 0), else floor(lambda) and floor(lambda) + 1 mixed by
+ * fract(lambda). */
+typedef struct luz_texture_mip_pair {
+    int lower, upper;
+    float blend;
+} luz_texture_mip_pair;
+
+luz_texture_mip_pair luz_texture_mip_levels(const luz_texture *texture, float lambda);
+
 /* Trilinear (GL_LINEAR_MIPMAP_LINEAR) at the given level of detail. */
 luz_vec3 luz_texture_sample_trilinear(const luz_texture *texture, luz_vec2 uv, float lambda);
 /* Dispatches on the filter; a NULL texture samples white. */

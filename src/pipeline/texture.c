@@ -179,18 +179,25 @@ luz_vec3 luz_texture_sample_bilinear(const luz_texture *texture, int level_index
     };
 }
 
+luz_texture_mip_pair luz_texture_mip_levels(const luz_texture *texture, float lambda)
+{
+    const int last = texture->level_count - 1;
+    /* "!(lambda > 0)" also sends NaN to level 0. */
+    if (!(lambda > 0.0f)) return (luz_texture_mip_pair){0, 0, 0.0f};
+    float level_floor = floorf(lambda);
+    if (level_floor >= (float)last) return (luz_texture_mip_pair){last, last, 0.0f};
+    int lower = (int)level_floor;
+    return (luz_texture_mip_pair){lower, lower + 1, lambda - level_floor};
+}
+
 luz_vec3 luz_texture_sample_trilinear(const luz_texture *texture, luz_vec2 uv, float lambda)
 {
-    /* "!(lambda > 0)" also sends NaN to level 0. */
-    if (!(lambda > 0.0f)) return luz_texture_sample_bilinear(texture, 0, uv);
-    const int last = texture->level_count - 1;
-    float level_floor = floorf(lambda);
-    if (level_floor >= (float)last) return luz_texture_sample_bilinear(texture, last, uv);
-    int lower = (int)level_floor;
-    float blend = lambda - level_floor;
-    luz_vec3 fine = luz_texture_sample_bilinear(texture, lower, uv);
-    luz_vec3 coarse = luz_texture_sample_bilinear(texture, lower + 1, uv);
-    return luz_vec3_add(luz_vec3_scale(fine, 1.0f - blend), luz_vec3_scale(coarse, blend));
+    luz_texture_mip_pair levels = luz_texture_mip_levels(texture, lambda);
+    luz_vec3 fine = luz_texture_sample_bilinear(texture, levels.lower, uv);
+    if (levels.lower == levels.upper) return fine;
+    luz_vec3 coarse = luz_texture_sample_bilinear(texture, levels.upper, uv);
+    return luz_vec3_add(luz_vec3_scale(fine, 1.0f - levels.blend),
+                        luz_vec3_scale(coarse, levels.blend));
 }
 
 luz_vec3 luz_texture_sample(const luz_texture *texture, luz_filter filter, luz_vec2 uv,

@@ -172,12 +172,9 @@ static luz_vec3 mip_colour(const luz_texture *texture, luz_filter filter,
     if (filter != LUZ_FILTER_TRILINEAR) return luz_view_mip_colour(0);
     float lambda = luz_texture_level_of_detail(texture, fragment->du_dx, fragment->dv_dx,
                                                fragment->du_dy, fragment->dv_dy);
-    if (!(lambda > 0.0f)) return luz_view_mip_colour(0);
-    const int last = texture->level_count - 1;
-    float level_floor = floorf(lambda);
-    if (level_floor >= (float)last) return luz_view_mip_colour(last);
-    int lower = (int)level_floor;
-    return mix(luz_view_mip_colour(lower), luz_view_mip_colour(lower + 1), lambda - level_floor);
+    luz_texture_mip_pair levels = luz_texture_mip_levels(texture, lambda);
+    return mix(luz_view_mip_colour(levels.lower), luz_view_mip_colour(levels.upper),
+               levels.blend);
 }
 
 /* Distance in pixels from pixel (x, y)'s centre to the nearest of the
