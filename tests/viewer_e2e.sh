@@ -68,7 +68,11 @@ differing_pixels() {
 }
 
 # ---- an X server of our own, on a free display ------------------------------
-Xvfb -displayfd 3 -screen 0 1280x800x24 -nolisten tcp 3>"$work/display" 2>"$work/xvfb.log" &
+# -noreset: by default an X server resets when its last client leaves, and
+# luz connecting just as the readiness check below disconnects can find it
+# mid-reset and fail with "x11 not available" (seen once in CI).
+Xvfb -displayfd 3 -screen 0 1280x800x24 -nolisten tcp -noreset 3>"$work/display" \
+    2>"$work/xvfb.log" &
 xvfb_pid=$!
 i=0
 until [ -s "$work/display" ]; do
