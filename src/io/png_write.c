@@ -6,10 +6,13 @@
  * only when every byte is written and the file closed is it renamed onto
  * the target. rename() within one file system is atomic, so a reader, or a
  * render that fails or is interrupted half-way, never sees a partial PNG
- * under the requested name. (A process killed mid-write can leave the
- * temporary NAME.tmp-XXXXXX beside it; never a partial NAME.)
+ * under the requested name. Termination signals wait until the file is
+ * complete, so Ctrl-C does not leave the temporary NAME.tmp-XXXXXX behind
+ * either (only SIGKILL can).
  */
 #include <errno.h>
+#include <pthread.h>
+#include <signal.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -33,8 +36,8 @@ static void write_to_file(void *context, void *data, int size)
         sink->failed = true;
 }
 
-int luz_png_write(const char *path, int width, int height, const uint8_t *rgba,
-                  luz_error *error)
+static int write_then_rename(const char *path, int width, int height, const uint8_t *rgba,
+                             luz_error *error)
 {
     size_t length = strlen(path);
     char *temporary = malloc(length + sizeof ".tmp-XXXXXX");
@@ -81,6 +84,25 @@ int luz_png_write(const char *path, int width, int height, const uint8_t *rgba,
     }
     free(temporary);
     return 0;
+}
+
+int luz_png_write(const char *path, int width, int height, const uint8_t *rgba,
+                  luz_error *error)
+{
+    /* Ctrl-C or a kill arriving mid-write would leave the temporary file
+     * behind. Such signals are held while the file is written and renamed
+     * (or removed), and delivered as soon as it is done; only SIGKILL can
+     * still cut a write short. */
+    sigset_t termination, previous;
+    sigemptyset(&termination);
+    sigaddset(&termination, SIGINT);
+    sigaddset(&termination, SIGTERM);
+    sigaddset(&termination, SIGHUP);
+    sigaddset(&termination, SIGQUIT);
+    pthread_sigmask(SIG_BLOCK, &termination, &previous);
+    int status = write_then_rename(path, width, height, rgba, error);
+    pthread_sigmask(SIG_SETMASK, &previous, NULL);
+    return status;
 }
 
 int luz_framebuffer_write_png(const luz_framebuffer *framebuffer, const char *path,

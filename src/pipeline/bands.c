@@ -13,6 +13,7 @@
  * so an idle viewer or a single-threaded test costs no CPU.
  */
 #include <pthread.h>
+#include <signal.h>
 #include <stdatomic.h>
 #include <stdlib.h>
 
@@ -94,6 +95,14 @@ luz_thread_pool *luz_thread_pool_create(int thread_count)
     if (pthread_mutex_init(&pool->mutex, NULL) != 0) goto fail_mutex;
     if (pthread_cond_init(&pool->start, NULL) != 0) goto fail_start;
     if (pthread_cond_init(&pool->finished, NULL) != 0) goto fail_finished;
+    /* Workers start with every signal blocked (a new thread inherits its
+     * creator's mask), so that signals sent to the process go to the
+     * caller's threads, as a program that never made a renderer would see
+     * them; luz_png_write relies on this to hold Ctrl-C until a file is
+     * complete. */
+    sigset_t all_signals, caller_mask;
+    sigfillset(&all_signals);
+    pthread_sigmask(SIG_SETMASK, &all_signals, &caller_mask);
     for (int i = 0; i < thread_count - 1; i++) {
         pool->workers[i].pool = pool;
         pool->workers[i].index = i + 1;   /* 0 is the calling thread */
@@ -101,6 +110,7 @@ luz_thread_pool *luz_thread_pool_create(int thread_count)
             break;
         pool->started_workers++;
     }
+    pthread_sigmask(SIG_SETMASK, &caller_mask, NULL);
     if (pool->started_workers == thread_count - 1) return pool;
     luz_thread_pool_destroy(pool);   /* stops the ones that did start */
     return NULL;
