@@ -51,6 +51,22 @@ static luz_clip_vertex floor_vertex(luz_mat4 view_projection, float x, float z)
     return vertex;
 }
 
+/* The floor's corners through the camera at the origin looking down -z
+ * (90 degree field of view): near left, near right, far right, far left,
+ * counter-clockwise seen from above, a front face for the camera above. */
+static void floor_corners(luz_clip_vertex *a, luz_clip_vertex *b, luz_clip_vertex *c,
+                          luz_clip_vertex *d)
+{
+    luz_mat4 view = luz_mat4_look_at((luz_vec3){0, 0, 0}, (luz_vec3){0, 0, -1},
+                                     (luz_vec3){0, 1, 0});
+    luz_mat4 projection = luz_mat4_perspective(luz_radians(90.0f), 1.0f, 0.1f, 100.0f);
+    luz_mat4 view_projection = luz_mat4_multiply(projection, view);
+    *a = floor_vertex(view_projection, -1, -1);
+    *b = floor_vertex(view_projection, 1, -1);
+    *c = floor_vertex(view_projection, 1, -4);
+    *d = floor_vertex(view_projection, -1, -4);
+}
+
 /* Sets up the two triangles of the floor, rasterises them (ids 1 and 2)
  * and interpolates the fragment at the test pixel from the triangle that
  * covers it. */
@@ -61,16 +77,8 @@ static int setup_floor(void **state)
     fixture->framebuffer = luz_framebuffer_create(SIZE, SIZE, &error);
     if (!fixture->framebuffer) return -1;
 
-    luz_mat4 view = luz_mat4_look_at((luz_vec3){0, 0, 0}, (luz_vec3){0, 0, -1},
-                                     (luz_vec3){0, 1, 0});
-    luz_mat4 projection = luz_mat4_perspective(luz_radians(90.0f), 1.0f, 0.1f, 100.0f);
-    luz_mat4 view_projection = luz_mat4_multiply(projection, view);
-    /* Near left, near right, far right, far left: counter-clockwise seen
-     * from above, a front face for the camera above the floor. */
-    luz_clip_vertex a = floor_vertex(view_projection, -1, -1);
-    luz_clip_vertex b = floor_vertex(view_projection, 1, -1);
-    luz_clip_vertex c = floor_vertex(view_projection, 1, -4);
-    luz_clip_vertex d = floor_vertex(view_projection, -1, -4);
+    luz_clip_vertex a, b, c, d;
+    floor_corners(&a, &b, &c, &d);
     const luz_interpolation perspective = LUZ_INTERPOLATION_PERSPECTIVE;
     if (luz_setup_triangle(&a, &b, &c, SIZE, SIZE, 0, perspective, &fixture->triangles[0]) !=
             LUZ_SETUP_VISIBLE ||
@@ -144,13 +152,8 @@ static void test_perspective_correct_varyings(void **state)
 static void test_affine_interpolation_is_screen_linear(void **state)
 {
     floor_fixture *fixture = *state;
-    luz_mat4 view = luz_mat4_look_at((luz_vec3){0, 0, 0}, (luz_vec3){0, 0, -1},
-                                     (luz_vec3){0, 1, 0});
-    luz_mat4 projection = luz_mat4_perspective(luz_radians(90.0f), 1.0f, 0.1f, 100.0f);
-    luz_mat4 view_projection = luz_mat4_multiply(projection, view);
-    luz_clip_vertex a = floor_vertex(view_projection, -1, -1);
-    luz_clip_vertex b = floor_vertex(view_projection, 1, -1);
-    luz_clip_vertex c = floor_vertex(view_projection, 1, -4);
+    luz_clip_vertex a, b, c, d;
+    floor_corners(&a, &b, &c, &d);
     luz_triangle affine;
     assert_int_equal(luz_setup_triangle(&a, &b, &c, SIZE, SIZE, 0, LUZ_INTERPOLATION_AFFINE,
                                         &affine),
