@@ -547,20 +547,13 @@ typedef struct frame_times {
     double submit_ms, finish_ms;
 } frame_times;
 
-static double seconds_of(clockid_t clock)
-{
-    struct timespec now;
-    clock_gettime(clock, &now);
-    return (double)now.tv_sec + (double)now.tv_nsec * 1e-9;
-}
-
 static void draw_frame(gl_reference *gl, const scene_data *data, double t, frame_times *times)
 {
     const luz_scene *scene = &data->options->scene;
     luz_lights lights_copy = scene->lights;   /* luz_lights_term takes a non-const */
     const luz_lights *lights = &lights_copy;
     const uniform_locations *u = &gl->uniforms;
-    double start = seconds_of(CLOCK_MONOTONIC);
+    double start = luz_wall_ms();
 
     /* Camera: SCENE.md's front from yaw and pitch, lookAt and perspective. */
     double yaw = scene->camera.yaw_degrees * (PI / 180.0);
@@ -630,11 +623,11 @@ static void draw_frame(gl_reference *gl, const scene_data *data, double t, frame
         glDrawElements(GL_TRIANGLES, 36, GL_UNSIGNED_SHORT, NULL);
     }
 
-    double submitted = seconds_of(CLOCK_MONOTONIC);
+    double submitted = luz_wall_ms();
     glFinish();
     if (times != NULL) {
-        times->submit_ms = (submitted - start) * 1e3;
-        times->finish_ms = (seconds_of(CLOCK_MONOTONIC) - submitted) * 1e3;
+        times->submit_ms = submitted - start;
+        times->finish_ms = luz_wall_ms() - submitted;
     }
 }
 
@@ -668,18 +661,6 @@ static int render_files(gl_reference *gl, const scene_data *data, luz_error *err
     return status;
 }
 
-static int compare_doubles(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(double *values, int count)
-{
-    qsort(values, (size_t)count, sizeof *values, compare_doubles);
-    return count % 2 ? values[count / 2] : 0.5 * (values[count / 2 - 1] + values[count / 2]);
-}
-
 /* llvmpipe's thread count: LP_NUM_THREADS, else one per online CPU. */
 static int llvmpipe_threads(void)
 {
@@ -704,20 +685,20 @@ static int bench(gl_reference *gl, const scene_data *data, luz_error *error)
     for (int k = 0; k < count; k++) {
         double t = options->scene.time_seconds + k / options->frames_per_second;
         frame_times times;
-        double wall_start = seconds_of(CLOCK_MONOTONIC);
-        double cpu_start = seconds_of(CLOCK_PROCESS_CPUTIME_ID);
+        double wall_start = luz_wall_ms();
+        double cpu_start = luz_cpu_ms();
         draw_frame(gl, data, t, &times);
-        cpu[k] = (seconds_of(CLOCK_PROCESS_CPUTIME_ID) - cpu_start) * 1e3;
-        wall[k] = (seconds_of(CLOCK_MONOTONIC) - wall_start) * 1e3;
+        cpu[k] = luz_cpu_ms() - cpu_start;
+        wall[k] = luz_wall_ms() - wall_start;
         submit[k] = times.submit_ms;
         finish[k] = times.finish_ms;
     }
-    double median_ms = median(wall, count);
+    double median_ms = luz_median(wall, count);
     printf("frames=%d size=%dx%d threads=%d cubes=%d filter=%s ", count, gl->width, gl->height,
            llvmpipe_threads(), data->cube_count, luz_filter_name(options->scene.filter));
     printf("median_ms=%.3f min_ms=%.3f fps=%.2f cpu_ms=%.3f geometry_ms=%.3f raster_ms=%.3f\n",
-           median_ms, wall[0], median_ms > 0.0 ? 1000.0 / median_ms : 0.0, median(cpu, count),
-           median(submit, count), median(finish, count));
+           median_ms, wall[0], median_ms > 0.0 ? 1000.0 / median_ms : 0.0, luz_median(cpu, count),
+           luz_median(submit, count), luz_median(finish, count));
     free(storage);
     return 0;
 }

@@ -12,6 +12,7 @@
  *   options.h      the command-line and scene-file options both programs share
  *   controls.h     the viewer's keys and mouse as functions on scene data
  *   panel.h        the viewer's text, light panel, HUD and help, drawn into a framebuffer
+ *   bench.h        the median behind every --bench line
  */
 #ifndef LUZ_LUZ_H
 #define LUZ_LUZ_H
@@ -28,5 +29,6 @@
 #include "luz/options.h"
 #include "luz/controls.h"
 #include "luz/panel.h"
+#include "luz/bench.h"
 
 #endif

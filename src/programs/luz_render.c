@@ -59,28 +59,6 @@ static void print_usage(FILE *out)
             "directory, 1 if rendering or writing failed.\n");
 }
 
-/* ---- timing --------------------------------------------------------------------- */
-
-static double seconds_of(clockid_t clock)
-{
-    struct timespec now;
-    clock_gettime(clock, &now);
-    return (double)now.tv_sec + (double)now.tv_nsec * 1e-9;
-}
-
-static int compare_doubles(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-/* The median of count values; sorts them. */
-static double median(double *values, int count)
-{
-    qsort(values, (size_t)count, sizeof *values, compare_doubles);
-    return count % 2 ? values[count / 2] : 0.5 * (values[count / 2 - 1] + values[count / 2]);
-}
-
 /* ---- rendering -------------------------------------------------------------------- */
 
 /* What every frame needs, made once. */
@@ -155,12 +133,12 @@ static int bench_run(render_context *context, luz_renderer *renderer, bench_samp
     for (int k = 0; k < options->bench_frames; k++) {
         double time_seconds = options->scene.time_seconds + k / options->frames_per_second;
         luz_frame_stats stats;
-        double wall = seconds_of(CLOCK_MONOTONIC);
-        double cpu = seconds_of(CLOCK_PROCESS_CPUTIME_ID);
+        double wall = luz_wall_ms();
+        double cpu = luz_cpu_ms();
         if (render_at(context, renderer, time_seconds, &stats, error) != 0)
             return -1;
-        samples->cpu_ms[k] = (seconds_of(CLOCK_PROCESS_CPUTIME_ID) - cpu) * 1e3;
-        samples->wall_ms[k] = (seconds_of(CLOCK_MONOTONIC) - wall) * 1e3;
+        samples->cpu_ms[k] = luz_cpu_ms() - cpu;
+        samples->wall_ms[k] = luz_wall_ms() - wall;
         samples->geometry_ms[k] = stats.geometry_ms;
         samples->raster_ms[k] = stats.raster_ms;
     }
@@ -188,28 +166,18 @@ static int bench(render_context *context, luz_renderer *renderer, luz_error *err
         if (single != NULL)
             luz_renderer_destroy(single);
         if (status == 0)
-            single_thread_median = median(samples.wall_ms, count);
+            single_thread_median = luz_median(samples.wall_ms, count);
     }
     if (status == 0)
         status = bench_run(context, renderer, &samples, error);
     if (status == 0) {
-        double median_ms = median(samples.wall_ms, count);
-        double min_ms = samples.wall_ms[0];   /* sorted by median() */
-        int cubes = options->scene.custom_cubes ? options->scene.custom_cube_count
-                                                : options->scene.cube_count;
-        printf("frames=%d size=%dx%d threads=%d cubes=%d filter=%s fragment=%s ", count,
-               options->width, options->height, threads, cubes,
-               luz_filter_name(options->scene.filter),
-               options->reference || options->scene.view != LUZ_VIEW_COLOR ? "reference"
-                                                                            : "packet");
-        if (options->scene.view != LUZ_VIEW_COLOR)
-            printf("view=%s ", luz_view_name(options->scene.view));
-        if (options->scene.interpolation != LUZ_INTERPOLATION_PERSPECTIVE)
-            printf("interp=%s ", luz_interpolation_name(options->scene.interpolation));
+        double median_ms = luz_median(samples.wall_ms, count);
+        double min_ms = samples.wall_ms[0];   /* sorted by luz_median() */
+        luz_bench_print_case(stdout, options, count, options->width, options->height, threads);
         printf("median_ms=%.3f min_ms=%.3f fps=%.2f cpu_ms=%.3f geometry_ms=%.3f raster_ms=%.3f",
                median_ms, min_ms, median_ms > 0.0 ? 1000.0 / median_ms : 0.0,
-               median(samples.cpu_ms, count), median(samples.geometry_ms, count),
-               median(samples.raster_ms, count));
+               luz_median(samples.cpu_ms, count), luz_median(samples.geometry_ms, count),
+               luz_median(samples.raster_ms, count));
         if (threads > 1)
             printf(" single_thread_median_ms=%.3f speedup=%.2f", single_thread_median,
                    median_ms > 0.0 ? single_thread_median / median_ms : 0.0);

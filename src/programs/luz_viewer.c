@@ -19,8 +19,11 @@
  * Options are luz-render's scene options, read by the same parser
  * (luz_options_parse), plus two of the viewer's own, which are taken out of
  * argv before the shared parser sees the rest: --render-scale S and
- * --print-state. luz-render's output options (-o, --frames, --fps, --bench)
- * are refused: the viewer writes no frames.
+ * --print-state. luz-render's --bench N and --fps F mean the same here:
+ * the same N frames, drawn and shown in the window, and the same line of
+ * results, so that the two programs' frame rates can be compared (tools/
+ * viewer-bench). luz-render's file options (-o, --frames) are refused: the
+ * viewer writes no frames.
  *
  * Exit status: 0 when the window is closed or Esc is pressed; 2 for a bad
  * option, scene file or textures directory, or when no display is
@@ -87,7 +90,7 @@ static int read_render_scale(const char *text, float *scale, luz_error *error)
 static int split_arguments(int argc, char **argv, viewer_settings *settings, char **scene_argv,
                            int *scene_argc, luz_error *error)
 {
-    static const char *const batch_only[] = {"-o", "--output", "--frames", "--fps", "--bench"};
+    static const char *const batch_only[] = {"-o", "--output", "--frames"};
     int count = 0;
     scene_argv[count++] = argv[0];
     for (int i = 1; i < argc; i++) {
@@ -131,8 +134,9 @@ static void print_usage(FILE *out)
             "Fly through the luz lighting lab (rotating textured cubes lit by six lights, as\n"
             "SCENE.md describes) in a window, rendered in real time on the CPU.\n"
             "\n"
-            "The scene options are luz-render's (-o, --frames, --fps and --bench are\n"
-            "luz-render's alone; the viewer refuses them):\n");
+            "The scene options are luz-render's (-o and --frames are luz-render's alone;\n"
+            "the viewer refuses them; --bench N shows its N frames in the window and\n"
+            "prints the same line, window included, then quits):\n");
     luz_options_print_help(out);
     fprintf(out,
             "\n"
@@ -189,6 +193,7 @@ typedef struct viewer {
     double fps_seconds;
     int fps_frames;
     double frames_per_second, frame_ms;
+    double present_ms;               /* the last frame's 2D layer and showing it */
 
     char message[640];               /* shown at the bottom for a few seconds */
     double message_seconds_left;
@@ -519,10 +524,12 @@ static int draw_frame(viewer *v, luz_error *error)
         v->screenshot_requested = false;
         save_screenshot(v, v->framebuffer);
     }
+    double present_start = luz_wall_ms();
     draw_overlays(v);
     SDL_UpdateTexture(v->texture, NULL, v->framebuffer->colour, v->framebuffer->width * 4);
     SDL_RenderCopy(v->presenter, v->texture, NULL, NULL);
     SDL_RenderPresent(v->presenter);
+    v->present_ms = luz_wall_ms() - present_start;
     return 0;
 }
 
@@ -560,6 +567,65 @@ static int run(viewer *v, luz_error *error)
         if (draw_frame(v, error) != 0)
             return -1;
     }
+    return 0;
+}
+
+/* --bench N: luz-render --bench N's frames (one warm-up frame at --time,
+ * then frame k at --time + k / --fps), each drawn and shown as run() does,
+ * events included, and luz-render's line of results for them, window
+ * included, so that tools/viewer-bench can set the two side by side. Time
+ * follows that schedule, not the clock, and the camera stays put, so the
+ * frames are luz-render's own. present_ms is what showing a frame costs on
+ * top of drawing it (the HUD, the copy to the window, the X server's copy).
+ * Esc or closing the window ends the run early; the line then covers the
+ * frames shown so far. */
+static int run_bench(viewer *v, luz_error *error)
+{
+    const int count = v->options->bench_frames;
+    double *storage = calloc((size_t)count * 5, sizeof *storage);
+    if (storage == NULL)
+        return luz_error_set(error, "--bench: out of memory for %d frames", count);
+    double *wall = storage, *cpu = storage + count, *geometry = storage + 2 * count,
+           *raster = storage + 3 * count, *present = storage + 4 * count;
+    const double start_seconds = v->options->scene.time_seconds;
+    int shown = 0;
+    v->running = true;
+    for (int k = -1; k < count && v->running; k++) {
+        double wall_start = luz_wall_ms(), cpu_start = luz_cpu_ms();
+        SDL_Event event;
+        while (SDL_PollEvent(&event))
+            handle_event(v, &event);
+        if (!v->running)
+            break;
+        tick(v);   /* for the HUD */
+        v->options->scene.time_seconds =
+            start_seconds + (k > 0 ? k : 0) / v->options->frames_per_second;
+        if (draw_frame(v, error) != 0) {
+            free(storage);
+            return -1;
+        }
+        if (k < 0)
+            continue;   /* the warm-up frame */
+        wall[k] = luz_wall_ms() - wall_start;
+        cpu[k] = luz_cpu_ms() - cpu_start;
+        geometry[k] = v->stats.geometry_ms;
+        raster[k] = v->stats.raster_ms;
+        present[k] = v->present_ms;
+        shown = k + 1;
+    }
+    if (shown > 0) {
+        double median_ms = luz_median(wall, shown);
+        luz_bench_print_case(stdout, v->options, shown, v->window_width, v->window_height,
+                             luz_renderer_thread_count(v->renderer));
+        if (v->settings.render_scale != 1.0f)
+            printf("render_scale=%g ", v->settings.render_scale);
+        printf("median_ms=%.3f min_ms=%.3f fps=%.2f cpu_ms=%.3f geometry_ms=%.3f "
+               "raster_ms=%.3f present_ms=%.3f\n",
+               median_ms, wall[0], median_ms > 0.0 ? 1000.0 / median_ms : 0.0,
+               luz_median(cpu, shown), luz_median(geometry, shown), luz_median(raster, shown),
+               luz_median(present, shown));
+    }
+    free(storage);
     return 0;
 }
 
@@ -649,7 +715,7 @@ int main(int argc, char **argv)
     if (v.framebuffer == NULL)
         goto done;
     set_panel_open(&v, false);
-    if (run(&v, &error) != 0)
+    if ((options.bench_frames > 0 ? run_bench(&v, &error) : run(&v, &error)) != 0)
         goto done;
     if (v.settings.print_state)
         write_state(&v, stdout);
