@@ -52,7 +52,7 @@ static int teardown_framebuffer(void **state)
 
 static void clear(luz_framebuffer *framebuffer)
 {
-    luz_framebuffer_clear_rows(framebuffer, 0, SIZE, (luz_vec3){0, 0, 0});
+    luz_framebuffer_clear_rows(framebuffer, 0, SIZE);
 }
 
 static luz_setup_result set_up(window_point a, window_point b, window_point c, float z_ndc,

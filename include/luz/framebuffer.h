@@ -1,7 +1,11 @@
 /*
  * luz/framebuffer.h: where the pipeline's output lands.
  *
- * Colour is RGBA8, row 0 on top (as in a PNG file), alpha always 255.
+ * Colour is 8 bits a channel, four bytes a pixel, in RGBA order (as in a
+ * PNG file) unless the caller asks for BGRA; row 0 on top, alpha always
+ * 255. Every pixel's colour is written by the shading pass, the background
+ * included, so colour needs no clearing and may be memory the caller
+ * lends (luz_framebuffer_use_colour).
  * Depth is a float per pixel in [0, 1] (24 bits of mantissa, SCENE.md asks
  * for at least 24), cleared to 1.0 and tested with LESS.
  *
@@ -24,12 +28,24 @@
 #define LUZ_MAX_DIMENSION 16384
 #define LUZ_MAX_PIXELS (64 * 1024 * 1024)
 
+/* The order of a pixel's four bytes in colour. RGBA is a PNG file's. BGRA
+ * is how X11 and most window systems store a pixel on a little-endian
+ * machine (the 32-bit value 0xAARRGGBB), so a viewer can have luz draw
+ * straight into the window's memory instead of converting every frame. */
+typedef enum luz_channel_order {
+    LUZ_CHANNELS_RGBA = 0,
+    LUZ_CHANNELS_BGRA,
+} luz_channel_order;
+
 typedef struct luz_framebuffer {
     int width;
     int height;
+    luz_channel_order channel_order;   /* of colour */
     uint8_t *colour;        /* width * height * 4 bytes */
     float *depth;           /* width * height */
     uint32_t *visibility;   /* width * height triangle ids, 0 = background */
+    uint8_t *own_colour;    /* what the framebuffer allocated; colour points
+                               here unless the caller lent memory */
 } luz_framebuffer;
 
 /* Returns 0 if width x height is a size the renderer supports, else -1 with
@@ -39,10 +55,19 @@ luz_framebuffer *luz_framebuffer_create(int width, int height, luz_error *error)
 int luz_framebuffer_resize(luz_framebuffer *framebuffer, int width, int height, luz_error *error);
 void luz_framebuffer_destroy(luz_framebuffer *framebuffer);
 
-/* Clears rows [first_row, end_row): colour to clear_colour, depth to 1.0,
- * visibility to 0. */
-void luz_framebuffer_clear_rows(luz_framebuffer *framebuffer, int first_row, int end_row,
-                                luz_vec3 clear_colour);
+/* Draw the colour into the caller's memory from now on: pixels holds
+ * width * height * 4 bytes, rows packed, in the given order. pixels NULL
+ * goes back to the framebuffer's own memory, in the given order. The
+ * caller keeps the memory alive while it is in use; the framebuffer never
+ * frees it. luz_framebuffer_resize goes back to the framebuffer's own
+ * memory and keeps the order. */
+void luz_framebuffer_use_colour(luz_framebuffer *framebuffer, uint8_t *pixels,
+                                luz_channel_order order);
+
+/* Clears rows [first_row, end_row): depth to 1.0, visibility to 0. Colour
+ * is not touched: the shading pass writes the clear colour wherever
+ * visibility stays 0. */
+void luz_framebuffer_clear_rows(luz_framebuffer *framebuffer, int first_row, int end_row);
 
 /* SCENE.md's colour output: round(clamp(c, 0, 1) * 255). */
 static inline uint8_t luz_colour_to_byte(float c)

@@ -9,6 +9,11 @@
  * under the requested name. Termination signals wait until the file is
  * complete, so Ctrl-C does not leave the temporary NAME.tmp-XXXXXX behind
  * either (only SIGKILL can).
+ *
+ * A PNG's pixels are RGBA. A framebuffer drawn in BGRA (a window's order,
+ * see luz/framebuffer.h) is converted into a temporary copy first, so the
+ * framebuffer itself is left as it was, and the file is still either
+ * complete or absent.
  */
 #include <errno.h>
 #include <pthread.h>
@@ -108,6 +113,26 @@ int luz_png_write(const char *path, int width, int height, const uint8_t *rgba,
 int luz_framebuffer_write_png(const luz_framebuffer *framebuffer, const char *path,
                               luz_error *error)
 {
-    return luz_png_write(path, framebuffer->width, framebuffer->height, framebuffer->colour,
-                         error);
+    const int width = framebuffer->width, height = framebuffer->height;
+    if (framebuffer->channel_order == LUZ_CHANNELS_RGBA)
+        return luz_png_write(path, width, height, framebuffer->colour, error);
+
+    /* BGRA: red and blue, bytes 0 and 2, trade places; green and alpha
+     * stay. The copy is made before any file exists, so running out of
+     * memory leaves nothing behind. */
+    const size_t bytes = (size_t)width * (size_t)height * 4;
+    uint8_t *rgba = malloc(bytes);
+    if (!rgba)
+        return luz_error_set(error, "%s: out of memory converting the %dx%d image to RGBA",
+                             path, width, height);
+    const uint8_t *bgra = framebuffer->colour;
+    for (size_t i = 0; i < bytes; i += 4) {
+        rgba[i + 0] = bgra[i + 2];
+        rgba[i + 1] = bgra[i + 1];
+        rgba[i + 2] = bgra[i + 0];
+        rgba[i + 3] = bgra[i + 3];
+    }
+    int status = luz_png_write(path, width, height, rgba, error);
+    free(rgba);
+    return status;
 }

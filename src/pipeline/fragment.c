@@ -5,7 +5,11 @@
  *
  * In:  the visibility buffer (which triangle is nearest at each pixel,
  *      written by raster.c), the set-up triangles, the frame.
- * Out: the colour buffer, each channel round(clamp(c, 0, 1) * 255).
+ * Out: the colour buffer, each channel round(clamp(c, 0, 1) * 255), in the
+ *      framebuffer's channel order (RGBA or BGRA). Every pixel is written:
+ *      the background, where no triangle won, gets the clear colour. No
+ *      pass clears colour beforehand, so each byte is written once a frame
+ *      and colour may be memory the caller lends, holding anything.
  *
  * Perspective-correct interpolation: on the screen, a varying a is not
  * affine, but a / w and 1 / w are (the projection is a projective map;
@@ -21,6 +25,8 @@
  * so every pixel has its own footprint, with no need for neighbours (and
  * so no dependence on where a band begins).
  */
+#include <string.h>
+
 #include "pipeline/pipeline.h"
 #include "luz/shade.h"
 #include "luz/texture.h"
@@ -65,6 +71,9 @@ uint64_t luz_fragment_shade_rows(const luz_frame *frame, const luz_triangle *con
      * have to reload every uniform after every pixel. */
     const luz_uniforms uniforms = frame->uniforms;
     const int width = framebuffer->width;
+    const luz_pixel_layout layout = luz_pixel_layout_of(framebuffer->channel_order);
+    uint8_t background[4];   /* the clear colour's bytes, worked out once */
+    luz_pixel_write(background, layout, uniforms.clear_colour);
     uint64_t shaded = 0;
 
     for (int y = first_row; y < end_row; y++) {
@@ -72,7 +81,11 @@ uint64_t luz_fragment_shade_rows(const luz_frame *frame, const luz_triangle *con
         uint8_t *colour_row = framebuffer->colour + (size_t)y * width * 4;
         for (int x = 0; x < width; x++) {
             const uint32_t id = visibility_row[x];
-            if (id == 0) continue;   /* background keeps the clear colour */
+            uint8_t *pixel = colour_row + (size_t)x * 4;
+            if (id == 0) {
+                memcpy(pixel, background, sizeof background);
+                continue;
+            }
             const luz_triangle *triangle = by_id[id];
             const luz_draw *draw = &frame->draws[triangle->draw_index];
 
@@ -92,11 +105,7 @@ uint64_t luz_fragment_shade_rows(const luz_frame *frame, const luz_triangle *con
                 colour = luz_shade_fragment(&uniforms, fragment.position, fragment.normal,
                                             draw->colour, texel);
             }
-            uint8_t *pixel = colour_row + (size_t)x * 4;
-            pixel[0] = luz_colour_to_byte(colour.x);
-            pixel[1] = luz_colour_to_byte(colour.y);
-            pixel[2] = luz_colour_to_byte(colour.z);
-            pixel[3] = 255;
+            luz_pixel_write(pixel, layout, colour);
             shaded++;
         }
     }

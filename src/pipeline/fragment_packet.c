@@ -5,7 +5,8 @@
  * with AVX-512, as many as a register holds floats.
  *
  * In:  the visibility buffer, the set-up triangles, the frame.
- * Out: the colour buffer, as fragment.c writes it.
+ * Out: the colour buffer, as fragment.c writes it: every pixel, the
+ *      background's included, in the framebuffer's channel order.
  *
  * fragment.c stays the reference: it reads as the equations do, one pixel
  * at a time. This file computes the same equations, in the same order, on
@@ -19,9 +20,14 @@
  *     none (the background). The packet is shaded once per triangle in it,
  *     each pass with that triangle's planes and draw, and a lane mask keeps
  *     the lanes that are the triangle's. Most packets hold one triangle.
+ *     The packet starts as the clear colour in every lane, so the lanes no
+ *     triangle claims are the background, and it is stored whole: colour
+ *     is not cleared before this pass, and one store of a full packet is
+ *     cheaper than picking out its background lanes.
  *   - Uniforms. What is the same for every pixel (normalize(F),
- *     normalize(-d), which terms are on, ...) is worked out once per band,
- *     by the very operations shade.h applies per pixel.
+ *     normalize(-d), which terms are on, where the channel order puts red
+ *     and blue, ...) is worked out once per band, by the very operations
+ *     shade.h applies per pixel.
  *   - Textures. Texel addresses, bilinear weights and blends are vectors;
  *     the texel fetches are one load per lane (a "gather").
  *   - Instruction sets. src/meson.build compiles this file once for the
@@ -200,6 +206,15 @@ INLINE vvec3 normalize3(vvec3 a, vfloat *length_out)
 
 /* ---- the uniforms of a band ------------------------------------------- */
 
+/* Where byte c of four bytes in memory lands in a uint32_t that reads or
+ * writes them at once: an RGBA8 texel's channel c, or byte c of a pixel of
+ * the framebuffer. */
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+#define CHANNEL_SHIFT(c) (24 - 8 * (c))
+#else
+#define CHANNEL_SHIFT(c) (8 * (c))
+#endif
+
 /* What every pixel of the band shares, worked out once, each with the
  * operations shade.h applies per pixel, so that the bits are the same. */
 typedef struct packet_uniforms {
@@ -218,9 +233,14 @@ typedef struct packet_uniforms {
     float spot_strength_squared;
     float cos_inner, cos_outer, reach;
     luz_filter filter;
+    /* The framebuffer's channel order, as the shifts that put red and blue
+     * into a pixel's uint32_t (CHANNEL_SHIFT), and the clear colour packed
+     * in it. */
+    unsigned red_shift, blue_shift;
+    uint32_t background;
 } packet_uniforms;
 
-static packet_uniforms packet_uniforms_of(const luz_uniforms *uniforms)
+static packet_uniforms packet_uniforms_of(const luz_uniforms *uniforms, luz_channel_order order)
 {
     const luz_lights *lights = &uniforms->lights;
     packet_uniforms u = {
@@ -249,6 +269,12 @@ static packet_uniforms packet_uniforms_of(const luz_uniforms *uniforms)
     const float s = lights->shininess;
     u.shininess_whole = luz_shade_power_is_whole(s);
     u.shininess_exponent = u.shininess_whole ? (unsigned)s : 0;
+    const luz_pixel_layout layout = luz_pixel_layout_of(order);
+    u.red_shift = CHANNEL_SHIFT(layout.red);
+    u.blue_shift = CHANNEL_SHIFT(layout.blue);
+    uint8_t background[4];
+    luz_pixel_write(background, layout, uniforms->clear_colour);
+    memcpy(&u.background, background, sizeof u.background);
     return u;
 }
 
@@ -332,13 +358,6 @@ INLINE vvec3 shade_lighting(const packet_uniforms *u, vvec3 position, vvec3 norm
 }
 
 /* ---- textures ------------------------------------------------------------ */
-
-/* Channel c of an RGBA8 texel read as one uint32_t. */
-#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
-#define CHANNEL_SHIFT(c) (24 - 8 * (c))
-#else
-#define CHANNEL_SHIFT(c) (8 * (c))
-#endif
 
 /* One texel per lane; index counts texels from the start of level 0. */
 INLINE vuint gather(const uint8_t *texels, vint index)
@@ -561,10 +580,14 @@ INLINE vuint to_byte(vfloat c)
     return (vuint)select_int(inside, byte, above & 255);
 }
 
-INLINE vuint pack_rgba(vvec3 colour)
+/* The lanes' pixels, four bytes each in the framebuffer's channel order.
+ * The order only moves red and blue, so it costs no branch: their shifts
+ * take counts chosen once per band instead of constants, which is about a
+ * micro-op more per packet, lost among the hundreds of shading. */
+INLINE vuint pack_pixels(vvec3 colour, const packet_uniforms *u)
 {
-    return to_byte(colour.x) << CHANNEL_SHIFT(0) | to_byte(colour.y) << CHANNEL_SHIFT(1) |
-           to_byte(colour.z) << CHANNEL_SHIFT(2) | 255u << CHANNEL_SHIFT(3);
+    return to_byte(colour.x) << u->red_shift | to_byte(colour.y) << CHANNEL_SHIFT(1) |
+           to_byte(colour.z) << u->blue_shift | 255u << CHANNEL_SHIFT(3);
 }
 
 /* The texel T of the lanes, as luz_texture_sample with fragment.c's level
@@ -602,8 +625,9 @@ INLINE vuint shade_triangle(const packet_uniforms *u, const luz_frame *frame,
 {
     const luz_draw *draw = &frame->draws[triangle->draw_index];
     if (draw->unlit)
-        return pack_rgba((vvec3){splat(draw->colour.x), splat(draw->colour.y),
-                                 splat(draw->colour.z)});
+        return pack_pixels((vvec3){splat(draw->colour.x), splat(draw->colour.y),
+                                   splat(draw->colour.z)},
+                           u);
 
     /* luz_fragment_interpolate: a = (a/w)(x, y) / (1/w)(x, y). */
     const vfloat dx = centre_x - triangle->reference_x;
@@ -631,7 +655,7 @@ INLINE vuint shade_triangle(const packet_uniforms *u, const luz_frame *frame,
     vvec3 colour = {light.x * draw->colour.x, light.y * draw->colour.y,
                     light.z * draw->colour.z};
     if (texture) colour = (vvec3){colour.x * texel.x, colour.y * texel.y, colour.z * texel.z};
-    return pack_rgba(colour);
+    return pack_pixels(colour, u);
 }
 
 /* ---- the band ------------------------------------------------------------ */
@@ -643,7 +667,8 @@ uint64_t VARIANT_ROWS(const luz_frame *frame, const luz_triangle *const *by_id,
 uint64_t VARIANT_ROWS(const luz_frame *frame, const luz_triangle *const *by_id,
                       luz_framebuffer *framebuffer, int first_row, int end_row)
 {
-    const packet_uniforms u = packet_uniforms_of(&frame->uniforms);
+    const packet_uniforms u = packet_uniforms_of(&frame->uniforms, framebuffer->channel_order);
+    const vuint background = (vuint){0} + u.background;
     const int width = framebuffer->width;
     vfloat lane_x;
     for (int i = 0; i < LANES; i++)
@@ -665,31 +690,29 @@ uint64_t VARIANT_ROWS(const luz_frame *frame, const luz_triangle *const *by_id,
                 for (int i = 0; i < count; i++)
                     ids[i] = visibility_row[x + i];
             const unsigned covered = lane_bits((vint)(ids != 0u));
-            if (covered == 0) continue;   /* background keeps the clear colour */
-            shaded += (uint64_t)__builtin_popcount(covered);
-
-            /* Pixel centres as fragment.c computes them: (float)x + 0.5. */
-            const vfloat centre_x = (lane_x + (float)x) + 0.5f;
-            vuint rgba = {0};
-            for (unsigned pending = covered; pending != 0;) {
-                const uint32_t id = ids[__builtin_ctz(pending)];
-                const vint mine = (vint)(ids == id);
-                pending &= ~lane_bits(mine);
-                const vuint shade = shade_triangle(&u, frame, by_id[id], centre_x, centre_y,
-                                                   mine);
-                rgba = (vuint)select_int(mine, (vint)shade, (vint)rgba);
-            }
-
             uint8_t *out = colour_row + (size_t)x * 4;
-            if (covered == ALL_LANES) {
-                memcpy(out, &rgba, sizeof rgba);
-            } else {
-                for (int i = 0; i < count; i++) {
-                    if (!(covered >> i & 1u)) continue;
-                    const uint32_t pixel = rgba[i];
-                    memcpy(out + (size_t)i * 4, &pixel, sizeof pixel);
+            /* Every lane starts as the background; the triangles' passes
+             * overwrite theirs. */
+            vuint pixels = background;
+            if (covered != 0) {
+                shaded += (uint64_t)__builtin_popcount(covered);
+                /* Pixel centres as fragment.c computes them: (float)x + 0.5. */
+                const vfloat centre_x = (lane_x + (float)x) + 0.5f;
+                for (unsigned pending = covered; pending != 0;) {
+                    const uint32_t id = ids[__builtin_ctz(pending)];
+                    const vint mine = (vint)(ids == id);
+                    pending &= ~lane_bits(mine);
+                    const vuint shade = shade_triangle(&u, frame, by_id[id], centre_x,
+                                                       centre_y, mine);
+                    pixels = (vuint)select_int(mine, (vint)shade, (vint)pixels);
                 }
             }
+            /* Lanes are in memory order, so a short packet's first count
+             * lanes are its pixels. */
+            if (count == LANES)
+                memcpy(out, &pixels, sizeof pixels);
+            else
+                memcpy(out, &pixels, (size_t)count * 4);
         }
     }
     return shaded;

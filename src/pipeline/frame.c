@@ -13,9 +13,10 @@
  *      bounding box touches, still in id order.
  *
  *   2. Bands, per band of rows (one job each):
- *        clear           the band's colour, depth and visibility
+ *        clear           the band's depth and visibility
  *        raster + depth  the band's triangles, in id order
- *        fragment        each visible pixel shaded once (or, for a
+ *        fragment        each visible pixel shaded once, and the
+ *                        background given the clear colour (or, for a
  *                        --view other than color, a picture of a stage:
  *                        view.c)
  *
@@ -197,9 +198,10 @@ static void band_job(void *context, int band_index, int worker_index)
     if (end_row > framebuffer->height) end_row = framebuffer->height;
     band_counters *counters = &job->renderer->bands[band_index];
 
-    /* Clear. */
-    luz_framebuffer_clear_rows(framebuffer, first_row, end_row,
-                               job->frame->uniforms.clear_colour);
+    /* Clear depth and visibility. Not colour: the fragment stage (or the
+     * view) writes every pixel of the band, the clear colour where no
+     * triangle wins, so each colour byte is written once. */
+    luz_framebuffer_clear_rows(framebuffer, first_row, end_row);
 
     /* The overdraw view counts every depth test of the band's pixels. */
     uint32_t *overdraw = job->overdraw;

@@ -144,18 +144,44 @@ uint64_t luz_raster_triangle_counting(const luz_triangle *triangle, uint32_t tri
 
 /* ---- fragment stage ---------------------------------------------------- */
 
+/* Where a colour's channels go in a pixel's four bytes: red and blue trade
+ * places between the two orders, green (byte 1) and alpha (byte 3) stay.
+ * Worked out once per band, not per pixel. */
+typedef struct luz_pixel_layout {
+    int red, blue;   /* byte offsets */
+} luz_pixel_layout;
+
+static inline luz_pixel_layout luz_pixel_layout_of(luz_channel_order order)
+{
+    return order == LUZ_CHANNELS_BGRA ? (luz_pixel_layout){2, 0} : (luz_pixel_layout){0, 2};
+}
+
+/* Writes colour, as luz_colour_to_byte rounds it, and alpha 255. */
+static inline void luz_pixel_write(uint8_t *pixel, luz_pixel_layout layout, luz_vec3 colour)
+{
+    pixel[layout.red] = luz_colour_to_byte(colour.x);
+    pixel[1] = luz_colour_to_byte(colour.y);
+    pixel[layout.blue] = luz_colour_to_byte(colour.z);
+    pixel[3] = 255;
+}
+
 /* Shades rows [first_row, end_row): each pixel whose visibility id is not 0
  * gets its varyings interpolated perspective-correctly, its texel sampled
  * and the fragment shader's colour; by_id[id] is the triangle with that id.
- * Returns the number of pixels shaded. */
+ * Every other pixel, the background, gets the clear colour
+ * (frame->uniforms.clear_colour): colour is not cleared beforehand, so
+ * after this every byte of the rows' colour is written, in the
+ * framebuffer's channel order. Returns the number of pixels shaded (the
+ * background not counted). */
 uint64_t luz_fragment_shade_rows(const luz_frame *frame, const luz_triangle *const *by_id,
                                  luz_framebuffer *framebuffer, int first_row, int end_row);
 
 /* The same stage, a packet of pixels at a time (fragment_packet.c): the
- * same equations in the same order, as SIMD vectors. It agrees with
- * luz_fragment_shade_rows to within rounding (the level of detail's
- * logarithm is the one operation computed differently) and, like it,
- * gives each pixel a colour that depends on nothing but that pixel.
+ * same equations in the same order, as SIMD vectors, and the background
+ * written the same way. It agrees with luz_fragment_shade_rows to within
+ * rounding (the level of detail's logarithm is the one operation computed
+ * differently) and, like it, gives each pixel a colour that depends on
+ * nothing but that pixel.
  *
  * isa says which compiled variant runs: LUZ_PACKET_ISA_BEST the widest the
  * CPU supports (what the renderer uses), the others for tests. A variant
@@ -191,8 +217,10 @@ void luz_fragment_interpolate(const luz_triangle *triangle, int x, int y, luz_fr
  * luz/view.h), from what the raster stage left there: the visibility and
  * depth buffers, and overdraw (depth tests per pixel, counted only for the
  * overdraw view; NULL otherwise). worker_index is the thread drawing the
- * band (the bands view). The colour view is fragment.c's image. Returns
- * the number of visible pixels. */
+ * band (the bands view). The colour view is fragment.c's image. Like the
+ * fragment stage, it writes every pixel of the rows, the background too,
+ * in the framebuffer's channel order. Returns the number of visible
+ * pixels. */
 uint64_t luz_view_shade_rows(const luz_frame *frame, const luz_triangle *const *by_id,
                              luz_framebuffer *framebuffer, int first_row, int end_row,
                              const uint32_t *overdraw, int worker_index);

@@ -5,7 +5,9 @@
  *      visibility buffer of nearest triangle ids, and for the overdraw view
  *      a count of depth tests per pixel), the set-up triangles, the frame.
  * Out: the band's colour buffer, showing the view the frame asks for
- *      (luz_uniforms.show; the palettes are in luz/view.h).
+ *      (luz_uniforms.show; the palettes are in luz/view.h), in the
+ *      framebuffer's channel order. As in fragment.c, every pixel is
+ *      written, the background's too: nothing clears colour beforehand.
  *
  * Nothing here renders a second time: every view reads what the real
  * stages computed for this frame, through the same functions the fragment
@@ -23,10 +25,14 @@
  *              and bilinear read level 0 only
  *   overdraw   the count raster.c kept (luz_raster_triangle_counting)
  *   bands      the shaded image (fragment.c), dimmed, under the tint of the
- *              thread that drew this band
+ *              thread that drew this band, background included
  *   triangles  each winning triangle's colour, and black within
  *              TRIANGLE_EDGE_PIXELS of any of its edges, measured with the
  *              same fixed-point edge functions the rasteriser tests
+ *
+ * depth and overdraw colour the background by their palettes (it has a
+ * depth, the far plane, and a count, 0); the others give it the clear
+ * colour, as the colour view does.
  *
  * The views use the plain one-pixel-at-a-time fragment stage (fragment.c),
  * never the SIMD one: they are for looking, not for speed. This file is
@@ -144,14 +150,6 @@ float luz_view_depth_brightness(float depth, const luz_mat4 *projection)
 
 /* ---- drawing the views ------------------------------------------------- */
 
-static inline void write_colour(uint8_t *pixel, luz_vec3 colour)
-{
-    pixel[0] = luz_colour_to_byte(colour.x);
-    pixel[1] = luz_colour_to_byte(colour.y);
-    pixel[2] = luz_colour_to_byte(colour.z);
-    pixel[3] = 255;
-}
-
 static luz_vec3 mix(luz_vec3 a, luz_vec3 b, float t)
 {
     return luz_vec3_add(luz_vec3_scale(a, 1.0f - t), luz_vec3_scale(b, t));
@@ -197,18 +195,24 @@ static double edge_distance(const luz_triangle *triangle, int x, int y)
     return nearest;
 }
 
+/* Mixes the tint into the rows fragment.c has just shaded, reading each
+ * channel back from the byte the channel order put it in. */
 static void tint_rows_by_thread(luz_framebuffer *framebuffer, int first_row, int end_row,
                                 int worker_index)
 {
     const luz_vec3 tint = luz_view_thread_colour(worker_index);
+    const luz_pixel_layout layout = luz_pixel_layout_of(framebuffer->channel_order);
     const size_t begin = (size_t)first_row * framebuffer->width;
     const size_t end = (size_t)end_row * framebuffer->width;
     const float shown[3] = {tint.x, tint.y, tint.z};
+    const int offset[3] = {layout.red, 1, layout.blue};
     for (size_t i = begin; i < end; i++) {
         uint8_t *pixel = framebuffer->colour + i * 4;
-        for (int c = 0; c < 3; c++)
-            pixel[c] = luz_colour_to_byte((1.0f - LUZ_VIEW_BANDS_TINT) * (pixel[c] / 255.0f) +
-                                          LUZ_VIEW_BANDS_TINT * shown[c]);
+        for (int c = 0; c < 3; c++) {
+            uint8_t *byte = pixel + offset[c];
+            *byte = luz_colour_to_byte((1.0f - LUZ_VIEW_BANDS_TINT) * (*byte / 255.0f) +
+                                       LUZ_VIEW_BANDS_TINT * shown[c]);
+        }
     }
 }
 
@@ -225,6 +229,7 @@ uint64_t luz_view_shade_rows(const luz_frame *frame, const luz_triangle *const *
     }
 
     const int width = framebuffer->width;
+    const luz_pixel_layout layout = luz_pixel_layout_of(framebuffer->channel_order);
     uint64_t shaded = 0;
     for (int y = first_row; y < end_row; y++) {
         const size_t row = (size_t)y * width;
@@ -232,21 +237,26 @@ uint64_t luz_view_shade_rows(const luz_frame *frame, const luz_triangle *const *
         for (int x = 0; x < width; x++) {
             const uint32_t id = framebuffer->visibility[row + x];
             uint8_t *pixel = colour_row + (size_t)x * 4;
-            /* Two views colour the background too: it has a depth (the far
-             * plane) and a count of depth tests (0). */
+            /* Two views colour the background by their palettes: it has a
+             * depth (the far plane) and a count of depth tests (0). The
+             * others give it the clear colour, below. */
             if (view == LUZ_VIEW_DEPTH) {
                 float grey = luz_view_depth_brightness(framebuffer->depth[row + x],
                                                        &uniforms->projection);
-                write_colour(pixel, (luz_vec3){grey, grey, grey});
+                luz_pixel_write(pixel, layout, (luz_vec3){grey, grey, grey});
                 shaded += id != 0;
                 continue;
             }
             if (view == LUZ_VIEW_OVERDRAW) {
-                write_colour(pixel, luz_view_overdraw_colour(overdraw ? overdraw[row + x] : 0));
+                luz_pixel_write(pixel, layout,
+                                luz_view_overdraw_colour(overdraw ? overdraw[row + x] : 0));
                 shaded += id != 0;
                 continue;
             }
-            if (id == 0) continue;   /* the background keeps the clear colour */
+            if (id == 0) {
+                luz_pixel_write(pixel, layout, uniforms->clear_colour);
+                continue;
+            }
 
             const luz_triangle *triangle = by_id[id];
             const luz_draw *draw = &frame->draws[triangle->draw_index];
@@ -273,7 +283,7 @@ uint64_t luz_view_shade_rows(const luz_frame *frame, const luz_triangle *const *
             default:
                 break;
             }
-            write_colour(pixel, colour);
+            luz_pixel_write(pixel, layout, colour);
             shaded++;
         }
     }
