@@ -19,7 +19,11 @@
  * exact properties: the fast path's image is the same byte for byte for
  * any thread count, any variant (and a width that is not a whole number
  * of packets), and with no textures and only ambient light both paths
- * give each cube exactly round(0.2 C 255).
+ * give each cube exactly round(0.2 C 255). Last, what both paths promise
+ * about the colour buffer itself: every byte is written (colour is never
+ * cleared, so what it held before must not show), the background gets the
+ * clear colour, and a BGRA framebuffer gets the RGBA image with red and
+ * blue swapped.
  */
 #include <math.h>
 #include <setjmp.h>
@@ -408,6 +412,96 @@ static void ambient_only_is_exact(void **state)
     }
 }
 
+/* ---- every byte of colour, in either channel order ----------------------- */
+
+/* A clear colour whose channels all differ, each far from a rounding tie:
+ * 0.25 * 255 = 63.75, 0.6 * 255 = 153.0, 0.85 * 255 = 216.75. */
+static const luz_vec3 tinted_clear = {0.25f, 0.6f, 0.85f};
+static const uint8_t tinted_clear_bytes[3] = {64, 153, 217};
+
+/* Draws frame into a new width x height framebuffer in the given channel
+ * order, whose colour held `fill` in every byte beforehand. */
+static luz_framebuffer *render_over(const luz_frame *frame, int width, int height, stage how,
+                                    uint8_t fill, luz_channel_order order)
+{
+    luz_error error = {{0}};
+    luz_renderer_desc desc = {.thread_count = 1, .reference = how.reference};
+    luz_renderer *renderer = luz_renderer_create(&desc, &error);
+    luz_framebuffer *framebuffer = luz_framebuffer_create(width, height, &error);
+    assert_non_null(renderer);
+    assert_non_null(framebuffer);
+    luz_renderer_set_packet_isa(renderer, how.isa);
+    memset(framebuffer->colour, fill, (size_t)width * (size_t)height * 4);
+    luz_framebuffer_use_colour(framebuffer, NULL, order);
+    assert_int_equal(luz_renderer_draw(renderer, frame, framebuffer, NULL, &error), 0);
+    luz_renderer_destroy(renderer);
+    return framebuffer;
+}
+
+/* For the reference and every variant: the image drawn over colour full
+ * of 0xA5 bytes is the image drawn over zeros, byte for byte; each
+ * background pixel is (64, 153, 217, 255), round(clear colour * 255); and
+ * the BGRA image is the RGBA one with bytes 0 and 2 of every pixel
+ * swapped, background and cubes alike. 321 = 20 * 16 + 1 pixels a row, so
+ * every variant's last packet of a row is short. */
+static void every_byte_written_in_either_order(void **state)
+{
+    (void)state;
+    enum { SMALL_WIDTH = 321, SMALL_HEIGHT = 181 };
+    const size_t pixels = (size_t)SMALL_WIDTH * SMALL_HEIGHT;
+    luz_scene scene = luz_scene_defaults();
+    scene.time_seconds = 3.0;
+    scene.cube_count = 40;
+    luz_frame frame = {0};
+    assert_int_equal(luz_scene_build_frame(&scene, &textures,
+                                           (float)SMALL_WIDTH / (float)SMALL_HEIGHT, &frame),
+                     0);
+    frame.uniforms.clear_colour = tinted_clear;
+
+    for (size_t v = 0; v <= VARIANT_COUNT; v++) {
+        const bool reference = v == VARIANT_COUNT;
+        if (!reference && !luz_packet_isa_supported(variants[v])) continue;
+        const stage how = reference ? reference_stage : (stage){false, variants[v]};
+        const char *name = reference ? "reference" : variant_names[v];
+        luz_framebuffer *zeros =
+            render_over(&frame, SMALL_WIDTH, SMALL_HEIGHT, how, 0x00, LUZ_CHANNELS_RGBA);
+        luz_framebuffer *garbage =
+            render_over(&frame, SMALL_WIDTH, SMALL_HEIGHT, how, 0xA5, LUZ_CHANNELS_RGBA);
+        luz_framebuffer *bgra =
+            render_over(&frame, SMALL_WIDTH, SMALL_HEIGHT, how, 0xA5, LUZ_CHANNELS_BGRA);
+        assert_int_equal(bgra->channel_order, LUZ_CHANNELS_BGRA);
+        assert_memory_equal(zeros->colour, garbage->colour, pixels * 4);
+
+        size_t background = 0, shaded_red_not_blue = 0;
+        for (size_t p = 0; p < pixels; p++) {
+            const uint8_t *rgba = zeros->colour + p * 4, *swapped = bgra->colour + p * 4;
+            if (swapped[0] != rgba[2] || swapped[1] != rgba[1] || swapped[2] != rgba[0] ||
+                swapped[3] != rgba[3])
+                fail_msg("%s: pixel %zu is (%d, %d, %d, %d) in BGRA, (%d, %d, %d, %d) in RGBA",
+                         name, p, swapped[0], swapped[1], swapped[2], swapped[3], rgba[0],
+                         rgba[1], rgba[2], rgba[3]);
+            if (zeros->visibility[p] != 0) {
+                shaded_red_not_blue += rgba[0] != rgba[2];
+                continue;
+            }
+            background++;
+            if (rgba[0] != tinted_clear_bytes[0] || rgba[1] != tinted_clear_bytes[1] ||
+                rgba[2] != tinted_clear_bytes[2] || rgba[3] != 255)
+                fail_msg("%s: background pixel %zu is (%d, %d, %d, %d)", name, p, rgba[0],
+                         rgba[1], rgba[2], rgba[3]);
+        }
+        print_message("%-9s %zu background pixels, %zu shaded with red != blue\n", name,
+                      background, shaded_red_not_blue);
+        /* The swap is seen on both kinds of pixel. */
+        assert_true(background > 0 && background < pixels);
+        assert_true(shaded_red_not_blue > 0);
+        luz_framebuffer_destroy(zeros);
+        luz_framebuffer_destroy(garbage);
+        luz_framebuffer_destroy(bgra);
+    }
+    luz_frame_free(&frame);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -418,6 +512,7 @@ int main(void)
         cmocka_unit_test(lights_at_their_limits),
         cmocka_unit_test(same_bytes_for_any_thread_count_and_variant),
         cmocka_unit_test(ambient_only_is_exact),
+        cmocka_unit_test(every_byte_written_in_either_order),
     };
     return cmocka_run_group_tests(tests, load_textures, free_textures);
 }

@@ -235,6 +235,89 @@ static void test_bands_view_tints_each_band_by_one_thread(void **state)
     luz_framebuffer_destroy(colour);
 }
 
+/* ---- every byte of colour, in either channel order ---------------------------------------- */
+
+/* Draws the scene into a new width x height framebuffer in the given
+ * channel order, whose colour held `fill` in every byte beforehand; with
+ * one thread, so that the bands view is the same every time. */
+static luz_framebuffer *draw_scene_over(const luz_scene *scene, const luz_texture_set *textures,
+                                        luz_vec3 clear_colour, int width, int height,
+                                        uint8_t fill, luz_channel_order order)
+{
+    luz_frame frame = {0};
+    assert_int_equal(luz_scene_build_frame(scene, textures, (float)width / (float)height, &frame),
+                     0);
+    frame.uniforms.clear_colour = clear_colour;
+    luz_error error = {{0}};
+    luz_renderer *renderer =
+        luz_renderer_create(&(luz_renderer_desc){.thread_count = 1}, &error);
+    luz_framebuffer *framebuffer = luz_framebuffer_create(width, height, &error);
+    assert_non_null(renderer);
+    assert_non_null(framebuffer);
+    memset(framebuffer->colour, fill, (size_t)width * height * 4);
+    luz_framebuffer_use_colour(framebuffer, NULL, order);
+    assert_int_equal(luz_renderer_draw(renderer, &frame, framebuffer, NULL, &error), 0);
+    luz_renderer_destroy(renderer);
+    luz_frame_free(&frame);
+    return framebuffer;
+}
+
+/* Nothing clears colour before a view draws, so every view must write every
+ * byte: drawn over 0xA5 bytes it is the image drawn over zeros. In BGRA it
+ * is the RGBA image with bytes 0 and 2 of each pixel swapped (the bands
+ * view reads colour back to tint it, so it must read red and blue from
+ * where the order put them). The views that do not colour the background
+ * by a palette (all but depth and overdraw) give it the clear colour,
+ * here (0.25, 0.6, 0.85): round(63.75, 153.0, 216.75) = (64, 153, 217). */
+static void test_views_write_every_byte_in_either_order(void **state)
+{
+    const luz_texture_set *textures = *state;
+    enum { WIDTH = 97, HEIGHT = 61 };
+    const size_t pixels = (size_t)WIDTH * HEIGHT;
+    const luz_vec3 clear_colour = {0.25f, 0.6f, 0.85f};
+    const uint8_t clear_bytes[3] = {64, 153, 217};
+    luz_scene scene = luz_scene_defaults();
+    scene.time_seconds = 2.5;
+    for (int v = 0; v < LUZ_VIEW_COUNT; v++) {
+        const char *name = luz_view_name((luz_view)v);
+        scene.view = (luz_view)v;
+        luz_framebuffer *zeros = draw_scene_over(&scene, textures, clear_colour, WIDTH, HEIGHT,
+                                                 0x00, LUZ_CHANNELS_RGBA);
+        luz_framebuffer *garbage = draw_scene_over(&scene, textures, clear_colour, WIDTH,
+                                                   HEIGHT, 0xA5, LUZ_CHANNELS_RGBA);
+        luz_framebuffer *bgra = draw_scene_over(&scene, textures, clear_colour, WIDTH, HEIGHT,
+                                                0xA5, LUZ_CHANNELS_BGRA);
+        if (memcmp(zeros->colour, garbage->colour, pixels * 4) != 0)
+            fail_msg("view %s: the image drawn over 0xA5 bytes differs", name);
+        const bool palette_background = v == LUZ_VIEW_DEPTH || v == LUZ_VIEW_OVERDRAW;
+        size_t background = 0, red_not_blue = 0;
+        for (size_t p = 0; p < pixels; p++) {
+            const uint8_t *rgba = zeros->colour + p * 4, *swapped = bgra->colour + p * 4;
+            if (swapped[0] != rgba[2] || swapped[1] != rgba[1] || swapped[2] != rgba[0] ||
+                swapped[3] != rgba[3])
+                fail_msg("view %s: pixel %zu is (%d, %d, %d, %d) in BGRA, (%d, %d, %d, %d) in "
+                         "RGBA", name, p, swapped[0], swapped[1], swapped[2], swapped[3],
+                         rgba[0], rgba[1], rgba[2], rgba[3]);
+            red_not_blue += rgba[0] != rgba[2];
+            if (zeros->visibility[p] != 0) continue;
+            background++;
+            if (palette_background || v == LUZ_VIEW_BANDS) continue;
+            if (rgba[0] != clear_bytes[0] || rgba[1] != clear_bytes[1] ||
+                rgba[2] != clear_bytes[2] || rgba[3] != 255)
+                fail_msg("view %s: background pixel %zu is (%d, %d, %d, %d)", name, p, rgba[0],
+                         rgba[1], rgba[2], rgba[3]);
+        }
+        if (background == 0 || background == pixels)
+            fail_msg("view %s: %zu of %zu pixels are background", name, background, pixels);
+        /* Otherwise the swap would go unseen; the depth view is grey. */
+        if (v != LUZ_VIEW_DEPTH && red_not_blue == 0)
+            fail_msg("view %s: no pixel has red != blue", name);
+        luz_framebuffer_destroy(zeros);
+        luz_framebuffer_destroy(garbage);
+        luz_framebuffer_destroy(bgra);
+    }
+}
+
 /* ---- what each view shows ---------------------------------------------------------------- */
 
 static void test_normals_view_of_a_face_on_face(void **state)
@@ -516,6 +599,7 @@ int main(void)
         cmocka_unit_test(test_view_names),
         cmocka_unit_test(test_views_do_not_depend_on_the_thread_count),
         cmocka_unit_test(test_bands_view_tints_each_band_by_one_thread),
+        cmocka_unit_test(test_views_write_every_byte_in_either_order),
         cmocka_unit_test(test_normals_view_of_a_face_on_face),
         cmocka_unit_test(test_uv_view_at_texel_centres),
         cmocka_unit_test(test_depth_view),
