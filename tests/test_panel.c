@@ -332,6 +332,54 @@ static void test_fill_blends_and_clips(void **state)
     luz_framebuffer_destroy(framebuffer);
 }
 
+/* A translucent fill over a row of varied pixels, 13 wide so that the
+ * blend runs both four pixels at a time and one at a time, in both
+ * channel orders. Each byte is checked against round((src * a + dst *
+ * (255 - a)) / 255), computed here with a division: x / 255 is never
+ * exactly halfway between integers (255 is odd), so the rounding is
+ * floor((2x + 255) / 510). */
+static void test_fill_blends_every_pixel_in_either_order(void **state)
+{
+    (void)state;
+    const luz_rgba colour = {200, 31, 97, 170};
+    for (int order = 0; order < 2; order++) {
+        luz_framebuffer *framebuffer = grey_framebuffer(15, 3, 0);
+        luz_framebuffer_use_colour(framebuffer, NULL,
+                                   order ? LUZ_CHANNELS_BGRA : LUZ_CHANNELS_RGBA);
+        uint8_t before[15 * 3 * 4];
+        for (size_t i = 0; i < sizeof before; i++)
+            before[i] = framebuffer->colour[i] = (uint8_t)(i % 4 == 3 ? 255 : (i * 37) % 256);
+        luz_overlay_fill(framebuffer, (luz_rect){1, 1, 13, 1}, colour);
+        /* The colour's bytes as they sit in a pixel of this order. */
+        const uint8_t source[4] = {order ? colour.b : colour.r, colour.g,
+                                   order ? colour.r : colour.b, 255};
+        for (int y = 0; y < 3; y++) {
+            for (int x = 0; x < 15; x++) {
+                bool inside = y == 1 && x >= 1 && x <= 13;
+                for (int c = 0; c < 4; c++) {
+                    size_t i = ((size_t)y * 15 + (size_t)x) * 4 + (size_t)c;
+                    unsigned sum = source[c] * colour.a + before[i] * (255u - colour.a);
+                    unsigned expected = inside ? (2 * sum + 255) / 510 : before[i];
+                    assert_int_equal(framebuffer->colour[i], expected);
+                }
+            }
+        }
+        luz_framebuffer_destroy(framebuffer);
+    }
+}
+
+/* An opaque fill stores the colour's bytes in the framebuffer's order. */
+static void test_opaque_fill_follows_the_channel_order(void **state)
+{
+    (void)state;
+    luz_framebuffer *framebuffer = grey_framebuffer(4, 4, 100);
+    luz_framebuffer_use_colour(framebuffer, NULL, LUZ_CHANNELS_BGRA);
+    luz_overlay_fill(framebuffer, (luz_rect){1, 1, 2, 2}, (luz_rgba){7, 8, 9, 255});
+    assert_memory_equal(pixel(framebuffer, 2, 2), ((uint8_t[]){9, 8, 7, 255}), 4);
+    assert_memory_equal(pixel(framebuffer, 0, 0), ((uint8_t[]){100, 100, 100, 255}), 4);
+    luz_framebuffer_destroy(framebuffer);
+}
+
 /* The bounding box of the pixels that are not grey any more. */
 static luz_rect changed_box(const luz_framebuffer *framebuffer, uint8_t grey)
 {
@@ -453,6 +501,8 @@ int main(void)
         cmocka_unit_test(test_click_and_drag),
         cmocka_unit_test(test_click_a_header_switches_the_light),
         cmocka_unit_test(test_fill_blends_and_clips),
+        cmocka_unit_test(test_fill_blends_every_pixel_in_either_order),
+        cmocka_unit_test(test_opaque_fill_follows_the_channel_order),
         cmocka_unit_test(test_text),
         cmocka_unit_test(test_panel_draws_inside_its_box),
         cmocka_unit_test(test_hud_and_help_draw_within_the_framebuffer),

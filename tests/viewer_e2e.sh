@@ -5,7 +5,11 @@
 #   tests/viewer_e2e.sh LUZ LUZ_RENDER
 #
 # 1. T pauses the animation, F12 saves a screenshot: a PNG of the window's
-#    size that shows the scene (many colours, not a blank image).
+#    size that shows the scene (many colours, not a blank image). The
+#    window, read back from the X server (ImageMagick's import), shows the
+#    same pixels as the screenshot where no HUD or message covers them:
+#    the frames reach the screen with their colours in the right order.
+#    Tab shows the light panel in the window's top right.
 # 2. 5 switches the spot off and F12 saves a second screenshot: the two
 #    differ in the middle, where the spot shines, and not at all in a strip
 #    on the left that lies outside its cone (17.5 degrees of the 22.5 that
@@ -15,6 +19,8 @@
 # 4. The window is resized; the next screenshot has the new size.
 # 5. Esc quits with status 0; --print-state's scene file says where the
 #    camera went and that the spot is off, and luz-render renders it.
+# 6. The same check as in 1 with frames shown through SDL (LUZ_PRESENT=sdl),
+#    the way luz shows them where it cannot use X11 shared memory.
 #
 # Without Xvfb, xdotool or ImageMagick it reports itself skipped (77).
 set -u
@@ -24,7 +30,7 @@ absolute() { echo "$(cd "$(dirname "$1")" && pwd)/$(basename "$1")"; }
 luz=$(absolute "$1")
 luz_render=$(absolute "$2")
 
-for tool in Xvfb xdotool convert compare identify; do
+for tool in Xvfb xdotool convert compare identify import; do
     if ! command -v "$tool" >/dev/null 2>&1; then
         echo "SKIP: $tool is not installed (tools/install-deps test installs xvfb, xdotool and imagemagick)"
         exit 77
@@ -65,6 +71,21 @@ differing_pixels() {
     convert "$1" -crop "$3" +repage "$work/a.png" &&
     convert "$2" -crop "$3" +repage "$work/b.png" &&
     compare -metric AE "$work/a.png" "$work/b.png" null: 2>&1 >/dev/null
+}
+
+# The window as the X server shows it equals the screenshot in the
+# bottom-right corner (the HUD is top left, F12's message bottom left), which shows
+# part of the scene (many colours).
+window_matches_shot() {
+    sleep 0.3   # a few more frames of the paused scene
+    import -window "$window" "$work/window.png" 2>>"$work/stderr" ||
+        fail "cannot read the window back from the X server"
+    crop=180x100+300+170
+    changed=$(differing_pixels "$1" "$work/window.png" "$crop")
+    [ "$changed" -eq 0 ] || fail "the window differs from $1 in $changed pixels of $crop"
+    convert "$1" -crop "$crop" +repage "$work/crop.png"
+    crop_colours=$(identify -format '%k' "$work/crop.png")
+    [ "$crop_colours" -gt 100 ] || fail "the compared part of $1 has $crop_colours colours"
 }
 
 # ---- an X server of our own, on a free display ------------------------------
@@ -114,6 +135,14 @@ size=$(identify -format '%wx%h' luz-shot-0001.png) || fail "luz-shot-0001.png is
 [ "$size" = 480x270 ] || fail "screenshot is $size, the window 480x270"
 colours=$(identify -format '%k' luz-shot-0001.png)
 [ "$colours" -gt 1000 ] || fail "screenshot has $colours colours: not the scene"
+window_matches_shot luz-shot-0001.png
+# Tab opens the light panel, drawn over the scene's right-hand side.
+xdotool key Tab
+sleep 0.3
+import -window "$window" "$work/panel.png" 2>>"$work/stderr" || fail "cannot read the window back"
+xdotool key Tab
+panel=$(differing_pixels luz-shot-0001.png "$work/panel.png" 150x135+330+0)
+[ "$panel" -gt 2000 ] || fail "Tab changed $panel pixels of the window's top right: no panel"
 
 # 2. The spot off: the image changes where the spot shone, and only there.
 xdotool key 5 F12
@@ -161,5 +190,24 @@ grep -q '^size = 400x300$' state.luz || fail "the state's size is not the window
 # The state is a scene file that luz-render reads.
 "$luz_render" --scene state.luz --size 64x36 -o from-state.png 2>"$work/render.err" ||
     fail "luz-render cannot render the printed state: $(cat "$work/render.err"): $(cat state.luz)"
+
+# 6. Shown through SDL: the window shows the screenshot's pixels too.
+rm -f "$work/stderr"
+LUZ_PRESENT=sdl "$luz" --size 480x270 2>"$work/stderr" &
+luz_pid=$!
+i=0
+until window=$(xdotool search --name '^luz$' 2>/dev/null | head -n 1) && [ -n "$window" ]; do
+    i=$((i + 1))
+    [ $i -gt 600 ] && fail "no luz window (LUZ_PRESENT=sdl) after 60 s"
+    kill -0 "$luz_pid" 2>/dev/null || fail "luz (LUZ_PRESENT=sdl) exited without opening a window"
+    sleep 0.1
+done
+xdotool windowfocus --sync "$window" || fail "cannot focus the window"
+xdotool key t F12
+wait_for_shot luz-shot-0004.png
+window_matches_shot luz-shot-0004.png
+xdotool key Escape
+wait "$luz_pid" || fail "luz (LUZ_PRESENT=sdl) exited with status $? after Esc"
+luz_pid=""
 
 echo "ok: screenshots $size, spot diff $centre in the centre and 0 outside, camera $camera"

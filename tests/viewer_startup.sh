@@ -46,7 +46,8 @@ expect_refusal "--render-scale" --render-scale 1.5
 expect_refusal "--render-scale" --render-scale=abc
 expect_refusal "--render-scale" --render-scale
 expect_refusal "--print-state: takes no value" --print-state=yes
-expect_refusal "--bench: .*luz-render" --bench 5
+expect_refusal "--frames: .*luz-render" --frames 5
+expect_refusal "--bench" --bench -1
 expect_refusal "-o: .*luz-render" -o out.png
 expect_refusal "missing.luz: cannot open" --scene "$work/missing.luz"
 # Textures are checked before any window opens.

@@ -40,6 +40,9 @@
 #include <SDL.h>
 
 #include "luz/luz.h"
+#ifdef LUZ_VIEWER_X11
+#include "present_x11.h"
+#endif
 
 #ifndef LUZ_VERSION
 #error "src/meson.build passes LUZ_VERSION"
@@ -178,9 +181,16 @@ typedef struct viewer {
     bool paused_before_step;         /* the step mode freezes the animation */
     uint32_t step_limit;             /* triangles to draw now, 0 for all */
 
+    /* A frame is shown one of two ways: on X11 at render scale 1, drawn
+     * straight into the window's shared memory (present_x11.c); else
+     * through SDL, a streaming texture that SDL scales to the window. */
     SDL_Window *window;
-    SDL_Renderer *presenter;
+#ifdef LUZ_VIEWER_X11
+    x11_presenter *x11;
+#endif
+    SDL_Renderer *presenter;         /* when not x11 */
     SDL_Texture *texture;            /* the framebuffer's size, RGBA8 */
+    int shown_width, shown_height;   /* the size the x11 images or the texture have */
     int window_width, window_height; /* the window's size in pixels */
 
     luz_renderer *renderer;
@@ -438,12 +448,24 @@ static double tick(viewer *v)
  * its size in SDL's units). */
 static void measure_window(viewer *v)
 {
-    if (SDL_GetRendererOutputSize(v->presenter, &v->window_width, &v->window_height) != 0)
+    if (v->presenter == NULL ||
+        SDL_GetRendererOutputSize(v->presenter, &v->window_width, &v->window_height) != 0)
         SDL_GetWindowSize(v->window, &v->window_width, &v->window_height);
 }
 
-/* Matches the framebuffer, and the texture that shows it, to the window's
- * size in pixels times the render scale. */
+/* How frames reach the window, for the --bench line. */
+static const char *presenter_name(const viewer *v)
+{
+#ifdef LUZ_VIEWER_X11
+    if (v->x11 != NULL)
+        return "x11-shm";
+#endif
+    (void)v;
+    return "sdl";
+}
+
+/* Matches the framebuffer, and the images or the texture that show it, to
+ * the window's size in pixels times the render scale. */
 static int fit_framebuffer(viewer *v, luz_error *error)
 {
     measure_window(v);
@@ -452,10 +474,20 @@ static int fit_framebuffer(viewer *v, luz_error *error)
     int height = (int)lroundf((float)v->window_height * scale);
     width = width < 1 ? 1 : width;
     height = height < 1 ? 1 : height;
-    if (v->texture != NULL && width == v->framebuffer->width && height == v->framebuffer->height)
+    if (width == v->shown_width && height == v->shown_height)
         return 0;
     if (luz_framebuffer_resize(v->framebuffer, width, height, error) != 0)
         return -1;
+    v->layout = luz_panel_layout_for(width, height);
+#ifdef LUZ_VIEWER_X11
+    if (v->x11 != NULL) {
+        if (x11_presenter_resize(v->x11, width, height, error) != 0)
+            return -1;
+        v->shown_width = width;
+        v->shown_height = height;
+        return 0;
+    }
+#endif
     if (v->texture != NULL)
         SDL_DestroyTexture(v->texture);
     /* SDL_PIXELFORMAT_RGBA32 is bytes R, G, B, A in memory whatever the
@@ -465,7 +497,8 @@ static int fit_framebuffer(viewer *v, luz_error *error)
     if (v->texture == NULL)
         return luz_error_set(error, "cannot create a %dx%d texture: %s", width, height,
                              SDL_GetError());
-    v->layout = luz_panel_layout_for(width, height);
+    v->shown_width = width;
+    v->shown_height = height;
     return 0;
 }
 
@@ -514,6 +547,11 @@ static int draw_frame(viewer *v, luz_error *error)
 {
     if (fit_framebuffer(v, error) != 0)
         return -1;
+#ifdef LUZ_VIEWER_X11
+    if (v->x11 != NULL)
+        luz_framebuffer_use_colour(v->framebuffer, x11_presenter_next_image(v->x11),
+                                   LUZ_CHANNELS_BGRA);
+#endif
     float aspect = (float)v->framebuffer->width / (float)v->framebuffer->height;
     if (luz_scene_build_frame(&v->options->scene, v->textures, aspect, &v->frame) != 0)
         return luz_error_set(error, "out of memory building the frame");
@@ -526,6 +564,13 @@ static int draw_frame(viewer *v, luz_error *error)
     }
     double present_start = luz_wall_ms();
     draw_overlays(v);
+#ifdef LUZ_VIEWER_X11
+    if (v->x11 != NULL) {
+        x11_presenter_show(v->x11);
+        v->present_ms = luz_wall_ms() - present_start;
+        return 0;
+    }
+#endif
     SDL_UpdateTexture(v->texture, NULL, v->framebuffer->colour, v->framebuffer->width * 4);
     SDL_RenderCopy(v->presenter, v->texture, NULL, NULL);
     SDL_RenderPresent(v->presenter);
@@ -619,9 +664,9 @@ static int run_bench(viewer *v, luz_error *error)
                              luz_renderer_thread_count(v->renderer));
         if (v->settings.render_scale != 1.0f)
             printf("render_scale=%g ", v->settings.render_scale);
-        printf("median_ms=%.3f min_ms=%.3f fps=%.2f cpu_ms=%.3f geometry_ms=%.3f "
+        printf("present=%s median_ms=%.3f min_ms=%.3f fps=%.2f cpu_ms=%.3f geometry_ms=%.3f "
                "raster_ms=%.3f present_ms=%.3f\n",
-               median_ms, wall[0], median_ms > 0.0 ? 1000.0 / median_ms : 0.0,
+               presenter_name(v), median_ms, wall[0], median_ms > 0.0 ? 1000.0 / median_ms : 0.0,
                luz_median(cpu, shown), luz_median(geometry, shown), luz_median(raster, shown),
                luz_median(present, shown));
     }
@@ -631,13 +676,15 @@ static int run_bench(viewer *v, luz_error *error)
 
 /* ---- start-up ----------------------------------------------------------------------------------- */
 
-/* Opens the window and its presenter. On X11 the presenter is SDL's
- * software renderer writing straight into the window's shared-memory
- * image: luz's pixels are made on the CPU anyway, and where OpenGL is
- * Mesa's llvmpipe (Xvfb, a machine without a GPU) its textured quad costs
- * about 5 ms of CPU a frame against 1 ms for the plain copy. The
+/* Opens the window and picks how frames reach it. On X11 at render scale 1,
+ * luz draws into the window's shared memory itself (present_x11.c), which
+ * copies nothing on the client. Otherwise SDL shows a texture: on X11
+ * through SDL's software renderer, since luz's pixels are made on the CPU
+ * anyway, and where OpenGL is Mesa's llvmpipe (Xvfb, a machine without a
+ * GPU) its textured quad costs about 5 ms of CPU a frame against 1 ms for
+ * the plain copy. LUZ_PRESENT=sdl asks for SDL's way on X11 too, and the
  * environment (SDL_RENDER_DRIVER, SDL_FRAMEBUFFER_ACCELERATION) still
- * overrides this choice. */
+ * overrides SDL's choice of renderer. */
 static int open_window(viewer *v, luz_error *error)
 {
     SDL_SetHint(SDL_HINT_RENDER_VSYNC, "0");          /* as fast as it renders */
@@ -658,6 +705,22 @@ static int open_window(viewer *v, luz_error *error)
     if (v->window == NULL)
         return luz_error_set(error, "cannot open a %dx%d window: %s", v->options->width,
                              v->options->height, SDL_GetError());
+#ifdef LUZ_VIEWER_X11
+    const char *wanted = getenv("LUZ_PRESENT");
+    if (v->settings.render_scale == 1.0f && !(wanted != NULL && strcmp(wanted, "sdl") == 0)) {
+        luz_error why = {{0}};
+        int width, height;
+        SDL_GetWindowSize(v->window, &width, &height);
+        v->x11 = x11_presenter_create(v->window, width, height, &why);
+        if (v->x11 != NULL) {
+            measure_window(v);
+            return 0;   /* the first frame's fit_framebuffer lays out the panel */
+        }
+        /* Not an error: SDL shows the frames instead, a little slower. */
+        if (wanted != NULL && strcmp(wanted, "x11") == 0)
+            luz_error_print("luz", why.message);
+    }
+#endif
     v->presenter = SDL_CreateRenderer(v->window, -1, 0);
     if (v->presenter == NULL)
         return luz_error_set(error, "cannot draw into the window: %s", SDL_GetError());
@@ -729,6 +792,9 @@ done:
         luz_framebuffer_destroy(v.framebuffer);
     if (v.renderer != NULL)
         luz_renderer_destroy(v.renderer);
+#ifdef LUZ_VIEWER_X11
+    x11_presenter_destroy(v.x11);
+#endif
     if (v.texture != NULL)
         SDL_DestroyTexture(v.texture);
     if (v.presenter != NULL)
