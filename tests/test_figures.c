@@ -98,11 +98,14 @@ static int run_figures(void **state)
                 *cursor++ = '\0';
             }
         }
-        snprintf(f->name, sizeof f->name, "%s", fields[0]);
+        /* A field too long for its buffer is a broken list, not a name to cut. */
+        if (snprintf(f->name, sizeof f->name, "%s", fields[0]) >= (int)sizeof f->name ||
+            snprintf(f->term, sizeof f->term, "%s", fields[3]) >= (int)sizeof f->term ||
+            snprintf(f->arguments, sizeof f->arguments, "%s", fields[4]) >=
+                (int)sizeof f->arguments)
+            return -1;
         f->width = atoi(fields[1]);
         f->height = atoi(fields[2]);
-        snprintf(f->term, sizeof f->term, "%s", fields[3]);
-        snprintf(f->arguments, sizeof f->arguments, "%s", fields[4]);
         figure_count++;
     }
     fclose(manifest);

@@ -8,9 +8,10 @@
  *   luz --render-scale 0.5           half the pixels, scaled up: for slow machines
  *   luz --print-state > view.luz     the view at quit, as a scene file
  *
- * SDL2 does three things here and nothing else: it opens the window, reads
- * the keyboard and mouse, and presents the finished framebuffer through a
- * streaming RGBA texture. Every pixel, the HUD's text and the panel's
+ * SDL2 opens the window and reads the keyboard and mouse. On X11 luz
+ * draws each frame straight into the window's shared memory
+ * (present_x11.c); elsewhere SDL presents the finished framebuffer through
+ * a streaming RGBA texture. Every pixel, the HUD's text and the panel's
  * sliders included, is drawn by libluz (luz_renderer_draw, then the 2D
  * layer of luz/panel.h). What the keys do is in luz/controls.h and what the
  * panel does in luz/panel.h, both tested without a window; this file maps
