@@ -13,13 +13,18 @@
  * MIT-SHM extension, libXext) in the window's own pixel order, BGRX, so
  * the client copies nothing. There are two images: while the X server
  * copies one into the window, luz draws the next frame into the other.
- * Before an image is shown, one XSync makes sure the X server has finished
- * with the other, which it had a whole frame's time to do, so the wait is
- * one round trip. The X server's copy still takes CPU time, but on a core
- * of its own or between the renderer's bands, not as a pause in the frame.
+ * Each copy is asked for with a completion event (XShmPutImage's
+ * send_event), and an image is drawn into again only once the X server has
+ * reported that it is done with it, which it had a whole frame's time to
+ * be; so luz rarely waits, and never for the copy of the frame it has just
+ * shown, as an XSync would make it. The X server's copy still takes CPU
+ * time, but on a core of its own or between the renderer's bands, not as
+ * a pause in the frame.
  *
- * SDL still opens the window and reads its input; this file only needs
- * the window's X11 handles, which SDL_GetWindowWMInfo gives.
+ * SDL still opens the window and reads its input. This file talks to the
+ * X server over a connection of its own to the same display, so that its
+ * completion events never pass through SDL's event loop, which would
+ * discard them.
  */
 #include "present_x11.h"
 
@@ -39,10 +44,12 @@ typedef struct shared_image {
     XImage *image;                /* NULL when not made */
     XShmSegmentInfo segment;
     bool attached;                /* the X server has mapped the segment */
+    bool being_copied;            /* shown, and its completion not yet seen */
 } shared_image;
 
 struct x11_presenter {
-    Display *display;             /* SDL's connection; SDL closes it */
+    Display *display;             /* our own connection to SDL's display */
+    int completion_event;         /* the event type of MIT-SHM's ShmCompletion */
     Window window;
     Visual *visual;
     int depth;
@@ -81,7 +88,11 @@ static void release_image(x11_presenter *presenter, shared_image *shared)
 
 static void release_images(x11_presenter *presenter)
 {
-    XSync(presenter->display, False);   /* no copy from them is under way */
+    /* No copy from them is under way after this round trip; completion
+     * events still queued are for segments that are gone, and
+     * wait_until_copied() passes over them. */
+    XSync(presenter->display, False);
+    presenter->images[0].being_copied = presenter->images[1].being_copied = false;
     release_image(presenter, &presenter->images[0]);
     release_image(presenter, &presenter->images[1]);
 }
@@ -151,30 +162,36 @@ x11_presenter *x11_presenter_create(SDL_Window *window, int width, int height, l
         luz_error_set(why, "not an X11 window");
         return NULL;
     }
-    Display *display = info.info.x11.display;
-    if (!XShmQueryExtension(display)) {
-        luz_error_set(why, "the X server has no MIT-SHM extension");
+    x11_presenter *presenter = calloc(1, sizeof *presenter);
+    if (presenter == NULL) {
+        luz_error_set(why, "out of memory");
         return NULL;
     }
+    presenter->display = XOpenDisplay(DisplayString(info.info.x11.display));
+    if (presenter->display == NULL) {
+        luz_error_set(why, "cannot open a second connection to the X server");
+        free(presenter);
+        return NULL;
+    }
+    Display *display = presenter->display;
     XWindowAttributes attributes;
+    if (!XShmQueryExtension(display)) {
+        luz_error_set(why, "the X server has no MIT-SHM extension");
+        goto failed;
+    }
     if (!XGetWindowAttributes(display, info.info.x11.window, &attributes)) {
         luz_error_set(why, "cannot read the window's attributes");
-        return NULL;
+        goto failed;
     }
     /* BGRX: red in bits 16-23 of a little-endian 32-bit pixel. */
     const Visual *visual = attributes.visual;
     if ((attributes.depth != 24 && attributes.depth != 32) || visual->red_mask != 0xff0000 ||
         visual->green_mask != 0x00ff00 || visual->blue_mask != 0x0000ff) {
         luz_error_set(why, "the window's pixels are not 8-bit BGRX");
-        return NULL;
+        goto failed;
     }
 
-    x11_presenter *presenter = calloc(1, sizeof *presenter);
-    if (presenter == NULL) {
-        luz_error_set(why, "out of memory");
-        return NULL;
-    }
-    presenter->display = display;
+    presenter->completion_event = XShmGetEventBase(display) + ShmCompletion;
     presenter->window = info.info.x11.window;
     presenter->visual = attributes.visual;
     presenter->depth = attributes.depth;
@@ -184,6 +201,11 @@ x11_presenter *x11_presenter_create(SDL_Window *window, int width, int height, l
         return NULL;
     }
     return presenter;
+
+failed:
+    XCloseDisplay(presenter->display);
+    free(presenter);
+    return NULL;
 }
 
 int x11_presenter_resize(x11_presenter *presenter, int width, int height, luz_error *error)
@@ -194,19 +216,38 @@ int x11_presenter_resize(x11_presenter *presenter, int width, int height, luz_er
     return make_images(presenter, width, height, error);
 }
 
+/* Reads this connection's events until the X server has reported that it
+ * has finished copying the image. */
+static void wait_until_copied(x11_presenter *presenter, shared_image *shared)
+{
+    while (shared->being_copied) {
+        XEvent event;
+        XNextEvent(presenter->display, &event);
+        if (event.type != presenter->completion_event)
+            continue;
+        const XShmCompletionEvent *done = (const XShmCompletionEvent *)&event;
+        for (int i = 0; i < 2; i++) {
+            shared_image *image = &presenter->images[i];
+            if (image->attached && image->segment.shmseg == done->shmseg)
+                image->being_copied = false;
+        }
+    }
+}
+
 uint8_t *x11_presenter_next_image(x11_presenter *presenter)
 {
-    return (uint8_t *)presenter->images[presenter->next].image->data;
+    shared_image *shared = &presenter->images[presenter->next];
+    wait_until_copied(presenter, shared);
+    return (uint8_t *)shared->image->data;
 }
 
 void x11_presenter_show(x11_presenter *presenter)
 {
-    /* The X server has finished the previous show's copy (of the other
-     * image) once this returns, so the next frame may be drawn there. */
-    XSync(presenter->display, False);
+    shared_image *shared = &presenter->images[presenter->next];
     XShmPutImage(presenter->display, presenter->window, presenter->graphics_context,
-                 presenter->images[presenter->next].image, 0, 0, 0, 0,
-                 (unsigned)presenter->width, (unsigned)presenter->height, False);
+                 shared->image, 0, 0, 0, 0, (unsigned)presenter->width,
+                 (unsigned)presenter->height, True);
+    shared->being_copied = true;
     XFlush(presenter->display);
     presenter->next ^= 1;
 }
@@ -217,5 +258,6 @@ void x11_presenter_destroy(x11_presenter *presenter)
         return;
     release_images(presenter);
     XFreeGC(presenter->display, presenter->graphics_context);
+    XCloseDisplay(presenter->display);
     free(presenter);
 }
