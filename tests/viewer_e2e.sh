@@ -115,18 +115,23 @@ until xdotool getdisplaygeometry >/dev/null 2>&1; do
     sleep 0.1
 done
 
+# Waits up to 60 s for luz_pid's window, sets $window to it, and focuses it.
+wait_for_window() {
+    i=0
+    until window=$(xdotool search --name '^luz$' 2>/dev/null | head -n 1) && [ -n "$window" ]; do
+        i=$((i + 1))
+        [ $i -gt 600 ] && fail "no $1 window after 60 s"
+        kill -0 "$luz_pid" 2>/dev/null || fail "$1 exited without opening a window"
+        sleep 0.1
+    done
+    xdotool windowfocus --sync "$window" || fail "cannot focus $1's window"
+}
+
 # ---- the viewer ------------------------------------------------------------------
 cd "$work" || exit 1
 "$luz" --print-state --size 480x270 >"$work/state.luz" 2>"$work/stderr" &
 luz_pid=$!
-i=0
-until window=$(xdotool search --name '^luz$' 2>/dev/null | head -n 1) && [ -n "$window" ]; do
-    i=$((i + 1))
-    [ $i -gt 600 ] && fail "no luz window after 60 s"
-    kill -0 "$luz_pid" 2>/dev/null || fail "luz exited without opening a window"
-    sleep 0.1
-done
-xdotool windowfocus --sync "$window" || fail "cannot focus the window"
+wait_for_window luz
 
 # 1. Paused, a screenshot of the window's size that shows the scene.
 xdotool key t F12
@@ -195,14 +200,7 @@ grep -q '^size = 400x300$' state.luz || fail "the state's size is not the window
 rm -f "$work/stderr"
 LUZ_PRESENT=sdl "$luz" --size 480x270 2>"$work/stderr" &
 luz_pid=$!
-i=0
-until window=$(xdotool search --name '^luz$' 2>/dev/null | head -n 1) && [ -n "$window" ]; do
-    i=$((i + 1))
-    [ $i -gt 600 ] && fail "no luz window (LUZ_PRESENT=sdl) after 60 s"
-    kill -0 "$luz_pid" 2>/dev/null || fail "luz (LUZ_PRESENT=sdl) exited without opening a window"
-    sleep 0.1
-done
-xdotool windowfocus --sync "$window" || fail "cannot focus the window"
+wait_for_window "luz (LUZ_PRESENT=sdl)"
 xdotool key t F12
 wait_for_shot luz-shot-0004.png
 window_matches_shot luz-shot-0004.png
