@@ -157,6 +157,10 @@ static void print_usage(FILE *out)
             "F2 and F12 write into the current directory. Without a display, render the\n"
             "same scenes to PNG files with luz-render.\n"
             "\n"
+            "On X11 at render scale 1, frames are drawn straight into the window's\n"
+            "shared memory. LUZ_PRESENT=sdl shows them through SDL instead;\n"
+            "LUZ_PRESENT=x11 prints why shared memory cannot be used, if it cannot.\n"
+            "\n"
             "Exit status: 0 when the window is closed, 2 for a bad option, scene file or\n"
             "textures directory or when no display is available, 1 if rendering failed.\n");
 }
