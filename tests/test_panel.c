@@ -1,7 +1,8 @@
 /*
  * test_panel.c: the viewer's 2D layer (luz/panel.h) without a window: the
  * sliders' table, slider edits by key and by mouse, the layout's hit
- * rectangles, and the drawing primitives' pixels.
+ * rectangles, the drawing primitives' pixels, and the layer filled in
+ * bands of rows as the renderer's threads fill it.
  *
  * Slider numbers follow the panel from top to bottom: ambient r, g, b,
  * strength (0-3), diffuse (4-7), specular (8-11), shininess (12), point
@@ -304,12 +305,44 @@ static const uint8_t *pixel(const luz_framebuffer *framebuffer, int x, int y)
     return framebuffer->colour + ((size_t)y * (size_t)framebuffer->width + (size_t)x) * 4;
 }
 
+/* The viewer records its 2D layer, then fills it. These run one recording
+ * and fill it all at once, for the tests of what the pixels become. */
+static luz_layer begin(const luz_framebuffer *framebuffer)
+{
+    luz_layer layer = {0};
+    luz_layer_begin(&layer, framebuffer->width, framebuffer->height);
+    return layer;
+}
+
+static void fill_into(luz_framebuffer *framebuffer, luz_layer *layer)
+{
+    assert_int_equal(luz_layer_finish(layer), 0);
+    luz_layer_draw(layer, framebuffer);
+    luz_layer_free(layer);
+}
+
+static void fill(luz_framebuffer *framebuffer, luz_rect rect, luz_rgba colour)
+{
+    luz_layer layer = begin(framebuffer);
+    luz_overlay_fill(&layer, rect, colour);
+    fill_into(framebuffer, &layer);
+}
+
+static int text(luz_framebuffer *framebuffer, int x, int y, int scale, const char *string,
+                luz_rgba colour)
+{
+    luz_layer layer = begin(framebuffer);
+    int width = luz_overlay_text(&layer, x, y, scale, string, colour);
+    fill_into(framebuffer, &layer);
+    return width;
+}
+
 static void test_fill_blends_and_clips(void **state)
 {
     (void)state;
     luz_framebuffer *framebuffer = grey_framebuffer(8, 8, 100);
     /* round((200 * 128 + 100 * 127) / 255) = round(150.2) = 150 */
-    luz_overlay_fill(framebuffer, (luz_rect){-4, -4, 6, 6}, (luz_rgba){200, 0, 255, 128});
+    fill(framebuffer, (luz_rect){-4, -4, 6, 6}, (luz_rgba){200, 0, 255, 128});
     assert_int_equal(pixel(framebuffer, 0, 0)[0], 150);
     /* round((0 * 128 + 100 * 127) / 255) = round(49.8) = 50;
      * round((255 * 128 + 100 * 127) / 255) = round(177.8) = 178 */
@@ -320,14 +353,14 @@ static void test_fill_blends_and_clips(void **state)
     assert_int_equal(pixel(framebuffer, 2, 1)[0], 100);
     assert_int_equal(pixel(framebuffer, 1, 2)[0], 100);
 
-    luz_overlay_fill(framebuffer, (luz_rect){6, 6, 100, 100}, (luz_rgba){7, 8, 9, 255});
+    fill(framebuffer, (luz_rect){6, 6, 100, 100}, (luz_rgba){7, 8, 9, 255});
     assert_memory_equal(pixel(framebuffer, 7, 7), ((uint8_t[]){7, 8, 9, 255}), 4);
     assert_int_equal(pixel(framebuffer, 5, 7)[0], 100);
-    luz_overlay_fill(framebuffer, (luz_rect){0, 0, 8, 8}, (luz_rgba){7, 8, 9, 0});
+    fill(framebuffer, (luz_rect){0, 0, 8, 8}, (luz_rgba){7, 8, 9, 0});
     assert_int_equal(pixel(framebuffer, 3, 3)[0], 100);
     /* Entirely outside, or empty: nothing, and no crash. */
-    luz_overlay_fill(framebuffer, (luz_rect){100, 100, 5, 5}, (luz_rgba){0, 0, 0, 255});
-    luz_overlay_fill(framebuffer, (luz_rect){2, 2, 0, -3}, (luz_rgba){0, 0, 0, 255});
+    fill(framebuffer, (luz_rect){100, 100, 5, 5}, (luz_rgba){0, 0, 0, 255});
+    fill(framebuffer, (luz_rect){2, 2, 0, -3}, (luz_rgba){0, 0, 0, 255});
     assert_int_equal(pixel(framebuffer, 3, 3)[0], 100);
     luz_framebuffer_destroy(framebuffer);
 }
@@ -349,7 +382,7 @@ static void test_fill_blends_every_pixel_in_either_order(void **state)
         uint8_t before[15 * 3 * 4];
         for (size_t i = 0; i < sizeof before; i++)
             before[i] = framebuffer->colour[i] = (uint8_t)(i % 4 == 3 ? 255 : (i * 37) % 256);
-        luz_overlay_fill(framebuffer, (luz_rect){1, 1, 13, 1}, colour);
+        fill(framebuffer, (luz_rect){1, 1, 13, 1}, colour);
         /* The colour's bytes as they sit in a pixel of this order. */
         const uint8_t source[4] = {order ? colour.b : colour.r, colour.g,
                                    order ? colour.r : colour.b, 255};
@@ -374,9 +407,85 @@ static void test_opaque_fill_follows_the_channel_order(void **state)
     (void)state;
     luz_framebuffer *framebuffer = grey_framebuffer(4, 4, 100);
     luz_framebuffer_use_colour(framebuffer, NULL, LUZ_CHANNELS_BGRA);
-    luz_overlay_fill(framebuffer, (luz_rect){1, 1, 2, 2}, (luz_rgba){7, 8, 9, 255});
+    fill(framebuffer, (luz_rect){1, 1, 2, 2}, (luz_rgba){7, 8, 9, 255});
     assert_memory_equal(pixel(framebuffer, 2, 2), ((uint8_t[]){9, 8, 7, 255}), 4);
     assert_memory_equal(pixel(framebuffer, 0, 0), ((uint8_t[]){100, 100, 100, 255}), 4);
+    luz_framebuffer_destroy(framebuffer);
+}
+
+/* round((src * a + dst * (255 - a)) / 255), with a division, as above. */
+static uint8_t blended(uint8_t destination, uint8_t source, uint8_t alpha)
+{
+    unsigned sum = source * alpha + destination * (255u - alpha);
+    return (uint8_t)((2 * sum + 255) / 510);
+}
+
+/* A layer of overlapping rectangles, translucent and opaque, that cross
+ * the 16-row buckets and the bands below, filled band by band in an odd
+ * order, as the renderer's threads fill it. Each pixel must be each
+ * rectangle blended once, in drawing order, whatever the bands: computed
+ * here pixel by pixel from the rectangles. A rectangle filled twice where
+ * two bands or two buckets meet, or filled out of order, shows. */
+static void test_layer_filled_by_bands_blends_each_pixel_once(void **state)
+{
+    (void)state;
+    enum { W = 37, H = 70 };
+    const struct { luz_rect rect; luz_rgba colour; } drawn[] = {
+        {{-3, 5, 30, 50}, {200, 10, 60, 128}},     /* from row 5 to 54 */
+        {{10, 14, 20, 40}, {0, 250, 90, 77}},      /* 14 to 53: crosses 16, 32, 48 */
+        {{4, 31, 9, 2}, {30, 60, 90, 255}},        /* opaque, rows 31 and 32 */
+        {{20, 15, 40, 60}, {255, 255, 255, 200}},  /* clipped right and below */
+        {{0, 0, W, H}, {9, 9, 9, 0}},              /* transparent: not recorded */
+    };
+    const size_t drawn_count = sizeof drawn / sizeof drawn[0];
+
+    uint8_t expected[W * H * 4];
+    luz_framebuffer *framebuffer = grey_framebuffer(W, H, 0);
+    for (size_t i = 0; i < sizeof expected; i++)
+        expected[i] = framebuffer->colour[i] = (uint8_t)(i % 4 == 3 ? 255 : (i * 53) % 256);
+    for (size_t d = 0; d < drawn_count; d++) {
+        const luz_rgba c = drawn[d].colour;
+        for (int y = 0; y < H; y++)
+            for (int x = 0; x < W; x++) {
+                if (!luz_rect_contains(drawn[d].rect, x, y) || c.a == 0)
+                    continue;
+                uint8_t *p = expected + ((size_t)y * W + (size_t)x) * 4;
+                p[0] = blended(p[0], c.r, c.a);
+                p[1] = blended(p[1], c.g, c.a);
+                p[2] = blended(p[2], c.b, c.a);
+            }
+    }
+
+    luz_layer layer = begin(framebuffer);
+    for (size_t d = 0; d < drawn_count; d++)
+        luz_overlay_fill(&layer, drawn[d].rect, drawn[d].colour);
+    assert_int_equal(layer.rect_count, drawn_count - 1);
+    assert_int_equal(luz_layer_finish(&layer), 0);
+    /* Bands of 1, 7, 16, 3 and the rest, from the bottom up. */
+    const int bounds[] = {0, 1, 8, 24, 27, H};
+    for (int b = 4; b >= 0; b--)
+        luz_layer_draw_rows(&layer, framebuffer, bounds[b], bounds[b + 1]);
+    assert_memory_equal(framebuffer->colour, expected, sizeof expected);
+
+    /* Rows outside the framebuffer, or an empty band, draw nothing. */
+    luz_layer_draw_rows(&layer, framebuffer, H, H + 16);
+    luz_layer_draw_rows(&layer, framebuffer, 30, 30);
+    assert_memory_equal(framebuffer->colour, expected, sizeof expected);
+
+    /* Begun again, the layer is empty: it draws nothing. */
+    luz_layer_begin(&layer, W, H);
+    assert_int_equal(luz_layer_finish(&layer), 0);
+    luz_layer_draw(&layer, framebuffer);
+    assert_memory_equal(framebuffer->colour, expected, sizeof expected);
+
+    /* A layer recorded for a bigger framebuffer is clipped to a smaller
+     * one (the window shrank between recording and filling). */
+    luz_layer_begin(&layer, 200, 200);
+    luz_overlay_fill(&layer, (luz_rect){0, 0, 200, 200}, (luz_rgba){1, 2, 3, 255});
+    assert_int_equal(luz_layer_finish(&layer), 0);
+    luz_layer_draw(&layer, framebuffer);
+    assert_memory_equal(pixel(framebuffer, W - 1, H - 1), ((uint8_t[]){1, 2, 3, 255}), 4);
+    luz_layer_free(&layer);
     luz_framebuffer_destroy(framebuffer);
 }
 
@@ -401,7 +510,7 @@ static void test_text(void **state)
     /* stb_easy_font's "I" is a vertical bar with serifs, within its 7-row
      * cap height and its advance. */
     luz_framebuffer *framebuffer = grey_framebuffer(64, 32, 0);
-    int width = luz_overlay_text(framebuffer, 10, 5, 1, "I", (luz_rgba){255, 255, 255, 255});
+    int width = text(framebuffer, 10, 5, 1, "I", (luz_rgba){255, 255, 255, 255});
     assert_int_equal(width, luz_overlay_text_width("I", 1));
     luz_rect box = changed_box(framebuffer, 0);
     assert_true(box.x >= 10 && box.x + box.width <= 10 + width);
@@ -410,7 +519,7 @@ static void test_text(void **state)
 
     /* Scale 2 doubles everything. */
     luz_framebuffer *doubled = grey_framebuffer(64, 32, 0);
-    luz_overlay_text(doubled, 20, 10, 2, "I", (luz_rgba){255, 255, 255, 255});
+    text(doubled, 20, 10, 2, "I", (luz_rgba){255, 255, 255, 255});
     luz_rect box2 = changed_box(doubled, 0);
     assert_int_equal(box2.x, 20 + (box.x - 10) * 2);
     assert_int_equal(box2.y, 10 + (box.y - 5) * 2);
@@ -424,11 +533,11 @@ static void test_text(void **state)
     luz_framebuffer_destroy(doubled);
     framebuffer = grey_framebuffer(64, 32, 0);
     doubled = grey_framebuffer(64, 32, 0);
-    luz_overlay_text(framebuffer, 0, 0, 1, "\xff\x01\n", (luz_rgba){255, 255, 255, 255});
-    luz_overlay_text(doubled, 0, 0, 1, "???", (luz_rgba){255, 255, 255, 255});
+    text(framebuffer, 0, 0, 1, "\xff\x01\n", (luz_rgba){255, 255, 255, 255});
+    text(doubled, 0, 0, 1, "???", (luz_rgba){255, 255, 255, 255});
     assert_memory_equal(framebuffer->colour, doubled->colour, 64 * 32 * 4);
     /* Text running off the framebuffer is clipped. */
-    luz_overlay_text(framebuffer, 50, 28, 3, "clipped", (luz_rgba){255, 255, 255, 255});
+    text(framebuffer, 50, 28, 3, "clipped", (luz_rgba){255, 255, 255, 255});
 
     luz_framebuffer_destroy(framebuffer);
     luz_framebuffer_destroy(doubled);
@@ -442,7 +551,9 @@ static void test_panel_draws_inside_its_box(void **state)
     luz_panel panel;
     luz_panel_init(&panel);
     luz_lights lights = default_lights();
-    luz_panel_draw(framebuffer, &layout, &panel, &lights);
+    luz_layer layer = begin(framebuffer);
+    luz_panel_draw(&layer, &layout, &panel, &lights);
+    fill_into(framebuffer, &layer);
     luz_rect changed = changed_box(framebuffer, 77);
     assert_true(rect_inside(changed, (luz_rect){layout.box.x - layout.scale, layout.box.y,
                                                 layout.box.width + 2 * layout.scale,
@@ -470,19 +581,25 @@ static void test_hud_and_help_draw_within_the_framebuffer(void **state)
                        .raster_ms = 25.0, .window_width = sizes[i][0],
                        .window_height = sizes[i][1], .render_scale = 1.0f, .threads = 2,
                        .scene = &scene};
-        luz_hud_draw(framebuffer, &hud);
+        luz_layer layer = begin(framebuffer);
+        luz_hud_draw(&layer, &hud);
         /* With the teaching lines too: a view's legend and the step mode. */
         scene.view = LUZ_VIEW_OVERDRAW;
         hud.step_shown = 12;
         hud.step_total = 66;
-        luz_hud_draw(framebuffer, &hud);
+        luz_hud_draw(&layer, &hud);
         scene.view = LUZ_VIEW_COLOR;
-        luz_hud_draw_message(framebuffer, "wrote luz-shot-0001.png");
-        luz_help_draw(framebuffer);
+        luz_hud_draw_message(&layer, "wrote luz-shot-0001.png");
+        luz_help_draw(&layer);
         luz_panel_layout layout = luz_panel_layout_for(sizes[i][0], sizes[i][1]);
         luz_panel panel;
         luz_panel_init(&panel);
-        luz_panel_draw(framebuffer, &layout, &panel, &scene.lights);
+        luz_panel_draw(&layer, &layout, &panel, &scene.lights);
+        /* Every rectangle recorded lies inside the framebuffer. */
+        for (size_t r = 0; r < layer.rect_count; r++)
+            assert_true(rect_inside(layer.rects[r].rect,
+                                    (luz_rect){0, 0, sizes[i][0], sizes[i][1]}));
+        fill_into(framebuffer, &layer);
         luz_framebuffer_destroy(framebuffer);
     }
 }
@@ -503,6 +620,7 @@ int main(void)
         cmocka_unit_test(test_fill_blends_and_clips),
         cmocka_unit_test(test_fill_blends_every_pixel_in_either_order),
         cmocka_unit_test(test_opaque_fill_follows_the_channel_order),
+        cmocka_unit_test(test_layer_filled_by_bands_blends_each_pixel_once),
         cmocka_unit_test(test_text),
         cmocka_unit_test(test_panel_draws_inside_its_box),
         cmocka_unit_test(test_hud_and_help_draw_within_the_framebuffer),

@@ -2,8 +2,9 @@
  * test_render.c: the whole pipeline (luz_renderer_draw) on SCENE.md's
  * default scene, checked against properties that follow from SCENE.md
  * without running a renderer: where the camera of SCENE.md projects a
- * point, what colour a pixel lit by known lights must have, and that the
- * image does not depend on the number of threads.
+ * point, what colour a pixel lit by known lights must have, that the
+ * image does not depend on the number of threads, and that the caller's
+ * per-band hook runs once per row, after the row is shaded.
  *
  * Projection by hand: the camera at E looks down -z with a vertical field
  * of view of 45 degrees, so a point at eye-relative (x, y, z), z < 0, has
@@ -13,13 +14,16 @@
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
+#include <stdatomic.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include <cmocka.h>
 
 #include "luz/luz.h"
+#include "luz/panel.h"
 
 #define WIDTH 1280
 #define HEIGHT 720
@@ -350,6 +354,94 @@ static void test_image_is_identical_for_any_thread_count(void **state)
     if (have_textures) luz_texture_set_free(&textures);
 }
 
+/* What a band hook saw, row by row; calls for different bands run on
+ * different threads at once. */
+typedef struct hook_record {
+    const luz_framebuffer *shaded;   /* the same frame drawn without a hook */
+    const luz_layer *layer;
+    atomic_int calls[HEIGHT];        /* hook calls that covered each row */
+    atomic_int rows_not_shaded;      /* rows that differed from `shaded` */
+    atomic_int bad_bands;            /* empty or outside the framebuffer */
+} hook_record;
+
+static void record_band(void *context, luz_framebuffer *framebuffer, int first_row, int end_row)
+{
+    hook_record *record = context;
+    if (first_row < 0 || end_row > HEIGHT || first_row >= end_row) {
+        atomic_fetch_add(&record->bad_bands, 1);
+        return;
+    }
+    const size_t row_bytes = (size_t)WIDTH * 4;
+    for (int y = first_row; y < end_row; y++) {
+        atomic_fetch_add(&record->calls[y], 1);
+        if (memcmp(framebuffer->colour + y * row_bytes, record->shaded->colour + y * row_bytes,
+                   row_bytes) != 0)
+            atomic_fetch_add(&record->rows_not_shaded, 1);
+    }
+    luz_layer_draw_rows(record->layer, framebuffer, first_row, end_row);
+}
+
+/* luz_renderer_draw_with_hook, with 1, 2 and 3 threads: the hook covers
+ * every row exactly once, sees each of its rows already shaded (the same
+ * bytes as the frame drawn without a hook), and a 2D layer filled from it
+ * band by band gives the frame drawn first and the layer filled after. */
+static void test_band_hook_runs_once_per_row_after_shading(void **state)
+{
+    (void)state;
+    luz_scene scene = luz_scene_defaults();
+    scene.time_seconds = 1.0;
+    luz_layer layer = {0};
+    luz_layer_begin(&layer, WIDTH, HEIGHT);
+    luz_overlay_fill(&layer, (luz_rect){10, 10, 400, 300}, (luz_rgba){12, 12, 16, 190});
+    luz_overlay_text(&layer, 20, 20, 2, "60.0 fps", (luz_rgba){255, 210, 120, 255});
+    luz_overlay_fill(&layer, (luz_rect){900, 5, 380, 715}, (luz_rgba){0, 80, 0, 128});
+    assert_int_equal(luz_layer_finish(&layer), 0);
+
+    hook_record *record = calloc(1, sizeof *record);
+    assert_non_null(record);
+    record->layer = &layer;
+    luz_frame frame = {0};
+    assert_int_equal(luz_scene_build_frame(&scene, NULL, (float)WIDTH / HEIGHT, &frame), 0);
+    const int thread_counts[3] = {1, 2, 3};
+    for (int t = 0; t < 3; t++) {
+        luz_framebuffer *expected = render(&scene, NULL, thread_counts[t], false);
+        record->shaded = expected;
+        for (int y = 0; y < HEIGHT; y++) atomic_store(&record->calls[y], 0);
+        atomic_store(&record->rows_not_shaded, 0);
+        atomic_store(&record->bad_bands, 0);
+
+        luz_error error;
+        luz_renderer *renderer =
+            luz_renderer_create(&(luz_renderer_desc){.thread_count = thread_counts[t]}, &error);
+        luz_framebuffer *framebuffer = luz_framebuffer_create(WIDTH, HEIGHT, &error);
+        assert_non_null(renderer);
+        assert_non_null(framebuffer);
+        const luz_band_hook hook = {record_band, record};
+        assert_int_equal(
+            luz_renderer_draw_with_hook(renderer, &frame, framebuffer, &hook, NULL, &error), 0);
+
+        for (int y = 0; y < HEIGHT; y++)
+            if (atomic_load(&record->calls[y]) != 1)
+                fail_msg("%d threads: row %d covered by %d hook calls", thread_counts[t], y,
+                         atomic_load(&record->calls[y]));
+        assert_int_equal(atomic_load(&record->bad_bands), 0);
+        assert_int_equal(atomic_load(&record->rows_not_shaded), 0);
+        uint8_t unlayered[4];
+        memcpy(unlayered, pixel(expected, 1000, 400), 4);
+        luz_layer_draw(&layer, expected);
+        assert_memory_equal(framebuffer->colour, expected->colour, (size_t)WIDTH * HEIGHT * 4);
+        /* And the layer did change the frame. */
+        assert_memory_not_equal(pixel(framebuffer, 1000, 400), unlayered, 4);
+
+        luz_framebuffer_destroy(framebuffer);
+        luz_renderer_destroy(renderer);
+        luz_framebuffer_destroy(expected);
+    }
+    luz_frame_free(&frame);
+    luz_layer_free(&layer);
+    free(record);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -359,6 +451,7 @@ int main(void)
         ON_BOTH_STAGES(test_clipped_face_covers_its_region),
         ON_BOTH_STAGES(test_point_light_marker),
         ON_BOTH_STAGES(test_image_is_identical_for_any_thread_count),
+        cmocka_unit_test(test_band_hook_runs_once_per_row_after_shading),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

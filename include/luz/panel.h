@@ -17,6 +17,7 @@
 #define LUZ_PANEL_H
 
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 
 #include "luz/controls.h"
@@ -39,13 +40,68 @@ static inline bool luz_rect_contains(luz_rect rect, int x, int y)
     return x >= rect.x && x < rect.x + rect.width && y >= rect.y && y < rect.y + rect.height;
 }
 
-/* Blends colour over the rectangle (clipped to the framebuffer). */
-void luz_overlay_fill(luz_framebuffer *framebuffer, luz_rect rect, luz_rgba colour);
+/* The 2D layer: what the HUD, the panel and the help draw, kept as a list
+ * of filled rectangles in drawing order (text too: stb_easy_font's glyphs
+ * are rectangles), and filled into a framebuffer afterwards, all of it at
+ * once or a band of rows at a time.
+ *
+ * Recording first and filling later is what lets the renderer's threads do
+ * the filling: luz_renderer_draw_with_hook calls luz_layer_draw_rows for
+ * each band of rows right after shading it, on the thread that shaded it,
+ * while those rows are still in its cache, instead of one thread blending
+ * the HUD's corner after the whole frame, when it has left the cache.
+ *
+ *   luz_layer_begin(&layer, width, height);     empty, for a framebuffer
+ *   luz_hud_draw(&layer, &hud); ...             record
+ *   luz_layer_finish(&layer);                   index the rectangles by row
+ *   luz_layer_draw(&layer, framebuffer);        fill (or draw_rows, per band)
+ *
+ * A layer is reused frame after frame; its memory grows to the most
+ * rectangles a frame has recorded. Zero-initialise it before its first
+ * luz_layer_begin, and free it with luz_layer_free. */
+typedef struct luz_layer_rect {
+    luz_rect rect;         /* clipped to the layer's size */
+    luz_rgba colour;
+} luz_layer_rect;
+
+typedef struct luz_layer {
+    int width, height;         /* the size of the framebuffer it is for */
+    luz_layer_rect *rects;     /* in drawing order */
+    size_t rect_count, rect_capacity;
+    /* Built by luz_layer_finish: the rectangles that touch rows
+     * [k * LUZ_LAYER_BUCKET_ROWS, (k + 1) * LUZ_LAYER_BUCKET_ROWS) are
+     * bucket_rects[bucket_start[k] .. bucket_start[k + 1]), in order. */
+    size_t *bucket_start;
+    uint32_t *bucket_rects;
+    size_t bucket_start_capacity, bucket_rects_capacity;
+    bool finished;
+    bool out_of_memory;        /* a rectangle could not be recorded */
+} luz_layer;
+
+#define LUZ_LAYER_BUCKET_ROWS 16
+
+/* Empties the layer, for a framebuffer of width x height. */
+void luz_layer_begin(luz_layer *layer, int width, int height);
+/* Indexes the recorded rectangles by row, so that a band of rows visits
+ * only its own. Returns 0, or -1 if memory ran out (while recording or
+ * now); the layer then draws nothing. */
+int luz_layer_finish(luz_layer *layer);
+/* Fills the finished layer's rectangles into rows [first_row, end_row) of
+ * the framebuffer, in drawing order, each pixel blended once: filling
+ * disjoint bands of rows, from any threads at the same time, gives the
+ * same bytes as filling all rows at once. */
+void luz_layer_draw_rows(const luz_layer *layer, luz_framebuffer *framebuffer, int first_row,
+                         int end_row);
+void luz_layer_draw(const luz_layer *layer, luz_framebuffer *framebuffer);
+void luz_layer_free(luz_layer *layer);
+
+/* Records colour blended over the rectangle (clipped to the layer). */
+void luz_overlay_fill(luz_layer *layer, luz_rect rect, luz_rgba colour);
 
 /* One line of text, its top-left corner at (x, y), each font pixel drawn as
  * scale x scale pixels. Characters outside printable ASCII show as '?'.
  * Returns the width drawn, as luz_overlay_text_width does. */
-int luz_overlay_text(luz_framebuffer *framebuffer, int x, int y, int scale, const char *text,
+int luz_overlay_text(luz_layer *layer, int x, int y, int scale, const char *text,
                      luz_rgba colour);
 int luz_overlay_text_width(const char *text, int scale);
 /* The height of a line of text, descenders included. */
@@ -132,7 +188,7 @@ void luz_panel_mouse_release(luz_panel *panel);
  * snapped to the slider's fine step. */
 float luz_panel_track_value(const luz_panel_layout *layout, int slider, int x);
 
-void luz_panel_draw(luz_framebuffer *framebuffer, const luz_panel_layout *layout,
+void luz_panel_draw(luz_layer *layer, const luz_panel_layout *layout,
                     const luz_panel *panel, const luz_lights *lights);
 
 /* ---- HUD and help ------------------------------------------------------------ */
@@ -154,10 +210,10 @@ typedef struct luz_hud {
 } luz_hud;
 
 /* The HUD in the top-left corner. */
-void luz_hud_draw(luz_framebuffer *framebuffer, const luz_hud *hud);
+void luz_hud_draw(luz_layer *layer, const luz_hud *hud);
 /* A one-line message at the bottom left ("wrote luz-shot-0001.png"). */
-void luz_hud_draw_message(luz_framebuffer *framebuffer, const char *message);
+void luz_hud_draw_message(luz_layer *layer, const char *message);
 /* Every control (luz_controls_help), in a box over the scene. */
-void luz_help_draw(luz_framebuffer *framebuffer);
+void luz_help_draw(luz_layer *layer);
 
 #endif

@@ -59,4 +59,23 @@ int luz_renderer_draw(luz_renderer *renderer, const luz_frame *frame,
                       luz_framebuffer *framebuffer, luz_frame_stats *stats,
                       luz_error *error);
 
+/* Work the caller puts on top of each band of the frame: the renderer
+ * calls after_band(context, framebuffer, first_row, end_row) for every
+ * band of rows right after its fragment stage, on the thread that drew
+ * the band, while those rows are still in its cache. The viewer fills its
+ * 2D layer this way (luz_layer_draw_rows). Calls for different bands run
+ * at the same time, in any order, so after_band must touch nothing but
+ * colour rows [first_row, end_row); together the calls cover every row
+ * once. Their time counts in raster_ms. */
+typedef struct luz_band_hook {
+    void (*after_band)(void *context, luz_framebuffer *framebuffer, int first_row,
+                       int end_row);
+    void *context;
+} luz_band_hook;
+
+/* luz_renderer_draw, with hook (which may be NULL) called per band. */
+int luz_renderer_draw_with_hook(luz_renderer *renderer, const luz_frame *frame,
+                                luz_framebuffer *framebuffer, const luz_band_hook *hook,
+                                luz_frame_stats *stats, luz_error *error);
+
 #endif

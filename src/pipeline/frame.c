@@ -19,6 +19,8 @@
  *                        background given the clear colour (or, for a
  *                        --view other than color, a picture of a stage:
  *                        view.c)
+ *        hook            the caller's work on top of the band, if any
+ *                        (the viewer's 2D layer: luz_band_hook)
  *
  * A band touches only its own rows and draws triangles in submission order,
  * so the image is the same byte for byte whichever thread draws which band
@@ -90,6 +92,7 @@ typedef struct frame_job {
     size_t triangle_count;
     int band_count;
     uint32_t *overdraw;             /* NULL unless the overdraw view */
+    const luz_band_hook *hook;      /* NULL, or called after each band */
 } frame_job;
 
 static double now_ms(void)
@@ -239,6 +242,11 @@ static void band_job(void *context, int band_index, int worker_index)
             luz_fragment_shade_rows_packet(job->renderer->packet_isa, job->frame, by_id,
                                            framebuffer, first_row, end_row);
     counters->fragments_tested = tested;
+
+    /* The caller's work on top, while the band's rows are in this core's
+     * cache. */
+    if (job->hook && job->hook->after_band)
+        job->hook->after_band(job->hook->context, framebuffer, first_row, end_row);
 }
 
 /* ---- the renderer ------------------------------------------------------ */
@@ -432,11 +440,19 @@ static void collect_stats(const luz_renderer *renderer, const frame_job *job,
 int luz_renderer_draw(luz_renderer *renderer, const luz_frame *frame,
                       luz_framebuffer *framebuffer, luz_frame_stats *stats, luz_error *error)
 {
+    return luz_renderer_draw_with_hook(renderer, frame, framebuffer, NULL, stats, error);
+}
+
+int luz_renderer_draw_with_hook(luz_renderer *renderer, const luz_frame *frame,
+                                luz_framebuffer *framebuffer, const luz_band_hook *hook,
+                                luz_frame_stats *stats, luz_error *error)
+{
     const double start = now_ms();
     frame_job job = {
         .renderer = renderer,
         .frame = frame,
         .framebuffer = framebuffer,
+        .hook = hook,
         .view_projection = luz_mat4_multiply(frame->uniforms.projection, frame->uniforms.view),
         .band_count = (framebuffer->height + BAND_HEIGHT - 1) / BAND_HEIGHT,
     };
@@ -450,7 +466,8 @@ int luz_renderer_draw(luz_renderer *renderer, const luz_frame *frame,
     if (bin_triangles(renderer, &job, error) != 0) return -1;
     const double geometry_end = now_ms();
 
-    /* Phase 2: bands of rows (clear, raster and depth test, fragments). */
+    /* Phase 2: bands of rows (clear, raster and depth test, fragments,
+     * the caller's hook). */
     if (prepare_overdraw(renderer, &job, error) != 0) return -1;
     luz_thread_pool_run(renderer->pool, job.band_count, band_job, &job);
     const double end = now_ms();

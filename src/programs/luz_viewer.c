@@ -12,8 +12,9 @@
  * draws each frame straight into the window's shared memory
  * (present_x11.c); elsewhere SDL presents the finished framebuffer through
  * a streaming RGBA texture. Every pixel, the HUD's text and the panel's
- * sliders included, is drawn by libluz (luz_renderer_draw, then the 2D
- * layer of luz/panel.h). What the keys do is in luz/controls.h and what the
+ * sliders included, is drawn by libluz: the 2D layer of luz/panel.h is
+ * recorded first, then the renderer fills it band by band on top of the
+ * scene (luz_renderer_draw_with_hook). What the keys do is in luz/controls.h and what the
  * panel does in luz/panel.h, both tested without a window; this file maps
  * SDL's events onto them.
  *
@@ -202,13 +203,14 @@ typedef struct viewer {
     luz_framebuffer *framebuffer;
     luz_frame frame;
     luz_frame_stats stats;
+    luz_layer layer;                 /* the HUD, panel, help and message */
 
     /* frames per second, measured over half a second */
     Uint64 last_counter;
     double fps_seconds;
     int fps_frames;
     double frames_per_second, frame_ms;
-    double present_ms;               /* the last frame's 2D layer and showing it */
+    double present_ms;               /* showing the last frame */
 
     char message[640];               /* shown at the bottom for a few seconds */
     double message_seconds_left;
@@ -507,15 +509,19 @@ static int fit_framebuffer(viewer *v, luz_error *error)
     return 0;
 }
 
-/* The 2D layer over the scene: the help alone when it is open, else the
- * panel and the HUD as they are switched; a message on top of anything. */
-static void draw_overlays(viewer *v)
+/* Records the 2D layer over the scene: the help alone when it is open,
+ * else the panel and the HUD as they are switched; a message on top of
+ * anything. It is recorded before the frame is drawn, so the HUD shows the
+ * last frame's timings. */
+static int record_overlays(viewer *v, luz_error *error)
 {
+    luz_layer *layer = &v->layer;
+    luz_layer_begin(layer, v->framebuffer->width, v->framebuffer->height);
     if (v->help_visible) {
-        luz_help_draw(v->framebuffer);
+        luz_help_draw(layer);
     } else {
         if (v->panel_open)
-            luz_panel_draw(v->framebuffer, &v->layout, &v->panel, &v->options->scene.lights);
+            luz_panel_draw(layer, &v->layout, &v->panel, &v->options->scene.lights);
         if (v->hud_visible) {
             luz_hud hud = {
                 .frames_per_second = v->frames_per_second,
@@ -532,16 +538,28 @@ static void draw_overlays(viewer *v)
                 .step_total = v->stats.triangles_rasterised,
                 .scene = &v->options->scene,
             };
-            luz_hud_draw(v->framebuffer, &hud);
+            luz_hud_draw(layer, &hud);
         }
     }
     if (v->message_seconds_left > 0.0)
-        luz_hud_draw_message(v->framebuffer, v->message);
+        luz_hud_draw_message(layer, v->message);
+    if (luz_layer_finish(layer) != 0)
+        return luz_error_set(error, "out of memory for the HUD and panel");
+    return 0;
 }
 
-/* One frame: the scene as luz-render would draw it, the screenshot if one
- * was asked for (the scene alone), the 2D layer, then one copy into the
- * texture, which SDL scales to the window.
+/* The renderer's hook: the 2D layer's share of a band, filled by the
+ * thread that has just shaded it. */
+static void fill_layer_rows(void *context, luz_framebuffer *framebuffer, int first_row,
+                            int end_row)
+{
+    luz_layer_draw_rows(context, framebuffer, first_row, end_row);
+}
+
+/* One frame: the scene as luz-render would draw it with the 2D layer on
+ * top, filled band by band by the renderer's threads, then shown. A frame
+ * that F12 asked for is drawn without the layer, saved (the scene alone),
+ * and then gets its layer in one pass.
  *
  * Frames are drawn and shown in turn, not pipelined on a second thread:
  * the renderer already keeps every core busy, and a render thread drawing
@@ -561,14 +579,19 @@ static int draw_frame(viewer *v, luz_error *error)
     if (luz_scene_build_frame(&v->options->scene, v->textures, aspect, &v->frame) != 0)
         return luz_error_set(error, "out of memory building the frame");
     v->frame.uniforms.triangle_limit = v->step_limit;
-    if (luz_renderer_draw(v->renderer, &v->frame, v->framebuffer, &v->stats, error) != 0)
+    if (record_overlays(v, error) != 0)
         return -1;
-    if (v->screenshot_requested) {
+    const luz_band_hook fill_layer = {fill_layer_rows, &v->layer};
+    const bool screenshot = v->screenshot_requested;
+    if (luz_renderer_draw_with_hook(v->renderer, &v->frame, v->framebuffer,
+                                    screenshot ? NULL : &fill_layer, &v->stats, error) != 0)
+        return -1;
+    if (screenshot) {
         v->screenshot_requested = false;
         save_screenshot(v, v->framebuffer);
+        luz_layer_draw(&v->layer, v->framebuffer);
     }
     double present_start = luz_wall_ms();
-    draw_overlays(v);
 #ifdef LUZ_VIEWER_X11
     if (v->x11 != NULL) {
         x11_presenter_show(v->x11);
@@ -626,7 +649,8 @@ static int run(viewer *v, luz_error *error)
  * included, so that tools/viewer-bench can set the two side by side. Time
  * follows that schedule, not the clock, and the camera stays put, so the
  * frames are luz-render's own. present_ms is what showing a frame costs on
- * top of drawing it (the HUD, the copy to the window, the X server's copy).
+ * top of drawing it (the copy to the window, the X server's copy); the 2D
+ * layer is filled within raster_ms, band by band.
  * Esc or closing the window ends the run early; the line then covers the
  * frames shown so far. */
 static int run_bench(viewer *v, luz_error *error)
@@ -795,6 +819,7 @@ done:
     luz_frame_free(&v.frame);
     if (v.framebuffer != NULL)
         luz_framebuffer_destroy(v.framebuffer);
+    luz_layer_free(&v.layer);
     if (v.renderer != NULL)
         luz_renderer_destroy(v.renderer);
 #ifdef LUZ_VIEWER_X11

@@ -257,11 +257,11 @@ static uint8_t to_byte(float value)
 }
 
 /* Text centred vertically in a row. */
-static void row_text(luz_framebuffer *framebuffer, int x, luz_rect row, int scale, const char *text,
+static void row_text(luz_layer *layer, int x, luz_rect row, int scale, const char *text,
                      luz_rgba colour)
 {
     int top = row.y + (row.height - luz_overlay_text_height(scale)) / 2 + scale;
-    luz_overlay_text(framebuffer, x, top, scale, text, colour);
+    luz_overlay_text(layer, x, top, scale, text, colour);
 }
 
 static luz_rgba fill_colour(const luz_slider *spec, const luz_light *light)
@@ -284,7 +284,7 @@ static luz_rgba fill_colour(const luz_slider *spec, const luz_light *light)
     }
 }
 
-static void draw_slider(luz_framebuffer *framebuffer, const luz_panel_layout *layout,
+static void draw_slider(luz_layer *layer, const luz_panel_layout *layout,
                         const luz_panel *panel, const luz_lights *lights, int slider)
 {
     const luz_slider *spec = &luz_panel_sliders[slider];
@@ -293,18 +293,18 @@ static void draw_slider(luz_framebuffer *framebuffer, const luz_panel_layout *la
     luz_rect row = layout->row[slider], track = layout->track[slider];
     bool focused = panel->focus == slider;
     if (focused)
-        luz_overlay_fill(framebuffer, (luz_rect){row.x - s, row.y, row.width + 2 * s, row.height},
+        luz_overlay_fill(layer, (luz_rect){row.x - s, row.y, row.width + 2 * s, row.height},
                          (luz_rgba){70, 90, 150, 200});
 
-    row_text(framebuffer, row.x, row, s, spec->label, focused ? accent_colour : text_colour);
+    row_text(layer, row.x, row, s, spec->label, focused ? accent_colour : text_colour);
 
     float value = luz_slider_value(lights, slider);
     float fraction = (value - spec->min) / (spec->max - spec->min);
     if (!(fraction > 0.0f)) fraction = 0.0f;
     if (fraction > 1.0f) fraction = 1.0f;
     int filled = (int)lroundf(fraction * (float)track.width);
-    luz_overlay_fill(framebuffer, track, (luz_rgba){55, 55, 60, 255});
-    luz_overlay_fill(framebuffer, (luz_rect){track.x, track.y, filled, track.height},
+    luz_overlay_fill(layer, track, (luz_rgba){55, 55, 60, 255});
+    luz_overlay_fill(layer, (luz_rect){track.x, track.y, filled, track.height},
                      fill_colour(spec, light));
 
     char text[32];
@@ -315,10 +315,10 @@ static void draw_slider(luz_framebuffer *framebuffer, const luz_panel_layout *la
     else
         snprintf(text, sizeof text, "%.2f", (double)value);
     int width = luz_overlay_text_width(text, s);
-    row_text(framebuffer, row.x + row.width - width, row, s, text, text_colour);
+    row_text(layer, row.x + row.width - width, row, s, text, text_colour);
 }
 
-static void draw_header(luz_framebuffer *framebuffer, const luz_panel_layout *layout,
+static void draw_header(luz_layer *layer, const luz_panel_layout *layout,
                         const luz_lights *lights, luz_term term)
 {
     int s = layout->scale;
@@ -328,7 +328,7 @@ static void draw_header(luz_framebuffer *framebuffer, const luz_panel_layout *la
 
     char name[32];
     snprintf(name, sizeof name, "%d %s", (int)term + 1, luz_term_name(term));
-    row_text(framebuffer, header.x, header, s, name, on ? text_colour : dim_text_colour);
+    row_text(layer, header.x, header, s, name, on ? text_colour : dim_text_colour);
 
     /* The swatch: the light's colour, and beside it that colour at its
      * strength, which is what reaches the cubes. */
@@ -337,55 +337,55 @@ static void draw_header(luz_framebuffer *framebuffer, const luz_panel_layout *la
     int swatch_width = 24 * s, swatch_height = 8 * s;
     luz_rect swatch = {header.x + header.width - state_width - GAP * s - swatch_width,
                        header.y + (header.height - swatch_height) / 2, swatch_width, swatch_height};
-    luz_overlay_fill(framebuffer, (luz_rect){swatch.x - s, swatch.y - s, swatch.width + 2 * s,
+    luz_overlay_fill(layer, (luz_rect){swatch.x - s, swatch.y - s, swatch.width + 2 * s,
                                              swatch.height + 2 * s},
                      (luz_rgba){150, 150, 150, 255});
     luz_vec3 colour = light->colour;
-    luz_overlay_fill(framebuffer, (luz_rect){swatch.x, swatch.y, swatch.width / 2, swatch.height},
+    luz_overlay_fill(layer, (luz_rect){swatch.x, swatch.y, swatch.width / 2, swatch.height},
                      (luz_rgba){to_byte(colour.x), to_byte(colour.y), to_byte(colour.z), 255});
     luz_vec3 lit = luz_vec3_scale(colour, light->strength);
-    luz_overlay_fill(framebuffer,
+    luz_overlay_fill(layer,
                      (luz_rect){swatch.x + swatch.width / 2, swatch.y,
                                 swatch.width - swatch.width / 2, swatch.height},
                      (luz_rgba){to_byte(lit.x), to_byte(lit.y), to_byte(lit.z), 255});
-    row_text(framebuffer, header.x + header.width - state_width, header, s, state,
+    row_text(layer, header.x + header.width - state_width, header, s, state,
              on ? accent_colour : dim_text_colour);
 }
 
-void luz_panel_draw(luz_framebuffer *framebuffer, const luz_panel_layout *layout,
+void luz_panel_draw(luz_layer *layer, const luz_panel_layout *layout,
                     const luz_panel *panel, const luz_lights *lights)
 {
     int s = layout->scale;
-    luz_overlay_fill(framebuffer, layout->box, box_colour);
-    row_text(framebuffer, layout->title.x, layout->title, s, "LIGHTS", accent_colour);
+    luz_overlay_fill(layer, layout->box, box_colour);
+    row_text(layer, layout->title.x, layout->title, s, "LIGHTS", accent_colour);
     const char *hint = "Tab: fly  H: help";
-    row_text(framebuffer, layout->title.x + layout->title.width - luz_overlay_text_width(hint, s),
+    row_text(layer, layout->title.x + layout->title.width - luz_overlay_text_width(hint, s),
              layout->title, s, hint, dim_text_colour);
     for (int term = 0; term < LUZ_TERM_COUNT; term++)
-        draw_header(framebuffer, layout, lights, (luz_term)term);
+        draw_header(layer, layout, lights, (luz_term)term);
     for (int slider = 0; slider < LUZ_PANEL_SLIDER_COUNT; slider++)
-        draw_slider(framebuffer, layout, panel, lights, slider);
+        draw_slider(layer, layout, panel, lights, slider);
 }
 
 /* ---- HUD -------------------------------------------------------------------------------------- */
 
-/* Scale 2 where the framebuffer is big enough for it to stay a corner. */
-static int hud_scale(const luz_framebuffer *framebuffer)
+/* Scale 2 where the layer is big enough for it to stay a corner. */
+static int hud_scale(const luz_layer *layer)
 {
-    return (framebuffer->width >= 1000 && framebuffer->height >= 560) ? 2 : 1;
+    return (layer->width >= 1000 && layer->height >= 560) ? 2 : 1;
 }
 
-void luz_hud_draw_message(luz_framebuffer *framebuffer, const char *message)
+void luz_hud_draw_message(luz_layer *layer, const char *message)
 {
-    int s = hud_scale(framebuffer);
+    int s = hud_scale(layer);
     int line = ROW * s;
-    luz_rect box = {MARGIN * s, framebuffer->height - MARGIN * s - line - 2 * PAD * s,
+    luz_rect box = {MARGIN * s, layer->height - MARGIN * s - line - 2 * PAD * s,
                     luz_overlay_text_width(message, s) + 2 * PAD * s, line + 2 * PAD * s};
-    luz_overlay_fill(framebuffer, box, box_colour);
-    luz_overlay_text(framebuffer, box.x + PAD * s, box.y + PAD * s + s, s, message, accent_colour);
+    luz_overlay_fill(layer, box, box_colour);
+    luz_overlay_text(layer, box.x + PAD * s, box.y + PAD * s + s, s, message, accent_colour);
 }
 
-void luz_hud_draw(luz_framebuffer *framebuffer, const luz_hud *hud)
+void luz_hud_draw(luz_layer *layer, const luz_hud *hud)
 {
     enum { MAX_LINES = 10 };
     const luz_scene *scene = hud->scene;
@@ -397,11 +397,11 @@ void luz_hud_draw(luz_framebuffer *framebuffer, const luz_hud *hud)
              hud->geometry_ms, hud->raster_ms);
     if (hud->render_scale != 1.0f)
         snprintf(lines[2], sizeof lines[2], "%dx%d (window %dx%d at scale %g)  %d threads",
-                 framebuffer->width, framebuffer->height, hud->window_width, hud->window_height,
+                 layer->width, layer->height, hud->window_width, hud->window_height,
                  (double)hud->render_scale, hud->threads);
     else
-        snprintf(lines[2], sizeof lines[2], "%dx%d  %d threads", framebuffer->width,
-                 framebuffer->height, hud->threads);
+        snprintf(lines[2], sizeof lines[2], "%dx%d  %d threads", layer->width,
+                 layer->height, hud->threads);
     snprintf(lines[3], sizeof lines[3], "camera %.2f, %.2f, %.2f  yaw %.1f  pitch %.1f",
              (double)camera->position.x, (double)camera->position.y, (double)camera->position.z,
              (double)camera->yaw_degrees, (double)camera->pitch_degrees);
@@ -427,7 +427,7 @@ void luz_hud_draw(luz_framebuffer *framebuffer, const luz_hud *hud)
     /* The lights line is drawn word by word: the names of the lights that
      * are on in full colour, the others dimmed. */
     char light_names[LUZ_TERM_COUNT][24];
-    int s = hud_scale(framebuffer);
+    int s = hud_scale(layer);
     int width = luz_overlay_text_width(lines[lights_line], s);
     for (int term = 0; term < LUZ_TERM_COUNT; term++) {
         snprintf(light_names[term], sizeof light_names[term], "  %d %s", term + 1,
@@ -443,17 +443,17 @@ void luz_hud_draw(luz_framebuffer *framebuffer, const luz_hud *hud)
     int line = ROW * s;
     luz_rect box = {MARGIN * s, MARGIN * s, width + 2 * PAD * s,
                     line_count * line + 2 * PAD * s};
-    luz_overlay_fill(framebuffer, box, box_colour);
+    luz_overlay_fill(layer, box, box_colour);
     int x = box.x + PAD * s, y = box.y + PAD * s + s;
     for (int i = 0; i < line_count; i++, y += line) {
         luz_rgba colour = i == 0                ? accent_colour
                           : i == line_count - 1 ? dim_text_colour
                                                 : text_colour;
-        int pen = x + luz_overlay_text(framebuffer, x, y, s, lines[i], colour);
+        int pen = x + luz_overlay_text(layer, x, y, s, lines[i], colour);
         if (i != lights_line)
             continue;
         for (int term = 0; term < LUZ_TERM_COUNT; term++)
-            pen += luz_overlay_text(framebuffer, pen, y, s, light_names[term],
+            pen += luz_overlay_text(layer, pen, y, s, light_names[term],
                                     luz_light_is_on(&scene->lights, (luz_term)term)
                                         ? accent_colour : dim_text_colour);
     }
@@ -461,7 +461,7 @@ void luz_hud_draw(luz_framebuffer *framebuffer, const luz_hud *hud)
 
 /* ---- help ---------------------------------------------------------------------------------------- */
 
-void luz_help_draw(luz_framebuffer *framebuffer)
+void luz_help_draw(luz_layer *layer)
 {
     const char *title = "luz controls";
     const char *footer = "H closes this help";
@@ -476,8 +476,8 @@ void luz_help_draw(luz_framebuffer *framebuffer)
     int rows = luz_controls_help_count + 3;   /* title, a blank row, the list, the footer */
     int s = 1;
     for (int candidate = 3; candidate > 1; candidate--) {
-        if ((keys_width + column_gap + actions_width + 2 * PAD) * candidate <= framebuffer->width &&
-            (rows * ROW + 2 * PAD) * candidate <= framebuffer->height) {
+        if ((keys_width + column_gap + actions_width + 2 * PAD) * candidate <= layer->width &&
+            (rows * ROW + 2 * PAD) * candidate <= layer->height) {
             s = candidate;
             break;
         }
@@ -485,16 +485,16 @@ void luz_help_draw(luz_framebuffer *framebuffer)
 
     int width = (keys_width + column_gap + actions_width + 2 * PAD) * s;
     int height = (rows * ROW + 2 * PAD) * s;
-    luz_rect box = {(framebuffer->width - width) / 2, (framebuffer->height - height) / 2, width,
+    luz_rect box = {(layer->width - width) / 2, (layer->height - height) / 2, width,
                     height};
-    luz_overlay_fill(framebuffer, box, (luz_rgba){12, 12, 16, 240});
+    luz_overlay_fill(layer, box, (luz_rgba){12, 12, 16, 240});
     int x = box.x + PAD * s, y = box.y + PAD * s + s, line = ROW * s;
-    luz_overlay_text(framebuffer, x, y, s, title, accent_colour);
+    luz_overlay_text(layer, x, y, s, title, accent_colour);
     y += 2 * line;
     for (int i = 0; i < luz_controls_help_count; i++, y += line) {
-        luz_overlay_text(framebuffer, x, y, s, luz_controls_help[i].keys, accent_colour);
-        luz_overlay_text(framebuffer, x + (keys_width + column_gap) * s, y, s,
+        luz_overlay_text(layer, x, y, s, luz_controls_help[i].keys, accent_colour);
+        luz_overlay_text(layer, x + (keys_width + column_gap) * s, y, s,
                          luz_controls_help[i].action, text_colour);
     }
-    luz_overlay_text(framebuffer, x, y, s, footer, dim_text_colour);
+    luz_overlay_text(layer, x, y, s, footer, dim_text_colour);
 }
