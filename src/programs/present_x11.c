@@ -29,9 +29,11 @@
 #include "present_x11.h"
 
 #include <errno.h>
+#include <poll.h>
 #include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <sys/ipc.h>
 #include <sys/shm.h>
 
@@ -218,11 +220,39 @@ int x11_presenter_resize(x11_presenter *presenter, int width, int height, luz_er
 
 /* Reads this connection's events until the X server has reported that it
  * has finished copying the image. */
+/* How long to wait for a completion event before asking the X server
+ * directly. The event comes within a frame or two; a server that dropped
+ * it must not freeze the viewer. */
+#define COMPLETION_WAIT_MS 1000
+
+static double monotonic_ms(void)
+{
+    struct timespec now;
+    clock_gettime(CLOCK_MONOTONIC, &now);
+    return (double)now.tv_sec * 1e3 + (double)now.tv_nsec / 1e6;
+}
+
 static void wait_until_copied(x11_presenter *presenter, shared_image *shared)
 {
+    Display *display = presenter->display;
+    const double deadline = monotonic_ms() + COMPLETION_WAIT_MS;
     while (shared->being_copied) {
+        if (XPending(display) == 0) {
+            /* Nothing queued: wait on the connection, until the deadline.
+             * Past it, XSync: once the server has answered it, it has
+             * handled every earlier request, the copy included, so the
+             * image is free whether or not its event ever comes. */
+            double left = deadline - monotonic_ms();
+            struct pollfd connection = {.fd = ConnectionNumber(display), .events = POLLIN};
+            if (left <= 0.0 || poll(&connection, 1, (int)left + 1) == 0) {
+                XSync(display, False);
+                shared->being_copied = false;
+                break;
+            }
+            continue;
+        }
         XEvent event;
-        XNextEvent(presenter->display, &event);
+        XNextEvent(display, &event);
         if (event.type != presenter->completion_event)
             continue;
         const XShmCompletionEvent *done = (const XShmCompletionEvent *)&event;
