@@ -1124,6 +1124,52 @@ static void test_scene_round_trip(void **state)
     sandbox_destroy(&box);
 }
 
+/* luz_options_save_scene (the viewer's F2): the file reads back as the
+ * options; saved again without replace, under the same name, it is
+ * refused with LUZ_FILE_EXISTS and the first file stays as it was, with
+ * no temporary file left; with replace it is replaced. A directory that
+ * does not exist gives -1 and a message naming the path. */
+static void test_save_scene_never_replaces_unless_asked(void **state)
+{
+    (void)state;
+    sandbox box;
+    sandbox_create(&box);
+    char path[600], missing[600];
+    sandbox_path(&box, "view.luz", path, sizeof path);
+    sandbox_path(&box, "no-such-directory/view.luz", missing, sizeof missing);
+    char before[8192] = "", after[8192] = "";
+    list_tree(box.work, "", before, sizeof before);
+
+    luz_options first, second, copy;
+    parse_or_fail(&first, 3, (char *[]){"luz", "--seed", "11", NULL});
+    parse_or_fail(&second, 3, (char *[]){"luz", "--seed", "22", NULL});
+    luz_error error = {{0}};
+    assert_int_equal(luz_options_save_scene(&first, path, false, &error), 0);
+    char *text = read_file(path, NULL);
+    assert_int_equal(luz_options_save_scene(&second, path, false, &error), LUZ_FILE_EXISTS);
+    char *unchanged = read_file(path, NULL);
+    assert_string_equal(text, unchanged);
+    read_scene_from(&copy, path);
+    assert_int_equal(copy.scene.seed, 11);
+    luz_options_free(&copy);
+    list_tree(box.work, "", after, sizeof after);
+    assert_new_files(before, after, ARGS("view.luz"));
+
+    assert_int_equal(luz_options_save_scene(&second, path, true, &error), 0);
+    read_scene_from(&copy, path);
+    assert_int_equal(copy.scene.seed, 22);
+    luz_options_free(&copy);
+
+    assert_int_equal(luz_options_save_scene(&first, missing, false, &error), -1);
+    assert_non_null(strstr(error.message, missing));
+
+    free(text);
+    free(unchanged);
+    luz_options_free(&first);
+    luz_options_free(&second);
+    sandbox_destroy(&box);
+}
+
 static void test_parse_precedence_and_forms(void **state)
 {
     (void)state;
@@ -1268,6 +1314,7 @@ int main(void)
         cmocka_unit_test(test_options_reach_the_image),
         cmocka_unit_test(test_huge_size_refused_at_once),
         cmocka_unit_test(test_scene_round_trip),
+        cmocka_unit_test(test_save_scene_never_replaces_unless_asked),
         cmocka_unit_test(test_parse_precedence_and_forms),
         cmocka_unit_test(test_output_pattern),
         cmocka_unit_test(test_default_textures_directory),

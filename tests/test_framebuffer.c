@@ -9,7 +9,8 @@
  * must never free what was lent. Clearing touches depth and visibility
  * only, since the shading pass writes every colour byte. A PNG is always
  * RGBA, so a BGRA framebuffer must come back from the file, read by
- * stb_image, as the RGBA image.
+ * stb_image, as the RGBA image. luz_framebuffer_write_new_png must never
+ * replace a file that exists.
  */
 #include <dirent.h>
 #include <setjmp.h>
@@ -256,6 +257,70 @@ static void test_png_of_bgra_framebuffer_reads_back_as_rgba(void **state)
     luz_framebuffer_destroy(bgra);
 }
 
+/* Writing a new PNG: the first write makes the file; a second one under
+ * the same name, of a different image, reports LUZ_FILE_EXISTS and leaves
+ * the first file byte for byte as it was, with no temporary file behind.
+ * A file that is not a PNG at all is kept the same way. */
+static void test_new_png_never_replaces_a_file(void **state)
+{
+    (void)state;
+    luz_error error = {{0}};
+    luz_framebuffer *first = luz_framebuffer_create(3, 2, &error);
+    luz_framebuffer *second = luz_framebuffer_create(3, 2, &error);
+    assert_non_null(first);
+    assert_non_null(second);
+    memset(first->colour, 200, 3 * 2 * 4);
+    memset(second->colour, 10, 3 * 2 * 4);
+
+    const char *tmp = getenv("TMPDIR");
+    char directory[256], path[512], other[512];
+    snprintf(directory, sizeof directory, "%s/luz-new-png-XXXXXX", tmp && *tmp ? tmp : "/tmp");
+    assert_non_null(mkdtemp(directory));
+    snprintf(path, sizeof path, "%s/shot.png", directory);
+    snprintf(other, sizeof other, "%s/notes.txt", directory);
+
+    assert_int_equal(luz_framebuffer_write_new_png(first, path, &error), 0);
+    assert_int_equal(luz_framebuffer_write_new_png(second, path, &error), LUZ_FILE_EXISTS);
+    int width = 0, height = 0, channels = 0;
+    uint8_t *read = stbi_load(path, &width, &height, &channels, 4);
+    assert_non_null(read);
+    assert_int_equal(width, 3);
+    assert_int_equal(height, 2);
+    assert_memory_equal(read, first->colour, 3 * 2 * 4);
+    stbi_image_free(read);
+
+    FILE *file = fopen(other, "w");
+    assert_non_null(file);
+    fputs("not a picture\n", file);
+    assert_int_equal(fclose(file), 0);
+    assert_int_equal(luz_framebuffer_write_new_png(second, other, &error), LUZ_FILE_EXISTS);
+    char text[32] = {0};
+    file = fopen(other, "r");
+    assert_non_null(file);
+    assert_non_null(fgets(text, sizeof text, file));
+    fclose(file);
+    assert_string_equal(text, "not a picture\n");
+
+    /* Only the two files: no temporary left by the refused writes. */
+    DIR *handle = opendir(directory);
+    assert_non_null(handle);
+    int entries = 0;
+    struct dirent *entry;
+    while ((entry = readdir(handle)) != NULL)
+        if (strcmp(entry->d_name, ".") != 0 && strcmp(entry->d_name, "..") != 0) {
+            entries++;
+            if (strcmp(entry->d_name, "shot.png") != 0 && strcmp(entry->d_name, "notes.txt") != 0)
+                fail_msg("%s left behind in %s", entry->d_name, directory);
+        }
+    closedir(handle);
+    assert_int_equal(entries, 2);
+    assert_int_equal(unlink(path), 0);
+    assert_int_equal(unlink(other), 0);
+    assert_int_equal(rmdir(directory), 0);
+    luz_framebuffer_destroy(first);
+    luz_framebuffer_destroy(second);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -263,6 +328,7 @@ int main(void)
         cmocka_unit_test(test_clear_rows_clears_depth_and_visibility_only),
         cmocka_unit_test(test_lent_colour_memory),
         cmocka_unit_test(test_png_of_bgra_framebuffer_reads_back_as_rgba),
+        cmocka_unit_test(test_new_png_never_replaces_a_file),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

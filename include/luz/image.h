@@ -3,7 +3,8 @@
  *
  * The file is written to a temporary name beside the target and renamed
  * into place only once complete, so a failed or interrupted render never
- * leaves a partial PNG under the requested name.
+ * leaves a partial PNG under the requested name. Each function returns 0,
+ * or -1 with the reason in error.
  */
 #ifndef LUZ_IMAGE_H
 #define LUZ_IMAGE_H
@@ -18,5 +19,13 @@ int luz_png_write(const char *path, int width, int height, const uint8_t *rgba,
                   luz_error *error);
 int luz_framebuffer_write_png(const luz_framebuffer *framebuffer, const char *path,
                               luz_error *error);
+
+/* As luz_framebuffer_write_png, but never replaces a file: if path exists
+ * (or comes to exist while the PNG is encoded), nothing is left behind and
+ * it returns LUZ_FILE_EXISTS (luz/error.h), so that a caller numbering its
+ * files takes the next number. Two programs saving at once never
+ * overwrite each other's file. */
+int luz_framebuffer_write_new_png(const luz_framebuffer *framebuffer, const char *path,
+                                  luz_error *error);
 
 #endif

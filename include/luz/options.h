@@ -119,6 +119,14 @@ int luz_options_read_scene_file(luz_options *options, const char *path, luz_erro
  * frames, fps, bench) are not written. */
 void luz_options_write_scene(const luz_options *options, FILE *out);
 
+/* The same text as a file at path, complete or absent (written to a
+ * temporary name first). replace false: an existing file is never
+ * replaced; LUZ_FILE_EXISTS is returned instead, as the viewer's F2 needs
+ * to number its files safely. Returns 0, LUZ_FILE_EXISTS or -1 with a
+ * message naming path. */
+int luz_options_save_scene(const luz_options *options, const char *path, bool replace,
+                           luz_error *error);
+
 /* Turns the custom cubes' texture names into indices of the loaded set.
  * Returns 0, or -1 naming FILE:LINE of a cube whose texture is not in it. */
 int luz_options_resolve_textures(luz_options *options, const luz_texture_set *textures,

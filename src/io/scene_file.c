@@ -23,6 +23,7 @@
  * FILE:LINE.
  */
 #include "luz/options.h"
+#include "io/new_file.h"
 
 #include <errno.h>
 #include <stdbool.h>
@@ -406,4 +407,14 @@ void luz_options_write_scene(const luz_options *options, FILE *out)
             fprintf(out, " texture %s", options->cube_sources[i].texture_name);
         fputc('\n', out);
     }
+}
+
+int luz_options_save_scene(const luz_options *options, const char *path, bool replace,
+                           luz_error *error)
+{
+    luz_new_file file;
+    if (luz_new_file_open(&file, path, error) != 0)
+        return -1;
+    luz_options_write_scene(options, file.stream);
+    return luz_new_file_commit(&file, replace, error);
 }

@@ -224,7 +224,10 @@ static void show_message(viewer *v, const char *message)
     luz_error_print("luz", message);
 }
 
-/* The first name `prefix-NNNN.suffix` that no file has, from *number on. */
+/* The first name `prefix-NNNN.suffix` that no file has, from *number on.
+ * Only a first guess: another program may take the name before it is
+ * written, which is why the writers below never replace a file and the
+ * savers then try the next number. */
 static void free_file_name(const char *prefix, const char *suffix, int *number, char *buffer,
                            size_t size)
 {
@@ -235,48 +238,63 @@ static void free_file_name(const char *prefix, const char *suffix, int *number, 
     }
 }
 
-/* The scene as luz-render should render it: at the window's size. */
-static void write_state(viewer *v, FILE *out)
+/* Names taken by another program between the guess and the write, in a
+ * row, before a save gives up: a bound, so that a directory being filled
+ * as fast as luz looks cannot hold the viewer. */
+#define MAX_NAME_RACES 100
+
+/* A saved scene is rendered by luz-render at the window's size. */
+static void use_window_size(viewer *v)
 {
     v->options->width = v->window_width;
     v->options->height = v->window_height;
+}
+
+/* --print-state: the scene as luz-render should render it. */
+static void write_state(viewer *v, FILE *out)
+{
+    use_window_size(v);
     luz_options_write_scene(v->options, out);
 }
 
-/* F2: the view as a scene file, written beside the screenshots. It goes
- * to a temporary name first, as the PNG writer does, so that a full disk
- * never leaves half a scene under the final name. */
+/* F2: the view as a scene file, written beside the screenshots, complete
+ * or not at all (luz_options_save_scene), never over an existing file. */
 static void save_scene(viewer *v)
 {
-    char path[64], temporary[80], message[200];
-    free_file_name("luz-scene", "luz", &v->next_scene, path, sizeof path);
-    snprintf(temporary, sizeof temporary, ".%s.tmp", path);
-    FILE *file = fopen(temporary, "w");
-    bool written = false;
-    if (file != NULL) {
-        write_state(v, file);
-        written = !ferror(file);
-        written = fclose(file) == 0 && written;
-        written = written && rename(temporary, path) == 0;
-        if (!written)
-            remove(temporary);
+    char path[64], message[sizeof v->message];
+    luz_error error = {{0}};
+    use_window_size(v);
+    int status = LUZ_FILE_EXISTS;
+    for (int race = 0; race < MAX_NAME_RACES && status == LUZ_FILE_EXISTS; race++) {
+        free_file_name("luz-scene", "luz", &v->next_scene, path, sizeof path);
+        status = luz_options_save_scene(v->options, path, false, &error);
     }
-    if (written)
+    if (status == 0)
         snprintf(message, sizeof message, "saved the view to %s", path);
+    else if (status == LUZ_FILE_EXISTS)
+        snprintf(message, sizeof message, "cannot save the view: every name up to %s is taken",
+                 path);
     else
-        snprintf(message, sizeof message, "cannot write %s: %s", path, strerror(errno));
+        snprintf(message, sizeof message, "cannot save the view: %s", error.message);
     show_message(v, message);
 }
 
-/* F12: the rendered scene, before the HUD and panel are drawn over it. */
+/* F12: the rendered scene, before the HUD and panel are drawn over it, as
+ * a PNG that never replaces an existing file. */
 static void save_screenshot(viewer *v, const luz_framebuffer *framebuffer)
 {
-    char path[64], message[600];
+    char path[64], message[sizeof v->message];
     luz_error error = {{0}};
-    free_file_name("luz-shot", "png", &v->next_shot, path, sizeof path);
-    if (luz_framebuffer_write_png(framebuffer, path, &error) == 0)
+    int status = LUZ_FILE_EXISTS;
+    for (int race = 0; race < MAX_NAME_RACES && status == LUZ_FILE_EXISTS; race++) {
+        free_file_name("luz-shot", "png", &v->next_shot, path, sizeof path);
+        status = luz_framebuffer_write_new_png(framebuffer, path, &error);
+    }
+    if (status == 0)
         snprintf(message, sizeof message, "wrote %s (%dx%d)", path, framebuffer->width,
                  framebuffer->height);
+    else if (status == LUZ_FILE_EXISTS)
+        snprintf(message, sizeof message, "screenshot failed: every name up to %s is taken", path);
     else
         snprintf(message, sizeof message, "screenshot failed: %s", error.message);
     show_message(v, message);
