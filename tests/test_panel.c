@@ -204,6 +204,12 @@ static void test_layout(void **state)
     check_layout(1280, 720, 2);
     check_layout(640, 360, 1);   /* --render-scale 0.5 of the default */
     check_layout(1920, 1080, 2);
+    /* Shorter than the panel's 286 pixels at scale 1: shorter rows, and
+     * still every slider inside the window (the e2e test's sizes, and
+     * 320x240). */
+    check_layout(480, 270, 1);
+    check_layout(400, 300, 1);
+    check_layout(320, 240, 1);
 }
 
 static void test_track_value(void **state)

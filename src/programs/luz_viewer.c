@@ -528,9 +528,10 @@ static int fit_framebuffer(viewer *v, luz_error *error)
 }
 
 /* Records the 2D layer over the scene: the help alone when it is open,
- * else the panel and the HUD as they are switched; a message on top of
- * anything. It is recorded before the frame is drawn, so the HUD shows the
- * last frame's timings. */
+ * else the HUD and the panel as they are switched, the panel on top (in a
+ * small window the HUD reaches under it, and the panel is what the mouse
+ * is using); a message on top of anything. It is recorded before the
+ * frame is drawn, so the HUD shows the last frame's timings. */
 static int record_overlays(viewer *v, luz_error *error)
 {
     luz_layer *layer = &v->layer;
@@ -538,8 +539,6 @@ static int record_overlays(viewer *v, luz_error *error)
     if (v->help_visible) {
         luz_help_draw(layer);
     } else {
-        if (v->panel_open)
-            luz_panel_draw(layer, &v->layout, &v->panel, &v->options->scene.lights);
         if (v->hud_visible) {
             luz_hud hud = {
                 .frames_per_second = v->frames_per_second,
@@ -558,6 +557,8 @@ static int record_overlays(viewer *v, luz_error *error)
             };
             luz_hud_draw(layer, &hud);
         }
+        if (v->panel_open)
+            luz_panel_draw(layer, &v->layout, &v->panel, &v->options->scene.lights);
     }
     if (v->message_seconds_left > 0.0)
         luz_hud_draw_message(layer, v->message);

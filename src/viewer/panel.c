@@ -98,6 +98,8 @@ enum {
     GAP = 3,             /* between a label, its track and its value */
     INNER_WIDTH = 200,   /* the box's width without its padding */
     ROW_COUNT = 1 + LUZ_TERM_COUNT * 3 + 4,   /* title, 3 per light, 4 extras */
+    MIN_ROW = 9,         /* the shortest row, in a short window: the 7-pixel
+                            capitals and a gap; descenders touch the next row */
 };
 
 static int panel_height(int scale)
@@ -131,12 +133,19 @@ luz_panel_layout luz_panel_layout_for(int width, int height)
     memset(&layout, 0, sizeof layout);
     int s = (height >= panel_height(2) + 2 * MARGIN * 2 && width >= 3 * INNER_WIDTH * 2) ? 2 : 1;
     layout.scale = s;
+    int row = ROW * s;
+    /* A window too short for the whole panel at scale 1 (below 298
+     * pixels, such as 480x270) gets shorter rows, down to MIN_ROW, so
+     * that every slider stays on screen. */
+    if (s == 1 && height < panel_height(1) + 2 * MARGIN) {
+        int fits = (height - 2 * MARGIN - 2 * PAD) / ROW_COUNT;
+        row = fits < MIN_ROW ? MIN_ROW : fits;
+    }
     int inner = INNER_WIDTH * s;
     layout.box = (luz_rect){width - inner - (2 * PAD + MARGIN) * s, MARGIN * s, inner + 2 * PAD * s,
-                            panel_height(s)};
+                            ROW_COUNT * row + 2 * PAD * s};
     int x = layout.box.x + PAD * s;
     int y = layout.box.y + PAD * s;
-    int row = ROW * s;
 
     layout.title = (luz_rect){x, y, inner, row};
     y += row;
