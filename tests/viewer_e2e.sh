@@ -16,11 +16,16 @@
 #    half the view spans), where the spot adds exactly 0.
 # 3. W held for a second moves the camera forward, towards -z, by about
 #    2.5 units (motion is per second, however slow the build).
-# 4. The window is resized; the next screenshot has the new size.
+# 4. The window is resized; the next screenshot has the new size. F11,
+#    with no window manager to make the window fullscreen, says so and
+#    leaves the window's size alone.
 # 5. Esc quits with status 0; --print-state's scene file says where the
 #    camera went and that the spot is off, and luz-render renders it.
 # 6. The same check as in 1 with frames shown through SDL (LUZ_PRESENT=sdl),
 #    the way luz shows them where it cannot use X11 shared memory.
+# 7. With a window manager (openbox, if installed): F11 makes the window
+#    fill the screen, and the screenshot then has the screen's size; F11
+#    again gives the window its size back.
 #
 # Without Xvfb, xdotool or ImageMagick it reports itself skipped (77).
 set -u
@@ -172,6 +177,14 @@ xdotool key F12
 wait_for_shot luz-shot-0003.png
 size=$(identify -format '%wx%h' luz-shot-0003.png)
 [ "$size" = 400x300 ] || fail "screenshot after the resize is $size, the window 400x300"
+# No window manager runs on this X server: F11 refuses, in one line.
+xdotool key F11
+i=0
+until grep -q "F11: no window manager" "$work/stderr"; do
+    i=$((i + 1))
+    [ $i -gt 100 ] && fail "F11 without a window manager: no message after 10 s"
+    sleep 0.1
+done
 
 # 5. Esc quits with status 0.
 xdotool key Escape
@@ -211,4 +224,41 @@ xdotool key Escape
 wait "$luz_pid" || fail "luz (LUZ_PRESENT=sdl) exited with status $? after Esc"
 luz_pid=""
 
-echo "ok: screenshots $size, spot diff $centre in the centre and 0 outside, camera $camera"
+# 7. F11 under a window manager.
+# Waits up to 10 s for the window to have the size $1.
+wait_for_geometry() {
+    i=0
+    until [ "$(xdotool getwindowgeometry "$window" | sed -n 's/.*Geometry: //p')" = "$1" ]; do
+        i=$((i + 1))
+        [ $i -gt 100 ] && fail "$2: the window is $(xdotool getwindowgeometry "$window" |
+            sed -n 's/.*Geometry: //p'), expected $1"
+        sleep 0.1
+    done
+}
+fullscreen="not checked: openbox is not installed (tools/install-deps test installs it)"
+if command -v openbox >/dev/null 2>&1; then
+    openbox >"$work/openbox.log" 2>&1 &
+    openbox_pid=$!
+    sleep 1
+    rm -f "$work/stderr"
+    "$luz" --size 480x270 2>"$work/stderr" &
+    luz_pid=$!
+    wait_for_window "luz (openbox)"
+    screen=$(xdotool getdisplaygeometry | tr ' ' x)
+    xdotool key t F11
+    wait_for_geometry "$screen" "F11 under openbox"
+    sleep 0.5
+    xdotool key F12
+    wait_for_shot luz-shot-0005.png
+    shot=$(identify -format '%wx%h' luz-shot-0005.png)
+    [ "$shot" = "$screen" ] || fail "fullscreen screenshot is $shot, the screen $screen"
+    xdotool key F11
+    wait_for_geometry 480x270 "F11 again under openbox"
+    xdotool key Escape
+    wait "$luz_pid" || fail "luz (openbox) exited with status $? after Esc"
+    luz_pid=""
+    kill "$openbox_pid" 2>/dev/null
+    fullscreen="F11 fills the $screen screen and gives 480x270 back"
+fi
+
+echo "ok: screenshots $size, spot diff $centre in the centre and 0 outside, camera $camera; $fullscreen"

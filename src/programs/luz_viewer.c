@@ -384,6 +384,12 @@ static void handle_key(viewer *v, const SDL_KeyboardEvent *key)
     case SDLK_F12: v->screenshot_requested = true; break;
     case SDLK_F11: {
         bool fullscreen = (SDL_GetWindowFlags(v->window) & SDL_WINDOW_FULLSCREEN) != 0;
+#ifdef LUZ_VIEWER_X11
+        if (!fullscreen && !x11_can_go_fullscreen(v->window)) {
+            show_message(v, "F11: no window manager here can make the window fullscreen");
+            break;
+        }
+#endif
         SDL_SetWindowFullscreen(v->window, fullscreen ? 0 : SDL_WINDOW_FULLSCREEN_DESKTOP);
         break;
     }

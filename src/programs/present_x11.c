@@ -291,3 +291,47 @@ void x11_presenter_destroy(x11_presenter *presenter)
     XCloseDisplay(presenter->display);
     free(presenter);
 }
+
+/* ---- fullscreen ----------------------------------------------------------------- */
+
+/* Fullscreen on X11 is a request to the window manager (EWMH's
+ * _NET_WM_STATE_FULLSCREEN), so it needs one that says it supports it: a
+ * window manager announces itself with _NET_SUPPORTING_WM_CHECK on the
+ * root window and lists what it supports in _NET_SUPPORTED. */
+static bool root_property_lists(Display *display, const char *property, Atom wanted,
+                                bool any_value)
+{
+    Atom type;
+    int format;
+    unsigned long count, bytes_after;
+    unsigned char *data = NULL;
+    Atom name = XInternAtom(display, property, True);
+    if (name == None)
+        return false;
+    if (XGetWindowProperty(display, DefaultRootWindow(display), name, 0, 4096, False,
+                           AnyPropertyType, &type, &format, &count, &bytes_after,
+                           &data) != Success)
+        return false;
+    bool found = false;
+    if (data != NULL && format == 32) {
+        /* Xlib hands 32-bit properties back as longs. */
+        const long *values = (const long *)data;
+        for (unsigned long i = 0; i < count && !found; i++)
+            found = any_value || (Atom)values[i] == wanted;
+    }
+    if (data != NULL)
+        XFree(data);
+    return found;
+}
+
+bool x11_can_go_fullscreen(SDL_Window *window)
+{
+    SDL_SysWMinfo info;
+    SDL_VERSION(&info.version);
+    if (!SDL_GetWindowWMInfo(window, &info) || info.subsystem != SDL_SYSWM_X11)
+        return true;
+    Display *display = info.info.x11.display;
+    Atom fullscreen = XInternAtom(display, "_NET_WM_STATE_FULLSCREEN", False);
+    return root_property_lists(display, "_NET_SUPPORTING_WM_CHECK", None, true) &&
+           root_property_lists(display, "_NET_SUPPORTED", fullscreen, false);
+}

@@ -5,6 +5,7 @@
 #ifndef LUZ_PRESENT_X11_H
 #define LUZ_PRESENT_X11_H
 
+#include <stdbool.h>
 #include <stdint.h>
 
 #include <SDL.h>
@@ -32,5 +33,11 @@ uint8_t *x11_presenter_next_image(x11_presenter *presenter);
 void x11_presenter_show(x11_presenter *presenter);
 
 void x11_presenter_destroy(x11_presenter *presenter);
+
+/* False when window is an X11 window and no window manager is running
+ * that can make it fullscreen (a bare Xvfb, say). SDL would then believe
+ * the window had the screen's size while it stays as it was, so F11
+ * refuses instead. True for any other window. */
+bool x11_can_go_fullscreen(SDL_Window *window);
 
 #endif
