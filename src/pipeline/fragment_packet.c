@@ -394,7 +394,7 @@ INLINE vfloat channel(vuint texels, int c)
     return to_float((vint)((texels >> CHANNEL_SHIFT(c)) & 0xffu));
 }
 
-/* texture.c's repeat(): the fractional part, NaN and |c| >= 2^23 giving 0. */
+/* luz_texture_repeat (pipeline.h): the fractional part, NaN and |c| >= 2^23 giving 0. */
 INLINE vfloat repeat(vfloat coordinate)
 {
     const vint magnitude = (vint)coordinate & 0x7fffffff;

@@ -211,6 +211,21 @@ typedef struct luz_fragment {
 
 void luz_fragment_interpolate(const luz_triangle *triangle, int x, int y, luz_fragment *out);
 
+/* ---- texture coordinates (texture.c) ------------------------------------ */
+
+/* Wrap mode REPEAT: the fractional part of a texture coordinate, in
+ * [0, 1). A float of magnitude 2^23 or more has no fractional part, and
+ * NaN samples texel 0: both give 0. Inline, for texture.c's samplers and
+ * view.c's uv picture. */
+static inline float luz_texture_repeat(float coordinate)
+{
+    if (!(coordinate < 8388608.0f && coordinate > -8388608.0f)) return 0.0f;
+    float whole = (float)(int)coordinate;           /* truncates towards 0 */
+    if (whole > coordinate) whole -= 1.0f;          /* now floor */
+    float fraction = coordinate - whole;
+    return fraction < 1.0f ? fraction : 0.0f;       /* -1e-9 - (-1) rounds to 1 */
+}
+
 /* ---- views (view.c) ----------------------------------------------------- */
 
 /* Colours rows [first_row, end_row) as frame->uniforms.show asks (see

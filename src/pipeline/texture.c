@@ -21,6 +21,7 @@
 #include <string.h>
 
 #include "luz/texture.h"
+#include "pipeline/pipeline.h"
 
 luz_texture *luz_texture_create(int width, int height, const uint8_t *rgba, luz_error *error)
 {
@@ -113,17 +114,6 @@ float luz_texture_level_of_detail(const luz_texture *texture,
     return 0.5f * log2f(rho_squared);
 }
 
-/* The fractional part of a coordinate, in [0, 1): REPEAT. A float of
- * magnitude 2^23 or more has no fractional part; NaN samples texel 0. */
-static inline float repeat(float coordinate)
-{
-    if (!(fabsf(coordinate) < 8388608.0f)) return 0.0f;
-    float whole = (float)(int)coordinate;           /* truncates towards 0 */
-    if (whole > coordinate) whole -= 1.0f;          /* now floor */
-    float fraction = coordinate - whole;
-    return fraction < 1.0f ? fraction : 0.0f;       /* -1e-9 - (-1) rounds to 1 */
-}
-
 static inline const uint8_t *texel_address(const luz_texture_level *level, int x, int y)
 {
     return level->texels + ((size_t)y * level->width + x) * 4;
@@ -133,8 +123,8 @@ luz_vec3 luz_texture_sample_nearest(const luz_texture *texture, int level_index,
 {
     const luz_texture_level *level = &texture->levels[level_index];
     /* The texel whose square contains the point: floor(u * w). */
-    int x = (int)(repeat(uv.x) * level->width);
-    int y = (int)(repeat(uv.y) * level->height);
+    int x = (int)(luz_texture_repeat(uv.x) * level->width);
+    int y = (int)(luz_texture_repeat(uv.y) * level->height);
     if (x >= level->width) x = level->width - 1;   /* u just below 1 rounding up */
     if (y >= level->height) y = level->height - 1;
     const uint8_t *p = texel_address(level, x, y);
@@ -149,7 +139,8 @@ luz_vec3 luz_texture_sample_nearest(const luz_texture *texture, int level_index,
 static inline void bilinear_axis(float coordinate, int size, int *first, int *second,
                                  float *weight)
 {
-    float s = repeat(coordinate) * (float)size + 0.5f;   /* shifted by one texel: > 0 */
+    /* shifted by one texel: > 0 */
+    float s = luz_texture_repeat(coordinate) * (float)size + 0.5f;
     int i = (int)s;                                      /* floor, as s > 0 */
     *weight = s - (float)i;
     i -= 1;                                              /* in [-1, size - 1] */

@@ -155,13 +155,6 @@ static luz_vec3 mix(luz_vec3 a, luz_vec3 b, float t)
     return luz_vec3_add(luz_vec3_scale(a, 1.0f - t), luz_vec3_scale(b, t));
 }
 
-/* REPEAT's fractional part, in [0, 1). */
-static float fraction(float coordinate)
-{
-    float f = coordinate - floorf(coordinate);
-    return f < 1.0f ? f : 0.0f;
-}
-
 /* The mip levels the sampler reads at this fragment, as colours. */
 static luz_vec3 mip_colour(const luz_texture *texture, luz_filter filter,
                            const luz_fragment *fragment)
@@ -270,7 +263,8 @@ uint64_t luz_view_shade_rows(const luz_frame *frame, const luz_triangle *const *
                 break;
             }
             case LUZ_VIEW_UV:
-                colour = (luz_vec3){fraction(fragment.uv.x), fraction(fragment.uv.y), 0.0f};
+                colour = (luz_vec3){luz_texture_repeat(fragment.uv.x),
+                                    luz_texture_repeat(fragment.uv.y), 0.0f};
                 break;
             case LUZ_VIEW_MIP:
                 colour = mip_colour(draw->texture, uniforms->filter, &fragment);
