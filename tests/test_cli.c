@@ -536,6 +536,20 @@ static const error_case error_cases[] = {
      {"s.luz:2", "cubes"}},
     {"scene-cube-lines-then-cubes", {"--scene", "s.luz"}, "cube = 0, 0, 0\ncubes = 20\n", NULL,
      {"s.luz:2", "cubes"}},
+    {"scene-quote-unterminated", {"--scene", "s.luz"}, "seed = 1\ntextures = \"tex # x\n",
+     NULL, {"s.luz:2", "textures", "closing \""}},
+    {"scene-quote-ends-in-backslash", {"--scene", "s.luz"}, "textures = \"tex\\\n", NULL,
+     {"s.luz:1", "textures", "closing \""}},
+    {"scene-quote-unknown-escape", {"--scene", "s.luz"}, "textures = \"a\\qb\"\n", NULL,
+     {"s.luz:1", "textures", "escape '\\q'", "\\\""}},
+    {"scene-quote-junk-after", {"--scene", "s.luz"}, "textures = \"a\" b\n", NULL,
+     {"s.luz:1", "textures", "after the closing quote", "'b'"}},
+    {"scene-cube-quote-unterminated", {"--scene", "s.luz"},
+     "\ncube = 0, 0, 0 texture \"old wood.png colour 1, 0, 0\n", NULL,
+     {"s.luz:2", "texture", "closing \""}},
+    {"scene-cube-quote-junk-after", {"--scene", "s.luz"},
+     "cube = 0, 0, 0 texture \"a\"colour 1, 0, 0\n", NULL,
+     {"s.luz:1", "texture", "after the closing quote", "colour"}},
     {"scene-error-before-command-line", {"--size", "8x8", "--scene", "s.luz"}, "time = soon\n",
      NULL, {"s.luz:1", "time", "number"}},
 };
@@ -1124,6 +1138,158 @@ static void test_scene_round_trip(void **state)
     sandbox_destroy(&box);
 }
 
+/* Gives options the custom cubes i at (i, 0, 0), cube i with texture
+ * names[i], built here rather than read from a file, so that the reader
+ * under test is not also what set them up. */
+static void set_named_cubes(luz_options *options, const char *const *names, int count)
+{
+    luz_options_clear_cubes(options);
+    options->cubes = calloc((size_t)count, sizeof *options->cubes);
+    options->cube_sources = calloc((size_t)count, sizeof *options->cube_sources);
+    assert_non_null(options->cubes);
+    assert_non_null(options->cube_sources);
+    options->cube_capacity = count;
+    for (int i = 0; i < count; i++) {
+        options->cubes[i] = (luz_cube){.position = luz_vec3_make((float)i, 0.0f, 0.0f),
+                                       .texture = LUZ_TEXTURE_BY_INDEX};
+        options->cube_sources[i].texture_name = strdup(names[i]);
+        assert_non_null(options->cube_sources[i].texture_name);
+    }
+    options->scene.custom_cubes = options->cubes;
+    options->scene.custom_cube_count = count;
+}
+
+/* A textures directory with `#` and a trailing blank, and texture names
+ * with a blank, a `#` and a `"`, come back byte for byte; the writer quotes
+ * those and only those. */
+static void test_scene_quoted_round_trip(void **state)
+{
+    (void)state;
+    sandbox box;
+    sandbox_create(&box);
+    static const char *const names[] = {"old wood.png", "a#b.png", "quote\"d.png",
+                                        "stone.png"};
+    luz_options original, copy;
+    luz_options_init(&original);
+    luz_error error = {{0}};
+    assert_int_equal(luz_options_set(&original, "textures", "dir # with hash ", NULL, &error),
+                     0);
+    set_named_cubes(&original, names, 4);
+
+    char path[600], saved[600];
+    snprintf(path, sizeof path, "%s/quoted.luz", box.root);
+    snprintf(saved, sizeof saved, "%s/saved.luz", box.root);
+    write_scene_to(&original, path);
+    char *text = read_file(path, NULL);
+    assert_non_null(text);
+    assert_contains(text, "\ntextures = \"dir # with hash \"\n");
+    assert_contains(text, " texture \"old wood.png\"\n");
+    assert_contains(text, " texture \"a#b.png\"\n");
+    assert_contains(text, " texture \"quote\\\"d.png\"\n");
+    assert_contains(text, " texture stone.png\n");
+
+    read_scene_from(&copy, path);
+    assert_scene_options_equal(&original, &copy);
+    assert_string_equal(copy.textures_directory, "dir # with hash ");
+    assert_int_equal(copy.scene.custom_cube_count, 4);
+    assert_string_equal(copy.cube_sources[0].texture_name, "old wood.png");
+    assert_string_equal(copy.cube_sources[1].texture_name, "a#b.png");
+    assert_string_equal(copy.cube_sources[2].texture_name, "quote\"d.png");
+    assert_string_equal(copy.cube_sources[3].texture_name, "stone.png");
+    luz_options_free(&copy);
+
+    /* the viewer's F2 writes the same text */
+    assert_int_equal(luz_options_save_scene(&original, saved, false, &error), 0);
+    char *saved_text = read_file(saved, NULL);
+    assert_non_null(saved_text);
+    assert_string_equal(saved_text, text);
+    free(saved_text);
+    free(text);
+
+    /* the escapes, a leading blank and an empty name */
+    static const char *const odd[] = {"back\\slash", "tab\there", "line\nbreak\r",
+                                      " lead", ""};
+    free(original.textures_directory);
+    original.textures_directory = strdup("\\\\server\\share");
+    assert_non_null(original.textures_directory);
+    set_named_cubes(&original, odd, 5);
+    write_scene_to(&original, path);
+    text = read_file(path, NULL);
+    assert_non_null(text);
+    assert_contains(text, "\ntextures = \"\\\\\\\\server\\\\share\"\n");
+    assert_contains(text, " texture \"back\\\\slash\"\n");
+    assert_contains(text, " texture \"tab\\there\"\n");
+    assert_contains(text, " texture \"line\\nbreak\\r\"\n");
+    assert_contains(text, " texture \" lead\"\n");
+    assert_contains(text, " texture \"\"\n");
+    free(text);
+    read_scene_from(&copy, path);
+    assert_scene_options_equal(&original, &copy);
+    assert_string_equal(copy.textures_directory, "\\\\server\\share");
+    assert_string_equal(copy.cube_sources[2].texture_name, "line\nbreak\r");
+    luz_options_free(&copy);
+
+    /* blanks: at the ends they need quotes, inside a value they do not */
+    static const char *const directories[][2] = {
+        {" leading", "\ntextures = \" leading\"\n"},
+        {"trailing ", "\ntextures = \"trailing \"\n"},
+        {"my textures", "\ntextures = my textures\n"},
+    };
+    for (size_t i = 0; i < sizeof directories / sizeof directories[0]; i++) {
+        free(original.textures_directory);
+        original.textures_directory = strdup(directories[i][0]);
+        assert_non_null(original.textures_directory);
+        write_scene_to(&original, path);
+        text = read_file(path, NULL);
+        assert_non_null(text);
+        assert_contains(text, directories[i][1]);
+        free(text);
+        read_scene_from(&copy, path);
+        assert_string_equal(copy.textures_directory, directories[i][0]);
+        luz_options_free(&copy);
+    }
+
+    luz_options_free(&original);
+    sandbox_destroy(&box);
+}
+
+/* Quoted values written by hand, with comments after them and the fields
+ * of a cube line in either order; a `"` inside an unquoted value is still
+ * an ordinary character. */
+static void test_scene_quoted_values_read(void **state)
+{
+    (void)state;
+    sandbox box;
+    sandbox_create(&box);
+    char path[600];
+    snprintf(path, sizeof path, "%s/hand.luz", box.root);
+    write_text(box.root, "hand.luz",
+               "textures = \"a # b\"  # comment\n"
+               "cube = 0, 0, 0 texture \"x y.png\" colour 1, 0, 0\n"
+               "cube = 1, 2, 3 colour 0, 0.5, 1 texture \"c:\\\\t\\\"x\\\"\\t#1\" # why\n"
+               "cube = 4, 5, 6 texture\t\"\"\n"
+               "cube = 7, 8, 9 texture it\"s.png  # an ordinary quote\n"
+               "output = say \"hi\".png # likewise\n");
+    luz_options options;
+    read_scene_from(&options, path);
+    assert_string_equal(options.textures_directory, "a # b");
+    assert_int_equal(options.scene.custom_cube_count, 4);
+    assert_string_equal(options.cube_sources[0].texture_name, "x y.png");
+    assert_true(options.cubes[0].has_colour);
+    assert_float_same(options.cubes[0].colour.x, 1.0f);
+    assert_float_same(options.cubes[0].colour.y, 0.0f);
+    assert_float_same(options.cubes[0].colour.z, 0.0f);
+    assert_string_equal(options.cube_sources[1].texture_name, "c:\\t\"x\"\t#1");
+    assert_true(options.cubes[1].has_colour);
+    assert_float_same(options.cubes[1].colour.y, 0.5f);
+    assert_string_equal(options.cube_sources[2].texture_name, "");
+    assert_float_same(options.cubes[2].position.z, 6.0f);
+    assert_string_equal(options.cube_sources[3].texture_name, "it\"s.png");
+    assert_string_equal(options.output_path, "say \"hi\".png");
+    luz_options_free(&options);
+    sandbox_destroy(&box);
+}
+
 /* luz_options_save_scene (the viewer's F2): the file reads back as the
  * options; saved again without replace, under the same name, it is
  * refused with LUZ_FILE_EXISTS and the first file stays as it was, with
@@ -1314,6 +1480,8 @@ int main(void)
         cmocka_unit_test(test_options_reach_the_image),
         cmocka_unit_test(test_huge_size_refused_at_once),
         cmocka_unit_test(test_scene_round_trip),
+        cmocka_unit_test(test_scene_quoted_round_trip),
+        cmocka_unit_test(test_scene_quoted_values_read),
         cmocka_unit_test(test_save_scene_never_replaces_unless_asked),
         cmocka_unit_test(test_parse_precedence_and_forms),
         cmocka_unit_test(test_output_pattern),

@@ -12,11 +12,20 @@
  *
  * Keys are the long options without their dashes (everything but help,
  * version and scene), each set at most once; `#` starts a comment anywhere
- * on a line; blank lines are ignored. `cube = x, y, z` lines, optionally
- * followed by `colour r,g,b` and `texture NAME`, replace the cube list with
- * the user's own cubes. A texture NAME is kept as text until the textures
- * are loaded (luz_options_resolve_textures), since the file is read before
- * the textures directory is known.
+ * on a line but inside a quoted string (below); blank lines are ignored.
+ * `cube = x, y, z` lines, optionally followed by `colour r,g,b` and
+ * `texture NAME`, replace the cube list with the user's own cubes. A
+ * texture NAME is kept as text until the textures are loaded
+ * (luz_options_resolve_textures), since the file is read before the
+ * textures directory is known.
+ *
+ * A value, or a texture NAME, may be written as a quoted string, "...", in
+ * which `#` and blanks are part of the text and \" \\ \n \t \r are the only
+ * escapes: `textures = "my # textures "`, `texture "old wood.png"`. Only
+ * blanks, a comment, or in a cube line the next field may follow the
+ * closing quote. A `"` anywhere else (inside an unquoted value) is an
+ * ordinary character. luz_options_write_scene quotes only the text that
+ * needs it, so that what it writes always reads back the same.
  *
  * Values go through luz_options_set(), the command line's own parser, so a
  * file accepts exactly what the command line accepts. Every error names
@@ -65,6 +74,108 @@ static char *trim(char *text)
     while (length > 0 && strchr(" \t\r\n", text[length - 1]) != NULL)
         text[--length] = '\0';
     return text;
+}
+
+/* ---- quoted values ------------------------------------------------------------- */
+
+/* Just after the quoted string that starts at text (its '"'), or NULL if it
+ * is not closed on the line. Escapes are skipped whole, good or bad: only
+ * unquote() judges them. */
+static char *skip_quoted(char *text)
+{
+    for (char *p = text + 1; *p != '\0'; p++) {
+        if (*p == '\\' && p[1] != '\0')
+            p++;
+        else if (*p == '"')
+            return p + 1;
+    }
+    return NULL;
+}
+
+/* Where the line's comment starts: its first `#` outside a quoted string,
+ * or NULL. A quoted string can start only where a value can: at the first
+ * character of a `name = value` line's value, and, in a cube line, at the
+ * start of a word (the texture NAME; anywhere else read_cube refuses it).
+ * A `"` elsewhere is an ordinary character, as it always was. An
+ * unterminated quote hides the rest of the line, and unquote() says so. */
+static char *find_comment(char *text)
+{
+    char *mark = strpbrk(text, "#=");
+    if (mark == NULL || *mark == '#')
+        return mark;
+    char *name = text;
+    while (*name == ' ' || *name == '\t')
+        name++;
+    char *name_end = mark;
+    while (name_end > name && (name_end[-1] == ' ' || name_end[-1] == '\t'))
+        name_end--;
+    bool cube = name_end - name == 4 && memcmp(name, "cube", 4) == 0;
+
+    char *value = mark + 1;
+    while (*value == ' ' || *value == '\t')
+        value++;
+    for (char *p = value; *p != '\0'; p++) {
+        if (*p == '#')
+            return p;
+        bool word_start = p == value || p[-1] == ' ' || p[-1] == '\t';
+        if (*p == '"' && (p == value || (cube && word_start))) {
+            char *end = skip_quoted(p);
+            if (end == NULL)
+                return NULL;
+            p = end - 1;
+        }
+    }
+    return NULL;
+}
+
+/* Decodes, in place, the quoted string that starts at text (its '"'): the
+ * bytes between the quotes, with \" \\ \n \t \r replaced by what they
+ * stand for. *end is set just after the closing quote, whose place (or an
+ * earlier one) now holds the decoded text's NUL. Returns 0, or -1 with an
+ * error starting with `where`. */
+static int unquote(char *text, char **end, const char *where, luz_error *error)
+{
+    option_quoted original = option_quote(text);
+    char *out = text;
+    for (char *in = text + 1;; in++) {
+        if (*in == '\0')
+            return luz_error_set(error,
+                                 "%s: expected a closing \" to end the quoted text, got '%s'",
+                                 where, original.text);
+        if (*in == '"') {
+            *out = '\0';
+            *end = in + 1;
+            return 0;
+        }
+        if (*in != '\\') {
+            *out++ = *in;
+            continue;
+        }
+        in++;
+        switch (*in) {
+        case '"': *out++ = '"'; break;
+        case '\\': *out++ = '\\'; break;
+        case 'n': *out++ = '\n'; break;
+        case 't': *out++ = '\t'; break;
+        case 'r': *out++ = '\r'; break;
+        case '\0':
+            return luz_error_set(error,
+                                 "%s: expected a closing \" to end the quoted text, got '%s'",
+                                 where, original.text);
+        default: {
+            /* the whole character, when it is a UTF-8 sequence */
+            char escape[5] = {*in, '\0'};
+            if ((unsigned char)*in >= 0x80) {
+                for (int k = 1; k < 4 && ((unsigned char)in[k] & 0xc0) == 0x80; k++)
+                    escape[k] = in[k];
+            }
+            return luz_error_set(error,
+                                 "%s: unknown escape '\\%s' in quoted text (expected \\\" "
+                                 "\\\\ \\n \\t or \\r)",
+                                 where, option_quote(escape).text);
+        }
+        }
+    }
 }
 
 /* ---- cube lines ---------------------------------------------------------------- */
@@ -186,6 +297,21 @@ static int read_cube(scene_reader *reader, char *value, luz_error *error)
             if (texture_name != NULL)
                 return luz_error_set(error, "%s:%d: cube: duplicate texture field in '%s'", path,
                                      line, original.text);
+            if (rest[0] == '"') {
+                char where[600];
+                snprintf(where, sizeof where, "%s:%d: cube: texture", path, line);
+                char *after;
+                if (unquote(rest, &after, where, error) != 0)
+                    return -1;
+                if (*after != '\0' && *after != ' ' && *after != '\t')
+                    return luz_error_set(error,
+                                         "%s: expected blanks then the next field after the "
+                                         "closing quote, got '%s'",
+                                         where, option_quote(after).text);
+                fields = after + strspn(after, " \t");
+                texture_name = rest;
+                continue;
+            }
             size_t name_length = strcspn(rest, " \t");
             if (name_length == 0)
                 return luz_error_set(error,
@@ -220,7 +346,7 @@ static int read_line(scene_reader *reader, char *text, luz_error *error)
 {
     const char *path = reader->path;
     int line = reader->line;
-    char *comment = strchr(text, '#');
+    char *comment = find_comment(text);
     if (comment != NULL)
         *comment = '\0';
     text = trim(text);
@@ -273,6 +399,17 @@ static int read_line(scene_reader *reader, char *text, luz_error *error)
 
     char where[600];
     snprintf(where, sizeof where, "%s:%d: %s", path, line, name);
+    if (value[0] == '"') {
+        char *after;
+        if (unquote(value, &after, where, error) != 0)
+            return -1;
+        /* the comment is gone and the line trimmed: nothing may be left */
+        if (*after != '\0')
+            return luz_error_set(error,
+                                 "%s: expected only blanks or a comment after the closing "
+                                 "quote, got '%s'",
+                                 where, option_quote(after + strspn(after, " \t")).text);
+    }
     return luz_options_set(reader->options, name, value, where, error);
 }
 
@@ -365,6 +502,40 @@ int luz_options_resolve_textures(luz_options *options, const luz_texture_set *te
 
 /* ---- writing ------------------------------------------------------------------------ */
 
+/* Writes text as the reader will read it back: as it is when it can be,
+ * else quoted. A value is quoted when it is empty, holds `#`, `"`, `\` or
+ * a control character, or begins or ends with a blank (which the reader
+ * would trim); a cube's texture NAME (is_word) also when it holds a blank
+ * anywhere, since an unquoted NAME ends at the first. Text that needs none
+ * of this is written as before quoting existed, so saved files and their
+ * diffs do not change. */
+static void write_text(FILE *out, const char *text, bool is_word)
+{
+    size_t length = strlen(text);
+    bool quote = length == 0 || text[0] == ' ' || text[length - 1] == ' ';
+    for (size_t i = 0; i < length && !quote; i++) {
+        unsigned char c = (unsigned char)text[i];
+        quote = c == '#' || c == '"' || c == '\\' || c < 0x20 || c == 0x7f ||
+                (is_word && c == ' ');
+    }
+    if (!quote) {
+        fputs(text, out);
+        return;
+    }
+    fputc('"', out);
+    for (size_t i = 0; i < length; i++) {
+        switch (text[i]) {
+        case '"': fputs("\\\"", out); break;
+        case '\\': fputs("\\\\", out); break;
+        case '\n': fputs("\\n", out); break;
+        case '\t': fputs("\\t", out); break;
+        case '\r': fputs("\\r", out); break;
+        default: fputc(text[i], out); break;   /* other bytes as they are */
+        }
+    }
+    fputc('"', out);
+}
+
 void luz_options_write_scene(const luz_options *options, FILE *out)
 {
     /* The scene, in the order of --help; not the program's own settings
@@ -381,8 +552,11 @@ void luz_options_write_scene(const luz_options *options, FILE *out)
     for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++) {
         if (strcmp(keys[i], "cubes") == 0 && options->scene.custom_cube_count > 0)
             continue;
-        if (luz_options_format(options, keys[i], value, sizeof value) == 0)
-            fprintf(out, "%s = %s\n", keys[i], value);
+        if (luz_options_format(options, keys[i], value, sizeof value) == 0) {
+            fprintf(out, "%s = ", keys[i]);
+            write_text(out, value, false);
+            fputc('\n', out);
+        }
     }
     /* The teaching settings, only when they are not the defaults: a view
      * saved while looking at the depth buffer renders the depth buffer. */
@@ -403,8 +577,10 @@ void luz_options_write_scene(const luz_options *options, FILE *out)
             option_format_float(z, sizeof z, cube->colour.z);
             fprintf(out, " colour %s, %s, %s", x, y, z);
         }
-        if (options->cube_sources[i].texture_name != NULL)
-            fprintf(out, " texture %s", options->cube_sources[i].texture_name);
+        if (options->cube_sources[i].texture_name != NULL) {
+            fputs(" texture ", out);
+            write_text(out, options->cube_sources[i].texture_name, true);
+        }
         fputc('\n', out);
     }
 }
