@@ -4,7 +4,8 @@
  * luz-render and the viewer take the same long options (the knobs of
  * SCENE.md) and the same scene files, through this one parser. A scene file
  * holds `name = value` lines whose names are the long options without their
- * dashes, `#` comments, and `cube = ...` lines that replace the cube list;
+ * dashes, `#` comments, "quoted" values (for a path or texture name with
+ * `#` or blanks in it), and `cube = ...` lines that replace the cube list;
  * options given on the command line override the file whatever their order.
  * docs/cli.md is the user's reference for both.
  *
