@@ -14,9 +14,9 @@
  * a streaming RGBA texture. Every pixel, the HUD's text and the panel's
  * sliders included, is drawn by libluz: the 2D layer of luz/panel.h is
  * recorded first, then the renderer fills it band by band on top of the
- * scene (luz_renderer_draw_with_hook). What the keys do is in luz/controls.h and what the
- * panel does in luz/panel.h, both tested without a window; this file maps
- * SDL's events onto them.
+ * scene (luz_renderer_draw_with_hook). What the keys do is in
+ * luz/controls.h and what the panel does in luz/panel.h, both tested
+ * without a window; this file maps SDL's events onto them.
  *
  * Options are luz-render's scene options, read by the same parser
  * (luz_options_parse), plus two of the viewer's own, which are taken out of

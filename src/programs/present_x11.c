@@ -218,8 +218,6 @@ int x11_presenter_resize(x11_presenter *presenter, int width, int height, luz_er
     return make_images(presenter, width, height, error);
 }
 
-/* Reads this connection's events until the X server has reported that it
- * has finished copying the image. */
 /* How long to wait for a completion event before asking the X server
  * directly. The event comes within a frame or two; a server that dropped
  * it must not freeze the viewer. */
@@ -232,6 +230,9 @@ static double monotonic_ms(void)
     return (double)now.tv_sec * 1e3 + (double)now.tv_nsec / 1e6;
 }
 
+/* Reads this connection's events until the X server has reported that it
+ * has finished copying the image (or, after COMPLETION_WAIT_MS without a
+ * word, until a round trip shows that it has). */
 static void wait_until_copied(x11_presenter *presenter, shared_image *shared)
 {
     Display *display = presenter->display;
