@@ -102,9 +102,10 @@ enum {
                             capitals and a gap; descenders touch the next row */
 };
 
-static int panel_height(int scale)
+/* The panel's box height with rows of `row` pixels at text scale `scale`. */
+static int panel_height(int row, int scale)
 {
-    return (ROW_COUNT * ROW + 2 * PAD) * scale;
+    return ROW_COUNT * row + 2 * PAD * scale;
 }
 
 void luz_panel_init(luz_panel *panel)
@@ -131,19 +132,21 @@ luz_panel_layout luz_panel_layout_for(int width, int height)
 {
     luz_panel_layout layout;
     memset(&layout, 0, sizeof layout);
-    int s = (height >= panel_height(2) + 2 * MARGIN * 2 && width >= 3 * INNER_WIDTH * 2) ? 2 : 1;
+    bool room_for_2 = height >= panel_height(ROW * 2, 2) + 2 * MARGIN * 2 &&
+                      width >= 3 * INNER_WIDTH * 2;
+    int s = room_for_2 ? 2 : 1;
     layout.scale = s;
     int row = ROW * s;
     /* A window too short for the whole panel at scale 1 (below 298
      * pixels, such as 480x270) gets shorter rows, down to MIN_ROW, so
      * that every slider stays on screen. */
-    if (s == 1 && height < panel_height(1) + 2 * MARGIN) {
+    if (s == 1 && height < panel_height(ROW, 1) + 2 * MARGIN) {
         int fits = (height - 2 * MARGIN - 2 * PAD) / ROW_COUNT;
         row = fits < MIN_ROW ? MIN_ROW : fits;
     }
     int inner = INNER_WIDTH * s;
     layout.box = (luz_rect){width - inner - (2 * PAD + MARGIN) * s, MARGIN * s, inner + 2 * PAD * s,
-                            ROW_COUNT * row + 2 * PAD * s};
+                            panel_height(row, s)};
     int x = layout.box.x + PAD * s;
     int y = layout.box.y + PAD * s;
 
