@@ -40,6 +40,13 @@
 #include <stb_image.h>
 
 #include "luz/luz.h"
+#include "app/bench.h"
+#include "app/controls.h"
+#include "app/options.h"
+#include "app/panel.h"
+#include "io/image.h"
+#include "io/textures.h"
+#include "lab/scene.h"
 
 /* ---- files and directories ----------------------------------------------------- */
 

@@ -13,7 +13,7 @@
 
 #include "test_support.h"
 
-#include "pipeline/pipeline.h"
+#include "renderer/pipeline.h"
 
 #define TOLERANCE 1e-6
 

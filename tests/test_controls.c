@@ -15,8 +15,8 @@
 
 #include <math.h>
 
-#include "luz/controls.h"
-#include "luz/scene.h"
+#include "app/controls.h"
+#include "lab/scene.h"
 
 #define EPSILON 1e-5f
 

@@ -46,6 +46,13 @@
 #include <stb_image.h>
 
 #include "luz/luz.h"
+#include "app/bench.h"
+#include "app/controls.h"
+#include "app/options.h"
+#include "app/panel.h"
+#include "io/image.h"
+#include "io/textures.h"
+#include "lab/scene.h"
 
 #define MAX_FIGURES 64
 #define MAX_ARGUMENTS 32
@@ -313,7 +320,7 @@ static luz_framebuffer *render_albedo(const luz_options *options,
     luz_framebuffer *framebuffer = luz_framebuffer_create(options->width, options->height, &error);
     assert_non_null(renderer);
     assert_non_null(framebuffer);
-    assert_int_equal(luz_scene_build_frame(&scene, textures,
+    assert_int_equal(luz_scene_build_frame(&scene, textures ? textures->textures : NULL, textures ? textures->count : 0,
                                            (float)options->width / (float)options->height,
                                            &frame),
                      0);

@@ -37,7 +37,14 @@
 #include <cmocka.h>
 
 #include "luz/luz.h"
-#include "pipeline/pipeline.h"
+#include "app/bench.h"
+#include "app/controls.h"
+#include "app/options.h"
+#include "app/panel.h"
+#include "io/image.h"
+#include "io/textures.h"
+#include "lab/scene.h"
+#include "renderer/pipeline.h"
 
 #define WIDTH 1280          /* the default scene's size */
 #define HEIGHT 720
@@ -96,7 +103,7 @@ static luz_framebuffer *render(const luz_scene *scene, const luz_texture_set *te
     assert_non_null(renderer);
     assert_non_null(framebuffer);
     luz_renderer_set_packet_isa(renderer, how.isa);
-    assert_int_equal(luz_scene_build_frame(scene, texture_set, (float)width / (float)height,
+    assert_int_equal(luz_scene_build_frame(scene, texture_set ? texture_set->textures : NULL, texture_set ? texture_set->count : 0, (float)width / (float)height,
                                            &frame),
                      0);
     assert_int_equal(luz_renderer_draw(renderer, &frame, framebuffer, NULL, &error), 0);
@@ -453,7 +460,7 @@ static void every_byte_written_in_either_order(void **state)
     scene.time_seconds = 3.0;
     scene.cube_count = 40;
     luz_frame frame = {0};
-    assert_int_equal(luz_scene_build_frame(&scene, &textures,
+    assert_int_equal(luz_scene_build_frame(&scene, textures.textures, textures.count,
                                            (float)SMALL_WIDTH / (float)SMALL_HEIGHT, &frame),
                      0);
     frame.uniforms.clear_colour = tinted_clear;

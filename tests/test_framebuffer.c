@@ -27,6 +27,13 @@
 #include <stb_image.h>
 
 #include "luz/luz.h"
+#include "app/bench.h"
+#include "app/controls.h"
+#include "app/options.h"
+#include "app/panel.h"
+#include "io/image.h"
+#include "io/textures.h"
+#include "lab/scene.h"
 
 /* ---- clearing and allocation --------------------------------------------------- */
 
@@ -99,7 +106,7 @@ static void draw_into(luz_framebuffer *framebuffer)
     luz_scene scene = luz_scene_defaults();
     scene.time_seconds = 2.5;
     luz_frame frame = {0};
-    assert_int_equal(luz_scene_build_frame(&scene, NULL,
+    assert_int_equal(luz_scene_build_frame(&scene, NULL, 0,
                                            (float)framebuffer->width / (float)framebuffer->height,
                                            &frame),
                      0);

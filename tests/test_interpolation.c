@@ -28,7 +28,7 @@
 
 #include "test_support.h"
 
-#include "pipeline/pipeline.h"
+#include "renderer/pipeline.h"
 
 #define SIZE 64
 #define PIXEL_X 40

@@ -13,7 +13,7 @@
 
 #include "test_support.h"
 
-#include "luz/scene.h"
+#include "lab/scene.h"
 #include "luz/vecmath.h"
 
 /* Single-precision results of a handful of operations on values near 1. */

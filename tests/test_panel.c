@@ -17,7 +17,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "luz/panel.h"
+#include "app/panel.h"
 
 enum {
     AMBIENT_GREEN = 1,

@@ -23,7 +23,14 @@
 #include <cmocka.h>
 
 #include "luz/luz.h"
-#include "luz/panel.h"
+#include "app/bench.h"
+#include "app/controls.h"
+#include "app/options.h"
+#include "app/panel.h"
+#include "io/image.h"
+#include "io/textures.h"
+#include "lab/scene.h"
+#include "app/panel.h"
 
 #define WIDTH 1280
 #define HEIGHT 720
@@ -90,7 +97,7 @@ static luz_framebuffer *render_with_stats(const luz_scene *scene,
     luz_frame frame = {0};
     assert_non_null(renderer);
     assert_non_null(framebuffer);
-    assert_int_equal(luz_scene_build_frame(scene, textures, (float)WIDTH / HEIGHT, &frame), 0);
+    assert_int_equal(luz_scene_build_frame(scene, textures ? textures->textures : NULL, textures ? textures->count : 0, (float)WIDTH / HEIGHT, &frame), 0);
     assert_int_equal(luz_renderer_draw(renderer, &frame, framebuffer, stats, &error), 0);
     luz_frame_free(&frame);
     luz_renderer_destroy(renderer);
@@ -401,7 +408,7 @@ static void test_band_hook_runs_once_per_row_after_shading(void **state)
     assert_non_null(record);
     record->layer = &layer;
     luz_frame frame = {0};
-    assert_int_equal(luz_scene_build_frame(&scene, NULL, (float)WIDTH / HEIGHT, &frame), 0);
+    assert_int_equal(luz_scene_build_frame(&scene, NULL, 0, (float)WIDTH / HEIGHT, &frame), 0);
     const int thread_counts[3] = {1, 2, 3};
     for (int t = 0; t < 3; t++) {
         luz_framebuffer *expected = render(&scene, NULL, thread_counts[t], false);

@@ -13,7 +13,7 @@
 
 #include "test_support.h"
 
-#include "luz/scene.h"
+#include "lab/scene.h"
 #include "luz/texture.h"
 
 #define TOLERANCE 1e-6
@@ -113,7 +113,7 @@ static void test_frame_has_ten_cubes_and_a_marker(void **state)
     scene.lights.point.colour = (luz_vec3){0.5f, 0.25f, 1.0f};
     scene.lights.point.strength = 0.3f;
     luz_frame frame = {0};
-    assert_int_equal(luz_scene_build_frame(&scene, NULL, 16.0f / 9.0f, &frame), 0);
+    assert_int_equal(luz_scene_build_frame(&scene, NULL, 0, 16.0f / 9.0f, &frame), 0);
     assert_int_equal(frame.draw_count, 11);
     for (int i = 0; i < 10; i++) {
         assert_false(frame.draws[i].unlit);
@@ -129,7 +129,7 @@ static void test_frame_has_ten_cubes_and_a_marker(void **state)
                      2.9, 0.4, -0.1, TOLERANCE);
 
     scene.lights.point.strength = 0.0f;
-    assert_int_equal(luz_scene_build_frame(&scene, NULL, 16.0f / 9.0f, &frame), 0);
+    assert_int_equal(luz_scene_build_frame(&scene, NULL, 0, 16.0f / 9.0f, &frame), 0);
     assert_int_equal(frame.draw_count, 10);
     luz_frame_free(&frame);
 }
@@ -147,11 +147,10 @@ static void test_frame_colours_and_textures(void **state)
         textures[k] = luz_texture_create(1, 1, texel, &error);
         assert_non_null(textures[k]);
     }
-    luz_texture_set set = {textures, NULL, 3};
     luz_scene scene = luz_scene_defaults();
     scene.seed = 7;
     luz_frame frame = {0};
-    assert_int_equal(luz_scene_build_frame(&scene, &set, 1.0f, &frame), 0);
+    assert_int_equal(luz_scene_build_frame(&scene, textures, 3, 1.0f, &frame), 0);
     uint32_t x = 7;
     for (int i = 0; i < 10; i++) {
         float r = next_float(&x), g = next_float(&x), b = next_float(&x);
@@ -177,7 +176,7 @@ static void test_custom_cubes_keep_their_colour(void **state)
     scene.custom_cube_count = 2;
     scene.lights.point.strength = 0.0f;
     luz_frame frame = {0};
-    assert_int_equal(luz_scene_build_frame(&scene, NULL, 1.0f, &frame), 0);
+    assert_int_equal(luz_scene_build_frame(&scene, NULL, 0, 1.0f, &frame), 0);
     assert_int_equal(frame.draw_count, 2);
     assert_vec3_near(frame.draws[0].colour, 0.25, 0.5, 0.75, 0);
     assert_vec3_near(luz_mat4_transform_point(frame.draws[0].model, (luz_vec3){0, 0, 0}), 1, 2,
@@ -227,23 +226,23 @@ static void test_cube_model_matrices(void **state)
     (void)state;
     luz_scene scene = luz_scene_defaults();
     luz_frame frame = {0};
-    assert_int_equal(luz_scene_build_frame(&scene, NULL, 1.0f, &frame), 0);
+    assert_int_equal(luz_scene_build_frame(&scene, NULL, 0, 1.0f, &frame), 0);
     luz_mat4 identity = luz_mat4_identity();
     assert_memory_equal(frame.draws[0].model.m, identity.m, sizeof identity.m);
     assert_cube_model(&frame.draws[5], (luz_vec3){-1.7f, 3.0f, -7.5f}, 1, 0, TOLERANCE);
 
     scene.time_seconds = 1.2;
-    assert_int_equal(luz_scene_build_frame(&scene, NULL, 1.0f, &frame), 0);
+    assert_int_equal(luz_scene_build_frame(&scene, NULL, 0, 1.0f, &frame), 0);
     assert_cube_model(&frame.draws[2], (luz_vec3){-1.5f, -2.2f, -2.5f}, 0.5, sqrt(3.0) / 2,
                       1e-5);
 
     scene.time_seconds = 0.9;
-    assert_int_equal(luz_scene_build_frame(&scene, NULL, 1.0f, &frame), 0);
+    assert_int_equal(luz_scene_build_frame(&scene, NULL, 0, 1.0f, &frame), 0);
     assert_cube_model(&frame.draws[4], (luz_vec3){2.4f, -0.4f, -3.5f}, 0.51763809 / 2,
                       1.93185165 / 2, 1e-5);
 
     scene.time_seconds = 10000.0;
-    assert_int_equal(luz_scene_build_frame(&scene, NULL, 1.0f, &frame), 0);
+    assert_int_equal(luz_scene_build_frame(&scene, NULL, 0, 1.0f, &frame), 0);
     assert_cube_model(&frame.draws[9], (luz_vec3){-1.3f, 1.0f, -1.5f}, -0.68624164, -0.72737364,
                       1e-5);
     luz_frame_free(&frame);

@@ -19,7 +19,7 @@
 
 #include <cmocka.h>
 
-#include "pipeline/pipeline.h"
+#include "renderer/pipeline.h"
 
 #define SIZE 16
 

@@ -15,7 +15,7 @@
 
 #include "test_support.h"
 
-#include "luz/scene.h"
+#include "lab/scene.h"
 #include "luz/shade.h"
 
 /* The terms are a few single-precision operations on values near 1. */

@@ -12,7 +12,7 @@
 
 #include <cmocka.h>
 
-#include "pipeline/pipeline.h"
+#include "renderer/pipeline.h"
 
 #define MAX_JOBS 1000
 

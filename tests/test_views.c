@@ -21,6 +21,13 @@
 #include <cmocka.h>
 
 #include "luz/luz.h"
+#include "app/bench.h"
+#include "app/controls.h"
+#include "app/options.h"
+#include "app/panel.h"
+#include "io/image.h"
+#include "io/textures.h"
+#include "lab/scene.h"
 
 /* ---- rendering ------------------------------------------------------------------ */
 
@@ -43,7 +50,7 @@ static luz_framebuffer *draw_scene(const luz_scene *scene, const luz_texture_set
                                    int width, int height, int threads, bool reference)
 {
     luz_frame frame = {0};
-    assert_int_equal(luz_scene_build_frame(scene, textures, (float)width / (float)height, &frame),
+    assert_int_equal(luz_scene_build_frame(scene, textures ? textures->textures : NULL, textures ? textures->count : 0, (float)width / (float)height, &frame),
                      0);
     luz_framebuffer *framebuffer = draw_frame(&frame, width, height, threads, reference);
     luz_frame_free(&frame);
@@ -245,7 +252,7 @@ static luz_framebuffer *draw_scene_over(const luz_scene *scene, const luz_textur
                                         uint8_t fill, luz_channel_order order)
 {
     luz_frame frame = {0};
-    assert_int_equal(luz_scene_build_frame(scene, textures, (float)width / (float)height, &frame),
+    assert_int_equal(luz_scene_build_frame(scene, textures ? textures->textures : NULL, textures ? textures->count : 0, (float)width / (float)height, &frame),
                      0);
     frame.uniforms.clear_colour = clear_colour;
     luz_error error = {{0}};

@@ -58,6 +58,13 @@
 #include <GL/glcorearb.h>
 
 #include "luz/luz.h"
+#include "app/bench.h"
+#include "app/controls.h"
+#include "app/options.h"
+#include "app/panel.h"
+#include "io/image.h"
+#include "io/textures.h"
+#include "lab/scene.h"
 
 #ifndef LUZ_VERSION
 #error "tools/meson.build passes LUZ_VERSION"

@@ -36,7 +36,7 @@
 #include <stb_image.h>
 
 #include "luz/error.h"
-#include "luz/image.h"
+#include "io/image.h"
 
 typedef struct compare_options {
     const char *paths[2];

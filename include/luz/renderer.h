@@ -19,7 +19,7 @@
 
 #include "luz/error.h"
 #include "luz/framebuffer.h"
-#include "luz/scene.h"
+#include "luz/frame.h"
 
 #define LUZ_THREADS_AUTO (-1)   /* one thread per online CPU */
 #define LUZ_MAX_THREADS 256

@@ -22,7 +22,7 @@
 
 #include <stdbool.h>
 
-#include "luz/scene.h"
+#include "luz/frame.h"
 #include "luz/vecmath.h"
 
 /* Where the report's printed code differs from its intent, SCENE.md (and so

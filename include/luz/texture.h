@@ -9,8 +9,8 @@
  * Sampling follows OpenGL with wrap mode REPEAT: texel i of a level of width
  * w has its centre at u = (i + 0.5) / w, and v = 0 is the image's top row.
  *
- * A luz_texture_set is the sorted list of image files of a directory (the
- * cube textures); cube i uses image i mod N.
+ * Textures are made from pixels in memory: libluz reads no files (the
+ * programs load image files with src/io/textures.h).
  */
 #ifndef LUZ_TEXTURE_H
 #define LUZ_TEXTURE_H
@@ -18,11 +18,18 @@
 #include <stdint.h>
 
 #include "luz/error.h"
-#include "luz/scene.h"
 #include "luz/vecmath.h"
 
 #define LUZ_TEXTURE_MAX_SIZE 8192   /* per side; bounds memory for any file */
 #define LUZ_TEXTURE_MAX_LEVELS 14   /* log2(8192) + 1 */
+
+typedef enum luz_filter {
+    LUZ_FILTER_NEAREST,
+    LUZ_FILTER_BILINEAR,
+    LUZ_FILTER_TRILINEAR,
+} luz_filter;
+
+const char *luz_filter_name(luz_filter filter);    /* "nearest", ... */
 
 typedef struct luz_texture_level {
     int width;
@@ -38,8 +45,6 @@ typedef struct luz_texture {
 
 /* Builds a texture and its mip chain from RGBA8 texels (copied). */
 luz_texture *luz_texture_create(int width, int height, const uint8_t *rgba, luz_error *error);
-/* Loads a .png/.jpg/.bmp/.tga file through stb_image. */
-luz_texture *luz_texture_load(const char *path, luz_error *error);
 void luz_texture_destroy(luz_texture *texture);
 
 /* The level of detail lambda = log2(rho) from the derivatives of (u, v) in
@@ -67,21 +72,5 @@ luz_vec3 luz_texture_sample_trilinear(const luz_texture *texture, luz_vec2 uv, f
 /* Dispatches on the filter; a NULL texture samples white. */
 luz_vec3 luz_texture_sample(const luz_texture *texture, luz_filter filter, luz_vec2 uv,
                             float lambda);
-
-/* ---- a directory of textures ------------------------------------------ */
-
-typedef struct luz_texture_set {
-    luz_texture **textures;
-    char **names;            /* file names, sorted by their bytes */
-    int count;
-} luz_texture_set;
-
-/* Loads every image (.png .jpg .jpeg .bmp .tga, case-insensitive; names
- * starting with a dot skipped) of a directory, sorted by name. A directory
- * with none gives an error; use an empty set for SCENE.md's `none`. */
-int luz_texture_set_load(luz_texture_set *set, const char *directory, luz_error *error);
-/* The index of a file name in the set, or -1. */
-int luz_texture_set_find(const luz_texture_set *set, const char *name);
-void luz_texture_set_free(luz_texture_set *set);
 
 #endif

@@ -28,8 +28,24 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "luz/scene.h"
 #include "luz/vecmath.h"
+
+/* What the pipeline writes into the colour buffer: the shaded image, or a
+ * picture of one of its stages (src/pipeline/view.c draws them). Every view
+ * is drawn by the same pipeline, from the same triangles. */
+typedef enum luz_view {
+    LUZ_VIEW_COLOR,       /* the shaded image (the default) */
+    LUZ_VIEW_DEPTH,       /* the z-buffer, as eye distance on a log scale */
+    LUZ_VIEW_NORMALS,     /* world normal * 0.5 + 0.5 */
+    LUZ_VIEW_UV,          /* (fract(u), fract(v), 0) */
+    LUZ_VIEW_MIP,         /* the mip level the sampler read, one colour each */
+    LUZ_VIEW_OVERDRAW,    /* depth tests per pixel, as a heat map */
+    LUZ_VIEW_BANDS,       /* each band tinted by the thread that drew it */
+    LUZ_VIEW_TRIANGLES,   /* each triangle in its own colour, with its edges */
+    LUZ_VIEW_COUNT
+} luz_view;
+
+const char *luz_view_name(luz_view view);          /* "color", "depth", ... */
 
 /* The view called name ("depth", ...); false if there is none. */
 bool luz_view_from_name(const char *name, luz_view *view);

@@ -29,7 +29,7 @@
 #include <stb_image_write.h>
 
 #include "io/new_file.h"
-#include "luz/image.h"
+#include "io/image.h"
 
 static void write_to_file(void *context, void *data, int size)
 {

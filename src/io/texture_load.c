@@ -17,7 +17,7 @@
 
 #include <stb_image.h>
 
-#include "luz/texture.h"
+#include "io/textures.h"
 
 luz_texture *luz_texture_load(const char *path, luz_error *error)
 {

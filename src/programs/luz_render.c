@@ -25,6 +25,13 @@
 #include <unistd.h>
 
 #include "luz/luz.h"
+#include "app/bench.h"
+#include "app/controls.h"
+#include "app/options.h"
+#include "app/panel.h"
+#include "io/image.h"
+#include "io/textures.h"
+#include "lab/scene.h"
 
 #ifndef LUZ_VERSION
 #error "src/meson.build passes LUZ_VERSION"
@@ -76,7 +83,7 @@ static int render_at(render_context *context, luz_renderer *renderer, double tim
     luz_scene scene = context->options->scene;
     scene.time_seconds = time_seconds;
     float aspect = (float)context->options->width / (float)context->options->height;
-    if (luz_scene_build_frame(&scene, context->textures, aspect, &context->frame) != 0)
+    if (luz_scene_build_frame(&scene, context->textures->textures, context->textures->count, aspect, &context->frame) != 0)
         return luz_error_set(error, "out of memory building the frame");
     return luz_renderer_draw(renderer, &context->frame, context->framebuffer, stats, error);
 }

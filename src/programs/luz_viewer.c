@@ -42,6 +42,13 @@
 #include <SDL.h>
 
 #include "luz/luz.h"
+#include "app/bench.h"
+#include "app/controls.h"
+#include "app/options.h"
+#include "app/panel.h"
+#include "io/image.h"
+#include "io/textures.h"
+#include "lab/scene.h"
 #ifdef LUZ_VIEWER_X11
 #include "present_x11.h"
 #endif
@@ -601,7 +608,7 @@ static int draw_frame(viewer *v, luz_error *error)
                                    LUZ_CHANNELS_BGRA);
 #endif
     float aspect = (float)v->framebuffer->width / (float)v->framebuffer->height;
-    if (luz_scene_build_frame(&v->options->scene, v->textures, aspect, &v->frame) != 0)
+    if (luz_scene_build_frame(&v->options->scene, v->textures ? v->textures->textures : NULL, v->textures ? v->textures->count : 0, aspect, &v->frame) != 0)
         return luz_error_set(error, "out of memory building the frame");
     v->frame.uniforms.triangle_limit = v->step_limit;
     if (record_overlays(v, error) != 0)

@@ -1,0 +1,981 @@
+/*
+ * options.c: the command line of luz-render and the viewer, one table.
+ *
+ * Every option is a row of `option_table` below: its name, what kind of
+ * value it takes, where that value lives in luz_options, the range it must
+ * lie in, and its --help line. Parsing, checking, --help and the scene-file
+ * writer (scene_file.c, through luz_options_format) all read that one table,
+ * so an option cannot be accepted in one place and forgotten in another.
+ *
+ * The rules the table enforces come from SCENE.md (pitch within [-89, 89],
+ * spot angles within [0, 89], strengths in [0, 1], ...) and from the
+ * renderer's limits (luz_framebuffer_check_size, LUZ_MAX_CUBES,
+ * LUZ_MAX_THREADS). A value is either accepted whole or refused with one
+ * line that names the flag and what was expected: no partial numbers
+ * ("12abc"), no NaN or infinity, nothing after the last number.
+ *
+ * This file deliberately does no I/O besides --help and the look-up of the
+ * default textures directory; the scene-file reader and writer live in
+ * scene_file.c.
+ */
+#include "app/options.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <float.h>
+#include <limits.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "luz/framebuffer.h"
+#include "luz/renderer.h"
+#include "luz/view.h"
+#include "app/option_text.h"
+
+#if !defined(LUZ_SOURCE_TEXTURES) || !defined(LUZ_INSTALLED_TEXTURES) || !defined(LUZ_BUILD_ROOT)
+#error "src/meson.build passes LUZ_SOURCE_TEXTURES, LUZ_INSTALLED_TEXTURES and LUZ_BUILD_ROOT"
+#endif
+
+/* ---- the table of options ------------------------------------------------ */
+
+typedef enum option_kind {
+    OPTION_FLAG,      /* --help, --version: no value */
+    OPTION_SIZE,      /* WIDTHxHEIGHT, checked by luz_framebuffer_check_size */
+    OPTION_DOUBLE,    /* one finite double within the row's range */
+    OPTION_FLOAT,     /* one finite float within the row's range */
+    OPTION_INTEGER,   /* one int within the row's range */
+    OPTION_SEED,      /* a uint32 */
+    OPTION_CUBES,     /* an int; also drops a scene file's own cubes */
+    OPTION_THREADS,   /* "auto" or an int within the row's range */
+    OPTION_VEC3,      /* x,y,z */
+    OPTION_LIGHT,     /* r,g,b,a, each in [0, 1] */
+    OPTION_FILTER,    /* nearest | bilinear | trilinear */
+    OPTION_VIEW,      /* color | depth | normals | ... (luz/view.h) */
+    OPTION_INTERP,    /* perspective | affine */
+    OPTION_ONLY,      /* a comma-separated list of light terms */
+    OPTION_PATH,      /* a string the options own */
+    OPTION_SCENE,     /* a scene file, read at once */
+} option_kind;
+
+typedef struct option_spec {
+    const char *name;          /* the long option without its dashes */
+    option_kind kind;
+    size_t offset;             /* of the value in luz_options */
+    double min, max;           /* the accepted range of a number */
+    bool min_open, max_open;   /* whether the range excludes its ends */
+    bool in_scene_file;        /* may a scene file set it? */
+    const char *syntax;        /* the value's form, for --help */
+    const char *summary;       /* what it does, for --help */
+    const char *default_text;  /* --help's default when it is not a value */
+} option_spec;
+
+#define FIELD(member) offsetof(luz_options, member)
+#define UNBOUNDED .min = -INFINITY, .max = INFINITY
+
+static const option_spec option_table[] = {
+    {.name = "size", .kind = OPTION_SIZE, .in_scene_file = true, .syntax = "WxH",
+     .summary = "image size in pixels"},
+    {.name = "time", .kind = OPTION_DOUBLE, .offset = FIELD(scene.time_seconds), UNBOUNDED,
+     .in_scene_file = true, .syntax = "T",
+     .summary = "scene time in seconds: the cubes' angles and the lights' orbits"},
+    {.name = "seed", .kind = OPTION_SEED, .min = 0, .max = UINT32_MAX, .in_scene_file = true,
+     .syntax = "N", .summary = "seed of the cube colours, 0 to 4294967295 (0 means 0x9E3779B9)"},
+    {.name = "cubes", .kind = OPTION_CUBES, .offset = FIELD(scene.cube_count), .min = 1,
+     .max = LUZ_MAX_CUBES, .in_scene_file = true, .syntax = "N",
+     .summary = "number of cubes, 1 to 100000, the ten repeated in tiles (SCENE.md)"},
+    {.name = "camera-pos", .kind = OPTION_VEC3, .offset = FIELD(scene.camera.position),
+     .in_scene_file = true, .syntax = "x,y,z", .summary = "camera position"},
+    {.name = "camera-yaw", .kind = OPTION_FLOAT, .offset = FIELD(scene.camera.yaw_degrees),
+     UNBOUNDED, .in_scene_file = true, .syntax = "D",
+     .summary = "camera yaw in degrees (-90 looks down -Z)"},
+    {.name = "camera-pitch", .kind = OPTION_FLOAT, .offset = FIELD(scene.camera.pitch_degrees),
+     .min = -89, .max = 89, .in_scene_file = true, .syntax = "D",
+     .summary = "camera pitch in degrees, -89 to 89"},
+    {.name = "fov", .kind = OPTION_FLOAT, .offset = FIELD(scene.camera.fov_degrees), .min = 0,
+     .max = 180, .min_open = true, .max_open = true, .in_scene_file = true, .syntax = "D",
+     .summary = "vertical field of view in degrees, above 0 and below 180"},
+    {.name = "ambient", .kind = OPTION_LIGHT, .offset = FIELD(scene.lights.ambient),
+     .in_scene_file = true, .syntax = "r,g,b,a",
+     .summary = "ambient light: colour and strength, each from 0 to 1"},
+    {.name = "diffuse", .kind = OPTION_LIGHT, .offset = FIELD(scene.lights.diffuse),
+     .in_scene_file = true, .syntax = "r,g,b,a", .summary = "diffuse headlight at the camera"},
+    {.name = "specular", .kind = OPTION_LIGHT, .offset = FIELD(scene.lights.specular),
+     .in_scene_file = true, .syntax = "r,g,b,a", .summary = "specular headlight at the camera"},
+    {.name = "shininess", .kind = OPTION_FLOAT, .offset = FIELD(scene.lights.shininess), .min = 0,
+     .max = INFINITY, .in_scene_file = true, .syntax = "S",
+     .summary = "specular exponent, at least 0"},
+    {.name = "point", .kind = OPTION_LIGHT, .offset = FIELD(scene.lights.point),
+     .in_scene_file = true, .syntax = "r,g,b,a",
+     .summary = "point light orbiting the origin (drawn as a small cube)"},
+    {.name = "spot", .kind = OPTION_LIGHT, .offset = FIELD(scene.lights.spot),
+     .in_scene_file = true, .syntax = "r,g,b,a", .summary = "spot light riding on the camera"},
+    {.name = "spot-inner", .kind = OPTION_FLOAT, .offset = FIELD(scene.lights.spot_inner_degrees),
+     .min = 0, .max = 89, .in_scene_file = true, .syntax = "D",
+     .summary = "spot's full-intensity cone in degrees, 0 to 89, at most --spot-outer"},
+    {.name = "spot-outer", .kind = OPTION_FLOAT, .offset = FIELD(scene.lights.spot_outer_degrees),
+     .min = 0, .max = 89, .in_scene_file = true, .syntax = "D",
+     .summary = "spot's cut-off cone in degrees, 0 to 89"},
+    {.name = "spot-reach", .kind = OPTION_FLOAT, .offset = FIELD(scene.lights.spot_reach),
+     .min = 0, .max = INFINITY, .min_open = true, .in_scene_file = true, .syntax = "R",
+     .summary = "distance at which the spot fades out, above 0"},
+    {.name = "directional", .kind = OPTION_LIGHT, .offset = FIELD(scene.lights.directional),
+     .in_scene_file = true, .syntax = "r,g,b,a", .summary = "directional light (the sun)"},
+    {.name = "only", .kind = OPTION_ONLY, .in_scene_file = true, .syntax = "TERM[,TERM...]",
+     .summary = "keep only these lights, the others' strength set to 0; terms: ambient "
+                "diffuse specular point spot directional",
+     .default_text = "all six"},
+    {.name = "filter", .kind = OPTION_FILTER, .in_scene_file = true,
+     .syntax = "nearest|bilinear|trilinear", .summary = "texture filter"},
+    {.name = "view", .kind = OPTION_VIEW, .in_scene_file = true,
+     .syntax = "NAME",
+     .summary = "what the image shows: color, or a picture of a pipeline stage: depth, "
+                "normals, uv, mip, overdraw, bands, triangles (README, Guided tour)"},
+    {.name = "interp", .kind = OPTION_INTERP, .in_scene_file = true,
+     .syntax = "perspective|affine",
+     .summary = "interpolation of texture coordinates and the other varyings: "
+                "perspective-correct, or affine in screen space (textures swim)"},
+    {.name = "textures", .kind = OPTION_PATH, .offset = FIELD(textures_directory),
+     .in_scene_file = true, .syntax = "DIR|none",
+     .summary = "directory of cube images (.png .jpg .jpeg .bmp .tga); none: all white",
+     .default_text = "$LUZ_TEXTURES, else the built-in textures"},
+    {.name = "threads", .kind = OPTION_THREADS, .offset = FIELD(thread_count), .min = 0,
+     .max = LUZ_MAX_THREADS, .in_scene_file = true, .syntax = "N|auto",
+     .summary = "rendering threads, 0 to 256 (0 and 1: the calling thread only)"},
+    {.name = "output", .kind = OPTION_PATH, .offset = FIELD(output_path), .in_scene_file = true,
+     .syntax = "FILE.png",
+     .summary = "output PNG; with --frames a pattern such as out_%04d.png",
+     .default_text = "luz.png; luz_%04d.png for frames"},
+    {.name = "frames", .kind = OPTION_INTEGER, .offset = FIELD(frame_count), .min = 1,
+     .max = LUZ_MAX_FRAMES, .in_scene_file = true, .syntax = "N",
+     .summary = "render N frames, frame k at time T + k / fps, into the -o pattern"},
+    {.name = "fps", .kind = OPTION_DOUBLE, .offset = FIELD(frames_per_second), .min = 0,
+     .max = INFINITY, .min_open = true, .in_scene_file = true, .syntax = "F",
+     .summary = "frames per second of --frames and --bench, above 0"},
+    {.name = "bench", .kind = OPTION_INTEGER, .offset = FIELD(bench_frames), .min = 1,
+     .max = LUZ_MAX_FRAMES, .in_scene_file = true, .syntax = "N",
+     .summary = "time N frames, write no file, print one line of key=value results",
+     .default_text = "off"},
+    {.name = "reference", .kind = OPTION_FLAG, .offset = FIELD(reference),
+     .summary = "shade with the plain scalar fragment stage (src/pipeline/fragment.c) "
+                "instead of the SIMD one; the images agree",
+     .default_text = "off"},
+    {.name = "scene", .kind = OPTION_SCENE, .syntax = "FILE",
+     .summary = "read options and cubes from a scene file (the command line wins)",
+     .default_text = "none"},
+    {.name = "help", .kind = OPTION_FLAG, .offset = FIELD(help),
+     .summary = "print this help and exit"},
+    {.name = "version", .kind = OPTION_FLAG, .offset = FIELD(version),
+     .summary = "print the version and exit"},
+};
+
+#define OPTION_COUNT (sizeof option_table / sizeof option_table[0])
+
+/* Finds a row by the first `length` characters of name; "o" is -o. */
+static const option_spec *find_option(const char *name, size_t length)
+{
+    if (length == 1 && name[0] == 'o')
+        return find_option("output", 6);
+    for (size_t i = 0; i < OPTION_COUNT; i++) {
+        if (strlen(option_table[i].name) == length &&
+            memcmp(option_table[i].name, name, length) == 0)
+            return &option_table[i];
+    }
+    return NULL;
+}
+
+static void *option_field(luz_options *options, const option_spec *spec)
+{
+    return (char *)options + spec->offset;
+}
+
+static const void *option_field_const(const luz_options *options, const option_spec *spec)
+{
+    return (const char *)options + spec->offset;
+}
+
+/* ---- reading numbers ------------------------------------------------------- */
+
+/* Reads a decimal integer at *cursor (blanks before it allowed) and moves
+ * the cursor past it. Values beyond long long saturate, so that "1e30"-sized
+ * digits are reported as out of range rather than malformed. */
+static bool read_integer_prefix(const char **cursor, long long *value)
+{
+    const char *start = option_skip_blanks(*cursor);
+    const char *digits = start;
+    if (*digits == '+' || *digits == '-')
+        digits++;
+    if (!isdigit((unsigned char)*digits))
+        return false;
+    char *end;
+    errno = 0;
+    *value = strtoll(start, &end, 10);
+    *cursor = end;
+    return true;
+}
+
+/* A whole text that is one integer in [min, max]. */
+static bool read_integer(const char *text, long long min, long long max, long long *value)
+{
+    const char *cursor = text;
+    if (!read_integer_prefix(&cursor, value))
+        return false;
+    if (errno == ERANGE || *option_skip_blanks(cursor) != '\0')
+        return false;
+    return *value >= min && *value <= max;
+}
+
+static bool in_range(const option_spec *spec, double value)
+{
+    if (spec->min_open ? !(value > spec->min) : !(value >= spec->min))
+        return false;
+    if (spec->max_open ? !(value < spec->max) : !(value <= spec->max))
+        return false;
+    return true;
+}
+
+/* "a number in (0, 180)", "a number of at least 0", ... for messages. */
+static void describe_range(const option_spec *spec, char *buffer, size_t size)
+{
+    bool has_min = isfinite(spec->min), has_max = isfinite(spec->max);
+    if (has_min && has_max)
+        snprintf(buffer, size, "a number in %c%g, %g%c", spec->min_open ? '(' : '[', spec->min,
+                 spec->max, spec->max_open ? ')' : ']');
+    else if (has_min)
+        snprintf(buffer, size, spec->min_open ? "a number above %g" : "a number of at least %g",
+                 spec->min);
+    else
+        snprintf(buffer, size, "a number");
+}
+
+/* ---- setting one option ------------------------------------------------------ */
+
+static int set_size(luz_options *options, const char *value, const char *where, luz_error *error)
+{
+    const char *cursor = value;
+    long long width, height;
+    bool well_formed = read_integer_prefix(&cursor, &width);
+    if (well_formed) {
+        cursor = option_skip_blanks(cursor);
+        well_formed = *cursor == 'x' || *cursor == 'X';
+    }
+    if (well_formed) {
+        cursor++;
+        well_formed = read_integer_prefix(&cursor, &height) && *option_skip_blanks(cursor) == '\0';
+    }
+    if (!well_formed)
+        return luz_error_set(error, "%s: expected WIDTHxHEIGHT such as 1280x720, got '%s'", where,
+                             option_quote(value).text);
+    if (width < 1 || height < 1)
+        return luz_error_set(error, "%s: expected a width and height of at least 1, got '%s'",
+                             where, option_quote(value).text);
+    /* The check works on ints; anything beyond INT_MAX is too large anyway,
+     * and is refused here without allocating anything. */
+    if (luz_framebuffer_check_size(width > INT_MAX ? INT_MAX : (int)width,
+                                   height > INT_MAX ? INT_MAX : (int)height, NULL) != 0)
+        return luz_error_set(error,
+                             "%s: expected a size the renderer supports (at most %d a side and "
+                             "%d pixels in all, such as 8192x8192), got '%s'",
+                             where, LUZ_MAX_DIMENSION, LUZ_MAX_PIXELS, option_quote(value).text);
+    options->width = (int)width;
+    options->height = (int)height;
+    return 0;
+}
+
+static int set_number(luz_options *options, const option_spec *spec, const char *value,
+                      const char *where, luz_error *error)
+{
+    double number;
+    char range[64];
+    describe_range(spec, range, sizeof range);
+    switch (option_read_numbers(value, &number, 1, spec->kind == OPTION_FLOAT)) {
+    case OPTION_PARSE_MALFORMED:
+        return luz_error_set(error, "%s: expected %s, got '%s'", where, range,
+                             option_quote(value).text);
+    case OPTION_PARSE_NOT_FINITE:
+        return luz_error_set(error, "%s: expected a finite number, got '%s'", where,
+                             option_quote(value).text);
+    case OPTION_PARSE_OK:
+        break;
+    }
+    if (!in_range(spec, number))
+        return luz_error_set(error, "%s: expected %s, got '%s'", where, range,
+                             option_quote(value).text);
+    if (spec->kind == OPTION_FLOAT)
+        *(float *)option_field(options, spec) = (float)number;
+    else
+        *(double *)option_field(options, spec) = number;
+    return 0;
+}
+
+static int set_integer(luz_options *options, const option_spec *spec, const char *value,
+                       const char *where, luz_error *error)
+{
+    long long number;
+    if (spec->kind == OPTION_THREADS && strcmp(value, "auto") == 0) {
+        options->thread_count = LUZ_THREADS_AUTO;
+        return 0;
+    }
+    if (!read_integer(value, (long long)spec->min, (long long)spec->max, &number))
+        return luz_error_set(error, "%s: expected %san integer from %lld to %lld, got '%s'", where,
+                             spec->kind == OPTION_THREADS ? "auto or " : "",
+                             (long long)spec->min, (long long)spec->max, option_quote(value).text);
+    switch (spec->kind) {
+    case OPTION_SEED:
+        options->scene.seed = (uint32_t)number;
+        break;
+    case OPTION_CUBES:
+        /* A count replaces any cube list a scene file gave: the command line
+         * overrides the file. */
+        luz_options_clear_cubes(options);
+        options->scene.cube_count = (int)number;
+        break;
+    default:
+        *(int *)option_field(options, spec) = (int)number;
+        break;
+    }
+    return 0;
+}
+
+static int set_vector(luz_options *options, const option_spec *spec, const char *value,
+                      const char *where, luz_error *error)
+{
+    double numbers[4];
+    bool light = spec->kind == OPTION_LIGHT;
+    const char *expected = light ? "r,g,b,a (four numbers, each in [0, 1])"
+                                 : "x,y,z (three numbers)";
+    switch (option_read_numbers(value, numbers, light ? 4 : 3, true)) {
+    case OPTION_PARSE_MALFORMED:
+        return luz_error_set(error, "%s: expected %s, got '%s'", where, expected,
+                             option_quote(value).text);
+    case OPTION_PARSE_NOT_FINITE:
+        return luz_error_set(error, "%s: expected finite numbers, got '%s'", where,
+                             option_quote(value).text);
+    case OPTION_PARSE_OK:
+        break;
+    }
+    luz_vec3 vector = luz_vec3_make((float)numbers[0], (float)numbers[1], (float)numbers[2]);
+    if (!light) {
+        *(luz_vec3 *)option_field(options, spec) = vector;
+        return 0;
+    }
+    for (int i = 0; i < 4; i++) {
+        if (!(numbers[i] >= 0.0 && numbers[i] <= 1.0))
+            return luz_error_set(error, "%s: expected %s, got '%s'", where, expected,
+                                 option_quote(value).text);
+    }
+    *(luz_light *)option_field(options, spec) =
+        (luz_light){.colour = vector, .strength = (float)numbers[3]};
+    return 0;
+}
+
+static int set_view(luz_options *options, const char *value, const char *where,
+                    luz_error *error)
+{
+    if (luz_view_from_name(value, &options->scene.view))
+        return 0;
+    return luz_error_set(error,
+                         "%s: expected color, depth, normals, uv, mip, overdraw, bands or "
+                         "triangles, got '%s'",
+                         where, option_quote(value).text);
+}
+
+static int set_interpolation(luz_options *options, const char *value, const char *where,
+                             luz_error *error)
+{
+    static const luz_interpolation modes[] = {LUZ_INTERPOLATION_PERSPECTIVE,
+                                              LUZ_INTERPOLATION_AFFINE};
+    for (size_t i = 0; i < sizeof modes / sizeof modes[0]; i++) {
+        if (strcmp(value, luz_interpolation_name(modes[i])) == 0) {
+            options->scene.interpolation = modes[i];
+            return 0;
+        }
+    }
+    return luz_error_set(error, "%s: expected perspective or affine, got '%s'", where,
+                         option_quote(value).text);
+}
+
+static int set_filter(luz_options *options, const char *value, const char *where,
+                      luz_error *error)
+{
+    static const luz_filter filters[] = {LUZ_FILTER_NEAREST, LUZ_FILTER_BILINEAR,
+                                         LUZ_FILTER_TRILINEAR};
+    for (size_t i = 0; i < sizeof filters / sizeof filters[0]; i++) {
+        if (strcmp(value, luz_filter_name(filters[i])) == 0) {
+            options->scene.filter = filters[i];
+            return 0;
+        }
+    }
+    return luz_error_set(error, "%s: expected nearest, bilinear or trilinear, got '%s'", where,
+                         option_quote(value).text);
+}
+
+/* --only: terms separated by commas, blanks allowed around each. The
+ * strengths are only zeroed in luz_options_finish(), once every light
+ * option is known, so that `--only spot` means the same before or after
+ * `--ambient ...`. */
+static int set_only(luz_options *options, const char *value, const char *where,
+                    luz_error *error)
+{
+    unsigned terms = 0;
+    const char *cursor = value;
+    for (;;) {
+        cursor = option_skip_blanks(cursor);
+        size_t length = strcspn(cursor, ", \t");
+        int found = -1;
+        for (int term = 0; term < LUZ_TERM_COUNT && length > 0; term++) {
+            const char *name = luz_term_name((luz_term)term);
+            if (strlen(name) == length && memcmp(name, cursor, length) == 0)
+                found = term;
+        }
+        if (found < 0)
+            break;
+        terms |= 1u << found;
+        cursor = option_skip_blanks(cursor + length);
+        if (*cursor == '\0') {
+            options->only_terms = terms;
+            return 0;
+        }
+        if (*cursor != ',')
+            break;
+        cursor++;
+    }
+    return luz_error_set(error,
+                         "%s: expected light terms separated by commas (ambient, diffuse, "
+                         "specular, point, spot, directional), got '%s'",
+                         where, option_quote(value).text);
+}
+
+static int set_path(luz_options *options, const option_spec *spec, const char *value,
+                    const char *where, luz_error *error)
+{
+    char *copy = strdup(value);
+    if (copy == NULL)
+        return luz_error_set(error, "%s: out of memory", where);
+    char **field = option_field(options, spec);
+    free(*field);
+    *field = copy;
+    return 0;
+}
+
+int luz_options_set(luz_options *options, const char *name, const char *value,
+                    const char *where, luz_error *error)
+{
+    const option_spec *spec = find_option(name, strlen(name));
+    char default_where[32];
+    if (spec == NULL)
+        return luz_error_set(error, "%s: unknown option '%s'", where ? where : "options",
+                             option_quote(name).text);
+    if (where == NULL) {
+        snprintf(default_where, sizeof default_where, "--%s", spec->name);
+        where = default_where;
+    }
+    if (spec->kind == OPTION_FLAG) {
+        if (value != NULL)
+            return luz_error_set(error, "%s: takes no value, got '%s'", where,
+                                 option_quote(value).text);
+        *(bool *)option_field(options, spec) = true;
+        return 0;
+    }
+    if (value == NULL || value[0] == '\0')
+        return luz_error_set(error, "%s: missing value (expected %s)", where, spec->syntax);
+
+    switch (spec->kind) {
+    case OPTION_SIZE:
+        return set_size(options, value, where, error);
+    case OPTION_DOUBLE:
+    case OPTION_FLOAT:
+        return set_number(options, spec, value, where, error);
+    case OPTION_INTEGER:
+    case OPTION_SEED:
+    case OPTION_CUBES:
+    case OPTION_THREADS:
+        return set_integer(options, spec, value, where, error);
+    case OPTION_VEC3:
+    case OPTION_LIGHT:
+        return set_vector(options, spec, value, where, error);
+    case OPTION_FILTER:
+        return set_filter(options, value, where, error);
+    case OPTION_VIEW:
+        return set_view(options, value, where, error);
+    case OPTION_INTERP:
+        return set_interpolation(options, value, where, error);
+    case OPTION_ONLY:
+        return set_only(options, value, where, error);
+    case OPTION_PATH:
+        return set_path(options, spec, value, where, error);
+    case OPTION_SCENE:
+        return luz_options_read_scene_file(options, value, error);
+    case OPTION_FLAG:
+        break;
+    }
+    return luz_error_set(error, "%s: unknown option", where);
+}
+
+bool luz_options_is_scene_key(const char *name)
+{
+    const option_spec *spec = find_option(name, strlen(name));
+    /* "o" is a short flag, not a key: files use `output`. */
+    return spec != NULL && spec->in_scene_file && strcmp(name, "o") != 0;
+}
+
+/* ---- formatting a value back ------------------------------------------------- */
+
+int luz_options_format(const luz_options *options, const char *name, char *buffer,
+                       size_t size)
+{
+    const option_spec *spec = find_option(name, strlen(name));
+    if (spec == NULL || size == 0)
+        return -1;
+    const void *field = option_field_const(options, spec);
+    char number[4][32];
+    int written = -1;
+    /* Numbers are written with the fewest digits that read back to the same
+     * bits (option_text.h), so that a written scene file renders the same
+     * picture and still reads well: 0.2, not 0.200000003. */
+    switch (spec->kind) {
+    case OPTION_SIZE:
+        written = snprintf(buffer, size, "%dx%d", options->width, options->height);
+        break;
+    case OPTION_DOUBLE:
+        option_format_double(number[0], sizeof number[0], *(const double *)field);
+        written = snprintf(buffer, size, "%s", number[0]);
+        break;
+    case OPTION_FLOAT:
+        option_format_float(number[0], sizeof number[0], *(const float *)field);
+        written = snprintf(buffer, size, "%s", number[0]);
+        break;
+    case OPTION_SEED:
+        written = snprintf(buffer, size, "%lu", (unsigned long)options->scene.seed);
+        break;
+    case OPTION_INTEGER:
+        if (spec->offset == FIELD(bench_frames) && options->bench_frames == 0)
+            return -1;
+        written = snprintf(buffer, size, "%d", *(const int *)field);
+        break;
+    case OPTION_CUBES:
+        written = snprintf(buffer, size, "%d", options->scene.cube_count);
+        break;
+    case OPTION_THREADS:
+        written = options->thread_count == LUZ_THREADS_AUTO
+                      ? snprintf(buffer, size, "auto")
+                      : snprintf(buffer, size, "%d", options->thread_count);
+        break;
+    case OPTION_VEC3: {
+        const luz_vec3 *vector = field;
+        option_format_float(number[0], sizeof number[0], vector->x);
+        option_format_float(number[1], sizeof number[1], vector->y);
+        option_format_float(number[2], sizeof number[2], vector->z);
+        written = snprintf(buffer, size, "%s, %s, %s", number[0], number[1], number[2]);
+        break;
+    }
+    case OPTION_LIGHT: {
+        const luz_light *light = field;
+        option_format_float(number[0], sizeof number[0], light->colour.x);
+        option_format_float(number[1], sizeof number[1], light->colour.y);
+        option_format_float(number[2], sizeof number[2], light->colour.z);
+        option_format_float(number[3], sizeof number[3], light->strength);
+        written = snprintf(buffer, size, "%s, %s, %s, %s", number[0], number[1], number[2],
+                           number[3]);
+        break;
+    }
+    case OPTION_FILTER:
+        written = snprintf(buffer, size, "%s", luz_filter_name(options->scene.filter));
+        break;
+    case OPTION_VIEW:
+        written = snprintf(buffer, size, "%s", luz_view_name(options->scene.view));
+        break;
+    case OPTION_INTERP:
+        written = snprintf(buffer, size, "%s",
+                           luz_interpolation_name(options->scene.interpolation));
+        break;
+    case OPTION_ONLY: {
+        if (options->only_terms == 0)
+            return -1;
+        written = 0;
+        buffer[0] = '\0';
+        for (int term = 0; term < LUZ_TERM_COUNT; term++) {
+            if (!(options->only_terms & (1u << term)))
+                continue;
+            size_t used = strlen(buffer);
+            written = snprintf(buffer + used, size - used, "%s%s", used ? "," : "",
+                               luz_term_name((luz_term)term));
+            if (written < 0 || (size_t)written >= size - used)
+                return -1;
+            written = (int)(used + (size_t)written);
+        }
+        break;
+    }
+    case OPTION_PATH: {
+        const char *path = *(char *const *)field;
+        if (path == NULL)
+            return -1;
+        written = snprintf(buffer, size, "%s", path);
+        break;
+    }
+    case OPTION_FLAG:
+    case OPTION_SCENE:
+        return -1;
+    }
+    return (written >= 0 && (size_t)written < size) ? 0 : -1;
+}
+
+/* ---- defaults, freeing, finishing ----------------------------------------------- */
+
+void luz_options_init(luz_options *options)
+{
+    *options = (luz_options){
+        .scene = luz_scene_defaults(),
+        .width = 1280,
+        .height = 720,
+        .thread_count = LUZ_THREADS_AUTO,
+        .frame_count = 1,
+        .frames_per_second = 30.0,
+    };
+}
+
+void luz_options_clear_cubes(luz_options *options)
+{
+    for (int i = 0; i < options->scene.custom_cube_count; i++)
+        free(options->cube_sources[i].texture_name);
+    free(options->cubes);
+    free(options->cube_sources);
+    options->cubes = NULL;
+    options->cube_sources = NULL;
+    options->cube_capacity = 0;
+    options->scene.custom_cubes = NULL;
+    options->scene.custom_cube_count = 0;
+}
+
+void luz_options_free(luz_options *options)
+{
+    luz_options_clear_cubes(options);
+    free(options->textures_directory);
+    free(options->output_path);
+    free(options->scene_path);
+    options->textures_directory = NULL;
+    options->output_path = NULL;
+    options->scene_path = NULL;
+}
+
+/* An -o pattern: at most one conversion, %d with an optional 0 flag and a
+ * width of 1 to 32 (%d, %4d, %04d), and %% for a percent sign. A name
+ * without a conversion is a plain file name. */
+typedef struct output_pattern {
+    int conversions;
+    size_t conversion_start;   /* the '%' of the conversion */
+    size_t conversion_end;     /* just after its 'd' */
+    bool zero_padded;
+    int width;                 /* 0: none */
+} output_pattern;
+
+static bool scan_output_pattern(const char *path, output_pattern *pattern)
+{
+    *pattern = (output_pattern){0};
+    for (size_t i = 0; path[i] != '\0'; i++) {
+        if (path[i] != '%')
+            continue;
+        size_t start = i++;
+        if (path[i] == '%')
+            continue;
+        bool zero = path[i] == '0';
+        if (zero)
+            i++;
+        int width = 0;
+        if (path[i] >= '1' && path[i] <= '9') {
+            while (isdigit((unsigned char)path[i]) && width <= 32)
+                width = width * 10 + (path[i++] - '0');
+            if (width > 32)
+                return false;
+        }
+        if (path[i] != 'd')
+            return false;
+        pattern->conversions++;
+        pattern->conversion_start = start;
+        pattern->conversion_end = i + 1;
+        pattern->zero_padded = zero;
+        pattern->width = width;
+    }
+    return pattern->conversions <= 1;
+}
+
+int luz_options_output_path(const luz_options *options, int frame_index, char *buffer,
+                            size_t size, luz_error *error)
+{
+    const char *path = options->output_path ? options->output_path : "luz.png";
+    output_pattern pattern;
+    if (!scan_output_pattern(path, &pattern))
+        return luz_error_set(error,
+                             "-o: expected a file name with at most one %%d conversion "
+                             "(%%d, %%4d or %%04d; %%%% for a percent sign), got '%s'",
+                             option_quote(path).text);
+    size_t used = 0;
+    for (size_t i = 0; path[i] != '\0'; i++) {
+        char piece[48];
+        if (pattern.conversions == 1 && i == pattern.conversion_start) {
+            if (pattern.zero_padded)
+                snprintf(piece, sizeof piece, "%0*d", pattern.width, frame_index);
+            else
+                snprintf(piece, sizeof piece, "%*d", pattern.width, frame_index);
+            i = pattern.conversion_end - 1;
+        } else {
+            piece[0] = path[i];
+            piece[1] = '\0';
+            if (path[i] == '%')
+                i++;   /* a %% outside the conversion */
+        }
+        size_t length = strlen(piece);
+        if (used + length >= size)
+            return luz_error_set(error, "-o: the file name '%s' is too long",
+                                 option_quote(path).text);
+        memcpy(buffer + used, piece, length);
+        used += length;
+    }
+    buffer[used] = '\0';
+    return 0;
+}
+
+int luz_options_finish(luz_options *options, luz_error *error)
+{
+    luz_lights *lights = &options->scene.lights;
+    if (options->only_terms != 0) {
+        for (int term = 0; term < LUZ_TERM_COUNT; term++) {
+            if (!(options->only_terms & (1u << term)))
+                luz_lights_term(lights, (luz_term)term)->strength = 0.0f;
+        }
+    }
+    /* Checked here rather than in set_number: `--spot-inner 20 --spot-outer
+     * 25` is valid although the inner angle exceeds the default outer one
+     * until the second option is read. */
+    if (lights->spot_inner_degrees > lights->spot_outer_degrees)
+        return luz_error_set(error,
+                             "--spot-inner: expected an angle no wider than --spot-outer (%.9g), "
+                             "got %.9g",
+                             (double)lights->spot_outer_degrees,
+                             (double)lights->spot_inner_degrees);
+
+    if (options->output_path == NULL) {
+        options->output_path = strdup(options->frame_count > 1 ? "luz_%04d.png" : "luz.png");
+        if (options->output_path == NULL)
+            return luz_error_set(error, "-o: out of memory");
+    }
+    output_pattern pattern;
+    if (!scan_output_pattern(options->output_path, &pattern))
+        return luz_error_set(error,
+                             "-o: expected a file name with at most one %%d conversion "
+                             "(%%d, %%4d or %%04d; %%%% for a percent sign), got '%s'",
+                             option_quote(options->output_path).text);
+    if (options->frame_count > 1 && pattern.conversions == 0)
+        return luz_error_set(error,
+                             "-o: expected a pattern with a %%d conversion such as out_%%04d.png "
+                             "for %d frames, got '%s'",
+                             options->frame_count, option_quote(options->output_path).text);
+    return 0;
+}
+
+/* ---- the command line ------------------------------------------------------------ */
+
+/* One argument (and its value) of the command line. */
+typedef struct command_argument {
+    const option_spec *spec;
+    const char *value;   /* NULL for a flag */
+    char where[32];      /* "--size" or "-o", for messages */
+} command_argument;
+
+/* Reads argv[*index] (and its value) and moves *index past them. Checks the
+ * shape only: a known option, a value present when one is needed. */
+static int read_argument(int argc, char **argv, int *index, command_argument *argument,
+                         luz_error *error)
+{
+    const char *text = argv[(*index)++];
+    const char *equals = NULL;
+    if (strcmp(text, "-o") == 0) {
+        argument->spec = find_option("output", 6);
+        snprintf(argument->where, sizeof argument->where, "-o");
+    } else if (text[0] == '-' && text[1] == '-' && text[2] != '\0') {
+        const char *name = text + 2;
+        equals = strchr(name, '=');
+        size_t length = equals ? (size_t)(equals - name) : strlen(name);
+        argument->spec = find_option(name, length);
+        if (argument->spec == NULL || length == 1) {
+            char flag[64];
+            snprintf(flag, sizeof flag, "%.*s", (int)(length + 2 < 60 ? length + 2 : 60), text);
+            return luz_error_set(error, "unknown option '%s' (see --help)",
+                                 option_quote(flag).text);
+        }
+        snprintf(argument->where, sizeof argument->where, "--%s", argument->spec->name);
+    } else if (text[0] == '-' && text[1] != '\0') {
+        return luz_error_set(error, "unknown option '%s' (see --help)", option_quote(text).text);
+    } else {
+        return luz_error_set(error,
+                             "unexpected argument '%s' (options start with --; see --help)",
+                             option_quote(text).text);
+    }
+
+    if (argument->spec->kind == OPTION_FLAG) {
+        if (equals != NULL)
+            return luz_error_set(error, "%s: takes no value, got '%s'", argument->where,
+                                 option_quote(equals + 1).text);
+        argument->value = NULL;
+        return 0;
+    }
+    if (equals != NULL)
+        argument->value = equals + 1;
+    else if (*index < argc)
+        argument->value = argv[(*index)++];
+    else
+        argument->value = NULL;
+    if (argument->value == NULL || argument->value[0] == '\0')
+        return luz_error_set(error, "%s: missing value (expected %s)", argument->where,
+                             argument->spec->syntax);
+    return 0;
+}
+
+int luz_options_parse(luz_options *options, int argc, char **argv, luz_error *error)
+{
+    command_argument argument;
+    /* Three passes: the shape of every argument first, so that a typo is
+     * reported before any file is opened; then the scene files; then the
+     * rest, so that the command line overrides a file whatever the order. */
+    for (int index = 1; index < argc;) {
+        if (read_argument(argc, argv, &index, &argument, error) != 0)
+            return -1;
+    }
+    for (int index = 1; index < argc;) {
+        read_argument(argc, argv, &index, &argument, error);
+        if (argument.spec->kind == OPTION_SCENE &&
+            luz_options_set(options, argument.spec->name, argument.value, argument.where,
+                            error) != 0)
+            return -1;
+    }
+    for (int index = 1; index < argc;) {
+        read_argument(argc, argv, &index, &argument, error);
+        if (argument.spec->kind != OPTION_SCENE &&
+            luz_options_set(options, argument.spec->name, argument.value, argument.where,
+                            error) != 0)
+            return -1;
+    }
+    return luz_options_finish(options, error);
+}
+
+/* ---- --help -------------------------------------------------------------------------- */
+
+/* A blank that print_wrapped() does not break a line at. */
+#define NON_BREAKING '\x01'
+
+/* Prints words from `text`, wrapped before column 80 and indented to
+ * `indent` on every line after the first; `column` is where the first
+ * starts. */
+static void print_wrapped(FILE *out, const char *text, int indent, int column)
+{
+    while (*text != '\0') {
+        int length = (int)strcspn(text, " ");
+        if (column > indent && column + 1 + length > 79) {
+            fprintf(out, "\n%*s", indent, "");
+            column = indent;
+        } else if (column > indent) {
+            fputc(' ', out);
+            column++;
+        }
+        for (int i = 0; i < length; i++)
+            fputc(text[i] == NON_BREAKING ? ' ' : text[i], out);
+        column += length;
+        text += length;
+        text += strspn(text, " ");
+    }
+    fputc('\n', out);
+}
+
+void luz_options_print_help(FILE *out)
+{
+    enum { INDENT = 31 };
+    luz_options defaults;
+    luz_options_init(&defaults);
+    for (size_t i = 0; i < OPTION_COUNT; i++) {
+        const option_spec *spec = &option_table[i];
+        char left[64], value[160], directory[4096], line[4096 + 512];
+        int used = snprintf(left, sizeof left, "%s--%s",
+                            strcmp(spec->name, "output") == 0 ? "-o, " : "", spec->name);
+        if (spec->syntax != NULL && used > 0 && (size_t)used < sizeof left)
+            snprintf(left + used, sizeof left - (size_t)used, " %s", spec->syntax);
+        const char *default_text = spec->default_text;
+        if (strcmp(spec->name, "textures") == 0)
+            default_text = luz_default_textures_directory(directory, sizeof directory);
+        else if (default_text == NULL &&
+                 luz_options_format(&defaults, spec->name, value, sizeof value) == 0)
+            default_text = value;
+        if (default_text != NULL) {
+            snprintf(line, sizeof line, "%s (default: %s)", spec->summary, default_text);
+            /* the default stays on one line: its blanks become unbreakable */
+            for (char *c = line + strlen(spec->summary) + 1; *c != '\0'; c++)
+                if (*c == ' ')
+                    *c = NON_BREAKING;
+        } else {
+            snprintf(line, sizeof line, "%s", spec->summary);
+        }
+
+        if (strlen(left) + 2 >= INDENT) {
+            fprintf(out, "  %s\n%*s", left, INDENT, "");
+        } else {
+            fprintf(out, "  %-*s", INDENT - 2, left);
+        }
+        print_wrapped(out, line, INDENT, INDENT);
+    }
+    luz_options_free(&defaults);
+}
+
+/* ---- the default textures directory ------------------------------------------------ */
+
+/* Is path inside directory (or the directory itself)? A plain prefix test
+ * would take /build-old/luz-render for a file under /build. */
+static bool path_is_under(const char *path, const char *directory)
+{
+    size_t length = strlen(directory);
+    while (length > 1 && directory[length - 1] == '/')
+        length--;
+    return strncmp(path, directory, length) == 0 &&
+           (path[length] == '/' || path[length] == '\0');
+}
+
+const char *luz_default_textures_directory(char *buffer, size_t size)
+{
+    const char *directory = getenv("LUZ_TEXTURES");
+    if (directory == NULL || directory[0] == '\0') {
+        /* A program run from the build tree should show the textures of the
+         * tree it was built from, not whatever an older install left behind;
+         * an installed program has no source tree to look at. */
+        char executable[4096];
+        ssize_t length = readlink("/proc/self/exe", executable, sizeof executable - 1);
+        directory = LUZ_INSTALLED_TEXTURES;
+        if (length > 0) {
+            executable[length] = '\0';
+            if (path_is_under(executable, LUZ_BUILD_ROOT))
+                directory = LUZ_SOURCE_TEXTURES;
+        }
+    }
+    if (size > 0)
+        snprintf(buffer, size, "%s", directory);
+    return buffer;
+}
+
+/* Loads the textures the options name; see options.h. */
+int luz_options_load_textures(luz_options *options, luz_texture_set *textures, luz_error *error)
+{
+    char default_directory[4096];
+    const char *directory = options->textures_directory;
+    const char *source = "--textures";
+    if (directory == NULL) {
+        const char *environment = getenv("LUZ_TEXTURES");
+        source = environment && environment[0] ? "LUZ_TEXTURES"
+                                               : "default textures (see --textures)";
+        directory = luz_default_textures_directory(default_directory, sizeof default_directory);
+    }
+    if (strcmp(directory, "none") != 0) {
+        luz_error load_error = {{0}};
+        if (luz_texture_set_load(textures, directory, &load_error) != 0)
+            return luz_error_set(error, "%s: %s", source, load_error.message);
+    }
+    return luz_options_resolve_textures(options, textures, error);
+}

@@ -1,0 +1,160 @@
+/*
+ * luz/options.h: the scene options both programs share.
+ *
+ * luz-render and the viewer take the same long options (the knobs of
+ * SCENE.md) and the same scene files, through this one parser. A scene file
+ * holds `name = value` lines whose names are the long options without their
+ * dashes, `#` comments, "quoted" values (for a path or texture name with
+ * `#` or blanks in it), and `cube = ...` lines that replace the cube list;
+ * options given on the command line override the file whatever their order.
+ * docs/cli.md is the user's reference for both.
+ *
+ * Every error is one line naming the flag (or file:line) and what was
+ * expected, e.g. "--size: expected WIDTHxHEIGHT such as 1280x720, got '0x5'".
+ *
+ * A luz_options owns its strings and cube arrays, and scene.custom_cubes
+ * points into its own `cubes`: initialise it with luz_options_init(), release
+ * it with luz_options_free(), and do not copy the struct by value (the copy's
+ * scene.custom_cubes would point into the original).
+ */
+#ifndef LUZ_OPTIONS_H
+#define LUZ_OPTIONS_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdio.h>
+
+#include "luz/error.h"
+#include "lab/scene.h"
+#include "io/textures.h"
+
+/* Where a scene file's own cube came from: its `texture NAME` field is kept
+ * as a name until the textures are loaded (luz_options_resolve_textures), and
+ * its line is kept for the error message if that name is not found. */
+typedef struct luz_cube_source {
+    char *texture_name;   /* owned; NULL: SCENE.md's image i mod N */
+    int line;             /* line in scene_path, 0 if not from a file */
+} luz_cube_source;
+
+/* The upper bound of --frames and --bench: it bounds the memory that timing
+ * a benchmark takes, and no sequence needs more. */
+#define LUZ_MAX_FRAMES 1000000
+
+typedef struct luz_options {
+    luz_scene scene;            /* custom_cubes points into `cubes` below */
+    int width, height;          /* default 1280 x 720 */
+    int thread_count;           /* LUZ_THREADS_AUTO unless --threads */
+    char *textures_directory;   /* NULL: luz_default_textures_directory();
+                                   "none": every texel white */
+    char *output_path;          /* -o; NULL until luz_options_finish() sets
+                                   the default, luz.png (luz_%04d.png for
+                                   more than one frame) */
+    char *scene_path;           /* the last scene file read (--scene) */
+    int frame_count;            /* --frames, default 1 */
+    double frames_per_second;   /* --fps, default 30 */
+    int bench_frames;           /* --bench N, 0 when not benchmarking */
+    unsigned only_terms;        /* --only: bit (1u << luz_term) per light term
+                                   kept; 0 keeps them all */
+    bool reference;             /* --reference: the plain scalar fragment stage */
+    bool help;
+    bool version;
+    luz_cube *cubes;            /* a scene file's own cubes (owned), as many
+                                   as scene.custom_cube_count */
+    luz_cube_source *cube_sources;  /* one per cube (owned) */
+    int cube_capacity;
+} luz_options;
+
+/* The defaults of every option. */
+void luz_options_init(luz_options *options);
+void luz_options_free(luz_options *options);
+
+/* Parses argv (argv[0] is the program name) and, with --scene, the file:
+ * first every argument's shape is checked, then the scene file is read, then
+ * the other arguments are applied over it, then luz_options_finish() runs.
+ * Accepts `--name value` and `--name=value`. Returns 0, or -1 with a
+ * one-line message. */
+int luz_options_parse(luz_options *options, int argc, char **argv, luz_error *error);
+
+/* Sets one option from its text, as the command line and scene files do.
+ * name is a long option without its dashes ("size", "camera-pos"; "o" is
+ * -o); value is NULL for the flags help and version. Error messages start
+ * with `where` ("--size" on the command line, "scene.luz:3: size" in a
+ * file); NULL means "--NAME". Setting "scene" reads that scene file. Returns
+ * 0, or -1 with a message. */
+int luz_options_set(luz_options *options, const char *name, const char *value,
+                    const char *where, luz_error *error);
+
+/* True for the names a scene file may set with `name = value`: every long
+ * option that takes a value, except scene. (`cube` lines are the scene
+ * file's own.) */
+bool luz_options_is_scene_key(const char *name);
+
+/* Writes the current value of option `name` in the text form that
+ * luz_options_set() reads back exactly (floats with %.9g, doubles with
+ * %.17g). Returns 0, or -1 for a flag, an unknown name, a value left at
+ * "unset" (textures, output, only, bench) or a buffer too small. */
+int luz_options_format(const luz_options *options, const char *name,
+                       char *buffer, size_t size);
+
+/* What must wait until every option is known, called by luz_options_parse()
+ * and by anyone who sets options one by one or reads a scene file directly:
+ * applies --only (the strengths of the other terms become 0), checks the
+ * spot's inner angle against its outer one, sets the default output path
+ * and checks the -o pattern. Returns 0, or -1 with a message. */
+int luz_options_finish(luz_options *options, luz_error *error);
+
+/* Drops the custom cubes: the scene goes back to SCENE.md's tiling of
+ * scene.cube_count cubes. */
+void luz_options_clear_cubes(luz_options *options);
+
+/* Reads a scene file into options (luz_options_parse() does it for --scene)
+ * and records its path in scene_path. Its `cube` lines replace the cube
+ * list. Does not call luz_options_finish(). Returns 0, or -1 with a message
+ * that starts with FILE:LINE. */
+int luz_options_read_scene_file(luz_options *options, const char *path, luz_error *error);
+
+/* Writes the scene part of options (size, time, seed, camera, lights,
+ * filter, textures, cubes) in the scene-file format, so that what the
+ * viewer shows can be rendered again with luz-render --scene; reading the
+ * file back gives the same options. Program settings (threads, output,
+ * frames, fps, bench) are not written. */
+void luz_options_write_scene(const luz_options *options, FILE *out);
+
+/* The same text as a file at path, complete or absent (written to a
+ * temporary name first). replace false: an existing file is never
+ * replaced; LUZ_FILE_EXISTS is returned instead, as the viewer's F2 needs
+ * to number its files safely. Returns 0, LUZ_FILE_EXISTS or -1 with a
+ * message naming path. */
+int luz_options_save_scene(const luz_options *options, const char *path, bool replace,
+                           luz_error *error);
+
+/* Turns the custom cubes' texture names into indices of the loaded set.
+ * Returns 0, or -1 naming FILE:LINE of a cube whose texture is not in it. */
+int luz_options_resolve_textures(luz_options *options, const luz_texture_set *textures,
+                                 luz_error *error);
+
+/* Loads the textures the options name (--textures, else $LUZ_TEXTURES,
+ * else luz_default_textures_directory()) into an empty set, "none" leaving
+ * it empty (every texel white), then resolves the custom cubes' texture
+ * names (luz_options_resolve_textures). Both programs start this way.
+ * Returns 0, or -1 with a message that says where the directory came from. */
+int luz_options_load_textures(luz_options *options, luz_texture_set *textures,
+                              luz_error *error);
+
+/* The file that frame frame_index goes to: output_path with its %d
+ * conversion (if any) replaced by the index and %% by %. Returns 0, or -1 if
+ * the pattern is malformed or the name does not fit in buffer. */
+int luz_options_output_path(const luz_options *options, int frame_index,
+                            char *buffer, size_t size, luz_error *error);
+
+/* The usage text of the scene options, for --help: every option, its value
+ * and its default. */
+void luz_options_print_help(FILE *out);
+
+/* Where textures are found when --textures is not given: $LUZ_TEXTURES if
+ * set and not empty; else the source tree's textures/ for a program run from
+ * inside the build directory; else the installed ones. Writes into buffer and
+ * returns it. */
+const char *luz_default_textures_directory(char *buffer, size_t size);
+
+#endif

@@ -1,0 +1,596 @@
+/*
+ * scene_file.c: scene files, read and written.
+ *
+ * A scene file is the command line written down, one option a line:
+ *
+ *     # the spot alone, seen from the side
+ *     camera-pos = 4, 0, 3
+ *     camera-yaw = -135
+ *     only       = spot
+ *     cube = 0, 0, 0
+ *     cube = 2, 0, -1  colour 1, 0.5, 0  texture wood.png
+ *
+ * Keys are the long options without their dashes (everything but help,
+ * version and scene), each set at most once; `#` starts a comment anywhere
+ * on a line but inside a quoted string (below); blank lines are ignored.
+ * `cube = x, y, z` lines, optionally followed by `colour r,g,b` and
+ * `texture NAME`, replace the cube list with the user's own cubes. A
+ * texture NAME is kept as text until the textures are loaded
+ * (luz_options_resolve_textures), since the file is read before the
+ * textures directory is known.
+ *
+ * A value, or a texture NAME, may be written as a quoted string, "...", in
+ * which `#` and blanks are part of the text and \" \\ \n \t \r are the only
+ * escapes: `textures = "my # textures "`, `texture "old wood.png"`. Only
+ * blanks, a comment, or in a cube line the next field may follow the
+ * closing quote. A `"` anywhere else (inside an unquoted value) is an
+ * ordinary character. luz_options_write_scene quotes only the text that
+ * needs it, so that what it writes always reads back the same.
+ *
+ * Values go through luz_options_set(), the command line's own parser, so a
+ * file accepts exactly what the command line accepts. Every error names
+ * FILE:LINE.
+ */
+#include "app/options.h"
+#include "io/new_file.h"
+
+#include <errno.h>
+#include <stdbool.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+
+#include "app/option_text.h"
+
+/* Longer than any key, so that a key that does not fit is not a key. */
+#define KEY_MAX 24
+/* Bounds on what a scene file may hold: a line fits a cube with its colour
+ * and a long texture name many times over, and the lines are enough for
+ * LUZ_MAX_CUBES cube lines with comments between them. */
+#define SCENE_LINE_MAX 4096
+#define SCENE_MAX_LINES (2 * LUZ_MAX_CUBES + 1000)
+#define SEEN_KEYS_MAX 64
+
+typedef struct scene_reader {
+    luz_options *options;
+    const char *path;
+    int line;
+    int first_cube_line;   /* 0 until the file's first `cube` line */
+    int cubes_key_line;    /* 0 until the file's `cubes = N` line */
+    int seen_count;
+    struct {
+        char name[KEY_MAX];
+        int line;
+    } seen[SEEN_KEYS_MAX];
+} scene_reader;
+
+/* Strips blanks (and the line's \r\n) at both ends, in place. */
+static char *trim(char *text)
+{
+    while (*text == ' ' || *text == '\t')
+        text++;
+    size_t length = strlen(text);
+    while (length > 0 && strchr(" \t\r\n", text[length - 1]) != NULL)
+        text[--length] = '\0';
+    return text;
+}
+
+/* ---- quoted values ------------------------------------------------------------- */
+
+/* Just after the quoted string that starts at text (its '"'), or NULL if it
+ * is not closed on the line. Escapes are skipped whole, good or bad: only
+ * unquote() judges them. */
+static char *skip_quoted(char *text)
+{
+    for (char *p = text + 1; *p != '\0'; p++) {
+        if (*p == '\\' && p[1] != '\0')
+            p++;
+        else if (*p == '"')
+            return p + 1;
+    }
+    return NULL;
+}
+
+/* Where the line's comment starts: its first `#` outside a quoted string,
+ * or NULL. A quoted string can start only where a value can: at the first
+ * character of a `name = value` line's value, and, in a cube line, at the
+ * start of a word (the texture NAME; anywhere else read_cube refuses it).
+ * A `"` elsewhere is an ordinary character, as it always was. An
+ * unterminated quote hides the rest of the line, and unquote() says so. */
+static char *find_comment(char *text)
+{
+    char *mark = strpbrk(text, "#=");
+    if (mark == NULL || *mark == '#')
+        return mark;
+    char *name = text;
+    while (*name == ' ' || *name == '\t')
+        name++;
+    char *name_end = mark;
+    while (name_end > name && (name_end[-1] == ' ' || name_end[-1] == '\t'))
+        name_end--;
+    bool cube = name_end - name == 4 && memcmp(name, "cube", 4) == 0;
+
+    char *value = mark + 1;
+    while (*value == ' ' || *value == '\t')
+        value++;
+    for (char *p = value; *p != '\0'; p++) {
+        if (*p == '#')
+            return p;
+        bool word_start = p == value || p[-1] == ' ' || p[-1] == '\t';
+        if (*p == '"' && (p == value || (cube && word_start))) {
+            char *end = skip_quoted(p);
+            if (end == NULL)
+                return NULL;
+            p = end - 1;
+        }
+    }
+    return NULL;
+}
+
+/* Decodes, in place, the quoted string that starts at text (its '"'): the
+ * bytes between the quotes, with \" \\ \n \t \r replaced by what they
+ * stand for. *end is set just after the closing quote, whose place (or an
+ * earlier one) now holds the decoded text's NUL. Returns 0, or -1 with an
+ * error starting with `where`. */
+static int unquote(char *text, char **end, const char *where, luz_error *error)
+{
+    option_quoted original = option_quote(text);
+    char *out = text;
+    for (char *in = text + 1;; in++) {
+        if (*in == '\0')
+            return luz_error_set(error,
+                                 "%s: expected a closing \" to end the quoted text, got '%s'",
+                                 where, original.text);
+        if (*in == '"') {
+            *out = '\0';
+            *end = in + 1;
+            return 0;
+        }
+        if (*in != '\\') {
+            *out++ = *in;
+            continue;
+        }
+        in++;
+        switch (*in) {
+        case '"': *out++ = '"'; break;
+        case '\\': *out++ = '\\'; break;
+        case 'n': *out++ = '\n'; break;
+        case 't': *out++ = '\t'; break;
+        case 'r': *out++ = '\r'; break;
+        case '\0':
+            return luz_error_set(error,
+                                 "%s: expected a closing \" to end the quoted text, got '%s'",
+                                 where, original.text);
+        default: {
+            /* the whole character, when it is a UTF-8 sequence */
+            char escape[5] = {*in, '\0'};
+            if ((unsigned char)*in >= 0x80) {
+                for (int k = 1; k < 4 && ((unsigned char)in[k] & 0xc0) == 0x80; k++)
+                    escape[k] = in[k];
+            }
+            return luz_error_set(error,
+                                 "%s: unknown escape '\\%s' in quoted text (expected \\\" "
+                                 "\\\\ \\n \\t or \\r)",
+                                 where, option_quote(escape).text);
+        }
+        }
+    }
+}
+
+/* ---- cube lines ---------------------------------------------------------------- */
+
+/* Where the next field (`colour` or `texture`) of a cube line starts: the
+ * first word that begins with a letter which is not a number. strtod is
+ * asked, so that "inf" and "nan" stay numbers and are refused as such. */
+static char *find_field(char *text)
+{
+    for (size_t i = 0; text[i] != '\0'; i++) {
+        bool word_start = i == 0 || text[i - 1] == ' ' || text[i - 1] == '\t' ||
+                          text[i - 1] == ',';
+        bool letter = (text[i] >= 'a' && text[i] <= 'z') || (text[i] >= 'A' && text[i] <= 'Z');
+        if (word_start && letter) {
+            char *end;
+            (void)strtod(text + i, &end);
+            if (end == text + i)
+                return text + i;
+        }
+    }
+    return text + strlen(text);
+}
+
+static int add_cube(scene_reader *reader, const luz_cube *cube, const char *texture_name,
+                    luz_error *error)
+{
+    luz_options *options = reader->options;
+    int count = options->scene.custom_cube_count;
+    if (count >= LUZ_MAX_CUBES)
+        return luz_error_set(error, "%s:%d: cube: too many cubes (at most %d)", reader->path,
+                             reader->line, LUZ_MAX_CUBES);
+    if (count == options->cube_capacity) {
+        int capacity = count ? count * 2 : 16;
+        luz_cube *cubes = realloc(options->cubes, (size_t)capacity * sizeof *cubes);
+        if (cubes == NULL)
+            return luz_error_set(error, "%s:%d: out of memory", reader->path, reader->line);
+        options->cubes = cubes;
+        if (count > 0)
+            options->scene.custom_cubes = cubes;   /* never left dangling */
+        luz_cube_source *sources =
+            realloc(options->cube_sources, (size_t)capacity * sizeof *sources);
+        if (sources == NULL)
+            return luz_error_set(error, "%s:%d: out of memory", reader->path, reader->line);
+        options->cube_sources = sources;
+        options->cube_capacity = capacity;
+    }
+    char *name = NULL;
+    if (texture_name != NULL && (name = strdup(texture_name)) == NULL)
+        return luz_error_set(error, "%s:%d: out of memory", reader->path, reader->line);
+    options->cubes[count] = *cube;
+    options->cube_sources[count] = (luz_cube_source){.texture_name = name, .line = reader->line};
+    options->scene.custom_cubes = options->cubes;
+    options->scene.custom_cube_count = count + 1;
+    return 0;
+}
+
+/* `cube = x, y, z [colour r,g,b] [texture NAME]`, the fields in any order. */
+static int read_cube(scene_reader *reader, char *value, luz_error *error)
+{
+    const char *path = reader->path;
+    int line = reader->line;
+    if (reader->cubes_key_line != 0)
+        return luz_error_set(error,
+                             "%s:%d: cube: expected either `cubes = N` or `cube` lines, not both "
+                             "(cubes is set on line %d)",
+                             path, line, reader->cubes_key_line);
+    if (value[0] == '\0')
+        return luz_error_set(error,
+                             "%s:%d: cube: missing value (expected x,y,z [colour r,g,b] "
+                             "[texture NAME])",
+                             path, line);
+    option_quoted original = option_quote(value);
+
+    luz_cube cube = {.texture = LUZ_TEXTURE_BY_INDEX};
+    const char *texture_name = NULL;
+    char *fields = find_field(value);
+    char saved = *fields;
+    *fields = '\0';
+    double numbers[3];
+    option_parse_result position = option_read_numbers(value, numbers, 3, true);
+    *fields = saved;
+    if (position == OPTION_PARSE_NOT_FINITE)
+        return luz_error_set(error, "%s:%d: cube: expected finite numbers, got '%s'", path, line,
+                             original.text);
+    if (position != OPTION_PARSE_OK)
+        return luz_error_set(error,
+                             "%s:%d: cube: expected x,y,z (three numbers) then optional colour "
+                             "r,g,b and texture NAME, got '%s'",
+                             path, line, original.text);
+    cube.position = luz_vec3_make((float)numbers[0], (float)numbers[1], (float)numbers[2]);
+
+    while (*fields != '\0') {
+        size_t length = strcspn(fields, " \t");
+        char *rest = fields + length + strspn(fields + length, " \t");
+        bool is_colour = (length == 6 && memcmp(fields, "colour", 6) == 0) ||
+                         (length == 5 && memcmp(fields, "color", 5) == 0);
+        bool is_texture = length == 7 && memcmp(fields, "texture", 7) == 0;
+        if (is_colour) {
+            if (cube.has_colour)
+                return luz_error_set(error, "%s:%d: cube: duplicate colour field in '%s'", path,
+                                     line, original.text);
+            char *next = find_field(rest);
+            saved = *next;
+            *next = '\0';
+            option_parse_result colour = option_read_numbers(rest, numbers, 3, true);
+            *next = saved;
+            bool in_range = colour == OPTION_PARSE_OK;
+            for (int i = 0; i < 3 && in_range; i++)
+                in_range = numbers[i] >= 0.0 && numbers[i] <= 1.0;
+            if (!in_range)
+                return luz_error_set(error,
+                                     "%s:%d: cube: expected colour r,g,b, each in [0, 1], got "
+                                     "'%s'",
+                                     path, line, original.text);
+            cube.has_colour = true;
+            cube.colour = luz_vec3_make((float)numbers[0], (float)numbers[1], (float)numbers[2]);
+            fields = next;
+        } else if (is_texture) {
+            if (texture_name != NULL)
+                return luz_error_set(error, "%s:%d: cube: duplicate texture field in '%s'", path,
+                                     line, original.text);
+            if (rest[0] == '"') {
+                char where[600];
+                snprintf(where, sizeof where, "%s:%d: cube: texture", path, line);
+                char *after;
+                if (unquote(rest, &after, where, error) != 0)
+                    return -1;
+                if (*after != '\0' && *after != ' ' && *after != '\t')
+                    return luz_error_set(error,
+                                         "%s: expected blanks then the next field after the "
+                                         "closing quote, got '%s'",
+                                         where, option_quote(after).text);
+                fields = after + strspn(after, " \t");
+                texture_name = rest;
+                continue;
+            }
+            size_t name_length = strcspn(rest, " \t");
+            if (name_length == 0)
+                return luz_error_set(error,
+                                     "%s:%d: cube: expected texture NAME, a file of the textures "
+                                     "directory, got '%s'",
+                                     path, line, original.text);
+            char *after = rest + name_length;
+            fields = after + strspn(after, " \t");
+            *after = '\0';
+            texture_name = rest;
+        } else {
+            fields[length] = '\0';
+            return luz_error_set(error,
+                                 "%s:%d: cube: unknown field '%s' (expected colour r,g,b or "
+                                 "texture NAME)",
+                                 path, line, option_quote(fields).text);
+        }
+    }
+
+    /* The file's first cube line replaces whatever cubes came before (an
+     * earlier file, the tiling); the later ones add to it. */
+    if (reader->first_cube_line == 0) {
+        luz_options_clear_cubes(reader->options);
+        reader->first_cube_line = line;
+    }
+    return add_cube(reader, &cube, texture_name, error);
+}
+
+/* ---- reading ------------------------------------------------------------------------- */
+
+static int read_line(scene_reader *reader, char *text, luz_error *error)
+{
+    const char *path = reader->path;
+    int line = reader->line;
+    char *comment = find_comment(text);
+    if (comment != NULL)
+        *comment = '\0';
+    text = trim(text);
+    if (text[0] == '\0')
+        return 0;
+
+    option_quoted original = option_quote(text);
+    char *equals = strchr(text, '=');
+    if (equals == NULL)
+        return luz_error_set(error, "%s:%d: expected `name = value`, got '%s'", path, line,
+                             original.text);
+    *equals = '\0';
+    char *name = trim(text);
+    char *value = trim(equals + 1);
+    if (name[0] == '\0')
+        return luz_error_set(error, "%s:%d: expected `name = value`, got '%s'", path, line,
+                             original.text);
+
+    if (strcmp(name, "cube") == 0)
+        return read_cube(reader, value, error);
+    if (strcmp(name, "help") == 0 || strcmp(name, "version") == 0 || strcmp(name, "scene") == 0)
+        return luz_error_set(error, "%s:%d: `%s` is not allowed in a scene file", path, line,
+                             name);
+    if (!luz_options_is_scene_key(name) || strlen(name) >= KEY_MAX)
+        return luz_error_set(error,
+                             "%s:%d: unknown key '%s' (expected a long option of luz-render "
+                             "--help without its dashes, or cube)",
+                             path, line, option_quote(name).text);
+
+    /* A key set twice is almost always an edit that forgot the first one;
+     * saying so beats silently taking the last. */
+    for (int i = 0; i < reader->seen_count; i++) {
+        if (strcmp(reader->seen[i].name, name) == 0)
+            return luz_error_set(error, "%s:%d: duplicate key `%s` (already set on line %d)",
+                                 path, line, name, reader->seen[i].line);
+    }
+    if (reader->seen_count < SEEN_KEYS_MAX) {
+        snprintf(reader->seen[reader->seen_count].name, KEY_MAX, "%s", name);
+        reader->seen[reader->seen_count].line = line;
+        reader->seen_count++;
+    }
+    if (strcmp(name, "cubes") == 0) {
+        if (reader->first_cube_line != 0)
+            return luz_error_set(error,
+                                 "%s:%d: cubes: expected either `cubes = N` or `cube` lines, "
+                                 "not both (the first cube line is line %d)",
+                                 path, line, reader->first_cube_line);
+        reader->cubes_key_line = line;
+    }
+
+    char where[600];
+    snprintf(where, sizeof where, "%s:%d: %s", path, line, name);
+    if (value[0] == '"') {
+        char *after;
+        if (unquote(value, &after, where, error) != 0)
+            return -1;
+        /* the comment is gone and the line trimmed: nothing may be left */
+        if (*after != '\0')
+            return luz_error_set(error,
+                                 "%s: expected only blanks or a comment after the closing "
+                                 "quote, got '%s'",
+                                 where, option_quote(after + strspn(after, " \t")).text);
+    }
+    return luz_options_set(reader->options, name, value, where, error);
+}
+
+int luz_options_read_scene_file(luz_options *options, const char *path, luz_error *error)
+{
+    char *path_copy = strdup(path);
+    if (path_copy == NULL)
+        return luz_error_set(error, "%s: out of memory", path);
+    free(options->scene_path);
+    options->scene_path = path_copy;
+
+    FILE *file = fopen(path, "r");
+    if (file == NULL)
+        return luz_error_set(error, "%s: cannot open the scene file (%s)", path, strerror(errno));
+    /* Only regular files: a device or a pipe (/dev/zero, say) could feed
+     * the reader forever. */
+    struct stat status_of_file;
+    if (fstat(fileno(file), &status_of_file) != 0 || !S_ISREG(status_of_file.st_mode)) {
+        fclose(file);
+        return luz_error_set(error, "%s: not a regular file (expected a scene file)", path);
+    }
+
+    /* Lines are read into a fixed buffer, so no input can make the reader
+     * allocate without bound; a line that does not fit is an error. */
+    scene_reader reader = {.options = options, .path = options->scene_path};
+    char text[SCENE_LINE_MAX + 2];
+    int status = 0;
+    while (status == 0 && fgets(text, sizeof text, file) != NULL) {
+        reader.line++;
+        size_t length = strlen(text);
+        bool line_ended = length > 0 && text[length - 1] == '\n';
+        if (!line_ended && length + 1 == sizeof text)
+            status = luz_error_set(error, "%s:%d: line longer than %d characters", path,
+                                   reader.line, SCENE_LINE_MAX);
+        else if (!line_ended && !feof(file))
+            status = luz_error_set(error, "%s:%d: expected text, found a NUL byte", path,
+                                   reader.line);
+        else if (reader.line > SCENE_MAX_LINES)
+            status = luz_error_set(error, "%s:%d: more than %d lines", path, reader.line,
+                                   SCENE_MAX_LINES);
+        else
+            status = read_line(&reader, text, error);
+    }
+    /* fgets's NULL means the end or an error (a directory gives EISDIR). */
+    if (status == 0 && ferror(file))
+        status = luz_error_set(error, "%s: cannot read the scene file (%s)", path,
+                               strerror(errno));
+    fclose(file);
+    return status;
+}
+
+/* ---- textures named by cube lines --------------------------------------------------- */
+
+int luz_options_resolve_textures(luz_options *options, const luz_texture_set *textures,
+                                 luz_error *error)
+{
+    for (int i = 0; i < options->scene.custom_cube_count; i++) {
+        const luz_cube_source *source = &options->cube_sources[i];
+        if (source->texture_name == NULL) {
+            options->cubes[i].texture = LUZ_TEXTURE_BY_INDEX;
+            continue;
+        }
+        int index = textures ? luz_texture_set_find(textures, source->texture_name) : -1;
+        if (index >= 0) {
+            options->cubes[i].texture = index;
+            continue;
+        }
+        /* Name a few of the images that are there, which is usually enough to
+         * spot the typo. */
+        char available[200] = "";
+        int count = textures ? textures->count : 0;
+        for (int k = 0; k < count && k < 6; k++) {
+            size_t used = strlen(available);
+            snprintf(available + used, sizeof available - used, "%s%s", k ? ", " : "",
+                     option_quote(textures->names[k]).text);
+        }
+        if (count > 6) {
+            size_t used = strlen(available);
+            snprintf(available + used, sizeof available - used, ", ...");
+        }
+        return luz_error_set(error,
+                             "%s:%d: cube: texture '%s' is not an image of the textures "
+                             "directory (expected one of: %s)",
+                             options->scene_path ? options->scene_path : "scene", source->line,
+                             option_quote(source->texture_name).text,
+                             count ? available : "none, textures are off");
+    }
+    return 0;
+}
+
+/* ---- writing ------------------------------------------------------------------------ */
+
+/* Writes text as the reader will read it back: as it is when it can be,
+ * else quoted. A value is quoted when it is empty, holds `#`, `"`, `\` or
+ * a control character, or begins or ends with a blank (which the reader
+ * would trim); a cube's texture NAME (is_word) also when it holds a blank
+ * anywhere, since an unquoted NAME ends at the first. Text that needs none
+ * of this is written as before quoting existed, so saved files and their
+ * diffs do not change. */
+static void write_text(FILE *out, const char *text, bool is_word)
+{
+    size_t length = strlen(text);
+    bool quote = length == 0 || text[0] == ' ' || text[length - 1] == ' ';
+    for (size_t i = 0; i < length && !quote; i++) {
+        unsigned char c = (unsigned char)text[i];
+        quote = c == '#' || c == '"' || c == '\\' || c < 0x20 || c == 0x7f ||
+                (is_word && c == ' ');
+    }
+    if (!quote) {
+        fputs(text, out);
+        return;
+    }
+    fputc('"', out);
+    for (size_t i = 0; i < length; i++) {
+        switch (text[i]) {
+        case '"': fputs("\\\"", out); break;
+        case '\\': fputs("\\\\", out); break;
+        case '\n': fputs("\\n", out); break;
+        case '\t': fputs("\\t", out); break;
+        case '\r': fputs("\\r", out); break;
+        default: fputc(text[i], out); break;   /* other bytes as they are */
+        }
+    }
+    fputc('"', out);
+}
+
+void luz_options_write_scene(const luz_options *options, FILE *out)
+{
+    /* The scene, in the order of --help; not the program's own settings
+     * (threads, output, frames, fps, bench), which belong to a run, and not
+     * `only`, whose effect the strengths already carry. */
+    static const char *const keys[] = {
+        "size",       "time",        "seed",     "cubes",     "camera-pos",
+        "camera-yaw", "camera-pitch", "fov",     "ambient",   "diffuse",
+        "specular",   "shininess",   "point",    "spot",      "spot-inner",
+        "spot-outer", "spot-reach",  "directional", "filter", "textures",
+    };
+    char value[4200];
+    fprintf(out, "# luz scene: render it with luz-render --scene FILE (see docs/cli.md)\n");
+    for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++) {
+        if (strcmp(keys[i], "cubes") == 0 && options->scene.custom_cube_count > 0)
+            continue;
+        if (luz_options_format(options, keys[i], value, sizeof value) == 0) {
+            fprintf(out, "%s = ", keys[i]);
+            write_text(out, value, false);
+            fputc('\n', out);
+        }
+    }
+    /* The teaching settings, only when they are not the defaults: a view
+     * saved while looking at the depth buffer renders the depth buffer. */
+    if (options->scene.view != LUZ_VIEW_COLOR)
+        fprintf(out, "view = %s\n", luz_view_name(options->scene.view));
+    if (options->scene.interpolation != LUZ_INTERPOLATION_PERSPECTIVE)
+        fprintf(out, "interp = %s\n", luz_interpolation_name(options->scene.interpolation));
+    for (int i = 0; i < options->scene.custom_cube_count; i++) {
+        const luz_cube *cube = &options->cubes[i];
+        char x[32], y[32], z[32];
+        option_format_float(x, sizeof x, cube->position.x);
+        option_format_float(y, sizeof y, cube->position.y);
+        option_format_float(z, sizeof z, cube->position.z);
+        fprintf(out, "cube = %s, %s, %s", x, y, z);
+        if (cube->has_colour) {
+            option_format_float(x, sizeof x, cube->colour.x);
+            option_format_float(y, sizeof y, cube->colour.y);
+            option_format_float(z, sizeof z, cube->colour.z);
+            fprintf(out, " colour %s, %s, %s", x, y, z);
+        }
+        if (options->cube_sources[i].texture_name != NULL) {
+            fputs(" texture ", out);
+            write_text(out, options->cube_sources[i].texture_name, true);
+        }
+        fputc('\n', out);
+    }
+}
+
+int luz_options_save_scene(const luz_options *options, const char *path, bool replace,
+                           luz_error *error)
+{
+    luz_new_file file;
+    if (luz_new_file_open(&file, path, error) != 0)
+        return -1;
+    luz_options_write_scene(options, file.stream);
+    return luz_new_file_commit(&file, replace, error);
+}

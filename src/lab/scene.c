@@ -1,0 +1,213 @@
+/*
+ * scene.c: SCENE.md's lighting lab as data, and its evaluation at a time t.
+ *
+ * Every default of SCENE.md lives in luz_scene_defaults(); every motion
+ * (the cubes' rotation, the point light's orbit, the sun's) lives in
+ * luz_scene_build_frame(). What comes out is a luz_frame: uniforms and a
+ * list of draws, which is all the renderer sees.
+ */
+#include <limits.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "lab/scene.h"
+
+static const luz_vec3 cube_positions[10] = {
+    { 0.0f,  0.0f,   0.0f}, { 2.0f,  5.0f, -15.0f}, {-1.5f, -2.2f,  -2.5f},
+    {-3.8f, -2.0f, -12.3f}, { 2.4f, -0.4f,  -3.5f}, {-1.7f,  3.0f,  -7.5f},
+    { 1.3f, -2.0f,  -2.5f}, { 1.5f,  2.0f,  -2.5f}, { 1.5f,  0.2f,  -1.5f},
+    {-1.3f,  1.0f,  -1.5f},
+};
+
+static luz_light white_light(float strength)
+{
+    return (luz_light){{1.0f, 1.0f, 1.0f}, strength};
+}
+
+luz_scene luz_scene_defaults(void)
+{
+    luz_scene scene;
+    memset(&scene, 0, sizeof scene);
+    scene.time_seconds = 0.0;
+    scene.seed = 0;
+    scene.cube_count = 10;
+    scene.camera = (luz_camera){{0.0f, 0.0f, 3.0f}, -90.0f, 0.0f, 45.0f};
+    scene.lights.ambient = white_light(0.2f);
+    scene.lights.diffuse = white_light(0.6f);
+    scene.lights.specular = white_light(0.5f);
+    scene.lights.point = white_light(0.7f);
+    scene.lights.spot = white_light(1.0f);
+    scene.lights.directional = white_light(0.4f);
+    scene.lights.shininess = 32.0f;
+    scene.lights.spot_inner_degrees = 12.5f;
+    scene.lights.spot_outer_degrees = 17.5f;
+    scene.lights.spot_reach = 10.0f;
+    scene.filter = LUZ_FILTER_TRILINEAR;
+    scene.view = LUZ_VIEW_COLOR;
+    scene.interpolation = LUZ_INTERPOLATION_PERSPECTIVE;
+    return scene;
+}
+
+luz_vec3 luz_camera_front(const luz_camera *camera)
+{
+    double yaw = camera->yaw_degrees * (LUZ_PI / 180.0);
+    double pitch = camera->pitch_degrees * (LUZ_PI / 180.0);
+    luz_vec3 front = {(float)(cos(yaw) * cos(pitch)), (float)sin(pitch),
+                      (float)(sin(yaw) * cos(pitch))};
+    return luz_vec3_normalize(front);
+}
+
+/* SCENE.md "More cubes": tiles around the original ten, ring by ring; in
+ * ring r the cells (gx, gy) with max(|gx|, |gy|) = r, row by row. Rings
+ * before r hold (2r - 1)^2 tiles. */
+luz_vec3 luz_scene_tiled_position(int cube_index)
+{
+    if (cube_index < 0) cube_index = 0;   /* not a cube: stay in the table */
+    int tile = cube_index / 10;
+    luz_vec3 base = cube_positions[cube_index % 10];
+    if (tile == 0) return base;
+    int ring = 1;
+    while ((2 * ring + 1) * (2 * ring + 1) <= tile) ring++;
+    int index_in_ring = tile - (2 * ring - 1) * (2 * ring - 1);
+    for (int gy = -ring; gy <= ring; gy++) {
+        for (int gx = -ring; gx <= ring; gx++) {
+            if (abs(gx) != ring && abs(gy) != ring) continue;
+            if (index_in_ring-- == 0) {
+                luz_vec3 offset = {9.0f * gx, 8.0f * gy, -16.0f * ring};
+                return luz_vec3_add(base, offset);
+            }
+        }
+    }
+    return base; /* not reached: ring r has 8r cells */
+}
+
+/* xorshift32 (Marsaglia 2003). */
+uint32_t luz_xorshift32(uint32_t x)
+{
+    x ^= x << 13;
+    x ^= x >> 17;
+    x ^= x << 5;
+    return x;
+}
+
+/* One step per float; the top 24 bits make a float in [0, 1) that is
+ * exact in single precision. */
+static float next_random_float(uint32_t *state)
+{
+    *state = luz_xorshift32(*state);
+    return (float)(*state >> 8) / 16777216.0f;
+}
+
+static uint32_t seed_state(uint32_t seed)
+{
+    return seed == 0 ? 0x9E3779B9u : seed;
+}
+
+void luz_scene_random_colours(uint32_t seed, int count, luz_vec3 *colours)
+{
+    uint32_t state = seed_state(seed);
+    for (int i = 0; i < count; i++) {
+        colours[i].x = next_random_float(&state);
+        colours[i].y = next_random_float(&state);
+        colours[i].z = next_random_float(&state);
+    }
+}
+
+/* Angles in degrees reduced to one turn in double precision before they
+ * become float, so a long-running animation keeps its precision. */
+static float turn_radians(double degrees)
+{
+    return (float)(fmod(degrees, 360.0) * (LUZ_PI / 180.0));
+}
+
+luz_uniforms luz_scene_uniforms(const luz_scene *scene, float aspect)
+{
+    luz_uniforms uniforms;
+    memset(&uniforms, 0, sizeof uniforms);
+    double t = scene->time_seconds;
+    const luz_camera *camera = &scene->camera;
+
+    uniforms.camera_position = camera->position;
+    uniforms.camera_front = luz_camera_front(camera);
+    uniforms.view = luz_mat4_look_at(camera->position,
+                                     luz_vec3_add(camera->position, uniforms.camera_front),
+                                     (luz_vec3){0.0f, 1.0f, 0.0f});
+    uniforms.projection = luz_mat4_perspective(luz_radians(camera->fov_degrees), aspect,
+                                               0.1f, 100.0f);
+
+    double orbit = fmod(0.5 * t, 2.0 * LUZ_PI);
+    uniforms.point_light_position = (luz_vec3){(float)(3.0 * cos(orbit)), 0.5f,
+                                               (float)(3.0 * sin(orbit))};
+    double sun = fmod(0.1 * t, 2.0 * LUZ_PI);
+    uniforms.directional_direction = (luz_vec3){(float)cos(sun), (float)sin(sun), 0.0f};
+
+    uniforms.lights = scene->lights;
+    uniforms.spot_cos_inner = (float)cos(scene->lights.spot_inner_degrees * (LUZ_PI / 180.0));
+    uniforms.spot_cos_outer = (float)cos(scene->lights.spot_outer_degrees * (LUZ_PI / 180.0));
+    uniforms.filter = scene->filter;
+    uniforms.clear_colour = (luz_vec3){0.1f, 0.1f, 0.1f};
+    uniforms.show = scene->view;
+    uniforms.interpolation = scene->interpolation;
+    return uniforms;
+}
+
+int luz_scene_build_frame(const luz_scene *scene, luz_texture *const *textures,
+                          int texture_count, float aspect, luz_frame *frame)
+{
+    frame->uniforms = luz_scene_uniforms(scene, aspect);
+    frame->draw_count = 0;
+
+    const bool custom = scene->custom_cubes != NULL;
+    const int cube_count = custom ? scene->custom_cube_count : scene->cube_count;
+    const luz_vec3 axis = {1.0f, 0.5f, 1.0f};
+    uint32_t colour_state = seed_state(scene->seed);
+
+    for (int i = 0; i < cube_count; i++) {
+        luz_draw draw = {0};
+        draw.mesh = luz_cube_mesh();
+
+        /* objectColor: drawn in index order whether used or not, so a cube
+         * keeps its colour when an earlier one has a colour of its own. */
+        luz_vec3 random_colour;
+        random_colour.x = next_random_float(&colour_state);
+        random_colour.y = next_random_float(&colour_state);
+        random_colour.z = next_random_float(&colour_state);
+
+        luz_vec3 position;
+        int texture_index = LUZ_TEXTURE_BY_INDEX;
+        draw.colour = random_colour;
+        if (custom) {
+            const luz_cube *cube = &scene->custom_cubes[i];
+            position = cube->position;
+            if (cube->has_colour) draw.colour = cube->colour;
+            texture_index = cube->texture;
+        } else {
+            position = luz_scene_tiled_position(i);
+        }
+        if (texture_count > 0) {
+            int index = texture_index == LUZ_TEXTURE_BY_INDEX ? i : texture_index;
+            draw.texture = textures[index % texture_count];
+        }
+
+        double angle_degrees = (i + 1) / 3.0 * scene->time_seconds * 50.0;
+        draw.model = luz_mat4_rotate(luz_mat4_translate(luz_mat4_identity(), position),
+                                     turn_radians(angle_degrees), axis);
+        draw.normal_matrix = luz_mat3_normal_matrix(draw.model);
+        if (luz_frame_add_draw(frame, &draw) != 0) return -1;
+    }
+
+    /* The point light's marker: a small unrotated cube, unlit, in the
+     * light's colour (not scaled by its strength), drawn while it shines. */
+    if (scene->lights.point.strength > 0.0f) {
+        luz_draw marker = {0};
+        marker.mesh = luz_cube_mesh();
+        marker.model = luz_mat4_scale(
+            luz_mat4_translate(luz_mat4_identity(), frame->uniforms.point_light_position),
+            (luz_vec3){0.2f, 0.2f, 0.2f});
+        marker.normal_matrix = luz_mat3_normal_matrix(marker.model);
+        marker.colour = scene->lights.point.colour;
+        marker.unlit = true;
+        if (luz_frame_add_draw(frame, &marker) != 0) return -1;
+    }
+    return 0;
+}

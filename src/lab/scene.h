@@ -1,0 +1,95 @@
+/*
+ * lab/scene.h: the lighting lab of SCENE.md, as plain data.
+ *
+ * A luz_scene is everything a user can set: the time, the colour seed, the
+ * cubes, the camera, the six lights and the texture filter. A zero scene is
+ * not meaningful; start from luz_scene_defaults(), which holds every default
+ * of SCENE.md in one place, and change what you need.
+ *
+ * luz_scene_build_frame() evaluates a scene at its time into a luz_frame
+ * (luz/frame.h): the per-frame uniforms (matrices, camera, light positions)
+ * and the list of objects to draw (the rotated cubes, then the point-light
+ * marker). The lab is a user of libluz like any other program: it includes
+ * only the renderer's headers.
+ */
+#ifndef LUZ_LAB_SCENE_H
+#define LUZ_LAB_SCENE_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "luz/frame.h"
+#include "luz/texture.h"
+#include "luz/vecmath.h"
+
+/* The unit cube of SCENE.md: 24 vertices, 36 indices, static storage. */
+const luz_mesh *luz_cube_mesh(void);
+
+/* ---- camera and lights ------------------------------------------------- */
+
+typedef struct luz_camera {
+    luz_vec3 position;
+    float yaw_degrees;    /* -90 looks down -Z */
+    float pitch_degrees;  /* within [-89, 89] */
+    float fov_degrees;    /* vertical field of view */
+} luz_camera;
+
+/* The camera's unit front vector from its yaw and pitch (SCENE.md). */
+luz_vec3 luz_camera_front(const luz_camera *camera);
+
+/* ---- the scene ---------------------------------------------------------- */
+
+#define LUZ_TEXTURE_BY_INDEX (-1)
+
+/* A cube of the user's own (a scene file's `cube` line). */
+typedef struct luz_cube {
+    luz_vec3 position;
+    bool has_colour;     /* else the seed's colour for its index */
+    luz_vec3 colour;
+    int texture;         /* index into the texture set, or LUZ_TEXTURE_BY_INDEX
+                            for SCENE.md's "image i mod N" */
+} luz_cube;
+
+#define LUZ_MAX_CUBES 100000
+
+typedef struct luz_scene {
+    double time_seconds;
+    uint32_t seed;           /* 0 means 0x9E3779B9 */
+    int cube_count;          /* SCENE.md's tiling of the ten positions */
+    const luz_cube *custom_cubes;   /* if non-NULL, replaces the tiling */
+    int custom_cube_count;
+    luz_camera camera;
+    luz_lights lights;
+    luz_filter filter;
+    luz_view view;                   /* LUZ_VIEW_COLOR */
+    luz_interpolation interpolation; /* LUZ_INTERPOLATION_PERSPECTIVE */
+} luz_scene;
+
+luz_scene luz_scene_defaults(void);
+
+/* Cube i (i >= 0) of SCENE.md's tiled set: one of the ten positions plus
+ * its tile's offset. */
+luz_vec3 luz_scene_tiled_position(int cube_index);
+
+/* One step of Marsaglia's xorshift32 (13, 17, 5), SCENE.md's generator:
+ * every non-zero state maps to a non-zero state. */
+uint32_t luz_xorshift32(uint32_t state);
+
+/* objectColor for every cube index below count, from SCENE.md's xorshift32
+ * generator; colours must hold count entries. */
+void luz_scene_random_colours(uint32_t seed, int count, luz_vec3 *colours);
+
+/* The uniforms of a scene's camera and lights at the scene's time, for an
+ * image of the given aspect ratio (width / height). */
+luz_uniforms luz_scene_uniforms(const luz_scene *scene, float aspect);
+
+/* Fills frame with the scene at its time: uniforms, then one draw per cube
+ * in index order, then the point-light marker while its strength is above
+ * 0. textures holds texture_count textures, cube i using textures[i mod
+ * texture_count]; none (NULL, 0) makes every texel white. Returns 0, or -1 if
+ * memory ran out. The frame's draw array is reused between calls. */
+int luz_scene_build_frame(const luz_scene *scene, luz_texture *const *textures,
+                          int texture_count, float aspect, luz_frame *frame);
+
+
+#endif

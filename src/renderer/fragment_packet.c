@@ -1,0 +1,785 @@
+/*
+ * fragment_packet.c: the fast fragment stage. The same job as fragment.c
+ * (shade every visible pixel once, from the visibility buffer), done for
+ * packets of consecutive pixels of a row: 4 with SSE2, 8 with AVX2, 16
+ * with AVX-512, as many as a register holds floats.
+ *
+ * In:  the visibility buffer, the set-up triangles, the frame.
+ * Out: the colour buffer, as fragment.c writes it: every pixel, the
+ *      background's included, in the framebuffer's channel order.
+ *
+ * fragment.c stays the reference: it reads as the equations do, one pixel
+ * at a time. This file computes the same equations, in the same order, on
+ * a packet at once:
+ *
+ *   - Structure of arrays. A packet holds each quantity (u, the position's
+ *     x, the normal's z, ...) of its pixels in one vector, a GCC / clang
+ *     vector extension (`vector_size`), so each operation below is one
+ *     SIMD instruction.
+ *   - Triangles. A packet's pixels may belong to different triangles, or to
+ *     none (the background). The packet is shaded once per triangle in it,
+ *     each pass with that triangle's planes and draw, and a lane mask keeps
+ *     the lanes that are the triangle's. Most packets hold one triangle.
+ *     The packet starts as the clear colour in every lane, so the lanes no
+ *     triangle claims are the background, and it is stored whole: colour
+ *     is not cleared before this pass, and one store of a full packet is
+ *     cheaper than picking out its background lanes.
+ *   - Uniforms. What is the same for every pixel (normalize(F),
+ *     normalize(-d), which terms are on, where the channel order puts red
+ *     and blue, ...) is worked out once per band, by the very operations
+ *     shade.h applies per pixel.
+ *   - Textures. Texel addresses, bilinear weights and blends are vectors;
+ *     the texel fetches are one load per lane (a "gather").
+ *   - Instruction sets. src/meson.build compiles this file once for the
+ *     build's target (baseline: SSE2 on x86-64; it also holds the
+ *     dispatcher at the end) and once each with -mavx2 and -mavx512*, and
+ *     luz_fragment_shade_rows_packet picks the widest the CPU has, so one
+ *     binary runs everywhere. The variants are separate compilations, not
+ *     target attributes on one function, because a vector must be as wide
+ *     as the registers: GCC 12 compiles 32-byte vector comparisons for SSE2
+ *     one element at a time, which made an 8-lane baseline no faster than
+ *     the reference.
+ *
+ * Agreement with the reference. Each lane performs the IEEE operations
+ * that fragment.c, texture.c and shade.h perform for its pixel, in the same
+ * order, and SIMD operations round exactly as scalar ones do; the build
+ * passes -ffp-contract=off (meson.build) so that neither path fuses a
+ * multiply and an add behind our back. So interpolation, texel addressing,
+ * filtering, lighting and the conversion to bytes give the reference's
+ * bits. The one exception is the logarithm of the level of detail, a
+ * polynomial here (log2_above_one) instead of libm's log2f: the two agree
+ * to an ulp or so, and trilinear filtering is continuous in lambda, so the
+ * colour moves by about 1e-7. tests/test_fragment_packet.c measures it.
+ * A pixel's colour depends on that pixel alone, never on where a packet,
+ * a band or a thread's share begins.
+ *
+ * What this file is not: a second set of equations. A change to the
+ * shading goes into shade.h (and fragment.c, texture.c) first, then here,
+ * and the test holds the two together.
+ */
+#include <math.h>
+#include <stdbool.h>
+#include <stdint.h>
+#include <string.h>
+
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
+
+#include "renderer/pipeline.h"
+#include "luz/shade.h"
+#include "luz/texture.h"
+
+/* The variant this compilation builds (see src/meson.build), and its
+ * lanes: as many floats as a register holds. */
+#if defined(LUZ_PACKET_AVX512)
+#if !defined(__AVX512F__) || !defined(__AVX512DQ__)
+#error "the AVX-512 variant is compiled with -mavx512f -mavx512dq ..."
+#endif
+#define LANES 16
+#define VARIANT_ROWS luz_fragment_packet_rows_avx512
+#elif defined(LUZ_PACKET_AVX2)
+#if !defined(__AVX2__)
+#error "the AVX2 variant is compiled with -mavx2 -mfma"
+#endif
+#define LANES 8
+#define VARIANT_ROWS luz_fragment_packet_rows_avx2
+#else
+#define LANES 4
+#define VARIANT_ROWS luz_fragment_packet_rows_baseline
+#define BASELINE_VARIANT 1
+#endif
+
+#define ALL_LANES ((1u << LANES) - 1u)
+
+/* The helpers are small and called from the packet loop alone: inlined,
+ * their vectors stay in registers. */
+#define INLINE static inline __attribute__((always_inline))
+
+typedef float vfloat __attribute__((vector_size(LANES * sizeof(float))));
+typedef int32_t vint __attribute__((vector_size(LANES * sizeof(int32_t))));
+typedef uint32_t vuint __attribute__((vector_size(LANES * sizeof(uint32_t))));
+
+typedef struct vvec3 {
+    vfloat x, y, z;
+} vvec3;
+
+/* ---- lane helpers ------------------------------------------------------ */
+
+/* A comparison gives, per lane, all ones (true) or all zeros (false). */
+INLINE vfloat select_float(vint mask, vfloat if_true, vfloat if_false)
+{
+    return (vfloat)(((vint)if_true & mask) | ((vint)if_false & ~mask));
+}
+
+INLINE vint select_int(vint mask, vint if_true, vint if_false)
+{
+    return (if_true & mask) | (if_false & ~mask);
+}
+
+/* One bit per lane whose mask is true (movmskps). */
+INLINE unsigned lane_bits(vint mask)
+{
+#if LANES == 16 && defined(__AVX512DQ__)
+    return (unsigned)_mm512_movepi32_mask((__m512i)mask);
+#elif LANES == 8 && defined(__AVX__)
+    return (unsigned)_mm256_movemask_ps((__m256)mask);
+#elif LANES == 4 && defined(__SSE2__)
+    return (unsigned)_mm_movemask_ps((__m128)mask);
+#else
+    unsigned bits = 0;
+    for (int i = 0; i < LANES; i++)
+        bits |= (unsigned)(mask[i] != 0) << i;
+    return bits;
+#endif
+}
+
+INLINE vfloat splat(float value)
+{
+    return value - (vfloat){0};   /* x - 0 is x, even for x = -0 */
+}
+
+INLINE vint splat_int(int32_t value)
+{
+    return (vint){0} + value;
+}
+
+INLINE vfloat to_float(vint value)
+{
+    return __builtin_convertvector(value, vfloat);
+}
+
+/* Truncation towards 0, as a C cast; every caller makes sure each lane is
+ * within int range first. */
+INLINE vint to_int(vfloat value)
+{
+    return __builtin_convertvector(value, vint);
+}
+
+/* sqrtps: correctly rounded, as sqrtf. */
+INLINE vfloat sqrt_lanes(vfloat a)
+{
+#if LANES == 16 && defined(__AVX512F__)
+    return (vfloat)_mm512_sqrt_ps((__m512)a);
+#elif LANES == 8 && defined(__AVX__)
+    return (vfloat)_mm256_sqrt_ps((__m256)a);
+#elif LANES == 4 && defined(__SSE2__)
+    return (vfloat)_mm_sqrt_ps((__m128)a);
+#else
+    vfloat root;
+    for (int i = 0; i < LANES; i++)
+        root[i] = sqrtf(a[i]);
+    return root;
+#endif
+}
+
+/* shade.h's max_float(a, 0): NaN gives 0. */
+INLINE vfloat max_zero(vfloat a)
+{
+    return select_float(a > 0.0f, a, splat(0.0f));
+}
+
+INLINE vfloat dot3(vvec3 a, vvec3 b)
+{
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+
+INLINE vfloat dot3_uniform(vvec3 a, luz_vec3 b)
+{
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+
+/* luz_vec3_normalize, which also hands back the length: the zero vector
+ * stays zero. */
+INLINE vvec3 normalize3(vvec3 a, vfloat *length_out)
+{
+    vfloat length = sqrt_lanes(dot3(a, a));
+    vfloat inverse = 1.0f / length;
+    vint positive = length > 0.0f;
+    *length_out = length;
+    return (vvec3){
+        select_float(positive, a.x * inverse, a.x),
+        select_float(positive, a.y * inverse, a.y),
+        select_float(positive, a.z * inverse, a.z),
+    };
+}
+
+/* ---- the uniforms of a band ------------------------------------------- */
+
+/* Where byte c of four bytes in memory lands in a uint32_t that reads or
+ * writes them at once: an RGBA8 texel's channel c, or byte c of a pixel of
+ * the framebuffer. */
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+#define CHANNEL_SHIFT(c) (24 - 8 * (c))
+#else
+#define CHANNEL_SHIFT(c) (8 * (c))
+#endif
+
+/* What every pixel of the band shares, worked out once, each with the
+ * operations shade.h applies per pixel, so that the bits are the same. */
+typedef struct packet_uniforms {
+    luz_vec3 eye;               /* E */
+    luz_vec3 point_position;
+    luz_vec3 spot_axis;         /* normalize(F) */
+    luz_vec3 to_sun;            /* normalize(-d) */
+    luz_vec3 ambient;           /* A.a * A.rgb */
+    luz_light diffuse, specular, point, spot, directional;
+    /* A term whose strength is 0 is exactly 0 (SCENE.md), and adding 0
+     * changes no sum: such terms are skipped. */
+    bool diffuse_on, specular_on, point_on, spot_on, directional_on;
+    bool shininess_whole;       /* luz_shade_power's repeated squaring */
+    unsigned shininess_exponent;
+    float shininess;
+    float spot_strength_squared;
+    float cos_inner, cos_outer, reach;
+    luz_filter filter;
+    /* The framebuffer's channel order, as the shifts that put red and blue
+     * into a pixel's uint32_t (CHANNEL_SHIFT), and the clear colour packed
+     * in it. */
+    unsigned red_shift, blue_shift;
+    uint32_t background;
+} packet_uniforms;
+
+static packet_uniforms packet_uniforms_of(const luz_uniforms *uniforms, luz_channel_order order)
+{
+    const luz_lights *lights = &uniforms->lights;
+    packet_uniforms u = {
+        .eye = uniforms->camera_position,
+        .point_position = uniforms->point_light_position,
+        .spot_axis = luz_vec3_normalize(uniforms->camera_front),
+        .to_sun = luz_vec3_normalize(luz_vec3_scale(uniforms->directional_direction, -1.0f)),
+        .ambient = luz_shade_ambient(&lights->ambient),
+        .diffuse = lights->diffuse,
+        .specular = lights->specular,
+        .point = lights->point,
+        .spot = lights->spot,
+        .directional = lights->directional,
+        .diffuse_on = lights->diffuse.strength != 0.0f,
+        .specular_on = lights->specular.strength != 0.0f,
+        .point_on = lights->point.strength != 0.0f,
+        .spot_on = lights->spot.strength != 0.0f,
+        .directional_on = lights->directional.strength != 0.0f,
+        .shininess = lights->shininess,
+        .spot_strength_squared = lights->spot.strength * lights->spot.strength,
+        .cos_inner = uniforms->spot_cos_inner,
+        .cos_outer = uniforms->spot_cos_outer,
+        .reach = lights->spot_reach,
+        .filter = uniforms->filter,
+    };
+    const float s = lights->shininess;
+    u.shininess_whole = luz_shade_power_is_whole(s);
+    u.shininess_exponent = u.shininess_whole ? (unsigned)s : 0;
+    const luz_pixel_layout layout = luz_pixel_layout_of(order);
+    u.red_shift = CHANNEL_SHIFT(layout.red);
+    u.blue_shift = CHANNEL_SHIFT(layout.blue);
+    uint8_t background[4];
+    luz_pixel_write(background, layout, uniforms->clear_colour);
+    memcpy(&u.background, background, sizeof u.background);
+    return u;
+}
+
+/* ---- the fragment shader, a packet at a time --------------------------- */
+
+/* luz_shade_power: repeated squaring for a whole exponent, else powf. */
+INLINE vfloat power(vfloat x, const packet_uniforms *u)
+{
+    if (u->shininess_whole) {
+        vfloat result = splat(1.0f), square = x;
+        for (unsigned e = u->shininess_exponent; e != 0; e >>= 1) {
+            if (e & 1u) result *= square;
+            square *= square;
+        }
+        return result;
+    }
+    vfloat result;
+    for (int i = 0; i < LANES; i++)
+        result[i] = powf(x[i], u->shininess);
+    return result;
+}
+
+INLINE vvec3 add_light(vvec3 sum, luz_vec3 colour, vfloat factor)
+{
+    return (vvec3){sum.x + colour.x * factor, sum.y + colour.y * factor,
+                   sum.z + colour.z * factor};
+}
+
+/* luz_shade_lighting: the six terms, summed in shade.h's order. */
+INLINE vvec3 shade_lighting(const packet_uniforms *u, vvec3 position, vvec3 normal)
+{
+    vfloat unused_length;
+    const vvec3 n = normalize3(normal, &unused_length);
+
+    /* The headlight's vector, L = V = normalize(E - P); its length is
+     * also the spot's distance, and P - E is -(E - P) exactly, so the
+     * spot's ray is -L and its cosine -dot(L, F). */
+    vfloat eye_distance;
+    const vvec3 to_eye = normalize3((vvec3){u->eye.x - position.x, u->eye.y - position.y,
+                                            u->eye.z - position.z},
+                                    &eye_distance);
+    const vfloat n_dot_l = dot3(n, to_eye);
+
+    vvec3 light = {splat(u->ambient.x), splat(u->ambient.y), splat(u->ambient.z)};
+    if (u->diffuse_on)
+        light = add_light(light, u->diffuse.colour, max_zero(n_dot_l) * u->diffuse.strength);
+    if (u->specular_on) {
+        /* reflect(-L, N) = -L + 2 dot(N, L) N */
+        const vfloat twice = 2.0f * n_dot_l;
+        const vvec3 reflected = {n.x * twice - to_eye.x, n.y * twice - to_eye.y,
+                                 n.z * twice - to_eye.z};
+        const vfloat highlight = power(max_zero(dot3(to_eye, reflected)), u);
+        light = add_light(light, u->specular.colour, u->specular.strength * highlight);
+    }
+    if (u->point_on) {
+        vfloat unused;
+        const vvec3 to_point = normalize3(
+            (vvec3){u->point_position.x - position.x, u->point_position.y - position.y,
+                    u->point_position.z - position.z},
+            &unused);
+        light = add_light(light, u->point.colour, max_zero(dot3(n, to_point)) * u->point.strength);
+    }
+    if (u->spot_on) {
+        const vvec3 ray = {-to_eye.x, -to_eye.y, -to_eye.z};
+        const vfloat c = dot3_uniform(ray, u->spot_axis);
+        const vfloat s = sqrt_lanes((c - u->cos_outer) / (u->cos_inner - u->cos_outer));
+        const vfloat smooth = s * s * (3.0f - 2.0f * s);
+        const vfloat f_direction =
+            select_float(c > u->cos_inner, splat(1.0f),
+                         select_float(c > u->cos_outer, smooth, splat(0.0f)));
+        const vfloat distance = eye_distance / u->reach;
+        const vfloat distance2 = distance * distance;
+        const vfloat window = max_zero(1.0f - distance2 * distance2);
+        const vfloat f_distance = window * window * u->spot_strength_squared / (distance2 + 1.0f);
+        light = add_light(light, u->spot.colour, f_direction * f_distance);
+    }
+    if (u->directional_on)
+        light = add_light(light, u->directional.colour,
+                          max_zero(dot3_uniform(n, u->to_sun)) * u->directional.strength);
+    return light;
+}
+
+/* ---- textures ------------------------------------------------------------ */
+
+/* One texel per lane; index counts texels from the start of level 0. */
+INLINE vuint gather(const uint8_t *texels, vint index)
+{
+#if LANES == 16 && defined(__AVX512F__)
+    return (vuint)_mm512_i32gather_epi32((__m512i)index, (const void *)texels, 4);
+#elif LANES == 8 && defined(__AVX2__)
+    return (vuint)_mm256_i32gather_epi32((const int *)(const void *)texels, (__m256i)index, 4);
+#else
+    vuint out;
+    for (int i = 0; i < LANES; i++) {
+        uint32_t texel;
+        memcpy(&texel, texels + (size_t)(uint32_t)index[i] * 4, sizeof texel);
+        out[i] = texel;
+    }
+    return out;
+#endif
+}
+
+/* A hint, not a load: the texel that the packet two steps further along
+ * the row will probably want, extrapolated from this packet's first and
+ * last lanes, so that its cache line is on its way while this one is
+ * shaded. Texel fetches that miss the cache are what the packets wait on
+ * most (measured: some 20% of the time on the default scene; the hint wins
+ * back about a third of it). */
+INLINE void prefetch_ahead(const uint8_t *texels, vint index, int32_t end)
+{
+    const int32_t ahead = 3 * index[LANES - 1] - 2 * index[0];
+    if (ahead >= 0 && ahead < end) __builtin_prefetch(texels + (size_t)ahead * 4);
+}
+
+INLINE vfloat channel(vuint texels, int c)
+{
+    return to_float((vint)((texels >> CHANNEL_SHIFT(c)) & 0xffu));
+}
+
+/* luz_texture_repeat (pipeline.h): the fractional part, NaN and |c| >= 2^23 giving 0. */
+INLINE vfloat repeat(vfloat coordinate)
+{
+    const vint magnitude = (vint)coordinate & 0x7fffffff;
+    const vint finite = (vfloat)magnitude < 8388608.0f;
+    coordinate = select_float(finite, coordinate, splat(0.0f));
+    vfloat whole = to_float(to_int(coordinate));
+    whole = select_float(whole > coordinate, whole - 1.0f, whole);
+    const vfloat fraction = coordinate - whole;
+    return select_float(fraction < 1.0f, fraction, splat(0.0f));
+}
+
+/* A mip level per lane: its size and where its texels start. */
+typedef struct lane_level {
+    vint width, height, first_texel;
+    vfloat width_float, height_float;
+} lane_level;
+
+INLINE int first_texel_of(const luz_texture *texture, int level)
+{
+    return (int)((texture->levels[level].texels - texture->levels[0].texels) / 4);
+}
+
+/* The levels of the lanes: one lookup when they all agree (nearly always,
+ * as lambda changes slowly across a packet), else one per lane. */
+INLINE lane_level level_of(const luz_texture *texture, vint level)
+{
+    lane_level out;
+    if (lane_bits(level == level[0]) == ALL_LANES) {
+        const luz_texture_level *l = &texture->levels[level[0]];
+        out.width = splat_int(l->width);
+        out.height = splat_int(l->height);
+        out.first_texel = splat_int(first_texel_of(texture, level[0]));
+    } else {
+        int width[LANES], height[LANES], first_texel[LANES];
+        for (int i = 0; i < LANES; i++) {
+            const luz_texture_level *l = &texture->levels[level[i]];
+            width[i] = l->width;
+            height[i] = l->height;
+            first_texel[i] = first_texel_of(texture, level[i]);
+        }
+        memcpy(&out.width, width, sizeof out.width);
+        memcpy(&out.height, height, sizeof out.height);
+        memcpy(&out.first_texel, first_texel, sizeof out.first_texel);
+    }
+    out.width_float = to_float(out.width);
+    out.height_float = to_float(out.height);
+    return out;
+}
+
+/* texture.c's bilinear_axis: the texels whose centres surround the
+ * coordinate, wrapped, and the weight of the second. */
+INLINE void bilinear_axis(vfloat coordinate, vint size, vfloat size_float, vint *first,
+                                 vint *second, vfloat *weight)
+{
+    const vfloat s = repeat(coordinate) * size_float + 0.5f;
+    vint i = to_int(s);
+    *weight = s - to_float(i);
+    i -= 1;
+    *first = select_int(i < 0, size - 1, i);
+    *second = select_int(i + 1 < size, i + 1, splat_int(0));
+}
+
+INLINE vvec3 sample_bilinear(const luz_texture *texture, const lane_level *level,
+                                    vfloat u, vfloat v)
+{
+    vint x0, x1, y0, y1;
+    vfloat fx, fy;
+    bilinear_axis(u, level->width, level->width_float, &x0, &x1, &fx);
+    bilinear_axis(v, level->height, level->height_float, &y0, &y1, &fy);
+
+    const uint8_t *texels = texture->levels[0].texels;
+    const vint row0 = level->first_texel + y0 * level->width;
+    const vint row1 = level->first_texel + y1 * level->width;
+    const int32_t level_end = level->first_texel[0] + level->width[0] * level->height[0];
+    prefetch_ahead(texels, row0 + x0, level_end);
+    prefetch_ahead(texels, row1 + x0, level_end);
+    const vuint a = gather(texels, row0 + x0), b = gather(texels, row0 + x1);
+    const vuint c = gather(texels, row1 + x0), d = gather(texels, row1 + x1);
+
+    const float scale = 1.0f / 255.0f;
+    const vfloat wa = (1.0f - fx) * (1.0f - fy) * scale, wb = fx * (1.0f - fy) * scale;
+    const vfloat wc = (1.0f - fx) * fy * scale, wd = fx * fy * scale;
+    return (vvec3){
+        wa * channel(a, 0) + wb * channel(b, 0) + wc * channel(c, 0) + wd * channel(d, 0),
+        wa * channel(a, 1) + wb * channel(b, 1) + wc * channel(c, 1) + wd * channel(d, 1),
+        wa * channel(a, 2) + wb * channel(b, 2) + wc * channel(c, 2) + wd * channel(d, 2),
+    };
+}
+
+INLINE vvec3 sample_nearest(const luz_texture *texture, vfloat u, vfloat v)
+{
+    const luz_texture_level *level = &texture->levels[0];
+    vint x = to_int(repeat(u) * (float)level->width);
+    vint y = to_int(repeat(v) * (float)level->height);
+    x = select_int(x >= level->width, splat_int(level->width - 1), x);
+    y = select_int(y >= level->height, splat_int(level->height - 1), y);
+    const vuint t = gather(texture->levels[0].texels, y * level->width + x);
+    const float scale = 1.0f / 255.0f;
+    return (vvec3){channel(t, 0) * scale, channel(t, 1) * scale, channel(t, 2) * scale};
+}
+
+/* log2(x) for x > 1, +inf included (128). x = 2^e m with m in
+ * [sqrt(1/2), sqrt(2)), and log2(m) = 2 atanh(s) / ln 2 with
+ * s = (m - 1) / (m + 1), |s| < 0.172: the series to s^9 leaves an error
+ * under 1e-9, below float rounding. */
+INLINE vfloat log2_above_one(vfloat x)
+{
+    const vint bits = (vint)x;
+    vint exponent = ((bits >> 23) & 0xff) - 127;
+    vfloat m = (vfloat)((bits & 0x007fffff) | 0x3f800000);   /* [1, 2) */
+    const vint high = m > 1.41421356f;
+    m = select_float(high, m * 0.5f, m);
+    exponent -= high;                                          /* true is -1 */
+    const vfloat s = (m - 1.0f) / (m + 1.0f);
+    const vfloat s2 = s * s;
+    const float c1 = 2.88539008f;            /* 2 / ln 2 */
+    const float c3 = c1 / 3.0f, c5 = c1 / 5.0f, c7 = c1 / 7.0f, c9 = c1 / 9.0f;
+    const vfloat series = s * (c1 + s2 * (c3 + s2 * (c5 + s2 * (c7 + s2 * c9))));
+    return to_float(exponent) + series;
+}
+
+/* luz_texture_level_of_detail, per lane. */
+INLINE vfloat level_of_detail(const luz_texture *texture, vfloat du_dx, vfloat dv_dx,
+                                     vfloat du_dy, vfloat dv_dy)
+{
+    const float width = (float)texture->levels[0].width;
+    const float height = (float)texture->levels[0].height;
+    const vfloat x_u = du_dx * width, x_v = dv_dx * height;
+    const vfloat y_u = du_dy * width, y_v = dv_dy * height;
+    const vfloat x_squared = x_u * x_u + x_v * x_v;
+    const vfloat y_squared = y_u * y_u + y_v * y_v;
+    const vfloat rho_squared = select_float(x_squared > y_squared, x_squared, y_squared);
+    const vint minified = rho_squared > 1.0f;
+    if (lane_bits(minified) == 0) return splat(0.0f);
+    return select_float(minified, 0.5f * log2_above_one(rho_squared), splat(0.0f));
+}
+
+/* luz_texture_sample_trilinear, per lane; `mine` marks the lanes that
+ * count (the others may hold anything). */
+INLINE vvec3 sample_trilinear(const luz_texture *texture, vfloat u, vfloat v,
+                                     vfloat lambda, vint mine)
+{
+    const int last = texture->level_count - 1;
+    const vint positive = lambda > 0.0f;
+    /* lambda <= 64 (a float's log2 over 2), so the cast is safe. */
+    const vfloat level_floor = to_float(to_int(select_float(positive, lambda, splat(0.0f))));
+    const vint beyond_last = level_floor >= (float)last;
+    const vint blended = positive & ~beyond_last & mine;
+    vint lower = select_int(beyond_last, splat_int(last), to_int(level_floor));
+    /* Lanes that are not ours follow a lane that is, so that a packet
+     * of one level needs one lookup. */
+    int first_mine = __builtin_ctz(lane_bits(mine));
+    lower = select_int(mine, lower, splat_int(lower[first_mine]));
+
+    const lane_level fine_level = level_of(texture, lower);
+    const vvec3 fine = sample_bilinear(texture, &fine_level, u, v);
+    if (lane_bits(blended) == 0) return fine;
+
+    const lane_level coarse_level = level_of(texture, select_int(lower < last, lower + 1, lower));
+    const vvec3 coarse = sample_bilinear(texture, &coarse_level, u, v);
+    const vfloat blend = lambda - level_floor;
+    const vfloat keep = 1.0f - blend;
+    return (vvec3){
+        select_float(blended, fine.x * keep + coarse.x * blend, fine.x),
+        select_float(blended, fine.y * keep + coarse.y * blend, fine.y),
+        select_float(blended, fine.z * keep + coarse.z * blend, fine.z),
+    };
+}
+
+/* ---- a packet ---------------------------------------------------------- */
+
+INLINE vfloat plane_at(luz_plane plane, vfloat dx, float dy)
+{
+    return plane.value + plane.dx * dx + plane.dy * dy;
+}
+
+/* SCENE.md's colour output, luz_colour_to_byte per lane. */
+INLINE vuint to_byte(vfloat c)
+{
+    const vint above = c > 0.0f, below = c < 1.0f;
+    const vint inside = above & below;
+    const vint byte = to_int(select_float(inside, c, splat(0.0f)) * 255.0f + 0.5f);
+    return (vuint)select_int(inside, byte, above & 255);
+}
+
+/* The lanes' pixels, four bytes each in the framebuffer's channel order.
+ * The order only moves red and blue, so it costs no branch: their shifts
+ * take counts chosen once per band instead of constants, which is about a
+ * micro-op more per packet, lost among the hundreds of shading. */
+INLINE vuint pack_pixels(vvec3 colour, const packet_uniforms *u)
+{
+    return to_byte(colour.x) << u->red_shift | to_byte(colour.y) << CHANNEL_SHIFT(1) |
+           to_byte(colour.z) << u->blue_shift | 255u << CHANNEL_SHIFT(3);
+}
+
+/* The texel T of the lanes, as luz_texture_sample with fragment.c's level
+ * of detail. */
+INLINE vvec3 sample_texture(const packet_uniforms *u, const luz_texture *texture,
+                            const luz_triangle *triangle, vfloat dx, float dy, vfloat w,
+                            vint mine)
+{
+    const luz_plane u_plane = triangle->varyings[LUZ_VARYING_UV + 0];
+    const luz_plane v_plane = triangle->varyings[LUZ_VARYING_UV + 1];
+    const vfloat tu = plane_at(u_plane, dx, dy) * w;
+    const vfloat tv = plane_at(v_plane, dx, dy) * w;
+    if (u->filter == LUZ_FILTER_NEAREST)
+        return sample_nearest(texture, tu, tv);
+    if (u->filter != LUZ_FILTER_TRILINEAR) {   /* bilinear, as luz_texture_sample */
+        const lane_level level = level_of(texture, splat_int(0));
+        return sample_bilinear(texture, &level, tu, tv);
+    }
+    /* du/dx = (d(u/w)/dx - u d(1/w)/dx) / (1/w), and so on. */
+    const luz_plane inverse_w = triangle->inverse_w;
+    const vfloat du_dx = (u_plane.dx - tu * inverse_w.dx) * w;
+    const vfloat dv_dx = (v_plane.dx - tv * inverse_w.dx) * w;
+    const vfloat du_dy = (u_plane.dy - tu * inverse_w.dy) * w;
+    const vfloat dv_dy = (v_plane.dy - tv * inverse_w.dy) * w;
+    const vfloat lambda = level_of_detail(texture, du_dx, dv_dx, du_dy, dv_dy);
+    return sample_trilinear(texture, tu, tv, lambda, mine);
+}
+
+/* The packet's pixels shaded as the triangle's, as fragment.c shades one
+ * pixel: interpolate, sample, light. centre_x holds the lanes' pixel
+ * centres x + 0.5; `mine` marks the lanes that are the triangle's. */
+INLINE vuint shade_triangle(const packet_uniforms *u, const luz_frame *frame,
+                            const luz_triangle *triangle, vfloat centre_x, float centre_y,
+                            vint mine)
+{
+    const luz_draw *draw = &frame->draws[triangle->draw_index];
+    if (draw->unlit)
+        return pack_pixels((vvec3){splat(draw->colour.x), splat(draw->colour.y),
+                                   splat(draw->colour.z)},
+                           u);
+
+    /* luz_fragment_interpolate: a = (a/w)(x, y) / (1/w)(x, y). */
+    const vfloat dx = centre_x - triangle->reference_x;
+    const float dy = centre_y - triangle->reference_y;
+    const vfloat w = 1.0f / plane_at(triangle->inverse_w, dx, dy);
+
+    const luz_plane *varying = triangle->varyings;
+    const vvec3 position = {
+        plane_at(varying[LUZ_VARYING_POSITION + 0], dx, dy) * w,
+        plane_at(varying[LUZ_VARYING_POSITION + 1], dx, dy) * w,
+        plane_at(varying[LUZ_VARYING_POSITION + 2], dx, dy) * w,
+    };
+    const vvec3 normal = {
+        plane_at(varying[LUZ_VARYING_NORMAL + 0], dx, dy) * w,
+        plane_at(varying[LUZ_VARYING_NORMAL + 1], dx, dy) * w,
+        plane_at(varying[LUZ_VARYING_NORMAL + 2], dx, dy) * w,
+    };
+    const vvec3 light = shade_lighting(u, position, normal);
+    /* The texel; with no texture T = 1, and c * 1 = c, so it is skipped. */
+    const luz_texture *texture = draw->texture;
+    vvec3 texel = {0};
+    if (texture) texel = sample_texture(u, texture, triangle, dx, dy, w, mine);
+
+    /* colour = light * C * T */
+    vvec3 colour = {light.x * draw->colour.x, light.y * draw->colour.y,
+                    light.z * draw->colour.z};
+    if (texture) colour = (vvec3){colour.x * texel.x, colour.y * texel.y, colour.z * texel.z};
+    return pack_pixels(colour, u);
+}
+
+/* ---- the band ------------------------------------------------------------ */
+
+uint64_t VARIANT_ROWS(const luz_frame *frame, const luz_triangle *const *by_id,
+                      luz_framebuffer *framebuffer, int first_row, int end_row);
+
+/* The packet loop of this variant. */
+uint64_t VARIANT_ROWS(const luz_frame *frame, const luz_triangle *const *by_id,
+                      luz_framebuffer *framebuffer, int first_row, int end_row)
+{
+    const packet_uniforms u = packet_uniforms_of(&frame->uniforms, framebuffer->channel_order);
+    const vuint background = (vuint){0} + u.background;
+    const int width = framebuffer->width;
+    vfloat lane_x;
+    for (int i = 0; i < LANES; i++)
+        lane_x[i] = (float)i;
+    uint64_t shaded = 0;
+
+    for (int y = first_row; y < end_row; y++) {
+        const uint32_t *visibility_row = framebuffer->visibility + (size_t)y * width;
+        uint8_t *colour_row = framebuffer->colour + (size_t)y * width * 4;
+        const float centre_y = (float)y + 0.5f;
+        for (int x = 0; x < width; x += LANES) {
+            /* The row's last packet may be short: its missing lanes read
+             * as background. */
+            const int count = width - x < LANES ? width - x : LANES;
+            vuint ids = {0};
+            if (count == LANES)
+                memcpy(&ids, visibility_row + x, sizeof ids);
+            else
+                for (int i = 0; i < count; i++)
+                    ids[i] = visibility_row[x + i];
+            const unsigned covered = lane_bits((vint)(ids != 0u));
+            uint8_t *out = colour_row + (size_t)x * 4;
+            /* Every lane starts as the background; the triangles' passes
+             * overwrite theirs. */
+            vuint pixels = background;
+            if (covered != 0) {
+                shaded += (uint64_t)__builtin_popcount(covered);
+                /* Pixel centres as fragment.c computes them: (float)x + 0.5. */
+                const vfloat centre_x = (lane_x + (float)x) + 0.5f;
+                for (unsigned pending = covered; pending != 0;) {
+                    const uint32_t id = ids[__builtin_ctz(pending)];
+                    const vint mine = (vint)(ids == id);
+                    pending &= ~lane_bits(mine);
+                    const vuint shade = shade_triangle(&u, frame, by_id[id], centre_x,
+                                                       centre_y, mine);
+                    pixels = (vuint)select_int(mine, (vint)shade, (vint)pixels);
+                }
+            }
+            /* Lanes are in memory order, so a short packet's first count
+             * lanes are its pixels. */
+            if (count == LANES)
+                memcpy(out, &pixels, sizeof pixels);
+            else
+                memcpy(out, &pixels, (size_t)count * 4);
+        }
+    }
+    return shaded;
+}
+
+/* ---- run-time dispatch (in the baseline variant only) ------------------ */
+
+#if defined(BASELINE_VARIANT)
+
+#if defined(LUZ_PACKET_HAVE_AVX512)
+uint64_t luz_fragment_packet_rows_avx512(const luz_frame *frame, const luz_triangle *const *by_id,
+                                       luz_framebuffer *framebuffer, int first_row,
+                                       int end_row);
+#endif
+#if defined(LUZ_PACKET_HAVE_AVX2)
+uint64_t luz_fragment_packet_rows_avx2(const luz_frame *frame, const luz_triangle *const *by_id,
+                                       luz_framebuffer *framebuffer, int first_row,
+                                       int end_row);
+#endif
+
+bool luz_packet_isa_supported(luz_packet_isa isa)
+{
+    switch (isa) {
+    case LUZ_PACKET_ISA_BEST:
+    case LUZ_PACKET_ISA_BASELINE:
+        return true;
+    case LUZ_PACKET_ISA_AVX512:
+#if defined(LUZ_PACKET_HAVE_AVX512)
+        __builtin_cpu_init();
+        return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+               __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq");
+#else
+        return false;
+#endif
+    case LUZ_PACKET_ISA_AVX2:
+#if defined(LUZ_PACKET_HAVE_AVX2)
+        __builtin_cpu_init();
+        return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+#else
+        return false;
+#endif
+    }
+    return false;
+}
+
+uint64_t luz_fragment_shade_rows_packet(luz_packet_isa isa, const luz_frame *frame,
+                                        const luz_triangle *const *by_id,
+                                        luz_framebuffer *framebuffer, int first_row,
+                                        int end_row)
+{
+    /* The widest variant asked for that the build and the CPU have. */
+    if (isa == LUZ_PACKET_ISA_BEST) isa = LUZ_PACKET_ISA_AVX512;
+    if (isa == LUZ_PACKET_ISA_AVX512 && !luz_packet_isa_supported(isa)) isa = LUZ_PACKET_ISA_AVX2;
+    if (isa == LUZ_PACKET_ISA_AVX2 && !luz_packet_isa_supported(isa)) isa = LUZ_PACKET_ISA_BASELINE;
+
+    switch (isa) {
+#if defined(LUZ_PACKET_HAVE_AVX512)
+    case LUZ_PACKET_ISA_AVX512:
+        return luz_fragment_packet_rows_avx512(frame, by_id, framebuffer, first_row, end_row);
+#endif
+#if defined(LUZ_PACKET_HAVE_AVX2)
+    case LUZ_PACKET_ISA_AVX2:
+        return luz_fragment_packet_rows_avx2(frame, by_id, framebuffer, first_row, end_row);
+#endif
+    default:
+        return luz_fragment_packet_rows_baseline(frame, by_id, framebuffer, first_row, end_row);
+    }
+}
+
+#endif

@@ -1,0 +1,269 @@
+/*
+ * pipeline.h: the stages of luz's pipeline and the plain structs that flow
+ * between them. Private to the library (and its tests).
+ *
+ *   luz_draw (mesh + model)                              scene.h
+ *     -> vertex.c    luz_clip_vertex per mesh vertex     clip space + varyings
+ *     -> clip.c      luz_clip_polygon per triangle       inside the clip volume
+ *     -> setup.c     luz_triangle per fan triangle       fixed-point edges, planes
+ *     -> raster.c    depth + visibility per pixel        who is nearest
+ *     -> fragment.c  colour per visible pixel            interpolate, sample, shade
+ *                      (texture.c samples, shade.c lights)
+ *     or view.c      a picture of a stage (--view)       depth, normals, uv, ...
+ *
+ * frame.c runs them in that order, and bands.c spreads the work over
+ * threads. Each stage is a function of its inputs: no globals.
+ */
+#ifndef LUZ_PIPELINE_H
+#define LUZ_PIPELINE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "luz/framebuffer.h"
+#include "luz/frame.h"
+#include "luz/vecmath.h"
+
+/* ---- vertex stage ------------------------------------------------------ */
+
+/* The varyings: what is interpolated across a triangle for the fragment
+ * shader. World-space position and normal, and texture coordinates. */
+enum {
+    LUZ_VARYING_POSITION = 0,   /* x, y, z */
+    LUZ_VARYING_NORMAL = 3,     /* x, y, z */
+    LUZ_VARYING_UV = 6,         /* u, v */
+    LUZ_VARYING_COUNT = 8
+};
+
+typedef struct luz_clip_vertex {
+    luz_vec4 position;                       /* clip space */
+    float varyings[LUZ_VARYING_COUNT];
+} luz_clip_vertex;
+
+/* Transforms every vertex of draw->mesh: out[i] gets clip-space position
+ * view_projection * model * p and world-space varyings. */
+void luz_vertex_stage(const luz_draw *draw, luz_mat4 view_projection, luz_clip_vertex *out);
+
+/* ---- clipping ---------------------------------------------------------- */
+
+/* x and y are clipped to a guard band GUARD times wider than the viewport,
+ * which keeps window coordinates inside the range setup.c proves safe. */
+#define LUZ_CLIP_GUARD_BAND 4.0f
+#define LUZ_CLIP_PLANE_COUNT 6
+/* Each plane can add one vertex to a convex polygon. */
+#define LUZ_CLIP_MAX_VERTICES (3 + LUZ_CLIP_PLANE_COUNT)
+
+typedef struct luz_clip_polygon {
+    int vertex_count;
+    luz_clip_vertex vertices[LUZ_CLIP_MAX_VERTICES];
+} luz_clip_polygon;
+
+/* One bit per clip plane the point is outside of (0: inside them all). */
+unsigned luz_clip_outcode(luz_vec4 position);
+
+/* Sutherland-Hodgman: clips triangle (a, b, c) against the near, far and
+ * guard-band planes. Returns the number of vertices of the result (0 if
+ * nothing is left); the polygon is convex and keeps the winding. */
+int luz_clip_triangle(const luz_clip_vertex *a, const luz_clip_vertex *b,
+                      const luz_clip_vertex *c, luz_clip_polygon *out);
+
+/* ---- triangle setup ---------------------------------------------------- */
+
+/* Window coordinates are snapped to 1/256 of a pixel (8 bits of sub-pixel
+ * precision, as llvmpipe). */
+#define LUZ_SUBPIXEL_BITS 8
+#define LUZ_SUBPIXEL_ONE (1 << LUZ_SUBPIXEL_BITS)
+
+/* floor(a / b) and ceil(a / b) for b > 0, exactly; C's "/" truncates
+ * towards 0, which is wrong for negative a. Setup and raster use them to
+ * turn fixed-point positions into pixel ranges. */
+static inline int64_t luz_floor_divide(int64_t a, int64_t b)
+{
+    int64_t quotient = a / b;
+    return (a % b != 0 && a < 0) ? quotient - 1 : quotient;
+}
+
+static inline int64_t luz_ceil_divide(int64_t a, int64_t b)
+{
+    return -luz_floor_divide(-a, b);
+}
+
+/* An edge function E(X, Y) = a X + b Y + c in fixed-point units, positive
+ * inside; the top-left rule is folded into c, so a sample is covered by
+ * the edge exactly when E >= 0. */
+typedef struct luz_edge {
+    int64_t a, b, c;
+} luz_edge;
+
+/* A quantity that varies linearly across the screen: its value at the
+ * triangle's reference point (vertex 0) and its screen-space gradient. */
+typedef struct luz_plane {
+    float value, dx, dy;
+} luz_plane;
+
+typedef struct luz_triangle {
+    int min_x, min_y, max_x, max_y;  /* pixels that may be covered, inclusive */
+    luz_edge edges[3];
+    float reference_x, reference_y;  /* vertex 0 in window coordinates */
+    luz_plane depth;                 /* window depth, linear on the screen */
+    luz_plane inverse_w;             /* 1/w, linear on the screen */
+    luz_plane varyings[LUZ_VARYING_COUNT];  /* varying/w, linear on the screen */
+    uint32_t draw_index;
+} luz_triangle;
+
+typedef enum luz_setup_result {
+    LUZ_SETUP_VISIBLE,
+    LUZ_SETUP_CULLED,      /* back face or zero area */
+    LUZ_SETUP_OFFSCREEN,   /* covers no pixel centre of the viewport */
+} luz_setup_result;
+
+/* Projects, snaps and sets up triangle (v0, v1, v2) for a width x height
+ * viewport. With LUZ_INTERPOLATION_AFFINE the varying planes hold the
+ * varyings themselves and inverse_w is the constant 1 (the teaching
+ * toggle); the fragment stages read both kinds the same way. */
+luz_setup_result luz_setup_triangle(const luz_clip_vertex *v0, const luz_clip_vertex *v1,
+                                    const luz_clip_vertex *v2, int width, int height,
+                                    uint32_t draw_index, luz_interpolation interpolation,
+                                    luz_triangle *out);
+
+/* ---- rasterisation and depth test -------------------------------------- */
+
+/* Covers the pixel centres of rows [first_row, end_row) that lie inside the
+ * triangle; where a sample is nearer than the depth buffer (LESS), writes
+ * its depth and triangle_id into the visibility buffer. Returns the number
+ * of depth tests made. */
+uint64_t luz_raster_triangle(const luz_triangle *triangle, uint32_t triangle_id,
+                             luz_framebuffer *framebuffer, int first_row, int end_row);
+
+/* The same, and adds 1 to overdraw[y * width + x] for every depth test
+ * (the overdraw view); the plain function above does no counting. */
+uint64_t luz_raster_triangle_counting(const luz_triangle *triangle, uint32_t triangle_id,
+                                      luz_framebuffer *framebuffer, int first_row,
+                                      int end_row, uint32_t *overdraw);
+
+/* ---- fragment stage ---------------------------------------------------- */
+
+/* Where a colour's channels go in a pixel's four bytes: red and blue trade
+ * places between the two orders, green (byte 1) and alpha (byte 3) stay.
+ * Worked out once per band, not per pixel. */
+typedef struct luz_pixel_layout {
+    int red, blue;   /* byte offsets */
+} luz_pixel_layout;
+
+static inline luz_pixel_layout luz_pixel_layout_of(luz_channel_order order)
+{
+    return order == LUZ_CHANNELS_BGRA ? (luz_pixel_layout){2, 0} : (luz_pixel_layout){0, 2};
+}
+
+/* Writes colour, as luz_colour_to_byte rounds it, and alpha 255. */
+static inline void luz_pixel_write(uint8_t *pixel, luz_pixel_layout layout, luz_vec3 colour)
+{
+    pixel[layout.red] = luz_colour_to_byte(colour.x);
+    pixel[1] = luz_colour_to_byte(colour.y);
+    pixel[layout.blue] = luz_colour_to_byte(colour.z);
+    pixel[3] = 255;
+}
+
+/* Shades rows [first_row, end_row): each pixel whose visibility id is not 0
+ * gets its varyings interpolated perspective-correctly, its texel sampled
+ * and the fragment shader's colour; by_id[id] is the triangle with that id.
+ * Every other pixel, the background, gets the clear colour
+ * (frame->uniforms.clear_colour): colour is not cleared beforehand, so
+ * after this every byte of the rows' colour is written, in the
+ * framebuffer's channel order. Returns the number of pixels shaded (the
+ * background not counted). */
+uint64_t luz_fragment_shade_rows(const luz_frame *frame, const luz_triangle *const *by_id,
+                                 luz_framebuffer *framebuffer, int first_row, int end_row);
+
+/* The same stage, a packet of pixels at a time (fragment_packet.c): the
+ * same equations in the same order, as SIMD vectors, and the background
+ * written the same way. It agrees with luz_fragment_shade_rows to within
+ * rounding (the level of detail's logarithm is the one operation computed
+ * differently) and, like it, gives each pixel a colour that depends on
+ * nothing but that pixel.
+ *
+ * isa says which compiled variant runs: LUZ_PACKET_ISA_BEST the widest the
+ * CPU supports (what the renderer uses), the others for tests. A variant
+ * that the build or the CPU lacks falls back to the next narrower one. */
+typedef enum luz_packet_isa {
+    LUZ_PACKET_ISA_BEST,
+    LUZ_PACKET_ISA_BASELINE,   /* the build's target: SSE2 on x86-64, 4 lanes */
+    LUZ_PACKET_ISA_AVX2,       /* x86 AVX2 and FMA, 8 lanes */
+    LUZ_PACKET_ISA_AVX512,     /* x86 AVX-512 F, VL, BW and DQ, 16 lanes */
+} luz_packet_isa;
+
+/* Whether this build has the variant and this CPU can run it. */
+bool luz_packet_isa_supported(luz_packet_isa isa);
+uint64_t luz_fragment_shade_rows_packet(luz_packet_isa isa, const luz_frame *frame,
+                                        const luz_triangle *const *by_id,
+                                        luz_framebuffer *framebuffer, int first_row,
+                                        int end_row);
+
+/* The varyings and texture-coordinate derivatives at a pixel centre. */
+typedef struct luz_fragment {
+    luz_vec3 position;
+    luz_vec3 normal;
+    luz_vec2 uv;
+    float du_dx, dv_dx, du_dy, dv_dy;
+    float depth;
+} luz_fragment;
+
+void luz_fragment_interpolate(const luz_triangle *triangle, int x, int y, luz_fragment *out);
+
+/* ---- texture coordinates (texture.c) ------------------------------------ */
+
+/* Wrap mode REPEAT: the fractional part of a texture coordinate, in
+ * [0, 1). A float of magnitude 2^23 or more has no fractional part, and
+ * NaN samples texel 0: both give 0. Inline, for texture.c's samplers and
+ * view.c's uv picture. */
+static inline float luz_texture_repeat(float coordinate)
+{
+    if (!(coordinate < 8388608.0f && coordinate > -8388608.0f)) return 0.0f;
+    float whole = (float)(int)coordinate;           /* truncates towards 0 */
+    if (whole > coordinate) whole -= 1.0f;          /* now floor */
+    float fraction = coordinate - whole;
+    return fraction < 1.0f ? fraction : 0.0f;       /* -1e-9 - (-1) rounds to 1 */
+}
+
+/* ---- views (view.c) ----------------------------------------------------- */
+
+/* Colours rows [first_row, end_row) as frame->uniforms.show asks (see
+ * luz/view.h), from what the raster stage left there: the visibility and
+ * depth buffers, and overdraw (depth tests per pixel, counted only for the
+ * overdraw view; NULL otherwise). worker_index is the thread drawing the
+ * band (the bands view). The colour view is fragment.c's image. Like the
+ * fragment stage, it writes every pixel of the rows, the background too,
+ * in the framebuffer's channel order. Returns the number of visible
+ * pixels. */
+uint64_t luz_view_shade_rows(const luz_frame *frame, const luz_triangle *const *by_id,
+                             luz_framebuffer *framebuffer, int first_row, int end_row,
+                             const uint32_t *overdraw, int worker_index);
+
+/* ---- the renderer (frame.c) --------------------------------------------- */
+
+struct luz_renderer;
+
+/* For tests: the instruction set of the renderer's fast fragment path
+ * (LUZ_PACKET_ISA_BEST unless set). */
+void luz_renderer_set_packet_isa(struct luz_renderer *renderer, luz_packet_isa isa);
+
+/* ---- threads ----------------------------------------------------------- */
+
+typedef struct luz_thread_pool luz_thread_pool;
+
+/* job(context, job_index, worker_index) for every job_index in
+ * [0, job_count); worker_index < the pool's thread count says which thread
+ * runs it (0 is the caller). */
+typedef void luz_job_function(void *context, int job_index, int worker_index);
+
+/* thread_count threads in all, the caller's included (so thread_count - 1
+ * workers are started); 1 runs every job on the caller's thread. */
+luz_thread_pool *luz_thread_pool_create(int thread_count);
+void luz_thread_pool_destroy(luz_thread_pool *pool);
+int luz_thread_pool_thread_count(const luz_thread_pool *pool);
+/* Runs the jobs and returns when all are done. */
+void luz_thread_pool_run(luz_thread_pool *pool, int job_count, luz_job_function *job,
+                         void *context);
+
+#endif

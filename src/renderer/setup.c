@@ -1,0 +1,192 @@
+/*
+ * setup.c: triangle setup, done once per triangle so that the per-pixel
+ * loops only add and compare.
+ *
+ * In:  three clip-space vertices (already clipped, so w > 0).
+ * Out: a luz_triangle: the pixel bounding box, three fixed-point edge
+ *      functions with the fill rule folded in, and screen-space planes for
+ *      depth, 1/w and every varying/w (for affine interpolation: 1 and
+ *      every varying).
+ *
+ * Steps, as in OpenGL 4.6 section 13.8 (coordinate transformations) and
+ * Fabian Giesen's "Triangle rasterization in practice":
+ *
+ * 1. Perspective divide and viewport (SCENE.md):
+ *      x_win = (x_ndc + 1) / 2 * W,  y_win = (1 - y_ndc) / 2 * H,
+ *      depth = (z_ndc + 1) / 2.   Row 0 is on top, so y points down.
+ * 2. Snap x_win, y_win to 1/256 pixel (8 sub-pixel bits). Coverage is then
+ *    decided in exact integer arithmetic: no epsilon, no cracks.
+ * 3. Cull: the doubled signed area in window coordinates is positive for a
+ *    triangle that is counter-clockwise in NDC (a front face; the y flip of
+ *    the viewport turns the orientation of the coordinates around, not
+ *    what the viewer sees). Back faces and zero-area triangles go.
+ * 4. Edge functions. For the edge from vertex i to vertex j,
+ *      E(X, Y) = (Yj - Yi)(X - Xi) - (Xj - Xi)(Y - Yi)
+ *    is positive on the inside of a front face. A sample exactly on an
+ *    edge (E = 0) belongs to the triangle only if the edge is a top edge
+ *    (horizontal, the triangle below it: it runs right to left, dx < 0,
+ *    dy = 0) or a left edge (it runs downwards, dy > 0). Subtracting 1 from
+ *    the other edges' constant makes "covered" simply E >= 0.
+ * 5. Planes: depth is affine in window coordinates, and so are 1/w and
+ *    every varying divided by w; their gradients are solved once here from
+ *    the exact (unsnapped) vertex positions. Dividing the interpolated
+ *    varying/w by the interpolated 1/w gives the perspective-correct
+ *    value (Heckbert and Moreton, "Interpolation for polygon texture
+ *    mapping and shading").
+ *    LUZ_INTERPOLATION_AFFINE, the teaching toggle (--interp affine), solves
+ *    the planes of the varyings themselves and makes the 1/w plane the
+ *    constant 1, so the same division in the fragment stage returns the
+ *    varying interpolated linearly in screen space, as early game consoles
+ *    did: textures bend along the diagonal and swim as the view turns.
+ *
+ * Fixed-point range, the proof that int64 cannot overflow: the guard band
+ * keeps |x_ndc|, |y_ndc| <= 4, so -1.5 W <= x_win <= 2.5 W with W <=
+ * LUZ_MAX_DIMENSION = 2^14: |x_win| < 2^16 pixels, |X| < 2^24 in 1/256
+ * units (coordinates are clamped to that range anyway). Then |Xj - Xi| <
+ * 2^25, each product in E is below 2^49, the constant c below 2^51 and E at
+ * any pixel centre of the viewport below 2^52: far from 2^63.
+ */
+#include <math.h>
+
+#include "renderer/pipeline.h"
+
+/* 2^24 sub-pixel units: beyond the guard band, a bound that rounding can't
+ * leave and that keeps the proof above true for any input. */
+#define COORDINATE_LIMIT 16777216.0
+
+/* Keeps a window coordinate within +-2^24 sub-pixel units. */
+static double clamp_to_limit(double window_coordinate)
+{
+    const double limit = COORDINATE_LIMIT / LUZ_SUBPIXEL_ONE;
+    if (window_coordinate > limit) return limit;
+    if (window_coordinate < -limit) return -limit;
+    return window_coordinate;
+}
+
+static int64_t snap(double window_coordinate)
+{
+    return (int64_t)llrint(window_coordinate * LUZ_SUBPIXEL_ONE);
+}
+
+
+static luz_edge make_edge(int64_t xi, int64_t yi, int64_t xj, int64_t yj)
+{
+    luz_edge edge;
+    int64_t dx = xj - xi, dy = yj - yi;
+    edge.a = dy;
+    edge.b = -dx;
+    edge.c = -(edge.a * xi + edge.b * yi);
+    bool top_edge = dy == 0 && dx < 0;
+    bool left_edge = dy > 0;
+    if (!top_edge && !left_edge) edge.c -= 1;
+    return edge;
+}
+
+/* The plane through (x_k, y_k, value_k), k = 0..2 (Cramer's rule on the
+ * two edge vectors), given by its value at the reference point (rx, ry). */
+static luz_plane make_plane(const double x[3], const double y[3], double inverse_determinant,
+                            double rx, double ry, double value0, double value1, double value2)
+{
+    double d1 = value1 - value0, d2 = value2 - value0;
+    double dx = (d1 * (y[2] - y[0]) - d2 * (y[1] - y[0])) * inverse_determinant;
+    double dy = (d2 * (x[1] - x[0]) - d1 * (x[2] - x[0])) * inverse_determinant;
+    luz_plane plane;
+    plane.value = (float)(value0 + dx * (rx - x[0]) + dy * (ry - y[0]));
+    plane.dx = (float)dx;
+    plane.dy = (float)dy;
+    return plane;
+}
+
+luz_setup_result luz_setup_triangle(const luz_clip_vertex *v0, const luz_clip_vertex *v1,
+                                    const luz_clip_vertex *v2, int width, int height,
+                                    uint32_t draw_index, luz_interpolation interpolation,
+                                    luz_triangle *out)
+{
+    const luz_clip_vertex *vertex[3] = {v0, v1, v2};
+    int64_t fixed_x[3], fixed_y[3];
+    double x[3], y[3], depth[3], inverse_w[3];   /* x, y: exact, not snapped */
+
+    /* 1-2. Divide, viewport, snap. */
+    for (int k = 0; k < 3; k++) {
+        luz_vec4 p = vertex[k]->position;
+        if (!(p.w > 0.0f) || !isfinite(p.x) || !isfinite(p.y) || !isfinite(p.z))
+            return LUZ_SETUP_CULLED;   /* unreachable after clipping, unless NaN */
+        inverse_w[k] = 1.0 / p.w;
+        double x_ndc = p.x * inverse_w[k], y_ndc = p.y * inverse_w[k];
+        x[k] = clamp_to_limit((x_ndc + 1.0) * 0.5 * width);
+        y[k] = clamp_to_limit((1.0 - y_ndc) * 0.5 * height);
+        fixed_x[k] = snap(x[k]);
+        fixed_y[k] = snap(y[k]);
+        depth[k] = (p.z * inverse_w[k] + 1.0) * 0.5;
+    }
+
+    /* 3. Cull back faces and degenerate triangles. */
+    int64_t doubled_area = (fixed_y[1] - fixed_y[0]) * (fixed_x[2] - fixed_x[0]) -
+                           (fixed_x[1] - fixed_x[0]) * (fixed_y[2] - fixed_y[0]);
+    if (doubled_area <= 0) return LUZ_SETUP_CULLED;
+
+    /* The pixels whose centre (x + 0.5, y + 0.5) can be inside: centre X =
+     * 256 x + 128 must lie within [min X, max X]. */
+    int64_t min_fx = fixed_x[0], max_fx = fixed_x[0], min_fy = fixed_y[0], max_fy = fixed_y[0];
+    for (int k = 1; k < 3; k++) {
+        if (fixed_x[k] < min_fx) min_fx = fixed_x[k];
+        if (fixed_x[k] > max_fx) max_fx = fixed_x[k];
+        if (fixed_y[k] < min_fy) min_fy = fixed_y[k];
+        if (fixed_y[k] > max_fy) max_fy = fixed_y[k];
+    }
+    const int64_t half = LUZ_SUBPIXEL_ONE / 2;
+    int64_t min_x = luz_ceil_divide(min_fx - half, LUZ_SUBPIXEL_ONE);
+    int64_t max_x = luz_floor_divide(max_fx - half, LUZ_SUBPIXEL_ONE);
+    int64_t min_y = luz_ceil_divide(min_fy - half, LUZ_SUBPIXEL_ONE);
+    int64_t max_y = luz_floor_divide(max_fy - half, LUZ_SUBPIXEL_ONE);
+    if (min_x < 0) min_x = 0;
+    if (min_y < 0) min_y = 0;
+    if (max_x > width - 1) max_x = width - 1;
+    if (max_y > height - 1) max_y = height - 1;
+    if (min_x > max_x || min_y > max_y) return LUZ_SETUP_OFFSCREEN;
+    out->min_x = (int)min_x;
+    out->max_x = (int)max_x;
+    out->min_y = (int)min_y;
+    out->max_y = (int)max_y;
+
+    /* 4. Edge k is opposite vertex k. */
+    out->edges[0] = make_edge(fixed_x[1], fixed_y[1], fixed_x[2], fixed_y[2]);
+    out->edges[1] = make_edge(fixed_x[2], fixed_y[2], fixed_x[0], fixed_y[0]);
+    out->edges[2] = make_edge(fixed_x[0], fixed_y[0], fixed_x[1], fixed_y[1]);
+
+    /* 5. Planes. Snapping is for coverage only: the planes are solved from
+     * the exact window positions (as llvmpipe's lp_setup_tri.c does), or
+     * every varying would be read as if its vertices had moved by up to
+     * 1/512 pixel, enough to flip a nearest-filtered texel. They are stored
+     * relative to the snapped vertex 0, which a float holds exactly. */
+    double determinant = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
+    if (!(determinant != 0.0) || !isfinite(determinant)) return LUZ_SETUP_CULLED;
+    double inverse_determinant = 1.0 / determinant;
+    double rx = (double)fixed_x[0] / LUZ_SUBPIXEL_ONE, ry = (double)fixed_y[0] / LUZ_SUBPIXEL_ONE;
+    out->reference_x = (float)rx;
+    out->reference_y = (float)ry;
+    out->depth = make_plane(x, y, inverse_determinant, rx, ry, depth[0], depth[1], depth[2]);
+    /* The weight each vertex's varyings are divided by: 1/w for
+     * perspective-correct interpolation, 1 for affine. */
+    double weight[3] = {inverse_w[0], inverse_w[1], inverse_w[2]};
+    if (interpolation == LUZ_INTERPOLATION_AFFINE) weight[0] = weight[1] = weight[2] = 1.0;
+    out->inverse_w = make_plane(x, y, inverse_determinant, rx, ry,
+                                weight[0], weight[1], weight[2]);
+    for (int i = 0; i < LUZ_VARYING_COUNT; i++) {
+        out->varyings[i] = make_plane(x, y, inverse_determinant, rx, ry,
+                                      v0->varyings[i] * weight[0],
+                                      v1->varyings[i] * weight[1],
+                                      v2->varyings[i] * weight[2]);
+    }
+    out->draw_index = draw_index;
+    return LUZ_SETUP_VISIBLE;
+}
+
+const char *luz_interpolation_name(luz_interpolation interpolation)
+{
+    switch (interpolation) {
+    case LUZ_INTERPOLATION_PERSPECTIVE: return "perspective";
+    case LUZ_INTERPOLATION_AFFINE: return "affine";
+    }
+    return "unknown";
+}
