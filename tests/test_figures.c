@@ -53,6 +53,7 @@
 #include "io/image.h"
 #include "io/textures.h"
 #include "lab/scene.h"
+#include "lab_support.h"
 
 #define MAX_FIGURES 64
 #define MAX_ARGUMENTS 32
@@ -320,11 +321,12 @@ static luz_framebuffer *render_albedo(const luz_options *options,
     luz_framebuffer *framebuffer = luz_framebuffer_create(options->width, options->height, &error);
     assert_non_null(renderer);
     assert_non_null(framebuffer);
-    assert_int_equal(luz_scene_build_frame(&scene, textures ? textures->textures : NULL, textures ? textures->count : 0,
+    assert_int_equal(luz_scene_build_frame(test_lab(), &scene, textures->textures, textures->count,
                                            (float)options->width / (float)options->height,
-                                           &frame),
+                                           &frame, NULL),
                      0);
-    assert_int_equal(luz_renderer_draw(renderer, &frame, framebuffer, NULL, &error), 0);
+    const luz_render_options render = luz_scene_render_options(&scene);
+    assert_int_equal(luz_renderer_draw(renderer, &frame, framebuffer, &render, &error), 0);
     luz_frame_free(&frame);
     luz_renderer_destroy(renderer);
     return framebuffer;

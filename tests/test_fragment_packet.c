@@ -44,6 +44,7 @@
 #include "io/image.h"
 #include "io/textures.h"
 #include "lab/scene.h"
+#include "lab_support.h"
 #include "renderer/pipeline.h"
 
 #define WIDTH 1280          /* the default scene's size */
@@ -103,10 +104,13 @@ static luz_framebuffer *render(const luz_scene *scene, const luz_texture_set *te
     assert_non_null(renderer);
     assert_non_null(framebuffer);
     luz_renderer_set_packet_isa(renderer, how.isa);
-    assert_int_equal(luz_scene_build_frame(scene, texture_set ? texture_set->textures : NULL, texture_set ? texture_set->count : 0, (float)width / (float)height,
-                                           &frame),
+    assert_int_equal(luz_scene_build_frame(test_lab(), scene,
+                                           texture_set ? texture_set->textures : NULL,
+                                           texture_set ? texture_set->count : 0,
+                                           (float)width / (float)height, &frame, NULL),
                      0);
-    assert_int_equal(luz_renderer_draw(renderer, &frame, framebuffer, NULL, &error), 0);
+    const luz_render_options render = luz_scene_render_options(scene);
+    assert_int_equal(luz_renderer_draw(renderer, &frame, framebuffer, &render, &error), 0);
     luz_frame_free(&frame);
     luz_renderer_destroy(renderer);
     return framebuffer;
@@ -460,10 +464,10 @@ static void every_byte_written_in_either_order(void **state)
     scene.time_seconds = 3.0;
     scene.cube_count = 40;
     luz_frame frame = {0};
-    assert_int_equal(luz_scene_build_frame(&scene, textures.textures, textures.count,
-                                           (float)SMALL_WIDTH / (float)SMALL_HEIGHT, &frame),
+    assert_int_equal(luz_scene_build_frame(test_lab(), &scene, textures.textures, textures.count,
+                                           (float)SMALL_WIDTH / (float)SMALL_HEIGHT, &frame, NULL),
                      0);
-    frame.uniforms.clear_colour = tinted_clear;
+    frame.clear_colour = tinted_clear;
 
     for (size_t v = 0; v <= VARIANT_COUNT; v++) {
         const bool reference = v == VARIANT_COUNT;

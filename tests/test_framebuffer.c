@@ -34,6 +34,7 @@
 #include "io/image.h"
 #include "io/textures.h"
 #include "lab/scene.h"
+#include "lab_support.h"
 
 /* ---- clearing and allocation --------------------------------------------------- */
 
@@ -106,9 +107,9 @@ static void draw_into(luz_framebuffer *framebuffer)
     luz_scene scene = luz_scene_defaults();
     scene.time_seconds = 2.5;
     luz_frame frame = {0};
-    assert_int_equal(luz_scene_build_frame(&scene, NULL, 0,
+    assert_int_equal(luz_scene_build_frame(test_lab(), &scene, NULL, 0,
                                            (float)framebuffer->width / (float)framebuffer->height,
-                                           &frame),
+                                           &frame, NULL),
                      0);
     assert_int_equal(luz_renderer_draw(renderer, &frame, framebuffer, NULL, &error), 0);
     luz_frame_free(&frame);

@@ -30,6 +30,7 @@
 #include "io/image.h"
 #include "io/textures.h"
 #include "lab/scene.h"
+#include "lab_support.h"
 #include "app/panel.h"
 
 #define WIDTH 1280
@@ -97,8 +98,14 @@ static luz_framebuffer *render_with_stats(const luz_scene *scene,
     luz_frame frame = {0};
     assert_non_null(renderer);
     assert_non_null(framebuffer);
-    assert_int_equal(luz_scene_build_frame(scene, textures ? textures->textures : NULL, textures ? textures->count : 0, (float)WIDTH / HEIGHT, &frame), 0);
-    assert_int_equal(luz_renderer_draw(renderer, &frame, framebuffer, stats, &error), 0);
+    assert_int_equal(luz_scene_build_frame(test_lab(), scene,
+                                           textures ? textures->textures : NULL,
+                                           textures ? textures->count : 0, (float)WIDTH / HEIGHT,
+                                           &frame, NULL),
+                     0);
+    luz_render_options render = luz_scene_render_options(scene);
+    render.stats = stats;
+    assert_int_equal(luz_renderer_draw(renderer, &frame, framebuffer, &render, &error), 0);
     luz_frame_free(&frame);
     luz_renderer_destroy(renderer);
     return framebuffer;
@@ -388,7 +395,7 @@ static void record_band(void *context, luz_framebuffer *framebuffer, int first_r
     luz_layer_draw_rows(record->layer, framebuffer, first_row, end_row);
 }
 
-/* luz_renderer_draw_with_hook, with 1, 2 and 3 threads: the hook covers
+/* luz_renderer_draw with a band hook, with 1, 2 and 3 threads: the hook covers
  * every row exactly once, sees each of its rows already shaded (the same
  * bytes as the frame drawn without a hook), and a 2D layer filled from it
  * band by band gives the frame drawn first and the layer filled after. */
@@ -408,7 +415,8 @@ static void test_band_hook_runs_once_per_row_after_shading(void **state)
     assert_non_null(record);
     record->layer = &layer;
     luz_frame frame = {0};
-    assert_int_equal(luz_scene_build_frame(&scene, NULL, 0, (float)WIDTH / HEIGHT, &frame), 0);
+    assert_int_equal(
+        luz_scene_build_frame(test_lab(), &scene, NULL, 0, (float)WIDTH / HEIGHT, &frame, NULL), 0);
     const int thread_counts[3] = {1, 2, 3};
     for (int t = 0; t < 3; t++) {
         luz_framebuffer *expected = render(&scene, NULL, thread_counts[t], false);
@@ -424,8 +432,8 @@ static void test_band_hook_runs_once_per_row_after_shading(void **state)
         assert_non_null(renderer);
         assert_non_null(framebuffer);
         const luz_band_hook hook = {record_band, record};
-        assert_int_equal(
-            luz_renderer_draw_with_hook(renderer, &frame, framebuffer, &hook, NULL, &error), 0);
+        const luz_render_options render = {.hook = &hook};
+        assert_int_equal(luz_renderer_draw(renderer, &frame, framebuffer, &render, &error), 0);
 
         for (int y = 0; y < HEIGHT; y++)
             if (atomic_load(&record->calls[y]) != 1)

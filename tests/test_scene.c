@@ -14,6 +14,7 @@
 #include "test_support.h"
 
 #include "lab/scene.h"
+#include "luz/shade.h"
 #include "luz/texture.h"
 
 #define TOLERANCE 1e-6
@@ -109,28 +110,32 @@ static void test_tiled_positions(void **state)
 static void test_frame_has_ten_cubes_and_a_marker(void **state)
 {
     (void)state;
+    luz_lab *lab = luz_lab_create(NULL);
+    assert_non_null(lab);
     luz_scene scene = luz_scene_defaults();
     scene.lights.point.colour = (luz_vec3){0.5f, 0.25f, 1.0f};
     scene.lights.point.strength = 0.3f;
     luz_frame frame = {0};
-    assert_int_equal(luz_scene_build_frame(&scene, NULL, 0, 16.0f / 9.0f, &frame), 0);
+    assert_int_equal(luz_scene_build_frame(lab, &scene, NULL, 0, 16.0f / 9.0f, &frame, NULL), 0);
     assert_int_equal(frame.draw_count, 11);
     for (int i = 0; i < 10; i++) {
-        assert_false(frame.draws[i].unlit);
-        assert_ptr_equal(frame.draws[i].mesh, luz_cube_mesh());
-        assert_null(frame.draws[i].texture);
+        assert_false(frame.draws[i].material.shading == LUZ_SHADING_UNLIT);
+        assert_ptr_equal(frame.draws[i].mesh, luz_lab_cube_mesh(lab));
+        assert_null(frame.draws[i].material.texture);
     }
     const luz_draw *marker = &frame.draws[10];
-    assert_true(marker->unlit);
-    assert_vec3_near(marker->colour, 0.5, 0.25, 1.0, 0);
+    assert_true(marker->material.shading == LUZ_SHADING_UNLIT);
+    assert_ptr_equal(marker->mesh, luz_lab_cube_mesh(lab));
+    assert_vec3_near(marker->material.colour, 0.5, 0.25, 1.0, 0);
     assert_vec3_near(luz_mat4_transform_point(marker->model, (luz_vec3){0.5f, 0.5f, 0.5f}), 3.1,
                      0.6, 0.1, TOLERANCE);
     assert_vec3_near(luz_mat4_transform_point(marker->model, (luz_vec3){-0.5f, -0.5f, -0.5f}),
                      2.9, 0.4, -0.1, TOLERANCE);
 
     scene.lights.point.strength = 0.0f;
-    assert_int_equal(luz_scene_build_frame(&scene, NULL, 0, 16.0f / 9.0f, &frame), 0);
+    assert_int_equal(luz_scene_build_frame(lab, &scene, NULL, 0, 16.0f / 9.0f, &frame, NULL), 0);
     assert_int_equal(frame.draw_count, 10);
+    luz_lab_destroy(lab);
     luz_frame_free(&frame);
 }
 
@@ -140,6 +145,8 @@ static void test_frame_has_ten_cubes_and_a_marker(void **state)
 static void test_frame_colours_and_textures(void **state)
 {
     (void)state;
+    luz_lab *lab = luz_lab_create(NULL);
+    assert_non_null(lab);
     const uint8_t texel[4] = {1, 2, 3, 255};
     luz_error error;
     luz_texture *textures[3];
@@ -150,14 +157,15 @@ static void test_frame_colours_and_textures(void **state)
     luz_scene scene = luz_scene_defaults();
     scene.seed = 7;
     luz_frame frame = {0};
-    assert_int_equal(luz_scene_build_frame(&scene, textures, 3, 1.0f, &frame), 0);
+    assert_int_equal(luz_scene_build_frame(lab, &scene, textures, 3, 1.0f, &frame, NULL), 0);
     uint32_t x = 7;
     for (int i = 0; i < 10; i++) {
         float r = next_float(&x), g = next_float(&x), b = next_float(&x);
-        assert_true(frame.draws[i].colour.x == r && frame.draws[i].colour.y == g &&
-                    frame.draws[i].colour.z == b);
-        assert_ptr_equal(frame.draws[i].texture, textures[i % 3]);
+        assert_true(frame.draws[i].material.colour.x == r && frame.draws[i].material.colour.y == g &&
+                    frame.draws[i].material.colour.z == b);
+        assert_ptr_equal(frame.draws[i].material.texture, textures[i % 3]);
     }
+    luz_lab_destroy(lab);
     luz_frame_free(&frame);
     for (int k = 0; k < 3; k++) luz_texture_destroy(textures[k]);
 }
@@ -167,6 +175,8 @@ static void test_frame_colours_and_textures(void **state)
 static void test_custom_cubes_keep_their_colour(void **state)
 {
     (void)state;
+    luz_lab *lab = luz_lab_create(NULL);
+    assert_non_null(lab);
     const luz_cube cubes[2] = {
         {{1, 2, 3}, true, {0.25f, 0.5f, 0.75f}, LUZ_TEXTURE_BY_INDEX},
         {{-1, 0, 0}, false, {0, 0, 0}, LUZ_TEXTURE_BY_INDEX},
@@ -176,16 +186,17 @@ static void test_custom_cubes_keep_their_colour(void **state)
     scene.custom_cube_count = 2;
     scene.lights.point.strength = 0.0f;
     luz_frame frame = {0};
-    assert_int_equal(luz_scene_build_frame(&scene, NULL, 0, 1.0f, &frame), 0);
+    assert_int_equal(luz_scene_build_frame(lab, &scene, NULL, 0, 1.0f, &frame, NULL), 0);
     assert_int_equal(frame.draw_count, 2);
-    assert_vec3_near(frame.draws[0].colour, 0.25, 0.5, 0.75, 0);
+    assert_vec3_near(frame.draws[0].material.colour, 0.25, 0.5, 0.75, 0);
     assert_vec3_near(luz_mat4_transform_point(frame.draws[0].model, (luz_vec3){0, 0, 0}), 1, 2,
                      3, 0);
     uint32_t x = 0x9E3779B9u;
     for (int k = 0; k < 3; k++) next_float(&x);
     float r = next_float(&x), g = next_float(&x), b = next_float(&x);
-    assert_true(frame.draws[1].colour.x == r && frame.draws[1].colour.y == g &&
-                frame.draws[1].colour.z == b);
+    assert_true(frame.draws[1].material.colour.x == r && frame.draws[1].material.colour.y == g &&
+                frame.draws[1].material.colour.z == b);
+    luz_lab_destroy(lab);
     luz_frame_free(&frame);
 }
 
@@ -193,7 +204,7 @@ static void test_custom_cubes_keep_their_colour(void **state)
  * scene's axis a = normalize(1, 0.5, 1) = (2/3, 1/3, 2/3): the model takes
  * the origin to p_i, fixes the axis direction, and turns v = (1, 0, -1)
  * (perpendicular to it, |v|^2 = 2) by the angle: dot(v, R v) = 2 cos angle,
- * v x R v = 2 sin angle a. Its normal matrix is its 3x3 (rigid motion). */
+ * v x R v = 2 sin angle a. */
 static void assert_cube_model(const luz_draw *draw, luz_vec3 position, double cos_angle,
                               double sin_angle, double tolerance)
 {
@@ -207,8 +218,6 @@ static void assert_cube_model(const luz_draw *draw, luz_vec3 position, double co
     assert_near(luz_vec3_dot(v, turned), 2 * cos_angle, tolerance);
     assert_vec3_near(luz_vec3_cross(v, turned), 2 * sin_angle * 2 / 3, 2 * sin_angle / 3,
                      2 * sin_angle * 2 / 3, tolerance);
-    assert_vec3_near(luz_mat3_transform(draw->normal_matrix, v), turned.x, turned.y, turned.z,
-                     tolerance);
 }
 
 /* angle_i = (i + 1) / 3 * t * 50 degrees:
@@ -224,89 +233,70 @@ static void assert_cube_model(const luz_draw *draw, luz_vec3 position, double co
 static void test_cube_model_matrices(void **state)
 {
     (void)state;
+    luz_lab *lab = luz_lab_create(NULL);
+    assert_non_null(lab);
     luz_scene scene = luz_scene_defaults();
     luz_frame frame = {0};
-    assert_int_equal(luz_scene_build_frame(&scene, NULL, 0, 1.0f, &frame), 0);
+    assert_int_equal(luz_scene_build_frame(lab, &scene, NULL, 0, 1.0f, &frame, NULL), 0);
     luz_mat4 identity = luz_mat4_identity();
     assert_memory_equal(frame.draws[0].model.m, identity.m, sizeof identity.m);
     assert_cube_model(&frame.draws[5], (luz_vec3){-1.7f, 3.0f, -7.5f}, 1, 0, TOLERANCE);
 
     scene.time_seconds = 1.2;
-    assert_int_equal(luz_scene_build_frame(&scene, NULL, 0, 1.0f, &frame), 0);
+    assert_int_equal(luz_scene_build_frame(lab, &scene, NULL, 0, 1.0f, &frame, NULL), 0);
     assert_cube_model(&frame.draws[2], (luz_vec3){-1.5f, -2.2f, -2.5f}, 0.5, sqrt(3.0) / 2,
                       1e-5);
 
     scene.time_seconds = 0.9;
-    assert_int_equal(luz_scene_build_frame(&scene, NULL, 0, 1.0f, &frame), 0);
+    assert_int_equal(luz_scene_build_frame(lab, &scene, NULL, 0, 1.0f, &frame, NULL), 0);
     assert_cube_model(&frame.draws[4], (luz_vec3){2.4f, -0.4f, -3.5f}, 0.51763809 / 2,
                       1.93185165 / 2, 1e-5);
 
     scene.time_seconds = 10000.0;
-    assert_int_equal(luz_scene_build_frame(&scene, NULL, 0, 1.0f, &frame), 0);
+    assert_int_equal(luz_scene_build_frame(lab, &scene, NULL, 0, 1.0f, &frame, NULL), 0);
     assert_cube_model(&frame.draws[9], (luz_vec3){-1.3f, 1.0f, -1.5f}, -0.68624164, -0.72737364,
                       1e-5);
+    luz_lab_destroy(lab);
     luz_frame_free(&frame);
 }
 
-/* The uniforms at t = pi: the point light at (3 cos(pi/2), 0.5,
+/* The camera and lights at t = pi: the point light at (3 cos(pi/2), 0.5,
  * 3 sin(pi/2)) = (0, 0.5, 3); the sun's direction (cos 0.1 pi,
  * sin 0.1 pi, 0) = (0.95105652, 0.30901699, 0). The camera of SCENE.md:
- * E = (0, 0, 3), F = (0, 0, -1), a view that translates by -3 in z,
- * projection with f = cot 22.5 = 2.41421356 over aspect 16/9 =
- * 1.35799513; the spot cones cos 12.5 = 0.97629601 and cos 17.5 =
- * 0.95371695; the clear colour 0.1. */
-static void test_uniforms_at_pi(void **state)
+ * E = (0, 0, 3), F = (0, 0, -1) (the spot's direction), a view that
+ * translates by -3 in z, projection with f = cot 22.5 = 2.41421356 over
+ * aspect 16/9 = 1.35799513; the spot cones cos 12.5 = 0.97629601 and
+ * cos 17.5 = 0.95371695; the clear colour 0.1. */
+static void test_camera_and_lights_at_pi(void **state)
 {
     (void)state;
     luz_scene scene = luz_scene_defaults();
     scene.time_seconds = LUZ_PI;
-    luz_uniforms uniforms = luz_scene_uniforms(&scene, 16.0f / 9.0f);
-    assert_vec3_near(uniforms.point_light_position, 0, 0.5, 3, TOLERANCE);
-    assert_vec3_near(uniforms.directional_direction, 0.95105652, 0.30901699, 0, TOLERANCE);
-    assert_vec3_near(uniforms.camera_position, 0, 0, 3, 0);
-    assert_vec3_near(uniforms.camera_front, 0, 0, -1, TOLERANCE);
-    assert_vec3_near(luz_mat4_transform_point(uniforms.view, (luz_vec3){1, 2, 3}), 1, 2, 0,
-                     TOLERANCE);
-    assert_near(uniforms.projection.m[0], 1.35799513, 1e-6);
-    assert_near(uniforms.projection.m[5], 2.41421356, 1e-6);
-    assert_near(uniforms.spot_cos_inner, 0.97629601, TOLERANCE);
-    assert_near(uniforms.spot_cos_outer, 0.95371695, TOLERANCE);
-    assert_vec3_near(uniforms.clear_colour, 0.1, 0.1, 0.1, TOLERANCE);
-}
-
-/* luz_frame_add_draw refuses a mesh the pipeline would read out of
- * bounds, and takes a well-formed one: one triangle over three vertices. */
-static void test_frame_refuses_bad_meshes(void **state)
-{
-    (void)state;
-    static const luz_vertex vertices[3] = {{{0, 0, 0}, {0, 0, 1}, {0, 0}},
-                                           {{1, 0, 0}, {0, 0, 1}, {1, 0}},
-                                           {{0, 1, 0}, {0, 0, 1}, {0, 1}}};
-    static const uint16_t good[3] = {0, 1, 2};
-    static const uint16_t past_the_end[3] = {0, 1, 3};   /* vertex 3 does not exist */
-    const luz_mesh meshes[] = {
-        {vertices, 3, past_the_end, 3},
-        {vertices, 3, good, 2},          /* not a multiple of 3 */
-        {NULL, 3, good, 3},
-        {vertices, 3, NULL, 3},
-        {vertices, -1, good, 0},
-    };
     luz_frame frame = {0};
-    luz_draw draw = {0};
-    draw.model = luz_mat4_identity();
-    for (size_t i = 0; i < sizeof meshes / sizeof meshes[0]; i++) {
-        draw.mesh = &meshes[i];
-        assert_int_equal(luz_frame_add_draw(&frame, &draw), -1);
-    }
-    draw.mesh = NULL;
-    assert_int_equal(luz_frame_add_draw(&frame, &draw), -1);
-    assert_int_equal(frame.draw_count, 0);
+    luz_scene_set_camera_and_lights(&scene, 16.0f / 9.0f, &frame);
+    assert_vec3_near(frame.lights.point_position, 0, 0.5, 3, TOLERANCE);
+    assert_vec3_near(frame.lights.directional_direction, 0.95105652, 0.30901699, 0, TOLERANCE);
+    assert_vec3_near(frame.eye, 0, 0, 3, 0);
+    assert_vec3_near(frame.lights.spot_direction, 0, 0, -1, TOLERANCE);
+    assert_vec3_near(luz_mat4_transform_point(frame.view, (luz_vec3){1, 2, 3}), 1, 2, 0,
+                     TOLERANCE);
+    assert_near(frame.projection.m[0], 1.35799513, 1e-6);
+    assert_near(frame.projection.m[5], 2.41421356, 1e-6);
+    luz_shade_uniforms shade = luz_shade_uniforms_of(frame.eye, &frame.lights);
+    assert_near(shade.spot_cos_inner, 0.97629601, TOLERANCE);
+    assert_near(shade.spot_cos_outer, 0.95371695, TOLERANCE);
+    assert_vec3_near(frame.clear_colour, 0.1, 0.1, 0.1, TOLERANCE);
+    /* The lights' colours and strengths are the scene's. */
+    assert_vec3_near(frame.lights.spot.colour, 1, 1, 1, 0);
+    assert_near(frame.lights.directional.strength, 0.4, 1e-7);
 
-    const luz_mesh triangle = {vertices, 3, good, 3};
-    draw.mesh = &triangle;
-    assert_int_equal(luz_frame_add_draw(&frame, &draw), 0);
-    assert_int_equal(frame.draw_count, 1);
-    luz_frame_free(&frame);
+    /* The teaching settings become render options. */
+    scene.view = LUZ_VIEW_NORMALS;
+    scene.interpolation = LUZ_INTERPOLATION_AFFINE;
+    luz_render_options options = luz_scene_render_options(&scene);
+    assert_int_equal(options.view, LUZ_VIEW_NORMALS);
+    assert_int_equal(options.interpolation, LUZ_INTERPOLATION_AFFINE);
+    assert_int_equal(options.triangle_limit, 0);
 }
 
 int main(void)
@@ -319,8 +309,7 @@ int main(void)
         cmocka_unit_test(test_frame_colours_and_textures),
         cmocka_unit_test(test_custom_cubes_keep_their_colour),
         cmocka_unit_test(test_cube_model_matrices),
-        cmocka_unit_test(test_uniforms_at_pi),
-        cmocka_unit_test(test_frame_refuses_bad_meshes),
+        cmocka_unit_test(test_camera_and_lights_at_pi),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

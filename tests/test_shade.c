@@ -252,15 +252,13 @@ static void test_directional(void **state)
  *   spot 1.0, front (0, 0, -1), on axis at 4         0.818496
  *   directional 0.4, d = (0, 0, -1)                  0.4
  * sum 3.078496. */
-static luz_uniforms simple_uniforms(void)
+static luz_shade_uniforms simple_uniforms(void)
 {
-    luz_scene scene = luz_scene_defaults();
-    luz_uniforms uniforms = luz_scene_uniforms(&scene, 1.0f);
-    uniforms.camera_position = (luz_vec3){0, 0, 4};
-    uniforms.camera_front = (luz_vec3){0, 0, -1};
-    uniforms.point_light_position = (luz_vec3){3, 0, 4};
-    uniforms.directional_direction = (luz_vec3){0, 0, -1};
-    return uniforms;
+    luz_lights lights = luz_scene_defaults().lights;
+    lights.spot_direction = (luz_vec3){0, 0, -1};
+    lights.point_position = (luz_vec3){3, 0, 4};
+    lights.directional_direction = (luz_vec3){0, 0, -1};
+    return luz_shade_uniforms_of((luz_vec3){0, 0, 4}, &lights);
 }
 
 #define SIMPLE_LIGHT_SUM 3.078496
@@ -272,7 +270,7 @@ static luz_uniforms simple_uniforms(void)
 static void test_lighting_sums_the_terms_and_normalises_the_normal(void **state)
 {
     (void)state;
-    luz_uniforms uniforms = simple_uniforms();
+    luz_shade_uniforms uniforms = simple_uniforms();
     luz_vec3 unit = luz_shade_lighting(&uniforms, origin, up_z);
     luz_vec3 long_normal = luz_shade_lighting(&uniforms, origin, (luz_vec3){0, 0, 3});
     assert_near(unit.x, SIMPLE_LIGHT_SUM, 1e-5);
@@ -290,7 +288,7 @@ static void test_lighting_sums_the_terms_and_normalises_the_normal(void **state)
 static void test_fragment_multiplies_by_colour_and_texel(void **state)
 {
     (void)state;
-    luz_uniforms uniforms = simple_uniforms();
+    luz_shade_uniforms uniforms = simple_uniforms();
     luz_vec3 colour = luz_shade_fragment(&uniforms, origin, up_z, (luz_vec3){0.5f, 0.25f, 0.1f},
                                          (luz_vec3){1.0f, 0.5f, 0.2f});
     assert_near(colour.x, 1.539248, 1e-5);
@@ -303,7 +301,7 @@ static void test_fragment_multiplies_by_colour_and_texel(void **state)
 static void test_all_strengths_zero_give_exact_black(void **state)
 {
     (void)state;
-    luz_uniforms uniforms = simple_uniforms();
+    luz_shade_uniforms uniforms = simple_uniforms();
     for (int term = 0; term < LUZ_TERM_COUNT; term++)
         luz_lights_term(&uniforms.lights, (luz_term)term)->strength = 0.0f;
     assert_exactly_zero(luz_shade_lighting(&uniforms, origin, up_z));

@@ -28,11 +28,12 @@
 #include "io/image.h"
 #include "io/textures.h"
 #include "lab/scene.h"
+#include "lab_support.h"
 
 /* ---- rendering ------------------------------------------------------------------ */
 
-static luz_framebuffer *draw_frame(const luz_frame *frame, int width, int height, int threads,
-                                   bool reference)
+static luz_framebuffer *draw_frame(const luz_frame *frame, const luz_render_options *render,
+                                   int width, int height, int threads, bool reference)
 {
     luz_error error = {{0}};
     luz_renderer *renderer = luz_renderer_create(
@@ -40,7 +41,7 @@ static luz_framebuffer *draw_frame(const luz_frame *frame, int width, int height
     assert_non_null(renderer);
     luz_framebuffer *framebuffer = luz_framebuffer_create(width, height, &error);
     assert_non_null(framebuffer);
-    assert_int_equal(luz_renderer_draw(renderer, frame, framebuffer, NULL, &error), 0);
+    assert_int_equal(luz_renderer_draw(renderer, frame, framebuffer, render, &error), 0);
     luz_renderer_destroy(renderer);
     return framebuffer;
 }
@@ -50,9 +51,12 @@ static luz_framebuffer *draw_scene(const luz_scene *scene, const luz_texture_set
                                    int width, int height, int threads, bool reference)
 {
     luz_frame frame = {0};
-    assert_int_equal(luz_scene_build_frame(scene, textures ? textures->textures : NULL, textures ? textures->count : 0, (float)width / (float)height, &frame),
+    assert_int_equal(luz_scene_build_frame(test_lab(), scene, textures ? textures->textures : NULL,
+                                           textures ? textures->count : 0,
+                                           (float)width / (float)height, &frame, NULL),
                      0);
-    luz_framebuffer *framebuffer = draw_frame(&frame, width, height, threads, reference);
+    const luz_render_options render = luz_scene_render_options(scene);
+    luz_framebuffer *framebuffer = draw_frame(&frame, &render, width, height, threads, reference);
     luz_frame_free(&frame);
     return framebuffer;
 }
@@ -104,24 +108,22 @@ static void assert_pixel_near_at(const luz_framebuffer *framebuffer, int x, int 
 
 /* ---- hand-made quads ------------------------------------------------------------------ */
 
-/* The camera of every quad test: at the origin, looking down -z, 90 degrees. */
-static luz_uniforms quad_uniforms(luz_view view, luz_interpolation interpolation,
-                                  luz_filter filter)
+/* The camera of every quad test: at the origin, looking down -z, 90
+ * degrees, and SCENE.md's lights; returns the options that draw the view
+ * with the interpolation. */
+static luz_render_options quad_frame(luz_frame *frame, luz_view view,
+                                     luz_interpolation interpolation)
 {
     luz_scene scene = luz_scene_defaults();
     scene.camera.position = (luz_vec3){0.0f, 0.0f, 0.0f};
     scene.camera.yaw_degrees = -90.0f;
     scene.camera.fov_degrees = 90.0f;
-    scene.view = view;
-    scene.interpolation = interpolation;
-    scene.filter = filter;
-    return luz_scene_uniforms(&scene, 1.0f);
+    luz_scene_set_camera_and_lights(&scene, 1.0f, frame);
+    return (luz_render_options){.view = view, .interpolation = interpolation};
 }
 
 typedef struct quad {
-    luz_vertex vertices[4];
-    uint16_t indices[6];
-    luz_mesh mesh;
+    luz_mesh *mesh;
 } quad;
 
 /* A quad through four world points, counter-clockwise seen by the camera
@@ -133,10 +135,14 @@ static void make_quad(quad *q, const luz_vec3 corner[4], float u_range, float v_
     const luz_vec2 uv[4] = {{0.0f, v_range}, {u_range, v_range}, {u_range, 0.0f}, {0.0f, 0.0f}};
     luz_vec3 normal = luz_vec3_normalize(luz_vec3_cross(luz_vec3_sub(corner[1], corner[0]),
                                                         luz_vec3_sub(corner[3], corner[0])));
-    for (int i = 0; i < 4; i++) q->vertices[i] = (luz_vertex){corner[i], normal, uv[i]};
+    luz_vertex vertices[4];
+    for (int i = 0; i < 4; i++) vertices[i] = (luz_vertex){corner[i], normal, uv[i]};
     const uint16_t indices[6] = {0, 1, 2, 0, 2, 3};
-    memcpy(q->indices, indices, sizeof indices);
-    q->mesh = (luz_mesh){q->vertices, 4, q->indices, 6};
+    luz_error error = {{0}};
+    q->mesh = luz_mesh_create(&(luz_mesh_desc){.vertices = vertices, .vertex_count = 4,
+                                               .indices16 = indices, .index_count = 6},
+                              &error);
+    assert_non_null(q->mesh);
 }
 
 /* A face-on quad covering NDC [x0, x1] x [y0, y1] at depth d. */
@@ -150,15 +156,15 @@ static void make_screen_quad(quad *q, float x0, float x1, float y0, float y1, fl
     make_quad(q, corner, u_range, v_range);
 }
 
+/* A white quad, its texture sampled trilinearly (a zero material's filter). */
 static void add_quad(luz_frame *frame, const quad *q, const luz_texture *texture)
 {
     luz_draw draw = {0};
-    draw.mesh = &q->mesh;
+    draw.mesh = q->mesh;
     draw.model = luz_mat4_identity();
-    draw.normal_matrix = luz_mat3_normal_matrix(draw.model);
-    draw.colour = (luz_vec3){1.0f, 1.0f, 1.0f};
-    draw.texture = texture;
-    assert_int_equal(luz_frame_add_draw(frame, &draw), 0);
+    draw.material.colour = (luz_vec3){1.0f, 1.0f, 1.0f};
+    draw.material.texture = texture;
+    assert_int_equal(luz_frame_add_draw(frame, &draw, NULL), 0);
 }
 
 /* ---- every view, any size, any thread count --------------------------------------------- */
@@ -252,9 +258,11 @@ static luz_framebuffer *draw_scene_over(const luz_scene *scene, const luz_textur
                                         uint8_t fill, luz_channel_order order)
 {
     luz_frame frame = {0};
-    assert_int_equal(luz_scene_build_frame(scene, textures ? textures->textures : NULL, textures ? textures->count : 0, (float)width / (float)height, &frame),
+    assert_int_equal(luz_scene_build_frame(test_lab(), scene, textures ? textures->textures : NULL,
+                                           textures ? textures->count : 0,
+                                           (float)width / (float)height, &frame, NULL),
                      0);
-    frame.uniforms.clear_colour = clear_colour;
+    frame.clear_colour = clear_colour;
     luz_error error = {{0}};
     luz_renderer *renderer =
         luz_renderer_create(&(luz_renderer_desc){.thread_count = 1}, &error);
@@ -263,7 +271,8 @@ static luz_framebuffer *draw_scene_over(const luz_scene *scene, const luz_textur
     assert_non_null(framebuffer);
     memset(framebuffer->colour, fill, (size_t)width * height * 4);
     luz_framebuffer_use_colour(framebuffer, NULL, order);
-    assert_int_equal(luz_renderer_draw(renderer, &frame, framebuffer, NULL, &error), 0);
+    const luz_render_options render = luz_scene_render_options(scene);
+    assert_int_equal(luz_renderer_draw(renderer, &frame, framebuffer, &render, &error), 0);
     luz_renderer_destroy(renderer);
     luz_frame_free(&frame);
     return framebuffer;
@@ -357,16 +366,16 @@ static void test_uv_view_at_texel_centres(void **state)
     quad q;
     make_screen_quad(&q, -1.0f, 1.0f, -1.0f, 1.0f, 2.0f, 1.0f, 1.0f);
     luz_frame frame = {0};
-    frame.uniforms = quad_uniforms(LUZ_VIEW_UV, LUZ_INTERPOLATION_PERSPECTIVE,
-                                   LUZ_FILTER_TRILINEAR);
+    luz_render_options render = quad_frame(&frame, LUZ_VIEW_UV, LUZ_INTERPOLATION_PERSPECTIVE);
     add_quad(&frame, &q, NULL);
-    luz_framebuffer *framebuffer = draw_frame(&frame, SIZE, SIZE, 1, false);
+    luz_framebuffer *framebuffer = draw_frame(&frame, &render, SIZE, SIZE, 1, false);
     for (int y = 0; y < SIZE; y++)
         for (int x = 0; x < SIZE; x++)
             assert_pixel_near(framebuffer, x, y,
                               ((luz_vec3){(x + 0.5f) / SIZE, (y + 0.5f) / SIZE, 0.0f}), 1);
     luz_framebuffer_destroy(framebuffer);
     luz_frame_free(&frame);
+    luz_mesh_destroy(q.mesh);
 }
 
 static void test_depth_view(void **state)
@@ -379,10 +388,9 @@ static void test_depth_view(void **state)
     quad q;
     make_screen_quad(&q, -1.0f, 0.0f, -1.0f, 1.0f, 2.0f, 1.0f, 1.0f);
     luz_frame frame = {0};
-    frame.uniforms = quad_uniforms(LUZ_VIEW_DEPTH, LUZ_INTERPOLATION_PERSPECTIVE,
-                                   LUZ_FILTER_TRILINEAR);
+    luz_render_options render = quad_frame(&frame, LUZ_VIEW_DEPTH, LUZ_INTERPOLATION_PERSPECTIVE);
     add_quad(&frame, &q, NULL);
-    luz_framebuffer *framebuffer = draw_frame(&frame, SIZE, SIZE, 1, false);
+    luz_framebuffer *framebuffer = draw_frame(&frame, &render, SIZE, SIZE, 1, false);
     const float grey = (float)(1.0 - log(2.0 / 0.1) / log(1000.0));
     for (int y = 0; y < SIZE; y++) {
         for (int x = 0; x < SIZE; x++) {
@@ -392,6 +400,7 @@ static void test_depth_view(void **state)
     }
     luz_framebuffer_destroy(framebuffer);
     luz_frame_free(&frame);
+    luz_mesh_destroy(q.mesh);
 }
 
 static void test_overdraw_counts_depth_tests(void **state)
@@ -408,12 +417,11 @@ static void test_overdraw_counts_depth_tests(void **state)
     make_screen_quad(&c, -0.25f, 0.25f, -0.25f, 0.25f, 2.0f, 1.0f, 1.0f);
     for (int order = 0; order < 2; order++) {
         luz_frame frame = {0};
-        frame.uniforms = quad_uniforms(LUZ_VIEW_OVERDRAW, LUZ_INTERPOLATION_PERSPECTIVE,
-                                       LUZ_FILTER_TRILINEAR);
+        luz_render_options render = quad_frame(&frame, LUZ_VIEW_OVERDRAW, LUZ_INTERPOLATION_PERSPECTIVE);
         /* Far to near, then near to far: the counts are the same. */
         const quad *quads[3] = {&a, &b, &c};
         for (int i = 0; i < 3; i++) add_quad(&frame, quads[order ? 2 - i : i], NULL);
-        luz_framebuffer *framebuffer = draw_frame(&frame, SIZE, SIZE, 3, false);
+        luz_framebuffer *framebuffer = draw_frame(&frame, &render, SIZE, SIZE, 3, false);
         for (int y = 0; y < SIZE; y++) {
             for (int x = 0; x < SIZE; x++) {
                 /* Pixel centre in NDC. */
@@ -428,6 +436,9 @@ static void test_overdraw_counts_depth_tests(void **state)
     }
     /* The colour view of the same quads is not a heat map. */
     assert_true(luz_view_overdraw_colour(2).z != luz_view_overdraw_colour(3).z);
+    luz_mesh_destroy(a.mesh);
+    luz_mesh_destroy(b.mesh);
+    luz_mesh_destroy(c.mesh);
 }
 
 static void test_triangles_view_colours_and_edges(void **state)
@@ -441,10 +452,9 @@ static void test_triangles_view_colours_and_edges(void **state)
     quad q;
     make_screen_quad(&q, -1.0f, 1.0f, -1.0f, 1.0f, 2.0f, 1.0f, 1.0f);
     luz_frame frame = {0};
-    frame.uniforms = quad_uniforms(LUZ_VIEW_TRIANGLES, LUZ_INTERPOLATION_PERSPECTIVE,
-                                   LUZ_FILTER_TRILINEAR);
+    luz_render_options render = quad_frame(&frame, LUZ_VIEW_TRIANGLES, LUZ_INTERPOLATION_PERSPECTIVE);
     add_quad(&frame, &q, NULL);
-    luz_framebuffer *framebuffer = draw_frame(&frame, SIZE, SIZE, 2, false);
+    luz_framebuffer *framebuffer = draw_frame(&frame, &render, SIZE, SIZE, 2, false);
     const luz_vec3 black = {0.0f, 0.0f, 0.0f};
     for (int i = 0; i < SIZE; i++) assert_pixel_near(framebuffer, i, SIZE - 1 - i, black, 0);
     assert_pixel_near(framebuffer, 0, 10, black, 0);   /* 0.5 px from the left edge */
@@ -456,12 +466,13 @@ static void test_triangles_view_colours_and_edges(void **state)
 
     /* The step mode's limit: only triangle 1 is drawn, the upper left half
      * stays background. */
-    frame.uniforms.triangle_limit = 1;
-    framebuffer = draw_frame(&frame, SIZE, SIZE, 2, false);
+    render.triangle_limit = 1;
+    framebuffer = draw_frame(&frame, &render, SIZE, SIZE, 2, false);
     assert_pixel_near(framebuffer, SIZE - 4, SIZE - 4, luz_view_triangle_colour(1), 0);
-    assert_pixel_near(framebuffer, 3, 3, frame.uniforms.clear_colour, 0);
+    assert_pixel_near(framebuffer, 3, 3, frame.clear_colour, 0);
     luz_framebuffer_destroy(framebuffer);
     luz_frame_free(&frame);
+    luz_mesh_destroy(q.mesh);
 }
 
 static void test_mip_view_shows_the_sampled_levels(void **state)
@@ -492,9 +503,10 @@ static void test_mip_view_shows_the_sampled_levels(void **state)
                                    LUZ_FILTER_TRILINEAR};
     for (int k = 0; k < 3; k++) {
         luz_frame frame = {0};
-        frame.uniforms = quad_uniforms(LUZ_VIEW_MIP, LUZ_INTERPOLATION_PERSPECTIVE, filters[k]);
+        luz_render_options render = quad_frame(&frame, LUZ_VIEW_MIP, LUZ_INTERPOLATION_PERSPECTIVE);
         add_quad(&frame, &q, k == 2 ? NULL : texture);
-        luz_framebuffer *framebuffer = draw_frame(&frame, SIZE, SIZE, 1, false);
+        frame.draws[0].material.filter = filters[k];
+        luz_framebuffer *framebuffer = draw_frame(&frame, &render, SIZE, SIZE, 1, false);
         for (int y = 0; y < SIZE; y += 5)
             for (int x = 0; x < SIZE; x += 3) assert_pixel_near(framebuffer, x, y, expected[k], 1);
         luz_framebuffer_destroy(framebuffer);
@@ -502,6 +514,7 @@ static void test_mip_view_shows_the_sampled_levels(void **state)
     }
     luz_texture_destroy(texture);
     free(rgba);
+    luz_mesh_destroy(q.mesh);
 }
 
 /* ---- affine interpolation ------------------------------------------------------------------ */
@@ -514,11 +527,9 @@ static int affine_differences(const quad *q, int levels, int *covered)
     luz_framebuffer *images[2];
     for (int k = 0; k < 2; k++) {
         luz_frame frame = {0};
-        frame.uniforms = quad_uniforms(LUZ_VIEW_UV,
-                                       k ? LUZ_INTERPOLATION_AFFINE : LUZ_INTERPOLATION_PERSPECTIVE,
-                                       LUZ_FILTER_TRILINEAR);
+        luz_render_options render = quad_frame(&frame, LUZ_VIEW_UV, k ? LUZ_INTERPOLATION_AFFINE : LUZ_INTERPOLATION_PERSPECTIVE);
         add_quad(&frame, q, NULL);
-        images[k] = draw_frame(&frame, SIZE, SIZE, 2, false);
+        images[k] = draw_frame(&frame, &render, SIZE, SIZE, 2, false);
         luz_frame_free(&frame);
     }
     int different = 0;
@@ -560,6 +571,8 @@ static void test_affine_differs_only_on_slanted_faces(void **state)
     print_message("slanted quad: %d of %d pixels differ by more than 8 levels\n", different,
                   covered);
     assert_true(different > covered / 2);
+    luz_mesh_destroy(face_on.mesh);
+    luz_mesh_destroy(slanted.mesh);
 }
 
 static void test_affine_packet_and_reference_agree(void **state)

@@ -1,10 +1,18 @@
 /*
  * luz/frame.h: what the renderer draws, as plain data.
  *
- * A luz_frame is the per-frame uniforms (matrices, camera, lights) and a
- * list of draws, each a mesh, where it is and what it is made of. The
- * renderer (luz/renderer.h) draws luz_frames; it knows nothing of where
- * they come from, so a program or a test can hand it any mesh it likes.
+ * A luz_frame is a camera (view and projection matrices, and the eye's
+ * position), the lights, and a list of draws: each a mesh (luz/mesh.h),
+ * where it is (its model matrix) and what it is made of (its material).
+ * The renderer (luz/renderer.h) draws luz_frames and knows nothing of where
+ * they come from: SCENE.md's lab builds one per frame (src/lab), a program
+ * of yours builds its own.
+ *
+ * The lighting is SCENE.md's six terms, each a light with a colour and a
+ * strength: ambient light, diffuse and specular light from a headlight at
+ * the eye, a point light, a spot light that rides on the eye, and a
+ * directional light (luz/shade.h has the equations). A light whose
+ * strength is 0 adds exactly nothing, so a zero luz_lights is darkness.
  */
 #ifndef LUZ_FRAME_H
 #define LUZ_FRAME_H
@@ -12,25 +20,10 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "luz/error.h"
+#include "luz/mesh.h"
 #include "luz/texture.h"
 #include "luz/vecmath.h"
-#include "luz/view.h"
-
-/* ---- meshes ------------------------------------------------------------ */
-
-typedef struct luz_vertex {
-    luz_vec3 position;  /* object space */
-    luz_vec3 normal;    /* object space, unit length */
-    luz_vec2 uv;        /* v = 0 is the top row of the image file */
-} luz_vertex;
-
-/* An indexed triangle list; counter-clockwise triangles are front faces. */
-typedef struct luz_mesh {
-    const luz_vertex *vertices;
-    int vertex_count;
-    const uint16_t *indices;
-    int index_count;          /* a multiple of 3 */
-} luz_mesh;
 
 /* ---- lights ------------------------------------------------------------- */
 
@@ -42,15 +35,20 @@ typedef struct luz_light {
 
 typedef struct luz_lights {
     luz_light ambient;
-    luz_light diffuse;      /* headlight at the camera */
+    luz_light diffuse;      /* headlight at the eye */
     luz_light specular;     /* same headlight */
-    luz_light point;        /* orbits the origin */
-    luz_light spot;         /* rides on the camera */
-    luz_light directional;  /* the sun */
-    float shininess;
+    luz_light point;
+    luz_light spot;         /* at the eye, shining along spot_direction */
+    luz_light directional;
+    float shininess;           /* the specular exponent */
     float spot_inner_degrees;  /* full intensity inside this angle */
     float spot_outer_degrees;  /* cut-off */
-    float spot_reach;
+    float spot_reach;          /* distance at which the spot fades out; > 0 */
+    /* Where the lights are, in world space: in the lab these move with
+     * time and with the camera. */
+    luz_vec3 point_position;
+    luz_vec3 spot_direction;         /* need not be unit length */
+    luz_vec3 directional_direction;  /* the way the light travels */
 } luz_lights;
 
 /* The six terms, in the order SCENE.md's equations list them. */
@@ -65,61 +63,52 @@ typedef enum luz_term {
 } luz_term;
 
 const char *luz_term_name(luz_term term);          /* "ambient", ... */
+/* The light of a term; NULL for a value that is not a term. */
 luz_light *luz_lights_term(luz_lights *lights, luz_term term);
 
-/* How varyings are interpolated across a triangle on the screen. */
-typedef enum luz_interpolation {
-    LUZ_INTERPOLATION_PERSPECTIVE,   /* perspective-correct (the default) */
-    LUZ_INTERPOLATION_AFFINE,        /* linear in screen space: textures swim */
-} luz_interpolation;
+/* ---- materials ---------------------------------------------------------- */
 
-const char *luz_interpolation_name(luz_interpolation interpolation);  /* "perspective", ... */
+/* How a material's pixels get their colour. */
+typedef enum luz_shading {
+    LUZ_SHADING_LIT,     /* SCENE.md: (the six terms) * colour * texel */
+    LUZ_SHADING_UNLIT,   /* colour as it is, no light, no texture (the lab's
+                            point-light marker) */
+} luz_shading;
 
-/* ---- a frame: what the renderer draws ---------------------------------- */
+/* What a draw is made of. A zero material is lit, black and untextured:
+ * set at least the colour. */
+typedef struct luz_material {
+    luz_shading shading;
+    luz_vec3 colour;              /* objectColor C, each channel in [0, 1] */
+    const luz_texture *texture;   /* NULL: every texel white, T = 1 */
+    luz_filter filter;            /* how the texture is sampled (trilinear) */
+} luz_material;
+
+/* ---- a frame ------------------------------------------------------------ */
 
 /* One object to draw: a mesh, where it is, and what it is made of. */
 typedef struct luz_draw {
     const luz_mesh *mesh;
-    luz_mat4 model;
-    luz_mat3 normal_matrix;              /* inverse transpose of model's 3x3 */
-    luz_vec3 colour;                     /* objectColor C */
-    const luz_texture *texture;           /* NULL: white, T = 1 */
-    bool unlit;                          /* output colour as is (the marker) */
+    luz_mat4 model;               /* object to world space */
+    luz_material material;
 } luz_draw;
 
-/* Everything the fragment shader reads that is the same for all fragments. */
-typedef struct luz_uniforms {
-    luz_mat4 view;
-    luz_mat4 projection;
-    luz_vec3 camera_position;          /* E */
-    luz_vec3 camera_front;             /* F, unit length */
-    luz_vec3 point_light_position;
-    luz_vec3 directional_direction;    /* d(t), the direction light travels */
-    luz_lights lights;
-    float spot_cos_inner;              /* cos(inner), precomputed per frame */
-    float spot_cos_outer;
-    luz_filter filter;
-    luz_vec3 clear_colour;
-    luz_view show;                     /* what the colour buffer shows (the
-                                          scene's view; `view` is the matrix) */
-    luz_interpolation interpolation;   /* read by setup.c */
-    uint32_t triangle_limit;           /* 0: rasterise every triangle; N: only
-                                          the first N that survive clipping
-                                          and culling, in submission order
-                                          (the viewer's step mode) */
-} luz_uniforms;
-
 typedef struct luz_frame {
-    luz_uniforms uniforms;
-    luz_draw *draws;
+    luz_mat4 view;                /* world to eye space (luz_mat4_look_at) */
+    luz_mat4 projection;          /* eye to clip space (luz_mat4_perspective) */
+    luz_vec3 eye;                 /* E: the eye's position in the world */
+    luz_lights lights;
+    luz_vec3 clear_colour;        /* the background */
+    luz_draw *draws;              /* drawn in this order */
     int draw_count;
     int draw_capacity;
 } luz_frame;
 
-/* Appends a draw; returns 0, or -1 if memory ran out or the draw's mesh is
- * not one the pipeline can read (NULL arrays, an index count that is not a
- * multiple of 3, an index past the last vertex). */
-int luz_frame_add_draw(luz_frame *frame, const luz_draw *draw);
+/* Appends a copy of *draw to the frame's list (which grows as needed, and
+ * is kept from frame to frame: set draw_count to 0 to reuse it). Returns 0,
+ * or -1 with the reason if the draw has no mesh or memory ran out. */
+int luz_frame_add_draw(luz_frame *frame, const luz_draw *draw, luz_error *error);
+/* Frees the draw list (not the meshes or textures it names). */
 void luz_frame_free(luz_frame *frame);
 
 #endif

@@ -23,7 +23,7 @@
 
 /* Limits that keep every size the renderer accepts safe: the rasteriser's
  * fixed-point range is proven for sides up to LUZ_MAX_DIMENSION (see
- * src/pipeline/setup.c), and LUZ_MAX_PIXELS bounds the memory (13 bytes a
+ * src/renderer/setup.c), and LUZ_MAX_PIXELS bounds the memory (13 bytes a
  * pixel: under 900 MiB). */
 #define LUZ_MAX_DIMENSION 16384
 #define LUZ_MAX_PIXELS (64 * 1024 * 1024)

@@ -3,13 +3,18 @@
  *
  * A renderer owns its worker threads (created once, reused every frame) and
  * its scratch memory; the caller owns the renderer. Drawing a frame runs the
- * pipeline of src/pipeline/frame.c:
+ * pipeline of src/renderer/frame.c:
  *
- *   geometry  vertex stage -> clipping -> triangle setup   (per object)
+ *   geometry  vertex stage -> clipping -> triangle setup   (per draw)
  *   bands     raster + depth test -> shading -> colour     (per band of rows)
  *
  * Bands are disjoint sets of rows, and every band draws the triangles in
  * submission order, so the image is byte-identical for any thread count.
+ *
+ * Threads: one luz_renderer_draw at a time per renderer (it is not to be
+ * called from two threads at once on the same renderer); any number of
+ * renderers may draw at once, from any threads, and may share meshes and
+ * textures, which drawing only reads.
  */
 #ifndef LUZ_RENDERER_H
 #define LUZ_RENDERER_H
@@ -18,21 +23,41 @@
 #include <stdint.h>
 
 #include "luz/error.h"
-#include "luz/framebuffer.h"
 #include "luz/frame.h"
+#include "luz/framebuffer.h"
+#include "luz/view.h"
 
-#define LUZ_THREADS_AUTO (-1)   /* one thread per online CPU */
+#define LUZ_THREADS_AUTO (-1)   /* one thread per online CPU, as 0 is */
 #define LUZ_MAX_THREADS 256
 
+/* A zero desc (or NULL) is the default renderer: one thread per online CPU,
+ * the SIMD fragment stage. */
 typedef struct luz_renderer_desc {
-    int thread_count;   /* LUZ_THREADS_AUTO, or 0 / 1 for the caller's
-                           thread only, or up to LUZ_MAX_THREADS */
+    int thread_count;   /* 0 or LUZ_THREADS_AUTO: one per online CPU; 1:
+                           the caller's thread only; up to LUZ_MAX_THREADS */
     bool reference;     /* true: shade one pixel at a time with the plain
                            reference fragment stage; false (the default):
-                           with the SIMD one. They agree to within rounding
-                           (every channel within 1, nearly every pixel
-                           identical) */
+                           with the SIMD one, whose widest variant the CPU
+                           runs is chosen once, here. They agree to within
+                           rounding (every channel within 1, nearly every
+                           pixel identical) */
 } luz_renderer_desc;
+
+typedef struct luz_renderer luz_renderer;
+
+/* Returns the renderer, or NULL with the reason in error. */
+luz_renderer *luz_renderer_create(const luz_renderer_desc *desc, luz_error *error);
+void luz_renderer_destroy(luz_renderer *renderer);
+/* The number of threads that work on a frame, the caller's included. */
+int luz_renderer_thread_count(const luz_renderer *renderer);
+
+/* How varyings are interpolated across a triangle on the screen. */
+typedef enum luz_interpolation {
+    LUZ_INTERPOLATION_PERSPECTIVE,   /* perspective-correct (the default) */
+    LUZ_INTERPOLATION_AFFINE,        /* linear in screen space: textures swim */
+} luz_interpolation;
+
+const char *luz_interpolation_name(luz_interpolation interpolation);  /* "perspective", ... */
 
 typedef struct luz_frame_stats {
     double geometry_ms;        /* vertex, clip, setup (wall clock) */
@@ -46,36 +71,41 @@ typedef struct luz_frame_stats {
     uint64_t fragments_shaded;    /* pixels shaded (once each) */
 } luz_frame_stats;
 
-typedef struct luz_renderer luz_renderer;
-
-luz_renderer *luz_renderer_create(const luz_renderer_desc *desc, luz_error *error);
-void luz_renderer_destroy(luz_renderer *renderer);
-/* The number of threads that work on a frame, the caller's included. */
-int luz_renderer_thread_count(const luz_renderer *renderer);
-
-/* Draws the frame into the framebuffer (cleared first). stats may be NULL.
- * Returns 0, or -1 if memory ran out. */
-int luz_renderer_draw(luz_renderer *renderer, const luz_frame *frame,
-                      luz_framebuffer *framebuffer, luz_frame_stats *stats,
-                      luz_error *error);
-
 /* Work the caller puts on top of each band of the frame: the renderer
  * calls after_band(context, framebuffer, first_row, end_row) for every
  * band of rows right after its fragment stage, on the thread that drew
  * the band, while those rows are still in its cache. The viewer fills its
- * 2D layer this way (luz_layer_draw_rows). Calls for different bands run
- * at the same time, in any order, so after_band must touch nothing but
- * colour rows [first_row, end_row); together the calls cover every row
- * once. Their time counts in raster_ms. */
+ * 2D layer this way. Calls for different bands run at the same time, in
+ * any order, so after_band must touch nothing but colour rows
+ * [first_row, end_row); together the calls cover every row once. Their
+ * time counts in raster_ms. */
 typedef struct luz_band_hook {
     void (*after_band)(void *context, luz_framebuffer *framebuffer, int first_row,
                        int end_row);
     void *context;
 } luz_band_hook;
 
-/* luz_renderer_draw, with hook (which may be NULL) called per band. */
-int luz_renderer_draw_with_hook(luz_renderer *renderer, const luz_frame *frame,
-                                luz_framebuffer *framebuffer, const luz_band_hook *hook,
-                                luz_frame_stats *stats, luz_error *error);
+/* How to draw a frame: the teaching switches, and what to report. A zero
+ * struct (or NULL) draws the shaded image, perspective-correct, every
+ * triangle, with no hook and no statistics. */
+typedef struct luz_render_options {
+    luz_view view;                     /* what the colour buffer shows
+                                          (luz/view.h): LUZ_VIEW_COLOR, the
+                                          image, or a stage of the pipeline */
+    luz_interpolation interpolation;
+    uint32_t triangle_limit;           /* 0: every triangle; N: only the first
+                                          N that survive clipping and culling,
+                                          in submission order (the viewer's
+                                          step mode) */
+    const luz_band_hook *hook;         /* NULL, or called after each band */
+    luz_frame_stats *stats;            /* NULL, or filled in */
+} luz_render_options;
+
+/* Draws the frame into the framebuffer (cleared first: every pixel is
+ * written). Returns 0, or -1 with the reason in error (memory ran out, or
+ * a draw the frame should not hold). */
+int luz_renderer_draw(luz_renderer *renderer, const luz_frame *frame,
+                      luz_framebuffer *framebuffer, const luz_render_options *options,
+                      luz_error *error);
 
 #endif

@@ -6,10 +6,10 @@
  * vectors are in world space:
  *
  *   P  the fragment's position        N  its normal (unit length)
- *   E  the camera position            F  the camera front (spot direction)
+ *   E  the eye (camera) position      F  the spot's direction (the lab: the camera front)
  *
  * The functions are static inline, like GLSL's built-ins: the fragment
- * stage (src/pipeline/fragment.c) compiles them into its pixel loop, and
+ * stage (src/renderer/fragment.c) compiles them into its pixel loop, and
  * tests call each term alone.
  *
  * luz_shade_fragment() adds the six terms and multiplies by the object's
@@ -42,7 +42,7 @@
 /* GLSL's max() for the clamps below. fmaxf would do, but it treats NaN
  * specially and compilers turn it into a library call; this is one
  * instruction, and a NaN dot product still gives 0. */
-static inline float max_float(float a, float b)
+static inline float luz_shade_max(float a, float b)
 {
     return a > b ? a : b;
 }
@@ -78,7 +78,7 @@ static inline luz_vec3 luz_shade_diffuse(luz_vec3 normal, luz_vec3 position,
                            const luz_light *diffuse)
 {
     luz_vec3 to_light = luz_vec3_normalize(luz_vec3_sub(camera_position, position));
-    float lambert = max_float(luz_vec3_dot(normal, to_light), 0.0f);
+    float lambert = luz_shade_max(luz_vec3_dot(normal, to_light), 0.0f);
     return luz_vec3_scale(diffuse->colour, lambert * diffuse->strength);
 }
 
@@ -92,7 +92,7 @@ static inline luz_vec3 luz_shade_specular(luz_vec3 normal, luz_vec3 position,
     /* reflect(-L, N) = -L + 2 dot(N, L) N */
     luz_vec3 reflected = luz_vec3_sub(
         luz_vec3_scale(normal, 2.0f * luz_vec3_dot(normal, to_light)), to_light);
-    float highlight = luz_shade_power(max_float(luz_vec3_dot(to_viewer, reflected), 0.0f), shininess);
+    float highlight = luz_shade_power(luz_shade_max(luz_vec3_dot(to_viewer, reflected), 0.0f), shininess);
     return luz_vec3_scale(specular->colour, specular->strength * highlight);
 }
 
@@ -100,7 +100,7 @@ static inline luz_vec3 luz_shade_point(luz_vec3 normal, luz_vec3 position, luz_v
                          const luz_light *point)
 {
     luz_vec3 to_light = luz_vec3_normalize(luz_vec3_sub(light_position, position));
-    float lambert = max_float(luz_vec3_dot(normal, to_light), 0.0f);
+    float lambert = luz_shade_max(luz_vec3_dot(normal, to_light), 0.0f);
     return luz_vec3_scale(point->colour, lambert * point->strength);
 }
 
@@ -125,7 +125,7 @@ static inline luz_vec3 luz_shade_spot(luz_vec3 position, luz_vec3 camera_positio
      * style fall-off; the strength enters squared, as in the report. */
     float distance = luz_vec3_length(luz_vec3_sub(camera_position, position)) / reach;
     float distance2 = distance * distance;
-    float window = max_float(1.0f - distance2 * distance2, 0.0f);
+    float window = luz_shade_max(1.0f - distance2 * distance2, 0.0f);
     float f_distance = window * window * (spot->strength * spot->strength) / (distance2 + 1.0f);
 
     return luz_vec3_scale(spot->colour, f_direction * f_distance);
@@ -135,32 +135,46 @@ static inline luz_vec3 luz_shade_directional(luz_vec3 normal, luz_vec3 direction
                                const luz_light *directional)
 {
     luz_vec3 to_sun = luz_vec3_normalize(luz_vec3_scale(direction, -1.0f));
-    float lambert = max_float(luz_vec3_dot(normal, to_sun), 0.0f);
+    float lambert = luz_shade_max(luz_vec3_dot(normal, to_sun), 0.0f);
     return luz_vec3_scale(directional->colour, lambert * directional->strength);
 }
 
-static inline luz_vec3 luz_shade_lighting(const luz_uniforms *uniforms, luz_vec3 position, luz_vec3 normal)
+/* What the six terms read that is the same for every fragment of a frame:
+ * the eye, the lights, and the spot's cone as cosines, worked out once. */
+typedef struct luz_shade_uniforms {
+    luz_vec3 eye;          /* E */
+    luz_lights lights;
+    float spot_cos_inner;  /* cos(lights.spot_inner_degrees) */
+    float spot_cos_outer;
+} luz_shade_uniforms;
+
+luz_shade_uniforms luz_shade_uniforms_of(luz_vec3 eye, const luz_lights *lights);
+
+/* The sum of the six terms at world position P with normal N (normalised
+ * here, as SCENE.md asks after interpolation). */
+static inline luz_vec3 luz_shade_lighting(const luz_shade_uniforms *uniforms, luz_vec3 position,
+                                          luz_vec3 normal)
 {
     const luz_lights *lights = &uniforms->lights;
     const luz_vec3 n = luz_vec3_normalize(normal);
-    const luz_vec3 eye = uniforms->camera_position;
+    const luz_vec3 eye = uniforms->eye;
 
     luz_vec3 light = luz_shade_ambient(&lights->ambient);
     light = luz_vec3_add(light, luz_shade_diffuse(n, position, eye, &lights->diffuse));
     light = luz_vec3_add(light, luz_shade_specular(n, position, eye, &lights->specular,
                                                    lights->shininess));
-    light = luz_vec3_add(light, luz_shade_point(n, position, uniforms->point_light_position,
+    light = luz_vec3_add(light, luz_shade_point(n, position, lights->point_position,
                                                 &lights->point));
-    light = luz_vec3_add(light, luz_shade_spot(position, eye, uniforms->camera_front,
+    light = luz_vec3_add(light, luz_shade_spot(position, eye, lights->spot_direction,
                                                &lights->spot, uniforms->spot_cos_inner,
                                                uniforms->spot_cos_outer, lights->spot_reach));
-    light = luz_vec3_add(light, luz_shade_directional(n, uniforms->directional_direction,
+    light = luz_vec3_add(light, luz_shade_directional(n, lights->directional_direction,
                                                       &lights->directional));
     return light;
 }
 
-static inline luz_vec3 luz_shade_fragment(const luz_uniforms *uniforms, luz_vec3 position, luz_vec3 normal,
-                            luz_vec3 object_colour, luz_vec3 texel)
+static inline luz_vec3 luz_shade_fragment(const luz_shade_uniforms *uniforms, luz_vec3 position,
+                                          luz_vec3 normal, luz_vec3 object_colour, luz_vec3 texel)
 {
     luz_vec3 light = luz_shade_lighting(uniforms, position, normal);
     return luz_vec3_mul(luz_vec3_mul(light, object_colour), texel);

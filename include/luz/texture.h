@@ -23,10 +23,12 @@
 #define LUZ_TEXTURE_MAX_SIZE 8192   /* per side; bounds memory for any file */
 #define LUZ_TEXTURE_MAX_LEVELS 14   /* log2(8192) + 1 */
 
+/* Texture filtering, as OpenGL's minification filters. Zero is trilinear,
+ * the best, so that a zero material samples as well as it can. */
 typedef enum luz_filter {
-    LUZ_FILTER_NEAREST,
-    LUZ_FILTER_BILINEAR,
-    LUZ_FILTER_TRILINEAR,
+    LUZ_FILTER_TRILINEAR,   /* GL_LINEAR_MIPMAP_LINEAR */
+    LUZ_FILTER_BILINEAR,    /* GL_LINEAR, level 0 only */
+    LUZ_FILTER_NEAREST,     /* GL_NEAREST, level 0 only */
 } luz_filter;
 
 const char *luz_filter_name(luz_filter filter);    /* "nearest", ... */

@@ -5,7 +5,7 @@
  * pipeline write a picture of one of its stages into the colour buffer
  * instead of the shaded image: the same triangles, rasterised by the same
  * code, only the last step (what colour a pixel gets) differs. The
- * pictures are drawn by src/pipeline/view.c; this header gives their
+ * pictures are drawn by src/renderer/view.c; this header gives their
  * palettes, so that a legend, a test or a caption can say what each colour
  * means.
  *
@@ -31,7 +31,7 @@
 #include "luz/vecmath.h"
 
 /* What the pipeline writes into the colour buffer: the shaded image, or a
- * picture of one of its stages (src/pipeline/view.c draws them). Every view
+ * picture of one of its stages (src/renderer/view.c draws them). Every view
  * is drawn by the same pipeline, from the same triangles. */
 typedef enum luz_view {
     LUZ_VIEW_COLOR,       /* the shaded image (the default) */

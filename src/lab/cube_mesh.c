@@ -29,9 +29,11 @@ static const uint16_t cube_indices[36] = {
     FACE_TRIANGLES(3), FACE_TRIANGLES(4), FACE_TRIANGLES(5),
 };
 
-static const luz_mesh cube_mesh = {cube_vertices, 24, cube_indices, 36};
-
-const luz_mesh *luz_cube_mesh(void)
+luz_mesh *luz_cube_mesh_create(luz_error *error)
 {
-    return &cube_mesh;
+    return luz_mesh_create(&(luz_mesh_desc){.vertices = cube_vertices,
+                                            .vertex_count = 24,
+                                            .indices16 = cube_indices,
+                                            .index_count = 36},
+                           error);
 }

@@ -3,8 +3,8 @@
  *
  * Every default of SCENE.md lives in luz_scene_defaults(); every motion
  * (the cubes' rotation, the point light's orbit, the sun's) lives in
- * luz_scene_build_frame(). What comes out is a luz_frame: uniforms and a
- * list of draws, which is all the renderer sees.
+ * luz_scene_build_frame(). What comes out is a luz_frame: a camera, lights
+ * and a list of draws, which is all the renderer sees.
  */
 #include <limits.h>
 #include <stdlib.h>
@@ -120,41 +120,69 @@ static float turn_radians(double degrees)
     return (float)(fmod(degrees, 360.0) * (LUZ_PI / 180.0));
 }
 
-luz_uniforms luz_scene_uniforms(const luz_scene *scene, float aspect)
+struct luz_lab {
+    luz_mesh *cube;
+};
+
+luz_lab *luz_lab_create(luz_error *error)
 {
-    luz_uniforms uniforms;
-    memset(&uniforms, 0, sizeof uniforms);
-    double t = scene->time_seconds;
-    const luz_camera *camera = &scene->camera;
-
-    uniforms.camera_position = camera->position;
-    uniforms.camera_front = luz_camera_front(camera);
-    uniforms.view = luz_mat4_look_at(camera->position,
-                                     luz_vec3_add(camera->position, uniforms.camera_front),
-                                     (luz_vec3){0.0f, 1.0f, 0.0f});
-    uniforms.projection = luz_mat4_perspective(luz_radians(camera->fov_degrees), aspect,
-                                               0.1f, 100.0f);
-
-    double orbit = fmod(0.5 * t, 2.0 * LUZ_PI);
-    uniforms.point_light_position = (luz_vec3){(float)(3.0 * cos(orbit)), 0.5f,
-                                               (float)(3.0 * sin(orbit))};
-    double sun = fmod(0.1 * t, 2.0 * LUZ_PI);
-    uniforms.directional_direction = (luz_vec3){(float)cos(sun), (float)sin(sun), 0.0f};
-
-    uniforms.lights = scene->lights;
-    uniforms.spot_cos_inner = (float)cos(scene->lights.spot_inner_degrees * (LUZ_PI / 180.0));
-    uniforms.spot_cos_outer = (float)cos(scene->lights.spot_outer_degrees * (LUZ_PI / 180.0));
-    uniforms.filter = scene->filter;
-    uniforms.clear_colour = (luz_vec3){0.1f, 0.1f, 0.1f};
-    uniforms.show = scene->view;
-    uniforms.interpolation = scene->interpolation;
-    return uniforms;
+    luz_lab *lab = calloc(1, sizeof *lab);
+    if (lab == NULL) {
+        luz_error_set(error, "out of memory for the lab");
+        return NULL;
+    }
+    lab->cube = luz_cube_mesh_create(error);
+    if (lab->cube == NULL) {
+        free(lab);
+        return NULL;
+    }
+    return lab;
 }
 
-int luz_scene_build_frame(const luz_scene *scene, luz_texture *const *textures,
-                          int texture_count, float aspect, luz_frame *frame)
+void luz_lab_destroy(luz_lab *lab)
 {
-    frame->uniforms = luz_scene_uniforms(scene, aspect);
+    if (lab == NULL) return;
+    luz_mesh_destroy(lab->cube);
+    free(lab);
+}
+
+const luz_mesh *luz_lab_cube_mesh(const luz_lab *lab)
+{
+    return lab->cube;
+}
+
+void luz_scene_set_camera_and_lights(const luz_scene *scene, float aspect, luz_frame *frame)
+{
+    double t = scene->time_seconds;
+    const luz_camera *camera = &scene->camera;
+    const luz_vec3 front = luz_camera_front(camera);
+
+    frame->eye = camera->position;
+    frame->view = luz_mat4_look_at(camera->position, luz_vec3_add(camera->position, front),
+                                   (luz_vec3){0.0f, 1.0f, 0.0f});
+    frame->projection = luz_mat4_perspective(luz_radians(camera->fov_degrees), aspect,
+                                             0.1f, 100.0f);
+
+    frame->lights = scene->lights;
+    double orbit = fmod(0.5 * t, 2.0 * LUZ_PI);
+    frame->lights.point_position = (luz_vec3){(float)(3.0 * cos(orbit)), 0.5f,
+                                              (float)(3.0 * sin(orbit))};
+    double sun = fmod(0.1 * t, 2.0 * LUZ_PI);
+    frame->lights.directional_direction = (luz_vec3){(float)cos(sun), (float)sin(sun), 0.0f};
+    frame->lights.spot_direction = front;   /* the spot rides on the camera */
+    frame->clear_colour = (luz_vec3){0.1f, 0.1f, 0.1f};
+}
+
+luz_render_options luz_scene_render_options(const luz_scene *scene)
+{
+    return (luz_render_options){.view = scene->view, .interpolation = scene->interpolation};
+}
+
+int luz_scene_build_frame(const luz_lab *lab, const luz_scene *scene,
+                          luz_texture *const *textures, int texture_count, float aspect,
+                          luz_frame *frame, luz_error *error)
+{
+    luz_scene_set_camera_and_lights(scene, aspect, frame);
     frame->draw_count = 0;
 
     const bool custom = scene->custom_cubes != NULL;
@@ -164,7 +192,8 @@ int luz_scene_build_frame(const luz_scene *scene, luz_texture *const *textures,
 
     for (int i = 0; i < cube_count; i++) {
         luz_draw draw = {0};
-        draw.mesh = luz_cube_mesh();
+        draw.mesh = lab->cube;
+        draw.material.filter = scene->filter;
 
         /* objectColor: drawn in index order whether used or not, so a cube
          * keeps its colour when an earlier one has a colour of its own. */
@@ -175,39 +204,37 @@ int luz_scene_build_frame(const luz_scene *scene, luz_texture *const *textures,
 
         luz_vec3 position;
         int texture_index = LUZ_TEXTURE_BY_INDEX;
-        draw.colour = random_colour;
+        draw.material.colour = random_colour;
         if (custom) {
             const luz_cube *cube = &scene->custom_cubes[i];
             position = cube->position;
-            if (cube->has_colour) draw.colour = cube->colour;
+            if (cube->has_colour) draw.material.colour = cube->colour;
             texture_index = cube->texture;
         } else {
             position = luz_scene_tiled_position(i);
         }
         if (texture_count > 0) {
             int index = texture_index == LUZ_TEXTURE_BY_INDEX ? i : texture_index;
-            draw.texture = textures[index % texture_count];
+            draw.material.texture = textures[index % texture_count];
         }
 
         double angle_degrees = (i + 1) / 3.0 * scene->time_seconds * 50.0;
         draw.model = luz_mat4_rotate(luz_mat4_translate(luz_mat4_identity(), position),
                                      turn_radians(angle_degrees), axis);
-        draw.normal_matrix = luz_mat3_normal_matrix(draw.model);
-        if (luz_frame_add_draw(frame, &draw) != 0) return -1;
+        if (luz_frame_add_draw(frame, &draw, error) != 0) return -1;
     }
 
     /* The point light's marker: a small unrotated cube, unlit, in the
      * light's colour (not scaled by its strength), drawn while it shines. */
     if (scene->lights.point.strength > 0.0f) {
         luz_draw marker = {0};
-        marker.mesh = luz_cube_mesh();
+        marker.mesh = lab->cube;
         marker.model = luz_mat4_scale(
-            luz_mat4_translate(luz_mat4_identity(), frame->uniforms.point_light_position),
+            luz_mat4_translate(luz_mat4_identity(), frame->lights.point_position),
             (luz_vec3){0.2f, 0.2f, 0.2f});
-        marker.normal_matrix = luz_mat3_normal_matrix(marker.model);
-        marker.colour = scene->lights.point.colour;
-        marker.unlit = true;
-        if (luz_frame_add_draw(frame, &marker) != 0) return -1;
+        marker.material = (luz_material){.shading = LUZ_SHADING_UNLIT,
+                                         .colour = scene->lights.point.colour};
+        if (luz_frame_add_draw(frame, &marker, error) != 0) return -1;
     }
     return 0;
 }

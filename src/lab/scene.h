@@ -18,12 +18,16 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "luz/error.h"
 #include "luz/frame.h"
+#include "luz/mesh.h"
+#include "luz/renderer.h"
 #include "luz/texture.h"
 #include "luz/vecmath.h"
 
-/* The unit cube of SCENE.md: 24 vertices, 36 indices, static storage. */
-const luz_mesh *luz_cube_mesh(void);
+/* The unit cube of SCENE.md as a mesh of its own: 24 vertices, 36
+ * indices (cube_mesh.c). */
+luz_mesh *luz_cube_mesh_create(luz_error *error);
 
 /* ---- camera and lights ------------------------------------------------- */
 
@@ -79,17 +83,37 @@ uint32_t luz_xorshift32(uint32_t state);
  * generator; colours must hold count entries. */
 void luz_scene_random_colours(uint32_t seed, int count, luz_vec3 *colours);
 
-/* The uniforms of a scene's camera and lights at the scene's time, for an
- * image of the given aspect ratio (width / height). */
-luz_uniforms luz_scene_uniforms(const luz_scene *scene, float aspect);
+/* ---- the scene as a frame ------------------------------------------------ */
 
-/* Fills frame with the scene at its time: uniforms, then one draw per cube
- * in index order, then the point-light marker while its strength is above
- * 0. textures holds texture_count textures, cube i using textures[i mod
- * texture_count]; none (NULL, 0) makes every texel white. Returns 0, or -1 if
- * memory ran out. The frame's draw array is reused between calls. */
-int luz_scene_build_frame(const luz_scene *scene, luz_texture *const *textures,
-                          int texture_count, float aspect, luz_frame *frame);
+/* What the lab keeps from frame to frame: its meshes (the cube). */
+typedef struct luz_lab luz_lab;
+
+luz_lab *luz_lab_create(luz_error *error);
+void luz_lab_destroy(luz_lab *lab);
+/* The unit cube of SCENE.md, 24 vertices and 12 triangles, that every
+ * cube and the point light's marker draw. */
+const luz_mesh *luz_lab_cube_mesh(const luz_lab *lab);
+
+/* The frame's camera and lights at the scene's time, for an image of the
+ * given aspect ratio (width / height): the view and projection matrices,
+ * the eye, the lights with the point light and the sun where their orbits
+ * have them and the spot along the camera's front, and the clear colour.
+ * The draws are left as they are. */
+void luz_scene_set_camera_and_lights(const luz_scene *scene, float aspect, luz_frame *frame);
+
+/* The render options the scene's teaching settings ask for (its view and
+ * interpolation); every other field zero. */
+luz_render_options luz_scene_render_options(const luz_scene *scene);
+
+/* Fills frame with the scene at its time: camera and lights, then one draw
+ * per cube in index order, then the point-light marker while its strength
+ * is above 0. textures holds texture_count textures, cube i using
+ * textures[i mod texture_count]; none (NULL, 0) makes every texel white.
+ * Returns 0, or -1 with the reason if memory ran out. The frame's draw
+ * array is reused between calls. */
+int luz_scene_build_frame(const luz_lab *lab, const luz_scene *scene,
+                          luz_texture *const *textures, int texture_count, float aspect,
+                          luz_frame *frame, luz_error *error);
 
 
 #endif

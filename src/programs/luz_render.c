@@ -72,6 +72,7 @@ static void print_usage(FILE *out)
 typedef struct render_context {
     const luz_options *options;
     const luz_texture_set *textures;
+    const luz_lab *lab;
     luz_framebuffer *framebuffer;
     luz_frame frame;
 } render_context;
@@ -83,9 +84,12 @@ static int render_at(render_context *context, luz_renderer *renderer, double tim
     luz_scene scene = context->options->scene;
     scene.time_seconds = time_seconds;
     float aspect = (float)context->options->width / (float)context->options->height;
-    if (luz_scene_build_frame(&scene, context->textures->textures, context->textures->count, aspect, &context->frame) != 0)
-        return luz_error_set(error, "out of memory building the frame");
-    return luz_renderer_draw(renderer, &context->frame, context->framebuffer, stats, error);
+    if (luz_scene_build_frame(context->lab, &scene, context->textures->textures,
+                              context->textures->count, aspect, &context->frame, error) != 0)
+        return -1;
+    luz_render_options render = luz_scene_render_options(&scene);
+    render.stats = stats;
+    return luz_renderer_draw(renderer, &context->frame, context->framebuffer, &render, error);
 }
 
 /* A bar that redraws itself on one line; only on a terminal, where it helps
@@ -201,6 +205,7 @@ int main(int argc, char **argv)
     luz_options options;
     luz_texture_set textures = {0};
     luz_renderer *renderer = NULL;
+    luz_lab *lab = NULL;
     render_context context = {.options = &options, .textures = &textures};
     luz_error error = {{0}};
     int status = EXIT_OK;
@@ -224,11 +229,18 @@ int main(int argc, char **argv)
     }
 
     status = EXIT_RUNTIME;
-    renderer = luz_renderer_create(&(luz_renderer_desc){.thread_count = options.thread_count,
-                                                      .reference = options.reference},
-                                   &error);
+    /* --threads 0 means the caller's thread, as 1 does; to the renderer,
+     * 0 is a zero desc's field: one thread per CPU. */
+    renderer = luz_renderer_create(
+        &(luz_renderer_desc){.thread_count = options.thread_count == 0 ? 1 : options.thread_count,
+                             .reference = options.reference},
+        &error);
     if (renderer == NULL)
         goto done;
+    lab = luz_lab_create(&error);
+    if (lab == NULL)
+        goto done;
+    context.lab = lab;
     context.framebuffer = luz_framebuffer_create(options.width, options.height, &error);
     if (context.framebuffer == NULL)
         goto done;
@@ -245,6 +257,7 @@ done:
         luz_framebuffer_destroy(context.framebuffer);
     if (renderer != NULL)
         luz_renderer_destroy(renderer);
+    luz_lab_destroy(lab);
     luz_texture_set_free(&textures);
     luz_options_free(&options);
     if (fflush(stdout) != 0 && status == EXIT_OK) {

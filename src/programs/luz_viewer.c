@@ -14,7 +14,7 @@
  * a streaming RGBA texture. Every pixel, the HUD's text and the panel's
  * sliders included, is drawn by libluz: the 2D layer of luz/panel.h is
  * recorded first, then the renderer fills it band by band on top of the
- * scene (luz_renderer_draw_with_hook). What the keys do is in
+ * scene (luz_renderer_draw with a luz_band_hook). What the keys do is in
  * luz/controls.h and what the panel does in luz/panel.h, both tested
  * without a window; this file maps SDL's events onto them.
  *
@@ -207,6 +207,7 @@ typedef struct viewer {
     int window_width, window_height; /* the window's size in pixels */
 
     luz_renderer *renderer;
+    luz_lab *lab;                    /* the lab's cube mesh */
     luz_framebuffer *framebuffer;
     luz_frame frame;
     luz_frame_stats stats;
@@ -608,15 +609,18 @@ static int draw_frame(viewer *v, luz_error *error)
                                    LUZ_CHANNELS_BGRA);
 #endif
     float aspect = (float)v->framebuffer->width / (float)v->framebuffer->height;
-    if (luz_scene_build_frame(&v->options->scene, v->textures ? v->textures->textures : NULL, v->textures ? v->textures->count : 0, aspect, &v->frame) != 0)
-        return luz_error_set(error, "out of memory building the frame");
-    v->frame.uniforms.triangle_limit = v->step_limit;
+    if (luz_scene_build_frame(v->lab, &v->options->scene, v->textures->textures,
+                              v->textures->count, aspect, &v->frame, error) != 0)
+        return -1;
     if (record_overlays(v, error) != 0)
         return -1;
     const luz_band_hook fill_layer = {fill_layer_rows, &v->layer};
     const bool screenshot = v->screenshot_requested;
-    if (luz_renderer_draw_with_hook(v->renderer, &v->frame, v->framebuffer,
-                                    screenshot ? NULL : &fill_layer, &v->stats, error) != 0)
+    luz_render_options render = luz_scene_render_options(&v->options->scene);
+    render.triangle_limit = v->step_limit;
+    render.hook = screenshot ? NULL : &fill_layer;
+    render.stats = &v->stats;
+    if (luz_renderer_draw(v->renderer, &v->frame, v->framebuffer, &render, error) != 0)
         return -1;
     if (screenshot) {
         v->screenshot_requested = false;
@@ -830,10 +834,16 @@ int main(int argc, char **argv)
     status = EXIT_RUNTIME;
     v.start_camera = options.scene.camera;
     luz_panel_init(&v.panel);
-    v.renderer = luz_renderer_create(&(luz_renderer_desc){.thread_count = options.thread_count,
-                                                          .reference = options.reference},
-                                     &error);
+    /* --threads 0 means the caller's thread, as 1 does; to the renderer,
+     * 0 is a zero desc's field: one thread per CPU. */
+    v.renderer = luz_renderer_create(
+        &(luz_renderer_desc){.thread_count = options.thread_count == 0 ? 1 : options.thread_count,
+                             .reference = options.reference},
+        &error);
     if (v.renderer == NULL)
+        goto done;
+    v.lab = luz_lab_create(&error);
+    if (v.lab == NULL)
         goto done;
     v.framebuffer = luz_framebuffer_create(options.width, options.height, &error);
     if (v.framebuffer == NULL)
@@ -854,6 +864,7 @@ done:
     luz_layer_free(&v.layer);
     if (v.renderer != NULL)
         luz_renderer_destroy(v.renderer);
+    luz_lab_destroy(v.lab);
 #ifdef LUZ_VIEWER_X11
     x11_presenter_destroy(v.x11);
 #endif

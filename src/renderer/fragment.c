@@ -4,7 +4,8 @@
  * shader and write the colour.
  *
  * In:  the visibility buffer (which triangle is nearest at each pixel,
- *      written by raster.c), the set-up triangles, the frame.
+ *      written by raster.c), the set-up triangles, their draws'
+ *      materials, the frame's uniforms.
  * Out: the colour buffer, each channel round(clamp(c, 0, 1) * 255), in the
  *      framebuffer's channel order (RGBA or BGRA). Every pixel is written:
  *      the background, where no triangle won, gets the clear colour. No
@@ -63,17 +64,18 @@ void luz_fragment_interpolate(const luz_triangle *triangle, int x, int y, luz_fr
     out->depth = plane_at(triangle->depth, dx, dy);
 }
 
-uint64_t luz_fragment_shade_rows(const luz_frame *frame, const luz_triangle *const *by_id,
-                                 luz_framebuffer *framebuffer, int first_row, int end_row)
+uint64_t luz_fragment_shade_rows(const luz_uniforms *frame_uniforms, const luz_draw *draws,
+                                 const luz_triangle *const *by_id, luz_framebuffer *framebuffer,
+                                 int first_row, int end_row)
 {
     /* A local copy: the colour writes below go through a uint8_t pointer,
      * which C allows to alias anything, so without it the compiler would
      * have to reload every uniform after every pixel. */
-    const luz_uniforms uniforms = frame->uniforms;
+    const luz_shade_uniforms uniforms = frame_uniforms->shade;
     const int width = framebuffer->width;
     const luz_pixel_layout layout = luz_pixel_layout_of(framebuffer->channel_order);
     uint8_t background[4];   /* the clear colour's bytes, worked out once */
-    luz_pixel_write(background, layout, uniforms.clear_colour);
+    luz_pixel_write(background, layout, frame_uniforms->clear_colour);
     uint64_t shaded = 0;
 
     for (int y = first_row; y < end_row; y++) {
@@ -87,23 +89,23 @@ uint64_t luz_fragment_shade_rows(const luz_frame *frame, const luz_triangle *con
                 continue;
             }
             const luz_triangle *triangle = by_id[id];
-            const luz_draw *draw = &frame->draws[triangle->draw_index];
+            const luz_material *material = &draws[triangle->draw_index].material;
 
             luz_vec3 colour;
-            if (draw->unlit) {
-                colour = draw->colour;
+            if (material->shading == LUZ_SHADING_UNLIT) {
+                colour = material->colour;
             } else {
                 luz_fragment fragment;
                 luz_fragment_interpolate(triangle, x, y, &fragment);
                 float lambda = 0.0f;
-                if (draw->texture && uniforms.filter == LUZ_FILTER_TRILINEAR)
-                    lambda = luz_texture_level_of_detail(draw->texture, fragment.du_dx,
+                if (material->texture && material->filter == LUZ_FILTER_TRILINEAR)
+                    lambda = luz_texture_level_of_detail(material->texture, fragment.du_dx,
                                                          fragment.dv_dx, fragment.du_dy,
                                                          fragment.dv_dy);
-                luz_vec3 texel =
-                    luz_texture_sample(draw->texture, uniforms.filter, fragment.uv, lambda);
+                luz_vec3 texel = luz_texture_sample(material->texture, material->filter,
+                                                    fragment.uv, lambda);
                 colour = luz_shade_fragment(&uniforms, fragment.position, fragment.normal,
-                                            draw->colour, texel);
+                                            material->colour, texel);
             }
             luz_pixel_write(pixel, layout, colour);
             shaded++;

@@ -232,7 +232,6 @@ typedef struct packet_uniforms {
     float shininess;
     float spot_strength_squared;
     float cos_inner, cos_outer, reach;
-    luz_filter filter;
     /* The framebuffer's channel order, as the shifts that put red and blue
      * into a pixel's uint32_t (CHANNEL_SHIFT), and the clear colour packed
      * in it. */
@@ -242,12 +241,12 @@ typedef struct packet_uniforms {
 
 static packet_uniforms packet_uniforms_of(const luz_uniforms *uniforms, luz_channel_order order)
 {
-    const luz_lights *lights = &uniforms->lights;
+    const luz_lights *lights = &uniforms->shade.lights;
     packet_uniforms u = {
-        .eye = uniforms->camera_position,
-        .point_position = uniforms->point_light_position,
-        .spot_axis = luz_vec3_normalize(uniforms->camera_front),
-        .to_sun = luz_vec3_normalize(luz_vec3_scale(uniforms->directional_direction, -1.0f)),
+        .eye = uniforms->shade.eye,
+        .point_position = lights->point_position,
+        .spot_axis = luz_vec3_normalize(lights->spot_direction),
+        .to_sun = luz_vec3_normalize(luz_vec3_scale(lights->directional_direction, -1.0f)),
         .ambient = luz_shade_ambient(&lights->ambient),
         .diffuse = lights->diffuse,
         .specular = lights->specular,
@@ -261,10 +260,9 @@ static packet_uniforms packet_uniforms_of(const luz_uniforms *uniforms, luz_chan
         .directional_on = lights->directional.strength != 0.0f,
         .shininess = lights->shininess,
         .spot_strength_squared = lights->spot.strength * lights->spot.strength,
-        .cos_inner = uniforms->spot_cos_inner,
-        .cos_outer = uniforms->spot_cos_outer,
+        .cos_inner = uniforms->shade.spot_cos_inner,
+        .cos_outer = uniforms->shade.spot_cos_outer,
         .reach = lights->spot_reach,
-        .filter = uniforms->filter,
     };
     const float s = lights->shininess;
     u.shininess_whole = luz_shade_power_is_whole(s);
@@ -592,17 +590,17 @@ INLINE vuint pack_pixels(vvec3 colour, const packet_uniforms *u)
 
 /* The texel T of the lanes, as luz_texture_sample with fragment.c's level
  * of detail. */
-INLINE vvec3 sample_texture(const packet_uniforms *u, const luz_texture *texture,
-                            const luz_triangle *triangle, vfloat dx, float dy, vfloat w,
-                            vint mine)
+INLINE vvec3 sample_texture(const luz_material *material, const luz_triangle *triangle,
+                            vfloat dx, float dy, vfloat w, vint mine)
 {
+    const luz_texture *texture = material->texture;
     const luz_plane u_plane = triangle->varyings[LUZ_VARYING_UV + 0];
     const luz_plane v_plane = triangle->varyings[LUZ_VARYING_UV + 1];
     const vfloat tu = plane_at(u_plane, dx, dy) * w;
     const vfloat tv = plane_at(v_plane, dx, dy) * w;
-    if (u->filter == LUZ_FILTER_NEAREST)
+    if (material->filter == LUZ_FILTER_NEAREST)
         return sample_nearest(texture, tu, tv);
-    if (u->filter != LUZ_FILTER_TRILINEAR) {   /* bilinear, as luz_texture_sample */
+    if (material->filter != LUZ_FILTER_TRILINEAR) {   /* bilinear, as luz_texture_sample */
         const lane_level level = level_of(texture, splat_int(0));
         return sample_bilinear(texture, &level, tu, tv);
     }
@@ -617,16 +615,18 @@ INLINE vvec3 sample_texture(const packet_uniforms *u, const luz_texture *texture
 }
 
 /* The packet's pixels shaded as the triangle's, as fragment.c shades one
- * pixel: interpolate, sample, light. centre_x holds the lanes' pixel
- * centres x + 0.5; `mine` marks the lanes that are the triangle's. */
-INLINE vuint shade_triangle(const packet_uniforms *u, const luz_frame *frame,
+ * pixel: interpolate, sample, light, as the triangle's material says.
+ * centre_x holds the lanes' pixel centres x + 0.5; `mine` marks the lanes
+ * that are the triangle's. */
+INLINE vuint shade_triangle(const packet_uniforms *u, const luz_draw *draws,
                             const luz_triangle *triangle, vfloat centre_x, float centre_y,
                             vint mine)
 {
-    const luz_draw *draw = &frame->draws[triangle->draw_index];
-    if (draw->unlit)
-        return pack_pixels((vvec3){splat(draw->colour.x), splat(draw->colour.y),
-                                   splat(draw->colour.z)},
+    const luz_material *material = &draws[triangle->draw_index].material;
+    const luz_vec3 object_colour = material->colour;
+    if (material->shading == LUZ_SHADING_UNLIT)
+        return pack_pixels((vvec3){splat(object_colour.x), splat(object_colour.y),
+                                   splat(object_colour.z)},
                            u);
 
     /* luz_fragment_interpolate: a = (a/w)(x, y) / (1/w)(x, y). */
@@ -647,27 +647,29 @@ INLINE vuint shade_triangle(const packet_uniforms *u, const luz_frame *frame,
     };
     const vvec3 light = shade_lighting(u, position, normal);
     /* The texel; with no texture T = 1, and c * 1 = c, so it is skipped. */
-    const luz_texture *texture = draw->texture;
+    const bool textured = material->texture != NULL;
     vvec3 texel = {0};
-    if (texture) texel = sample_texture(u, texture, triangle, dx, dy, w, mine);
+    if (textured) texel = sample_texture(material, triangle, dx, dy, w, mine);
 
     /* colour = light * C * T */
-    vvec3 colour = {light.x * draw->colour.x, light.y * draw->colour.y,
-                    light.z * draw->colour.z};
-    if (texture) colour = (vvec3){colour.x * texel.x, colour.y * texel.y, colour.z * texel.z};
+    vvec3 colour = {light.x * object_colour.x, light.y * object_colour.y,
+                    light.z * object_colour.z};
+    if (textured) colour = (vvec3){colour.x * texel.x, colour.y * texel.y, colour.z * texel.z};
     return pack_pixels(colour, u);
 }
 
 /* ---- the band ------------------------------------------------------------ */
 
-uint64_t VARIANT_ROWS(const luz_frame *frame, const luz_triangle *const *by_id,
-                      luz_framebuffer *framebuffer, int first_row, int end_row);
+uint64_t VARIANT_ROWS(const luz_uniforms *uniforms, const luz_draw *draws,
+                      const luz_triangle *const *by_id, luz_framebuffer *framebuffer,
+                      int first_row, int end_row);
 
 /* The packet loop of this variant. */
-uint64_t VARIANT_ROWS(const luz_frame *frame, const luz_triangle *const *by_id,
-                      luz_framebuffer *framebuffer, int first_row, int end_row)
+uint64_t VARIANT_ROWS(const luz_uniforms *uniforms, const luz_draw *draws,
+                      const luz_triangle *const *by_id, luz_framebuffer *framebuffer,
+                      int first_row, int end_row)
 {
-    const packet_uniforms u = packet_uniforms_of(&frame->uniforms, framebuffer->channel_order);
+    const packet_uniforms u = packet_uniforms_of(uniforms, framebuffer->channel_order);
     const vuint background = (vuint){0} + u.background;
     const int width = framebuffer->width;
     vfloat lane_x;
@@ -702,7 +704,7 @@ uint64_t VARIANT_ROWS(const luz_frame *frame, const luz_triangle *const *by_id,
                     const uint32_t id = ids[__builtin_ctz(pending)];
                     const vint mine = (vint)(ids == id);
                     pending &= ~lane_bits(mine);
-                    const vuint shade = shade_triangle(&u, frame, by_id[id], centre_x,
+                    const vuint shade = shade_triangle(&u, draws, by_id[id], centre_x,
                                                        centre_y, mine);
                     pixels = (vuint)select_int(mine, (vint)shade, (vint)pixels);
                 }
@@ -723,14 +725,10 @@ uint64_t VARIANT_ROWS(const luz_frame *frame, const luz_triangle *const *by_id,
 #if defined(BASELINE_VARIANT)
 
 #if defined(LUZ_PACKET_HAVE_AVX512)
-uint64_t luz_fragment_packet_rows_avx512(const luz_frame *frame, const luz_triangle *const *by_id,
-                                       luz_framebuffer *framebuffer, int first_row,
-                                       int end_row);
+luz_packet_rows_function luz_fragment_packet_rows_avx512;
 #endif
 #if defined(LUZ_PACKET_HAVE_AVX2)
-uint64_t luz_fragment_packet_rows_avx2(const luz_frame *frame, const luz_triangle *const *by_id,
-                                       luz_framebuffer *framebuffer, int first_row,
-                                       int end_row);
+luz_packet_rows_function luz_fragment_packet_rows_avx2;
 #endif
 
 bool luz_packet_isa_supported(luz_packet_isa isa)
@@ -758,10 +756,7 @@ bool luz_packet_isa_supported(luz_packet_isa isa)
     return false;
 }
 
-uint64_t luz_fragment_shade_rows_packet(luz_packet_isa isa, const luz_frame *frame,
-                                        const luz_triangle *const *by_id,
-                                        luz_framebuffer *framebuffer, int first_row,
-                                        int end_row)
+luz_packet_rows_function *luz_packet_rows_for(luz_packet_isa isa)
 {
     /* The widest variant asked for that the build and the CPU have. */
     if (isa == LUZ_PACKET_ISA_BEST) isa = LUZ_PACKET_ISA_AVX512;
@@ -771,15 +766,23 @@ uint64_t luz_fragment_shade_rows_packet(luz_packet_isa isa, const luz_frame *fra
     switch (isa) {
 #if defined(LUZ_PACKET_HAVE_AVX512)
     case LUZ_PACKET_ISA_AVX512:
-        return luz_fragment_packet_rows_avx512(frame, by_id, framebuffer, first_row, end_row);
+        return luz_fragment_packet_rows_avx512;
 #endif
 #if defined(LUZ_PACKET_HAVE_AVX2)
     case LUZ_PACKET_ISA_AVX2:
-        return luz_fragment_packet_rows_avx2(frame, by_id, framebuffer, first_row, end_row);
+        return luz_fragment_packet_rows_avx2;
 #endif
     default:
-        return luz_fragment_packet_rows_baseline(frame, by_id, framebuffer, first_row, end_row);
+        return luz_fragment_packet_rows_baseline;
     }
+}
+
+uint64_t luz_fragment_shade_rows_packet(luz_packet_isa isa, const luz_uniforms *uniforms,
+                                        const luz_draw *draws, const luz_triangle *const *by_id,
+                                        luz_framebuffer *framebuffer, int first_row,
+                                        int end_row)
+{
+    return luz_packet_rows_for(isa)(uniforms, draws, by_id, framebuffer, first_row, end_row);
 }
 
 #endif

@@ -3,7 +3,10 @@
  *
  * luz_renderer_draw() runs the stages in two phases:
  *
- *   1. Geometry, per object (draws are split into chunks, one job each):
+ *   0. Uniforms: what every stage reads that is the same for the whole
+ *      frame (matrices, the eye, the lights, the spot's cone), once.
+ *
+ *   1. Geometry, per draw (draws are split into chunks, one job each):
  *        vertex stage    every vertex to clip space, with its varyings
  *        clipping        each triangle against the near, far and guard planes
  *        setup           each clipped triangle to edges and planes; back
@@ -50,7 +53,7 @@ typedef struct triangle_list {
     size_t count;
     size_t capacity;
     luz_clip_vertex *vertices;      /* vertex-stage output, reused per draw */
-    int vertex_capacity;
+    uint32_t vertex_capacity;
     bool out_of_memory;
     luz_interpolation interpolation;   /* the frame's, for setup */
     uint64_t submitted, clipped, culled;
@@ -74,7 +77,8 @@ struct luz_renderer {
     uint32_t *band_ids;
     size_t band_ids_capacity;
     bool reference;                 /* fragment.c's shading, not the packets */
-    luz_packet_isa packet_isa;
+    luz_packet_rows_function *packet_rows;   /* the SIMD variant this CPU
+                                                runs, chosen at creation */
     uint32_t *overdraw;             /* depth tests per pixel, for the overdraw
                                        view only; allocated when first asked */
     size_t overdraw_capacity;
@@ -86,11 +90,12 @@ typedef struct frame_job {
     luz_renderer *renderer;
     const luz_frame *frame;
     luz_framebuffer *framebuffer;
-    luz_mat4 view_projection;
+    luz_uniforms uniforms;
     int chunk_count;
     int draws_per_chunk;
     size_t triangle_count;
     int band_count;
+    uint32_t triangle_limit;        /* 0, or rasterise only the first N */
     uint32_t *overdraw;             /* NULL unless the overdraw view */
     const luz_band_hook *hook;      /* NULL, or called after each band */
 } frame_job;
@@ -129,7 +134,7 @@ static void set_up(triangle_list *list, const luz_clip_vertex *a, const luz_clip
 }
 
 static void geometry_of_draw(triangle_list *list, const luz_draw *draw, uint32_t draw_index,
-                             luz_mat4 view_projection, const luz_framebuffer *framebuffer)
+                             const luz_mat4 view_projection, const luz_framebuffer *framebuffer)
 {
     const luz_mesh *mesh = draw->mesh;
     if (mesh->vertex_count > list->vertex_capacity) {
@@ -146,7 +151,7 @@ static void geometry_of_draw(triangle_list *list, const luz_draw *draw, uint32_t
     /* Vertex stage. */
     luz_vertex_stage(draw, view_projection, list->vertices);
 
-    for (int i = 0; i + 2 < mesh->index_count; i += 3) {
+    for (uint32_t i = 0; i + 2 < mesh->index_count; i += 3) {
         const luz_clip_vertex *a = &list->vertices[mesh->indices[i]];
         const luz_clip_vertex *b = &list->vertices[mesh->indices[i + 1]];
         const luz_clip_vertex *c = &list->vertices[mesh->indices[i + 2]];
@@ -185,8 +190,8 @@ static void geometry_job(void *context, int chunk_index, int worker_index)
     int end = first + job->draws_per_chunk;
     if (end > job->frame->draw_count) end = job->frame->draw_count;
     for (int d = first; d < end && !list->out_of_memory; d++)
-        geometry_of_draw(list, &job->frame->draws[d], (uint32_t)d, job->view_projection,
-                         job->framebuffer);
+        geometry_of_draw(list, &job->frame->draws[d], (uint32_t)d,
+                         job->uniforms.view_projection, job->framebuffer);
 }
 
 /* ---- phase 2: bands ---------------------------------------------------- */
@@ -195,7 +200,8 @@ static void band_job(void *context, int band_index, int worker_index)
 {
     frame_job *job = context;
     luz_framebuffer *framebuffer = job->framebuffer;
-    const luz_triangle **by_id = job->renderer->by_id;
+    const luz_renderer *renderer = job->renderer;
+    const luz_triangle **by_id = renderer->by_id;
     int first_row = band_index * BAND_HEIGHT;
     int end_row = first_row + BAND_HEIGHT;
     if (end_row > framebuffer->height) end_row = framebuffer->height;
@@ -214,7 +220,6 @@ static void band_job(void *context, int band_index, int worker_index)
 
     /* Raster and depth test, the band's triangles in submission order. */
     uint64_t tested = 0;
-    const luz_renderer *renderer = job->renderer;
     for (size_t k = renderer->band_start[band_index]; k < renderer->band_start[band_index + 1];
          k++) {
         const uint32_t id = renderer->band_ids[k];
@@ -230,17 +235,18 @@ static void band_job(void *context, int band_index, int worker_index)
      * (the reference, fragment.c) or a packet of them at a time (the same
      * equations as SIMD vectors, fragment_packet.c). The teaching views
      * draw a picture of a stage instead, with the reference (view.c). */
-    if (job->frame->uniforms.show != LUZ_VIEW_COLOR)
-        counters->fragments_shaded = luz_view_shade_rows(job->frame, by_id, framebuffer,
+    const luz_uniforms *uniforms = &job->uniforms;
+    const luz_draw *draws = job->frame->draws;
+    if (uniforms->show != LUZ_VIEW_COLOR)
+        counters->fragments_shaded = luz_view_shade_rows(uniforms, draws, by_id, framebuffer,
                                                          first_row, end_row, overdraw,
                                                          worker_index);
-    else if (job->renderer->reference)
-        counters->fragments_shaded = luz_fragment_shade_rows(job->frame, by_id, framebuffer,
-                                                             first_row, end_row);
+    else if (renderer->reference)
+        counters->fragments_shaded = luz_fragment_shade_rows(uniforms, draws, by_id,
+                                                             framebuffer, first_row, end_row);
     else
-        counters->fragments_shaded =
-            luz_fragment_shade_rows_packet(job->renderer->packet_isa, job->frame, by_id,
-                                           framebuffer, first_row, end_row);
+        counters->fragments_shaded = renderer->packet_rows(uniforms, draws, by_id, framebuffer,
+                                                           first_row, end_row);
     counters->fragments_tested = tested;
 
     /* The caller's work on top, while the band's rows are in this core's
@@ -260,21 +266,23 @@ static int online_cpus(void)
 
 luz_renderer *luz_renderer_create(const luz_renderer_desc *desc, luz_error *error)
 {
-    int threads = desc ? desc->thread_count : LUZ_THREADS_AUTO;
-    if (threads == LUZ_THREADS_AUTO) threads = online_cpus();
-    if (threads < 0 || threads > LUZ_MAX_THREADS) {
-        luz_error_set(error, "thread count %d: expected 0 to %d", threads, LUZ_MAX_THREADS);
+    const luz_renderer_desc defaults = {0};
+    if (desc == NULL) desc = &defaults;
+    int threads = desc->thread_count;
+    if (threads < LUZ_THREADS_AUTO || threads > LUZ_MAX_THREADS) {
+        luz_error_set(error, "thread count %d: expected 0 (one per CPU) to %d", threads,
+                      LUZ_MAX_THREADS);
         return NULL;
     }
-    if (threads == 0) threads = 1;   /* 0 and 1 both mean the caller's thread */
+    if (threads == 0 || threads == LUZ_THREADS_AUTO) threads = online_cpus();
 
     luz_renderer *renderer = calloc(1, sizeof *renderer);
     if (!renderer) {
         luz_error_set(error, "out of memory for the renderer");
         return NULL;
     }
-    renderer->reference = desc ? desc->reference : false;
-    renderer->packet_isa = LUZ_PACKET_ISA_BEST;
+    renderer->reference = desc->reference;
+    renderer->packet_rows = luz_packet_rows_for(LUZ_PACKET_ISA_BEST);
     renderer->chunk_capacity = threads * CHUNKS_PER_THREAD;
     renderer->chunks = calloc((size_t)renderer->chunk_capacity, sizeof *renderer->chunks);
     renderer->pool = luz_thread_pool_create(threads);
@@ -305,7 +313,7 @@ void luz_renderer_destroy(luz_renderer *renderer)
 
 void luz_renderer_set_packet_isa(luz_renderer *renderer, luz_packet_isa isa)
 {
-    renderer->packet_isa = isa;
+    renderer->packet_rows = luz_packet_rows_for(isa);
 }
 
 int luz_renderer_thread_count(const luz_renderer *renderer)
@@ -328,7 +336,7 @@ static void split_into_chunks(luz_renderer *renderer, frame_job *job)
         list->count = 0;
         list->out_of_memory = false;
         list->submitted = list->clipped = list->culled = 0;
-        list->interpolation = frame->uniforms.interpolation;
+        list->interpolation = job->uniforms.interpolation;
     }
 }
 
@@ -358,7 +366,7 @@ static int number_triangles(luz_renderer *renderer, frame_job *job, size_t *tota
 
     job->triangle_count = *total;
     /* The viewer's step mode rasterises only the first triangles. */
-    const uint32_t limit = job->frame->uniforms.triangle_limit;
+    const uint32_t limit = job->triangle_limit;
     if (limit != 0 && limit < *total) job->triangle_count = limit;
     return 0;
 }
@@ -410,7 +418,7 @@ static int bin_triangles(luz_renderer *renderer, frame_job *job, luz_error *erro
 /* The overdraw view's counters, one per pixel, allocated when first asked. */
 static int prepare_overdraw(luz_renderer *renderer, frame_job *job, luz_error *error)
 {
-    if (job->frame->uniforms.show != LUZ_VIEW_OVERDRAW) return 0;
+    if (job->uniforms.show != LUZ_VIEW_OVERDRAW) return 0;
     size_t pixels = (size_t)job->framebuffer->width * (size_t)job->framebuffer->height;
     if (pixels > renderer->overdraw_capacity) {
         uint32_t *overdraw = realloc(renderer->overdraw, pixels * sizeof *overdraw);
@@ -437,25 +445,58 @@ static void collect_stats(const luz_renderer *renderer, const frame_job *job,
     }
 }
 
-int luz_renderer_draw(luz_renderer *renderer, const luz_frame *frame,
-                      luz_framebuffer *framebuffer, luz_frame_stats *stats, luz_error *error)
+luz_uniforms luz_uniforms_of(const luz_frame *frame, const luz_render_options *options)
 {
-    return luz_renderer_draw_with_hook(renderer, frame, framebuffer, NULL, stats, error);
+    const luz_render_options defaults = {0};
+    if (options == NULL) options = &defaults;
+    luz_uniforms uniforms;
+    memset(&uniforms, 0, sizeof uniforms);
+    uniforms.view_projection = luz_mat4_multiply(frame->projection, frame->view);
+    uniforms.projection = frame->projection;
+    uniforms.shade = luz_shade_uniforms_of(frame->eye, &frame->lights);
+    uniforms.clear_colour = frame->clear_colour;
+    uniforms.show = options->view;
+    uniforms.interpolation = options->interpolation;
+    return uniforms;
 }
 
-int luz_renderer_draw_with_hook(luz_renderer *renderer, const luz_frame *frame,
-                                luz_framebuffer *framebuffer, const luz_band_hook *hook,
-                                luz_frame_stats *stats, luz_error *error)
+/* What the pipeline needs of the caller's data that no type can say. */
+static int check_frame(const luz_frame *frame, const luz_render_options *options,
+                       luz_error *error)
+{
+    if (frame->draw_count < 0 || (frame->draw_count > 0 && frame->draws == NULL))
+        return luz_error_set(error, "frame: %d draws but no draw array", frame->draw_count);
+    for (int d = 0; d < frame->draw_count; d++)
+        if (frame->draws[d].mesh == NULL) return luz_error_set(error, "draw %d: no mesh", d);
+    if ((unsigned)options->view >= LUZ_VIEW_COUNT)
+        return luz_error_set(error, "render options: view %d is not a luz_view",
+                             (int)options->view);
+    if (options->interpolation != LUZ_INTERPOLATION_PERSPECTIVE &&
+        options->interpolation != LUZ_INTERPOLATION_AFFINE)
+        return luz_error_set(error, "render options: interpolation %d is not a "
+                             "luz_interpolation", (int)options->interpolation);
+    return 0;
+}
+
+int luz_renderer_draw(luz_renderer *renderer, const luz_frame *frame,
+                      luz_framebuffer *framebuffer, const luz_render_options *options,
+                      luz_error *error)
 {
     const double start = now_ms();
+    const luz_render_options defaults = {0};
+    if (options == NULL) options = &defaults;
+    if (check_frame(frame, options, error) != 0) return -1;
     frame_job job = {
         .renderer = renderer,
         .frame = frame,
         .framebuffer = framebuffer,
-        .hook = hook,
-        .view_projection = luz_mat4_multiply(frame->uniforms.projection, frame->uniforms.view),
+        .hook = options->hook,
+        .triangle_limit = options->triangle_limit,
         .band_count = (framebuffer->height + BAND_HEIGHT - 1) / BAND_HEIGHT,
     };
+
+    /* Uniforms, once for the frame. */
+    job.uniforms = luz_uniforms_of(frame, options);
 
     /* Phase 1: geometry (vertex stage, clipping, setup), in chunks of
      * consecutive draws; then number the triangles and bin them to bands. */
@@ -472,6 +513,7 @@ int luz_renderer_draw_with_hook(luz_renderer *renderer, const luz_frame *frame,
     luz_thread_pool_run(renderer->pool, job.band_count, band_job, &job);
     const double end = now_ms();
 
+    luz_frame_stats *stats = options->stats;
     if (stats) {
         memset(stats, 0, sizeof *stats);
         stats->geometry_ms = geometry_end - start;

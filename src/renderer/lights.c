@@ -1,9 +1,13 @@
 /*
- * lights.c: the names of the six light terms, and a term's light.
+ * lights.c: the names of the six light terms, a term's light, and the
+ * shading uniforms worked out once a frame.
  */
+#include <math.h>
 #include <stddef.h>
+#include <string.h>
 
 #include "luz/frame.h"
+#include "luz/shade.h"
 
 const char *luz_term_name(luz_term term)
 {
@@ -24,4 +28,17 @@ luz_light *luz_lights_term(luz_lights *lights, luz_term term)
     case LUZ_TERM_DIRECTIONAL: return &lights->directional;
     default: return NULL;
     }
+}
+
+luz_shade_uniforms luz_shade_uniforms_of(luz_vec3 eye, const luz_lights *lights)
+{
+    luz_shade_uniforms uniforms;
+    memset(&uniforms, 0, sizeof uniforms);
+    uniforms.eye = eye;
+    uniforms.lights = *lights;
+    /* In double, then rounded once: the cone's cosines as the lab has
+     * always computed them. */
+    uniforms.spot_cos_inner = (float)cos(lights->spot_inner_degrees * (LUZ_PI / 180.0));
+    uniforms.spot_cos_outer = (float)cos(lights->spot_outer_degrees * (LUZ_PI / 180.0));
+    return uniforms;
 }

@@ -2,7 +2,7 @@
  * pipeline.h: the stages of luz's pipeline and the plain structs that flow
  * between them. Private to the library (and its tests).
  *
- *   luz_draw (mesh + model)                              scene.h
+ *   luz_draw (mesh + model + material)                   luz/frame.h
  *     -> vertex.c    luz_clip_vertex per mesh vertex     clip space + varyings
  *     -> clip.c      luz_clip_polygon per triangle       inside the clip volume
  *     -> setup.c     luz_triangle per fan triangle       fixed-point edges, planes
@@ -23,7 +23,37 @@
 
 #include "luz/framebuffer.h"
 #include "luz/frame.h"
+#include "luz/renderer.h"
+#include "luz/shade.h"
 #include "luz/vecmath.h"
+
+/* ---- meshes (mesh.c) ----------------------------------------------------- */
+
+/* A mesh as luz_mesh_create made it: its own copies of the arrays, checked,
+ * with 32-bit indices whatever the caller gave. */
+struct luz_mesh {
+    luz_vertex *vertices;
+    uint32_t vertex_count;
+    uint32_t *indices;
+    uint32_t index_count;
+    luz_bounds bounds;
+};
+
+/* ---- the frame's uniforms (frame.c) --------------------------------------- */
+
+/* What every stage reads that is the same for the whole frame, worked out
+ * once from the frame and the render options. */
+typedef struct luz_uniforms {
+    luz_mat4 view_projection;
+    luz_mat4 projection;               /* the depth view reads its z row */
+    luz_shade_uniforms shade;          /* eye, lights, the spot's cosines */
+    luz_vec3 clear_colour;
+    luz_view show;                     /* what the colour buffer shows */
+    luz_interpolation interpolation;   /* read by setup.c */
+} luz_uniforms;
+
+/* NULL options are the defaults. */
+luz_uniforms luz_uniforms_of(const luz_frame *frame, const luz_render_options *options);
 
 /* ---- vertex stage ------------------------------------------------------ */
 
@@ -167,14 +197,16 @@ static inline void luz_pixel_write(uint8_t *pixel, luz_pixel_layout layout, luz_
 
 /* Shades rows [first_row, end_row): each pixel whose visibility id is not 0
  * gets its varyings interpolated perspective-correctly, its texel sampled
- * and the fragment shader's colour; by_id[id] is the triangle with that id.
- * Every other pixel, the background, gets the clear colour
- * (frame->uniforms.clear_colour): colour is not cleared beforehand, so
+ * and its material's colour; by_id[id] is the triangle with that id, and
+ * draws[triangle->draw_index] its draw. Every other pixel, the background,
+ * gets the clear colour (uniforms->clear_colour): colour is not cleared
+ * beforehand, so
  * after this every byte of the rows' colour is written, in the
  * framebuffer's channel order. Returns the number of pixels shaded (the
  * background not counted). */
-uint64_t luz_fragment_shade_rows(const luz_frame *frame, const luz_triangle *const *by_id,
-                                 luz_framebuffer *framebuffer, int first_row, int end_row);
+uint64_t luz_fragment_shade_rows(const luz_uniforms *uniforms, const luz_draw *draws,
+                                 const luz_triangle *const *by_id, luz_framebuffer *framebuffer,
+                                 int first_row, int end_row);
 
 /* The same stage, a packet of pixels at a time (fragment_packet.c): the
  * same equations in the same order, as SIMD vectors, and the background
@@ -195,8 +227,16 @@ typedef enum luz_packet_isa {
 
 /* Whether this build has the variant and this CPU can run it. */
 bool luz_packet_isa_supported(luz_packet_isa isa);
-uint64_t luz_fragment_shade_rows_packet(luz_packet_isa isa, const luz_frame *frame,
-                                        const luz_triangle *const *by_id,
+/* A variant's packet loop; luz_packet_rows_for gives the one that runs for
+ * isa (asking the CPU, so the renderer asks once, when it is made). */
+typedef uint64_t luz_packet_rows_function(const luz_uniforms *uniforms, const luz_draw *draws,
+                                          const luz_triangle *const *by_id,
+                                          luz_framebuffer *framebuffer, int first_row,
+                                          int end_row);
+luz_packet_rows_function *luz_packet_rows_for(luz_packet_isa isa);
+/* luz_packet_rows_for(isa), called on the rows. */
+uint64_t luz_fragment_shade_rows_packet(luz_packet_isa isa, const luz_uniforms *uniforms,
+                                        const luz_draw *draws, const luz_triangle *const *by_id,
                                         luz_framebuffer *framebuffer, int first_row,
                                         int end_row);
 
@@ -228,7 +268,7 @@ static inline float luz_texture_repeat(float coordinate)
 
 /* ---- views (view.c) ----------------------------------------------------- */
 
-/* Colours rows [first_row, end_row) as frame->uniforms.show asks (see
+/* Colours rows [first_row, end_row) as uniforms->show asks (see
  * luz/view.h), from what the raster stage left there: the visibility and
  * depth buffers, and overdraw (depth tests per pixel, counted only for the
  * overdraw view; NULL otherwise). worker_index is the thread drawing the
@@ -236,9 +276,10 @@ static inline float luz_texture_repeat(float coordinate)
  * fragment stage, it writes every pixel of the rows, the background too,
  * in the framebuffer's channel order. Returns the number of visible
  * pixels. */
-uint64_t luz_view_shade_rows(const luz_frame *frame, const luz_triangle *const *by_id,
-                             luz_framebuffer *framebuffer, int first_row, int end_row,
-                             const uint32_t *overdraw, int worker_index);
+uint64_t luz_view_shade_rows(const luz_uniforms *uniforms, const luz_draw *draws,
+                             const luz_triangle *const *by_id, luz_framebuffer *framebuffer,
+                             int first_row, int end_row, const uint32_t *overdraw,
+                             int worker_index);
 
 /* ---- the renderer (frame.c) --------------------------------------------- */
 

@@ -1,8 +1,8 @@
 /*
  * vertex.c: the vertex stage, luz's vertex shader.
  *
- * In:  a luz_draw (a mesh in object space, its model and normal matrices)
- *      and the frame's projection * view matrix.
+ * In:  a luz_draw (a mesh in object space and its model matrix) and the
+ *      frame's projection * view matrix.
  * Out: one luz_clip_vertex per mesh vertex: the clip-space position that
  *      the clipper and rasteriser need, and the varyings the fragment
  *      shader needs (world-space position and normal, texture coordinates).
@@ -18,10 +18,11 @@
 void luz_vertex_stage(const luz_draw *draw, luz_mat4 view_projection, luz_clip_vertex *out)
 {
     const luz_mesh *mesh = draw->mesh;
-    for (int i = 0; i < mesh->vertex_count; i++) {
+    const luz_mat3 normal_matrix = luz_mat3_normal_matrix(draw->model);
+    for (uint32_t i = 0; i < mesh->vertex_count; i++) {
         const luz_vertex *vertex = &mesh->vertices[i];
         luz_vec3 world = luz_mat4_transform_point(draw->model, vertex->position);
-        luz_vec3 normal = luz_mat3_transform(draw->normal_matrix, vertex->normal);
+        luz_vec3 normal = luz_mat3_transform(normal_matrix, vertex->normal);
 
         out[i].position = luz_mat4_transform(view_projection,
                                              (luz_vec4){world.x, world.y, world.z, 1.0f});

@@ -209,14 +209,15 @@ static void tint_rows_by_thread(luz_framebuffer *framebuffer, int first_row, int
     }
 }
 
-uint64_t luz_view_shade_rows(const luz_frame *frame, const luz_triangle *const *by_id,
-                             luz_framebuffer *framebuffer, int first_row, int end_row,
-                             const uint32_t *overdraw, int worker_index)
+uint64_t luz_view_shade_rows(const luz_uniforms *uniforms, const luz_draw *draws,
+                             const luz_triangle *const *by_id, luz_framebuffer *framebuffer,
+                             int first_row, int end_row, const uint32_t *overdraw,
+                             int worker_index)
 {
-    const luz_uniforms *uniforms = &frame->uniforms;
     const luz_view view = uniforms->show;
     if (view == LUZ_VIEW_BANDS) {
-        uint64_t shaded = luz_fragment_shade_rows(frame, by_id, framebuffer, first_row, end_row);
+        uint64_t shaded = luz_fragment_shade_rows(uniforms, draws, by_id, framebuffer,
+                                                  first_row, end_row);
         tint_rows_by_thread(framebuffer, first_row, end_row, worker_index);
         return shaded;
     }
@@ -252,7 +253,7 @@ uint64_t luz_view_shade_rows(const luz_frame *frame, const luz_triangle *const *
             }
 
             const luz_triangle *triangle = by_id[id];
-            const luz_draw *draw = &frame->draws[triangle->draw_index];
+            const luz_material *material = &draws[triangle->draw_index].material;
             luz_fragment fragment;
             if (view != LUZ_VIEW_TRIANGLES) luz_fragment_interpolate(triangle, x, y, &fragment);
             luz_vec3 colour = {0.0f, 0.0f, 0.0f};
@@ -267,7 +268,7 @@ uint64_t luz_view_shade_rows(const luz_frame *frame, const luz_triangle *const *
                                     luz_texture_repeat(fragment.uv.y), 0.0f};
                 break;
             case LUZ_VIEW_MIP:
-                colour = mip_colour(draw->texture, uniforms->filter, &fragment);
+                colour = mip_colour(material->texture, material->filter, &fragment);
                 break;
             case LUZ_VIEW_TRIANGLES:
                 colour = edge_distance(triangle, x, y) < TRIANGLE_EDGE_PIXELS

@@ -1,0 +1,419 @@
+/*
+ * test_mesh.c: libluz as a program of its own would use it: meshes made
+ * and checked once, materials per draw, zero descs as defaults, and every
+ * failure saying why.
+ *
+ * The frames here are built by hand, not by the lab: a camera at the
+ * origin looking down -z with a 90-degree field of view on a square image,
+ * so that the point (x, y, -d) lands on NDC (x / d, y / d), and no light
+ * but the ambient term, so that a lit pixel is ambient * colour * texel.
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+#include "luz/luz.h"
+
+enum { SIZE = 32 };
+
+static luz_frame camera_frame(void)
+{
+    luz_frame frame = {0};
+    frame.view = luz_mat4_identity();
+    frame.projection = luz_mat4_perspective((float)(LUZ_PI / 2.0), 1.0f, 0.1f, 100.0f);
+    frame.lights.ambient = (luz_light){{1.0f, 1.0f, 1.0f}, 1.0f};
+    frame.lights.spot_reach = 1.0f;
+    frame.clear_colour = (luz_vec3){0.0f, 0.0f, 0.0f};
+    return frame;
+}
+
+/* A quad over NDC [x0, x1] x [y0, y1] at depth 2, counter-clockwise, uv
+ * over [0, 1] with v = 0 on top. */
+static void quad_vertices(luz_vertex vertices[4], float x0, float x1, float y0, float y1)
+{
+    const float d = 2.0f;
+    const luz_vec3 n = {0.0f, 0.0f, 1.0f};
+    vertices[0] = (luz_vertex){{x0 * d, y0 * d, -d}, n, {0.0f, 1.0f}};
+    vertices[1] = (luz_vertex){{x1 * d, y0 * d, -d}, n, {1.0f, 1.0f}};
+    vertices[2] = (luz_vertex){{x1 * d, y1 * d, -d}, n, {1.0f, 0.0f}};
+    vertices[3] = (luz_vertex){{x0 * d, y1 * d, -d}, n, {0.0f, 0.0f}};
+}
+
+static luz_framebuffer *render_frame(const luz_frame *frame, const luz_render_options *options,
+                                     int threads)
+{
+    luz_error error = {{0}};
+    luz_renderer *renderer =
+        luz_renderer_create(&(luz_renderer_desc){.thread_count = threads}, &error);
+    assert_non_null(renderer);
+    luz_framebuffer *framebuffer = luz_framebuffer_create(SIZE, SIZE, &error);
+    assert_non_null(framebuffer);
+    assert_int_equal(luz_renderer_draw(renderer, frame, framebuffer, options, &error), 0);
+    luz_renderer_destroy(renderer);
+    return framebuffer;
+}
+
+static luz_framebuffer *draw_image(const luz_frame *frame)
+{
+    return render_frame(frame, NULL, 2);
+}
+
+static const uint8_t *pixel(const luz_framebuffer *framebuffer, int x, int y)
+{
+    return framebuffer->colour + ((size_t)y * framebuffer->width + x) * 4;
+}
+
+static void assert_pixel(const luz_framebuffer *framebuffer, int x, int y, int r, int g, int b)
+{
+    const uint8_t *p = pixel(framebuffer, x, y);
+    if (p[0] != r || p[1] != g || p[2] != b)
+        fail_msg("pixel (%d, %d) is (%d, %d, %d), expected (%d, %d, %d)", x, y, p[0], p[1], p[2],
+                 r, g, b);
+}
+
+static void assert_error_says(int status, const luz_error *error, const char *words)
+{
+    assert_int_equal(status, -1);
+    if (strstr(error->message, words) == NULL)
+        fail_msg("error '%s' does not say '%s'", error->message, words);
+}
+
+/* ---- making meshes ------------------------------------------------------------------ */
+
+/* Each malformed desc is refused, and the message names what is wrong. */
+static void test_bad_meshes_are_refused_with_a_reason(void **state)
+{
+    (void)state;
+    luz_vertex vertices[4];
+    quad_vertices(vertices, -1, 1, -1, 1);
+    const uint32_t past_the_end[3] = {0, 1, 4};
+    const uint32_t good[6] = {0, 1, 2, 0, 2, 3};
+    const uint16_t good16[3] = {0, 1, 2};
+    struct {
+        luz_mesh_desc desc;
+        const char *says;
+    } cases[] = {
+        {{.vertices = vertices, .vertex_count = 4, .indices = past_the_end, .index_count = 3},
+         "index 2 is 4, past the last of 4 vertices"},
+        {{.vertices = vertices, .vertex_count = 4, .indices = good, .index_count = 5},
+         "5 indices, expected a multiple of 3"},
+        {{.vertices = vertices, .vertex_count = 4}, "4 vertices and no indices"},
+        {{.vertex_count = 3, .indices = good, .index_count = 3}, "no vertex array"},
+        {{.vertices = vertices, .vertex_count = 4, .index_count = 3}, "no index array"},
+        {{.vertices = vertices, .vertex_count = 4, .indices = good, .indices16 = good16,
+          .index_count = 3},
+         "both indices and indices16"},
+        {{.vertices = vertices, .vertex_count = LUZ_MESH_MAX_VERTICES + 1u, .indices = good,
+          .index_count = 3},
+         "expected at most"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        luz_error error = {{0}};
+        luz_mesh *mesh = luz_mesh_create(&cases[i].desc, &error);
+        assert_null(mesh);
+        if (strstr(error.message, cases[i].says) == NULL)
+            fail_msg("case %zu: '%s' does not say '%s'", i, error.message, cases[i].says);
+    }
+
+    /* A position that is not finite would reach clipping as NaN. */
+    vertices[2].position.y = NAN;
+    luz_error error = {{0}};
+    assert_null(luz_mesh_create(&(luz_mesh_desc){.vertices = vertices, .vertex_count = 4,
+                                                 .indices = good, .index_count = 6},
+                                &error));
+    assert_non_null(strstr(error.message, "vertex 2 has a position that is not finite"));
+}
+
+/* The zero desc (and NULL) is an empty mesh: no vertices, no triangles,
+ * and a frame that draws it shows the background everywhere. */
+static void test_zero_desc_is_an_empty_mesh(void **state)
+{
+    (void)state;
+    luz_error error = {{0}};
+    luz_mesh *empty = luz_mesh_create(&(luz_mesh_desc){0}, &error);
+    luz_mesh *null_desc = luz_mesh_create(NULL, &error);
+    assert_non_null(empty);
+    assert_non_null(null_desc);
+    assert_int_equal(luz_mesh_vertex_count(empty), 0);
+    assert_int_equal(luz_mesh_triangle_count(empty), 0);
+    luz_bounds bounds = luz_mesh_bounds(empty);
+    assert_true(bounds.min.x == 0 && bounds.max.z == 0);
+
+    luz_frame frame = camera_frame();
+    frame.clear_colour = (luz_vec3){0.2f, 0.4f, 0.6f};
+    assert_int_equal(luz_frame_add_draw(&frame, &(luz_draw){.mesh = empty,
+                                                            .model = luz_mat4_identity()},
+                                        &error),
+                     0);
+    luz_framebuffer *framebuffer = render_frame(&frame, NULL, 1);
+    for (int y = 0; y < SIZE; y++)
+        for (int x = 0; x < SIZE; x++) assert_pixel(framebuffer, x, y, 51, 102, 153);
+    luz_framebuffer_destroy(framebuffer);
+    luz_frame_free(&frame);
+    luz_mesh_destroy(empty);
+    luz_mesh_destroy(null_desc);
+}
+
+/* Counts and bounds are the mesh's; the mesh owns copies of the arrays, so
+ * the caller may change or free them at once. */
+static void test_mesh_copies_its_arrays_and_knows_its_bounds(void **state)
+{
+    (void)state;
+    luz_vertex vertices[4];
+    quad_vertices(vertices, -0.5f, 0.25f, -0.75f, 1.0f);
+    uint32_t indices[6] = {0, 1, 2, 0, 2, 3};
+    luz_error error = {{0}};
+    luz_mesh *mesh = luz_mesh_create(&(luz_mesh_desc){.vertices = vertices, .vertex_count = 4,
+                                                      .indices = indices, .index_count = 6},
+                                     &error);
+    assert_non_null(mesh);
+    assert_int_equal(luz_mesh_vertex_count(mesh), 4);
+    assert_int_equal(luz_mesh_triangle_count(mesh), 2);
+    luz_bounds bounds = luz_mesh_bounds(mesh);
+    /* x from -0.5 * 2 to 0.25 * 2, y from -0.75 * 2 to 1 * 2, z = -2. */
+    assert_true(bounds.min.x == -1.0f && bounds.max.x == 0.5f);
+    assert_true(bounds.min.y == -1.5f && bounds.max.y == 2.0f);
+    assert_true(bounds.min.z == -2.0f && bounds.max.z == -2.0f);
+
+    luz_frame frame = camera_frame();
+    luz_draw quad = {.mesh = mesh, .model = luz_mat4_identity()};
+    quad.material.colour = (luz_vec3){1.0f, 1.0f, 1.0f};
+    assert_int_equal(luz_frame_add_draw(&frame, &quad, &error), 0);
+    luz_framebuffer *before = render_frame(&frame, NULL, 1);
+    /* Scribble over the caller's arrays: the mesh does not see it. */
+    memset(vertices, 0xff, sizeof vertices);
+    memset(indices, 0xff, sizeof indices);
+    luz_framebuffer *after = render_frame(&frame, NULL, 1);
+    assert_memory_equal(before->colour, after->colour, (size_t)SIZE * SIZE * 4);
+    /* The quad covers NDC x in [-0.5, 0.25]: pixel columns 8 to 19. */
+    assert_pixel(after, 12, 16, 255, 255, 255);
+    assert_pixel(after, 4, 16, 0, 0, 0);
+    luz_framebuffer_destroy(before);
+    luz_framebuffer_destroy(after);
+    luz_frame_free(&frame);
+    luz_mesh_destroy(mesh);
+}
+
+/* 32-bit indices, 16-bit indices and no indices at all describe the same
+ * triangles, and draw the same image. */
+static void test_index_kinds_draw_the_same_image(void **state)
+{
+    (void)state;
+    luz_vertex quad[4];
+    quad_vertices(quad, -0.75f, 0.5f, -0.5f, 0.875f);
+    const uint32_t indices[6] = {0, 1, 2, 0, 2, 3};
+    const uint16_t indices16[6] = {0, 1, 2, 0, 2, 3};
+    const luz_vertex unrolled[6] = {quad[0], quad[1], quad[2], quad[0], quad[2], quad[3]};
+    const luz_mesh_desc descs[3] = {
+        {.vertices = quad, .vertex_count = 4, .indices = indices, .index_count = 6},
+        {.vertices = quad, .vertex_count = 4, .indices16 = indices16, .index_count = 6},
+        {.vertices = unrolled, .vertex_count = 6},
+    };
+    luz_framebuffer *images[3];
+    for (int k = 0; k < 3; k++) {
+        luz_error error = {{0}};
+        luz_mesh *mesh = luz_mesh_create(&descs[k], &error);
+        assert_non_null(mesh);
+        assert_int_equal(luz_mesh_triangle_count(mesh), 2);
+        luz_frame frame = camera_frame();
+        luz_draw draw = {.mesh = mesh, .model = luz_mat4_identity()};
+        draw.material.colour = (luz_vec3){0.5f, 1.0f, 0.25f};
+        assert_int_equal(luz_frame_add_draw(&frame, &draw, &error), 0);
+        images[k] = draw_image(&frame);
+        luz_frame_free(&frame);
+        luz_mesh_destroy(mesh);
+    }
+    assert_pixel(images[0], 10, 12, 128, 255, 64);
+    assert_memory_equal(images[0]->colour, images[1]->colour, (size_t)SIZE * SIZE * 4);
+    assert_memory_equal(images[0]->colour, images[2]->colour, (size_t)SIZE * SIZE * 4);
+    for (int k = 0; k < 3; k++) luz_framebuffer_destroy(images[k]);
+}
+
+/* A mesh past 16-bit indices: a strip of 70,000 vertices whose only
+ * triangle uses the last three. It lands where they put it. */
+static void test_more_than_65536_vertices(void **state)
+{
+    (void)state;
+    enum { COUNT = 70000 };
+    luz_vertex *vertices = calloc(COUNT, sizeof *vertices);
+    assert_non_null(vertices);
+    for (int i = 0; i < COUNT - 3; i++)   /* far behind the camera: never seen */
+        vertices[i] = (luz_vertex){{0.0f, 0.0f, 50.0f}, {0, 0, 1}, {0, 0}};
+    luz_vertex quad[4];
+    quad_vertices(quad, 0.0f, 1.0f, 0.0f, 1.0f);   /* the upper right quarter */
+    vertices[COUNT - 3] = quad[0];
+    vertices[COUNT - 2] = quad[1];
+    vertices[COUNT - 1] = quad[2];
+    const uint32_t indices[3] = {COUNT - 3, COUNT - 2, COUNT - 1};
+    luz_error error = {{0}};
+    luz_mesh *mesh = luz_mesh_create(&(luz_mesh_desc){.vertices = vertices, .vertex_count = COUNT,
+                                                      .indices = indices, .index_count = 3},
+                                     &error);
+    free(vertices);
+    assert_non_null(mesh);
+    luz_frame frame = camera_frame();
+    luz_draw draw = {.mesh = mesh, .model = luz_mat4_identity()};
+    draw.material.colour = (luz_vec3){1.0f, 1.0f, 1.0f};
+    assert_int_equal(luz_frame_add_draw(&frame, &draw, &error), 0);
+    luz_framebuffer *framebuffer = draw_image(&frame);
+    /* The triangle (0, 0), (1, 0), (1, 1) in NDC: below the diagonal of the
+     * upper right quarter, which is pixels x >= 16, y < 16, x + y > 31. */
+    assert_pixel(framebuffer, 28, 10, 255, 255, 255);
+    assert_pixel(framebuffer, 18, 3, 0, 0, 0);
+    assert_pixel(framebuffer, 8, 24, 0, 0, 0);
+    luz_framebuffer_destroy(framebuffer);
+    luz_frame_free(&frame);
+    luz_mesh_destroy(mesh);
+}
+
+/* ---- materials ------------------------------------------------------------------------ */
+
+/* Each draw is shaded by its own material: in one frame, an unlit quad
+ * shows its colour as it is, a lit one ambient * colour * texel, and two
+ * textured quads sample with their own filters (each the same as a frame
+ * that holds that quad alone). */
+static void test_each_draw_has_its_own_material(void **state)
+{
+    (void)state;
+    /* A 2 x 2 texture: nearest and bilinear sampling differ between the
+     * texel centres. */
+    const uint8_t texels[16] = {255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 255, 255, 255,
+                                255};
+    luz_error error = {{0}};
+    luz_texture *texture = luz_texture_create(2, 2, texels, &error);
+    assert_non_null(texture);
+
+    luz_vertex left[4], right[4], top[4];
+    quad_vertices(left, -1.0f, 0.0f, -1.0f, 0.0f);
+    quad_vertices(right, 0.0f, 1.0f, -1.0f, 0.0f);
+    quad_vertices(top, -1.0f, 1.0f, 0.0f, 1.0f);
+    const uint32_t indices[6] = {0, 1, 2, 0, 2, 3};
+    luz_mesh *meshes[3];
+    const luz_vertex *arrays[3] = {left, right, top};
+    for (int k = 0; k < 3; k++) {
+        meshes[k] = luz_mesh_create(&(luz_mesh_desc){.vertices = arrays[k], .vertex_count = 4,
+                                                     .indices = indices, .index_count = 6},
+                                    &error);
+        assert_non_null(meshes[k]);
+    }
+    const luz_material nearest = {.colour = {1, 1, 1}, .texture = texture,
+                                  .filter = LUZ_FILTER_NEAREST};
+    const luz_material bilinear = {.colour = {1, 1, 1}, .texture = texture,
+                                   .filter = LUZ_FILTER_BILINEAR};
+    const luz_material unlit = {.shading = LUZ_SHADING_UNLIT, .colour = {0.2f, 0.6f, 1.0f},
+                                .texture = texture};
+
+    luz_frame frame = camera_frame();
+    frame.lights.ambient.strength = 0.5f;
+    const luz_draw draws[3] = {
+        {meshes[0], luz_mat4_identity(), nearest},
+        {meshes[1], luz_mat4_identity(), bilinear},
+        {meshes[2], luz_mat4_identity(), unlit},
+    };
+    for (int k = 0; k < 3; k++) assert_int_equal(luz_frame_add_draw(&frame, &draws[k], &error), 0);
+    luz_framebuffer *together = draw_image(&frame);
+
+    /* The unlit quad: its colour, no light, no texture. */
+    assert_pixel(together, 16, 4, 51, 153, 255);
+    /* Each textured quad equals itself drawn alone. */
+    for (int k = 0; k < 2; k++) {
+        luz_frame alone = camera_frame();
+        alone.lights.ambient.strength = 0.5f;
+        assert_int_equal(luz_frame_add_draw(&alone, &draws[k], &error), 0);
+        luz_framebuffer *image = draw_image(&alone);
+        for (int y = SIZE / 2; y < SIZE; y++)
+            for (int x = k * SIZE / 2; x < (k + 1) * SIZE / 2; x++)
+                assert_memory_equal(pixel(image, x, y), pixel(together, x, y), 4);
+        luz_framebuffer_destroy(image);
+        luz_frame_free(&alone);
+    }
+    /* Nearest: pixel (2, 18) is in the top left texel, red, at half
+     * strength. Bilinear at the same spot of the right quad mixes in the
+     * neighbours, so it is not pure red. */
+    assert_pixel(together, 2, 18, 128, 0, 0);
+    const uint8_t *mixed = pixel(together, 16 + 6, 18 + 4);
+    assert_true(mixed[1] > 0 || mixed[2] > 0);
+
+    luz_framebuffer_destroy(together);
+    luz_frame_free(&frame);
+    for (int k = 0; k < 3; k++) luz_mesh_destroy(meshes[k]);
+    luz_texture_destroy(texture);
+}
+
+/* ---- the renderer's defaults and errors -------------------------------------------------- */
+
+static void test_zero_desc_is_one_thread_per_cpu(void **state)
+{
+    (void)state;
+    long cpus = sysconf(_SC_NPROCESSORS_ONLN);
+    int expected = cpus < 1 ? 1 : cpus > LUZ_MAX_THREADS ? LUZ_MAX_THREADS : (int)cpus;
+    luz_error error = {{0}};
+    luz_renderer *zero = luz_renderer_create(&(luz_renderer_desc){0}, &error);
+    luz_renderer *null_desc = luz_renderer_create(NULL, &error);
+    luz_renderer *one = luz_renderer_create(&(luz_renderer_desc){.thread_count = 1}, &error);
+    assert_non_null(zero);
+    assert_non_null(null_desc);
+    assert_non_null(one);
+    assert_int_equal(luz_renderer_thread_count(zero), expected);
+    assert_int_equal(luz_renderer_thread_count(null_desc), expected);
+    assert_int_equal(luz_renderer_thread_count(one), 1);
+    luz_renderer_destroy(zero);
+    luz_renderer_destroy(null_desc);
+    luz_renderer_destroy(one);
+
+    assert_null(luz_renderer_create(&(luz_renderer_desc){.thread_count = LUZ_MAX_THREADS + 1},
+                                    &error));
+    assert_non_null(strstr(error.message, "thread count 257"));
+    assert_null(luz_renderer_create(&(luz_renderer_desc){.thread_count = -2}, &error));
+    assert_non_null(strstr(error.message, "thread count -2"));
+}
+
+/* A frame whose draw has no mesh, and render options that name no view,
+ * are refused with a reason before anything is drawn. */
+static void test_bad_frames_are_refused_with_a_reason(void **state)
+{
+    (void)state;
+    luz_error error = {{0}};
+    luz_frame frame = camera_frame();
+    assert_error_says(luz_frame_add_draw(&frame, &(luz_draw){0}, &error), &error,
+                      "draw 0: no mesh");
+    assert_int_equal(frame.draw_count, 0);
+
+    luz_draw by_hand = {0};
+    luz_frame bad = camera_frame();
+    bad.draws = &by_hand;
+    bad.draw_count = 1;
+    luz_renderer *renderer = luz_renderer_create(&(luz_renderer_desc){.thread_count = 1}, &error);
+    luz_framebuffer *framebuffer = luz_framebuffer_create(SIZE, SIZE, &error);
+    assert_non_null(renderer);
+    assert_non_null(framebuffer);
+    assert_error_says(luz_renderer_draw(renderer, &bad, framebuffer, NULL, &error), &error,
+                      "draw 0: no mesh");
+    assert_error_says(luz_renderer_draw(renderer, &frame, framebuffer,
+                                        &(luz_render_options){.view = LUZ_VIEW_COUNT}, &error),
+                      &error, "is not a luz_view");
+    luz_framebuffer_destroy(framebuffer);
+    luz_renderer_destroy(renderer);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_bad_meshes_are_refused_with_a_reason),
+        cmocka_unit_test(test_zero_desc_is_an_empty_mesh),
+        cmocka_unit_test(test_mesh_copies_its_arrays_and_knows_its_bounds),
+        cmocka_unit_test(test_index_kinds_draw_the_same_image),
+        cmocka_unit_test(test_more_than_65536_vertices),
+        cmocka_unit_test(test_each_draw_has_its_own_material),
+        cmocka_unit_test(test_zero_desc_is_one_thread_per_cpu),
+        cmocka_unit_test(test_bad_frames_are_refused_with_a_reason),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
