@@ -3,8 +3,9 @@
  *
  * Every option is a row of `option_table` below: its name, what kind of
  * value it takes, where that value lives in luz_options, the range it must
- * lie in, and its --help line. Parsing, checking, --help and the scene-file
- * writer (scene_file.c, through luz_options_format) all read that one table,
+ * lie in, whether (and when) a saved scene file keeps it, and its --help
+ * line. Parsing, checking, --help and the scene-file writer (scene_file.c,
+ * through luz_options_row and luz_options_format) all read that one table,
  * so an option cannot be accepted in one place and forgotten in another.
  *
  * The rules the table enforces come from SCENE.md (pitch within [-89, 89],
@@ -67,6 +68,8 @@ typedef struct option_spec {
     double min, max;           /* the accepted range of a number */
     bool min_open, max_open;   /* whether the range excludes its ends */
     bool in_scene_file;        /* may a scene file set it? */
+    luz_option_saving saving;  /* does luz_options_write_scene save it, and
+                                  when? (left out: never) */
     const char *syntax;        /* the value's form, for --help */
     const char *summary;       /* what it does, for --help */
     const char *default_text;  /* --help's default when it is not a value */
@@ -76,71 +79,89 @@ typedef struct option_spec {
 #define UNBOUNDED .min = -INFINITY, .max = INFINITY
 
 static const option_spec option_table[] = {
-    {.name = "size", .kind = OPTION_SIZE, .in_scene_file = true, .syntax = "WxH",
-     .summary = "image size in pixels"},
+    {.name = "size", .kind = OPTION_SIZE,
+     .in_scene_file = true, .saving = LUZ_OPTION_SAVED,
+     .syntax = "WxH", .summary = "image size in pixels"},
     {.name = "time", .kind = OPTION_DOUBLE, .offset = FIELD(scene.time_seconds), UNBOUNDED,
-     .in_scene_file = true, .syntax = "T",
+     .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "T",
      .summary = "scene time in seconds: the cubes' angles and the lights' orbits"},
-    {.name = "seed", .kind = OPTION_SEED, .min = 0, .max = UINT32_MAX, .in_scene_file = true,
-     .syntax = "N", .summary = "seed of the cube colours, 0 to 4294967295 (0 means 0x9E3779B9)"},
+    {.name = "seed", .kind = OPTION_SEED, .min = 0, .max = UINT32_MAX,
+     .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "N",
+     .summary = "seed of the cube colours, 0 to 4294967295 (0 means 0x9E3779B9)"},
+    /* not saved when there are custom cubes: the cube lines stand for it */
     {.name = "cubes", .kind = OPTION_CUBES, .offset = FIELD(scene.cube_count), .min = 1,
-     .max = LUZ_MAX_CUBES, .in_scene_file = true, .syntax = "N",
+     .max = LUZ_MAX_CUBES, .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "N",
      .summary = "number of cubes, 1 to 100000, the ten repeated in tiles (SCENE.md)"},
     {.name = "camera-pos", .kind = OPTION_VEC3, .offset = FIELD(scene.camera.position),
-     .in_scene_file = true, .syntax = "x,y,z", .summary = "camera position"},
+     .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "x,y,z",
+     .summary = "camera position"},
     {.name = "camera-yaw", .kind = OPTION_FLOAT, .offset = FIELD(scene.camera.yaw_degrees),
-     UNBOUNDED, .in_scene_file = true, .syntax = "D",
+     UNBOUNDED, .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "D",
      .summary = "camera yaw in degrees (-90 looks down -Z)"},
     {.name = "camera-pitch", .kind = OPTION_FLOAT, .offset = FIELD(scene.camera.pitch_degrees),
-     .min = -89, .max = 89, .in_scene_file = true, .syntax = "D",
+     .min = -89, .max = 89, .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "D",
      .summary = "camera pitch in degrees, -89 to 89"},
     {.name = "fov", .kind = OPTION_FLOAT, .offset = FIELD(scene.camera.fov_degrees), .min = 0,
-     .max = 180, .min_open = true, .max_open = true, .in_scene_file = true, .syntax = "D",
+     .max = 180, .min_open = true, .max_open = true,
+     .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "D",
      .summary = "vertical field of view in degrees, above 0 and below 180"},
     {.name = "ambient", .kind = OPTION_LIGHT, .offset = FIELD(scene.lights.ambient),
-     .in_scene_file = true, .syntax = "r,g,b,a",
+     .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "r,g,b,a",
      .summary = "ambient light: colour and strength, each from 0 to 1"},
     {.name = "diffuse", .kind = OPTION_LIGHT, .offset = FIELD(scene.lights.diffuse),
-     .in_scene_file = true, .syntax = "r,g,b,a", .summary = "diffuse headlight at the camera"},
+     .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "r,g,b,a",
+     .summary = "diffuse headlight at the camera"},
     {.name = "specular", .kind = OPTION_LIGHT, .offset = FIELD(scene.lights.specular),
-     .in_scene_file = true, .syntax = "r,g,b,a", .summary = "specular headlight at the camera"},
+     .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "r,g,b,a",
+     .summary = "specular headlight at the camera"},
     {.name = "shininess", .kind = OPTION_FLOAT, .offset = FIELD(scene.lights.shininess), .min = 0,
-     .max = INFINITY, .in_scene_file = true, .syntax = "S",
+     .max = INFINITY, .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "S",
      .summary = "specular exponent, at least 0"},
     {.name = "point", .kind = OPTION_LIGHT, .offset = FIELD(scene.lights.point),
-     .in_scene_file = true, .syntax = "r,g,b,a",
+     .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "r,g,b,a",
      .summary = "point light orbiting the origin (drawn as a small cube)"},
     {.name = "spot", .kind = OPTION_LIGHT, .offset = FIELD(scene.lights.spot),
-     .in_scene_file = true, .syntax = "r,g,b,a", .summary = "spot light riding on the camera"},
+     .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "r,g,b,a",
+     .summary = "spot light riding on the camera"},
     {.name = "spot-inner", .kind = OPTION_FLOAT, .offset = FIELD(scene.lights.spot_inner_degrees),
-     .min = 0, .max = 89, .in_scene_file = true, .syntax = "D",
+     .min = 0, .max = 89, .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "D",
      .summary = "spot's full-intensity cone in degrees, 0 to 89, at most --spot-outer"},
     {.name = "spot-outer", .kind = OPTION_FLOAT, .offset = FIELD(scene.lights.spot_outer_degrees),
-     .min = 0, .max = 89, .in_scene_file = true, .syntax = "D",
+     .min = 0, .max = 89, .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "D",
      .summary = "spot's cut-off cone in degrees, 0 to 89"},
     {.name = "spot-reach", .kind = OPTION_FLOAT, .offset = FIELD(scene.lights.spot_reach),
-     .min = 0, .max = INFINITY, .min_open = true, .in_scene_file = true, .syntax = "R",
+     .min = 0, .max = INFINITY, .min_open = true,
+     .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "R",
      .summary = "distance at which the spot fades out, above 0"},
     {.name = "directional", .kind = OPTION_LIGHT, .offset = FIELD(scene.lights.directional),
-     .in_scene_file = true, .syntax = "r,g,b,a", .summary = "directional light (the sun)"},
+     .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "r,g,b,a",
+     .summary = "directional light (the sun)"},
+    /* not saved: its effect is already in the strengths it set to 0 */
     {.name = "only", .kind = OPTION_ONLY, .in_scene_file = true, .syntax = "TERM[,TERM...]",
      .summary = "keep only these lights, the others' strength set to 0; terms: ambient "
                 "diffuse specular point spot directional",
      .default_text = "all six"},
-    {.name = "filter", .kind = OPTION_FILTER, .in_scene_file = true,
+    {.name = "filter", .kind = OPTION_FILTER,
+     .in_scene_file = true, .saving = LUZ_OPTION_SAVED,
      .syntax = "nearest|bilinear|trilinear", .summary = "texture filter"},
-    {.name = "view", .kind = OPTION_VIEW, .in_scene_file = true,
-     .syntax = "NAME",
+    /* The teaching settings, saved when changed: a view saved while looking
+     * at the depth buffer renders the depth buffer. */
+    {.name = "view", .kind = OPTION_VIEW,
+     .in_scene_file = true, .saving = LUZ_OPTION_SAVED_IF_CHANGED, .syntax = "NAME",
      .summary = "what the image shows: color, or a picture of a pipeline stage: depth, "
                 "normals, uv, mip, overdraw, bands, triangles (README, Guided tour)"},
-    {.name = "interp", .kind = OPTION_INTERP, .in_scene_file = true,
+    {.name = "interp", .kind = OPTION_INTERP,
+     .in_scene_file = true, .saving = LUZ_OPTION_SAVED_IF_CHANGED,
      .syntax = "perspective|affine",
      .summary = "interpolation of texture coordinates and the other varyings: "
                 "perspective-correct, or affine in screen space (textures swim)"},
+    /* saved once set (luz_options_format has nothing to write before) */
     {.name = "textures", .kind = OPTION_PATH, .offset = FIELD(textures_directory),
-     .in_scene_file = true, .syntax = "DIR|none",
+     .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "DIR|none",
      .summary = "directory of cube images (.png .jpg .jpeg .bmp .tga); none: all white",
      .default_text = "$LUZ_TEXTURES, else the built-in textures"},
+    /* The settings of a run, which a file may give but the writer leaves
+     * out: a saved view is a scene, not a render job. */
     {.name = "threads", .kind = OPTION_THREADS, .offset = FIELD(thread_count), .min = 0,
      .max = LUZ_MAX_THREADS, .in_scene_file = true, .syntax = "N|auto",
      .summary = "rendering threads, 0 to 256 (0 and 1: the calling thread only)"},
@@ -184,6 +205,19 @@ static const option_spec *find_option(const char *name, size_t length)
             return &option_table[i];
     }
     return NULL;
+}
+
+static luz_option_info option_info(const option_spec *spec)
+{
+    return (luz_option_info){.name = spec->name, .saving = spec->saving};
+}
+
+bool luz_options_row(size_t index, luz_option_info *info)
+{
+    if (index >= OPTION_COUNT)
+        return false;
+    *info = option_info(&option_table[index]);
+    return true;
 }
 
 static void *option_field(luz_options *options, const option_spec *spec)

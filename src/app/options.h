@@ -89,6 +89,27 @@ int luz_options_set(luz_options *options, const char *name, const char *value,
  * file's own.) */
 bool luz_options_is_scene_key(const char *name);
 
+/* Whether and when luz_options_write_scene saves an option: a column of
+ * the option table, so that the writer follows the table rather than a
+ * list of its own that could forget a key. */
+typedef enum luz_option_saving {
+    LUZ_OPTION_NOT_SAVED,         /* the flags, scene, only (its effect is in
+                                     the strengths) and a run's settings */
+    LUZ_OPTION_SAVED,             /* whenever it has a value (textures: once
+                                     set) */
+    LUZ_OPTION_SAVED_IF_CHANGED,  /* only when it is not the default */
+} luz_option_saving;
+
+/* One row of the option table, as the rest of the app sees it. */
+typedef struct luz_option_info {
+    const char *name;          /* the long option without its dashes */
+    luz_option_saving saving;
+} luz_option_info;
+
+/* Row `index` of the option table, in --help's order, into *info. Returns
+ * false past the last row. */
+bool luz_options_row(size_t index, luz_option_info *info);
+
 /* Writes the current value of option `name` in the text form that
  * luz_options_set() reads back exactly (floats with %.9g, doubles with
  * %.17g). Returns 0, or -1 for a flag, an unknown name, a value left at
@@ -113,11 +134,14 @@ void luz_options_clear_cubes(luz_options *options);
  * that starts with FILE:LINE. */
 int luz_options_read_scene_file(luz_options *options, const char *path, luz_error *error);
 
-/* Writes the scene part of options (size, time, seed, camera, lights,
- * filter, textures, cubes) in the scene-file format, so that what the
- * viewer shows can be rendered again with luz-render --scene; reading the
- * file back gives the same options. Program settings (threads, output,
- * frames, fps, bench) are not written. */
+/* Writes the scene part of options in the scene-file format, so that what
+ * the viewer shows can be rendered again with luz-render --scene; reading
+ * the file back gives the same options. The keys written are the option
+ * table's saved rows (luz_options_row): first those saved whenever they
+ * have a value, then those saved only when changed (view, interp), each
+ * group in the table's order; then the custom cubes' lines, which replace
+ * `cubes`. Not written: only, and a run's settings (threads, output,
+ * frames, fps, bench). */
 void luz_options_write_scene(const luz_options *options, FILE *out);
 
 /* The same text as a file at path, complete or absent (written to a

@@ -538,32 +538,41 @@ static void write_text(FILE *out, const char *text, bool is_word)
 
 void luz_options_write_scene(const luz_options *options, FILE *out)
 {
-    /* The scene, in the order of --help; not the program's own settings
-     * (threads, output, frames, fps, bench), which belong to a run, and not
-     * `only`, whose effect the strengths already carry. */
-    static const char *const keys[] = {
-        "size",       "time",        "seed",     "cubes",     "camera-pos",
-        "camera-yaw", "camera-pitch", "fov",     "ambient",   "diffuse",
-        "specular",   "shininess",   "point",    "spot",      "spot-inner",
-        "spot-outer", "spot-reach",  "directional", "filter", "textures",
-    };
-    char value[4200];
+    /* The keys, and when each is written, come from the option table's
+     * `saving` column. Those saved whenever they have a value come first,
+     * then those saved only when changed, each group in the table's order:
+     * the order files have always had (textures before view and interp),
+     * so that a view saved again diffs only where it changed. */
+    static const luz_option_saving groups[] = {LUZ_OPTION_SAVED,
+                                               LUZ_OPTION_SAVED_IF_CHANGED};
+    luz_options defaults;
+    luz_options_init(&defaults);
+    char value[4200], default_value[4200];
+    luz_option_info row;
     fprintf(out, "# luz scene: render it with luz-render --scene FILE (see docs/cli.md)\n");
-    for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++) {
-        if (strcmp(keys[i], "cubes") == 0 && options->scene.custom_cube_count > 0)
-            continue;
-        if (luz_options_format(options, keys[i], value, sizeof value) == 0) {
-            fprintf(out, "%s = ", keys[i]);
+    for (size_t group = 0; group < sizeof groups / sizeof groups[0]; group++) {
+        for (size_t i = 0; luz_options_row(i, &row); i++) {
+            if (row.saving != groups[group])
+                continue;
+            /* The cube lines below replace the tiling's count, and a file
+             * may not have both. */
+            if (strcmp(row.name, "cubes") == 0 && options->scene.custom_cube_count > 0)
+                continue;
+            /* Nothing to write: a value left unset (textures). */
+            if (luz_options_format(options, row.name, value, sizeof value) != 0)
+                continue;
+            /* The text reads back exactly, so equal text is an equal value. */
+            if (row.saving == LUZ_OPTION_SAVED_IF_CHANGED &&
+                luz_options_format(&defaults, row.name, default_value,
+                                   sizeof default_value) == 0 &&
+                strcmp(value, default_value) == 0)
+                continue;
+            fprintf(out, "%s = ", row.name);
             write_text(out, value, false);
             fputc('\n', out);
         }
     }
-    /* The teaching settings, only when they are not the defaults: a view
-     * saved while looking at the depth buffer renders the depth buffer. */
-    if (options->scene.view != LUZ_VIEW_COLOR)
-        fprintf(out, "view = %s\n", luz_view_name(options->scene.view));
-    if (options->scene.interpolation != LUZ_INTERPOLATION_PERSPECTIVE)
-        fprintf(out, "interp = %s\n", luz_interpolation_name(options->scene.interpolation));
+    luz_options_free(&defaults);
     for (int i = 0; i < options->scene.custom_cube_count; i++) {
         const luz_cube *cube = &options->cubes[i];
         char x[32], y[32], z[32];
