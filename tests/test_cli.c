@@ -1147,6 +1147,27 @@ static void test_scene_round_trip(void **state)
     sandbox_destroy(&box);
 }
 
+/* Gives options the custom cubes i at (i, 0, 0), cube i with texture
+ * names[i], built here rather than read from a file, so that the reader
+ * under test is not also what set them up. */
+static void set_named_cubes(luz_options *options, const char *const *names, int count)
+{
+    luz_options_clear_cubes(options);
+    options->cubes = calloc((size_t)count, sizeof *options->cubes);
+    options->cube_sources = calloc((size_t)count, sizeof *options->cube_sources);
+    assert_non_null(options->cubes);
+    assert_non_null(options->cube_sources);
+    options->cube_capacity = count;
+    for (int i = 0; i < count; i++) {
+        options->cubes[i] = (luz_cube){.position = luz_vec3_make((float)i, 0.0f, 0.0f),
+                                       .texture = LUZ_TEXTURE_BY_INDEX};
+        options->cube_sources[i].texture_name = strdup(names[i]);
+        assert_non_null(options->cube_sources[i].texture_name);
+    }
+    options->scene.custom_cubes = options->cubes;
+    options->scene.custom_cube_count = count;
+}
+
 /* What luz_options_write_scene writes for options, as one string. */
 static char *scene_text(const luz_options *options)
 {
@@ -1305,6 +1326,95 @@ static void test_scene_round_trip_every_saved_key(void **state)
     sandbox_destroy(&box);
 }
 
+/* The keys of a scene file's `name = value` lines, in order, into keys
+ * (at most capacity); `cube` lines are counted in *cube_lines instead.
+ * Returns the number of keys. */
+static int scene_keys(const char *text, char keys[][32], int capacity, int *cube_lines)
+{
+    int count = 0;
+    *cube_lines = 0;
+    for (const char *line = text; *line != '\0';) {
+        const char *end = strchr(line, '\n');
+        size_t length = end ? (size_t)(end - line) : strlen(line);
+        const char *equals = memchr(line, '=', length);
+        if (line[0] != '#' && equals != NULL) {
+            size_t key_length = (size_t)(equals - line);
+            while (key_length > 0 && line[key_length - 1] == ' ')
+                key_length--;
+            if (key_length == 4 && memcmp(line, "cube", 4) == 0) {
+                (*cube_lines)++;
+            } else {
+                assert_true(count < capacity && key_length < 32);
+                snprintf(keys[count++], 32, "%.*s", (int)key_length, line);
+            }
+        }
+        if (end == NULL)
+            break;
+        line = end + 1;
+    }
+    return count;
+}
+
+static bool is_one_of(const char *name, const char *const *names, size_t count)
+{
+    for (size_t i = 0; i < count; i++)
+        if (strcmp(name, names[i]) == 0)
+            return true;
+    return false;
+}
+
+/* With every option changed, the writer writes exactly the option table's
+ * scene keys less those docs/cli.md says it leaves out (Writing scene
+ * files): `only`, and a run's threads, output, frames, fps and bench; each
+ * once. With custom cubes, `cubes` goes too and the cube lines stand for
+ * it. So a key dropped by the writer, or a key added to the table that the
+ * writer does not save nor the docs exclude, fails here. */
+static void test_scene_writer_saves_every_scene_key(void **state)
+{
+    (void)state;
+    static const char *const left_out[] = {"only", "threads", "output", "frames", "fps",
+                                           "bench"};
+    const size_t left_out_count = sizeof left_out / sizeof left_out[0];
+    luz_options options;
+    set_every_option_by_hand(&options);
+
+    for (int custom = 0; custom <= 1; custom++) {
+        if (custom) {
+            static const char *const names[] = {"a.bmp", "b.bmp"};
+            set_named_cubes(&options, names, 2);
+        }
+        char *text = scene_text(&options);
+        char keys[64][32];
+        int cube_lines;
+        int key_count = scene_keys(text, keys, 64, &cube_lines);
+        assert_int_equal(cube_lines, custom ? 2 : 0);
+
+        /* every expected key is written, once */
+        int expected_count = 0;
+        bool saw_view = false;
+        luz_option_info row;
+        for (size_t i = 0; luz_options_row(i, &row); i++) {
+            if (!luz_options_is_scene_key(row.name) ||
+                is_one_of(row.name, left_out, left_out_count) ||
+                (custom && strcmp(row.name, "cubes") == 0))
+                continue;
+            expected_count++;
+            saw_view = saw_view || strcmp(row.name, "view") == 0;
+            int times = 0;
+            for (int k = 0; k < key_count; k++)
+                times += strcmp(keys[k], row.name) == 0;
+            if (times != 1)
+                fail_msg("scene key '%s' written %d times in:\n%s", row.name, times, text);
+        }
+        /* and nothing else: every written key is a table row, expected above */
+        assert_true(saw_view);
+        if (key_count != expected_count)
+            fail_msg("%d keys written, %d expected, in:\n%s", key_count, expected_count, text);
+        free(text);
+    }
+    luz_options_free(&options);
+}
+
 /* The defaults, written: SCENE.md's scene at 1280x720 (docs/cli.md's
  * defaults column), without view, interp (both at their defaults) or
  * textures (not set). */
@@ -1343,27 +1453,6 @@ static void test_scene_text_of_the_defaults(void **state)
     assert_null(strstr(text, "view ="));
     free(text);
     luz_options_free(&options);
-}
-
-/* Gives options the custom cubes i at (i, 0, 0), cube i with texture
- * names[i], built here rather than read from a file, so that the reader
- * under test is not also what set them up. */
-static void set_named_cubes(luz_options *options, const char *const *names, int count)
-{
-    luz_options_clear_cubes(options);
-    options->cubes = calloc((size_t)count, sizeof *options->cubes);
-    options->cube_sources = calloc((size_t)count, sizeof *options->cube_sources);
-    assert_non_null(options->cubes);
-    assert_non_null(options->cube_sources);
-    options->cube_capacity = count;
-    for (int i = 0; i < count; i++) {
-        options->cubes[i] = (luz_cube){.position = luz_vec3_make((float)i, 0.0f, 0.0f),
-                                       .texture = LUZ_TEXTURE_BY_INDEX};
-        options->cube_sources[i].texture_name = strdup(names[i]);
-        assert_non_null(options->cube_sources[i].texture_name);
-    }
-    options->scene.custom_cubes = options->cubes;
-    options->scene.custom_cube_count = count;
 }
 
 /* A textures directory with `#` and a trailing blank, and texture names
@@ -1689,6 +1778,7 @@ int main(void)
         cmocka_unit_test(test_scene_round_trip),
         cmocka_unit_test(test_scene_round_trip_every_saved_key),
         cmocka_unit_test(test_scene_text_of_the_defaults),
+        cmocka_unit_test(test_scene_writer_saves_every_scene_key),
         cmocka_unit_test(test_scene_quoted_round_trip),
         cmocka_unit_test(test_scene_quoted_values_read),
         cmocka_unit_test(test_save_scene_never_replaces_unless_asked),
