@@ -1,12 +1,14 @@
 /*
- * options.c: the command line of luz-render and the viewer, one table.
+ * options.c: the options of luz-render and the viewer, one table.
  *
  * Every option is a row of `option_table` below: its name, what kind of
  * value it takes, where that value lives in luz_options, the range it must
  * lie in, whether (and when) a saved scene file keeps it, and its --help
- * line. Parsing, checking, --help and the scene-file writer (scene_file.c,
- * through luz_options_row and luz_options_format) all read that one table,
- * so an option cannot be accepted in one place and forgotten in another.
+ * line. Parsing (command_line.c, through luz_options_find), setting and
+ * checking a value, --help, and the scene-file reader and writer
+ * (scene_file.c, through luz_options_set_value, luz_options_row and
+ * luz_options_format) all read that one table, so an option cannot be
+ * accepted in one place and forgotten in another.
  *
  * The rules the table enforces come from SCENE.md (pitch within [-89, 89],
  * spot angles within [0, 89], strengths in [0, 1], ...) and from the
@@ -15,9 +17,10 @@
  * line that names the flag and what was expected: no partial numbers
  * ("12abc"), no NaN or infinity, nothing after the last number.
  *
- * This file deliberately does no I/O besides --help and the look-up of the
- * default textures directory; the scene-file reader and writer live in
- * scene_file.c.
+ * The bottom of the option files: it calls none of the others
+ * (scene_file.c, command_line.c, option_textures.c); they call it. It
+ * reads no file: its only I/O is --help's text and the look-up of the
+ * default textures directory, and --scene is command_line.c's to read.
  */
 #include "app/options.h"
 
@@ -209,7 +212,10 @@ static const option_spec *find_option(const char *name, size_t length)
 
 static luz_option_info option_info(const option_spec *spec)
 {
-    return (luz_option_info){.name = spec->name, .saving = spec->saving};
+    return (luz_option_info){.name = spec->name,
+                             .syntax = spec->syntax,
+                             .is_flag = spec->kind == OPTION_FLAG,
+                             .saving = spec->saving};
 }
 
 bool luz_options_row(size_t index, luz_option_info *info)
@@ -217,6 +223,15 @@ bool luz_options_row(size_t index, luz_option_info *info)
     if (index >= OPTION_COUNT)
         return false;
     *info = option_info(&option_table[index]);
+    return true;
+}
+
+bool luz_options_find(const char *name, size_t length, luz_option_info *info)
+{
+    const option_spec *spec = find_option(name, length);
+    if (spec == NULL)
+        return false;
+    *info = option_info(spec);
     return true;
 }
 
@@ -494,8 +509,8 @@ static int set_path(luz_options *options, const option_spec *spec, const char *v
     return 0;
 }
 
-int luz_options_set(luz_options *options, const char *name, const char *value,
-                    const char *where, luz_error *error)
+int luz_options_set_value(luz_options *options, const char *name, const char *value,
+                          const char *where, luz_error *error)
 {
     const option_spec *spec = find_option(name, strlen(name));
     char default_where[32];
@@ -541,7 +556,10 @@ int luz_options_set(luz_options *options, const char *name, const char *value,
     case OPTION_PATH:
         return set_path(options, spec, value, where, error);
     case OPTION_SCENE:
-        return luz_options_read_scene_file(options, value, error);
+        /* Reading a file is not this file's business: luz_options_set
+         * (command_line.c) reads it with scene_file.c. */
+        return luz_error_set(error, "%s: a scene file is read by luz_options_set, not here",
+                             where);
     case OPTION_FLAG:
         break;
     }
@@ -809,91 +827,6 @@ int luz_options_finish(luz_options *options, luz_error *error)
     return 0;
 }
 
-/* ---- the command line ------------------------------------------------------------ */
-
-/* One argument (and its value) of the command line. */
-typedef struct command_argument {
-    const option_spec *spec;
-    const char *value;   /* NULL for a flag */
-    char where[32];      /* "--size" or "-o", for messages */
-} command_argument;
-
-/* Reads argv[*index] (and its value) and moves *index past them. Checks the
- * shape only: a known option, a value present when one is needed. */
-static int read_argument(int argc, char **argv, int *index, command_argument *argument,
-                         luz_error *error)
-{
-    const char *text = argv[(*index)++];
-    const char *equals = NULL;
-    if (strcmp(text, "-o") == 0) {
-        argument->spec = find_option("output", 6);
-        snprintf(argument->where, sizeof argument->where, "-o");
-    } else if (text[0] == '-' && text[1] == '-' && text[2] != '\0') {
-        const char *name = text + 2;
-        equals = strchr(name, '=');
-        size_t length = equals ? (size_t)(equals - name) : strlen(name);
-        argument->spec = find_option(name, length);
-        if (argument->spec == NULL || length == 1) {
-            char flag[64];
-            snprintf(flag, sizeof flag, "%.*s", (int)(length + 2 < 60 ? length + 2 : 60), text);
-            return luz_error_set(error, "unknown option '%s' (see --help)",
-                                 option_quote(flag).text);
-        }
-        snprintf(argument->where, sizeof argument->where, "--%s", argument->spec->name);
-    } else if (text[0] == '-' && text[1] != '\0') {
-        return luz_error_set(error, "unknown option '%s' (see --help)", option_quote(text).text);
-    } else {
-        return luz_error_set(error,
-                             "unexpected argument '%s' (options start with --; see --help)",
-                             option_quote(text).text);
-    }
-
-    if (argument->spec->kind == OPTION_FLAG) {
-        if (equals != NULL)
-            return luz_error_set(error, "%s: takes no value, got '%s'", argument->where,
-                                 option_quote(equals + 1).text);
-        argument->value = NULL;
-        return 0;
-    }
-    if (equals != NULL)
-        argument->value = equals + 1;
-    else if (*index < argc)
-        argument->value = argv[(*index)++];
-    else
-        argument->value = NULL;
-    if (argument->value == NULL || argument->value[0] == '\0')
-        return luz_error_set(error, "%s: missing value (expected %s)", argument->where,
-                             argument->spec->syntax);
-    return 0;
-}
-
-int luz_options_parse(luz_options *options, int argc, char **argv, luz_error *error)
-{
-    command_argument argument;
-    /* Three passes: the shape of every argument first, so that a typo is
-     * reported before any file is opened; then the scene files; then the
-     * rest, so that the command line overrides a file whatever the order. */
-    for (int index = 1; index < argc;) {
-        if (read_argument(argc, argv, &index, &argument, error) != 0)
-            return -1;
-    }
-    for (int index = 1; index < argc;) {
-        read_argument(argc, argv, &index, &argument, error);
-        if (argument.spec->kind == OPTION_SCENE &&
-            luz_options_set(options, argument.spec->name, argument.value, argument.where,
-                            error) != 0)
-            return -1;
-    }
-    for (int index = 1; index < argc;) {
-        read_argument(argc, argv, &index, &argument, error);
-        if (argument.spec->kind != OPTION_SCENE &&
-            luz_options_set(options, argument.spec->name, argument.value, argument.where,
-                            error) != 0)
-            return -1;
-    }
-    return luz_options_finish(options, error);
-}
-
 /* ---- --help -------------------------------------------------------------------------- */
 
 /* A blank that print_wrapped() does not break a line at. */
@@ -992,24 +925,4 @@ const char *luz_default_textures_directory(char *buffer, size_t size)
     if (size > 0)
         snprintf(buffer, size, "%s", directory);
     return buffer;
-}
-
-/* Loads the textures the options name; see options.h. */
-int luz_options_load_textures(luz_options *options, luz_texture_set *textures, luz_error *error)
-{
-    char default_directory[4096];
-    const char *directory = options->textures_directory;
-    const char *source = "--textures";
-    if (directory == NULL) {
-        const char *environment = getenv("LUZ_TEXTURES");
-        source = environment && environment[0] ? "LUZ_TEXTURES"
-                                               : "default textures (see --textures)";
-        directory = luz_default_textures_directory(default_directory, sizeof default_directory);
-    }
-    if (strcmp(directory, "none") != 0) {
-        luz_error load_error = {{0}};
-        if (luz_texture_set_load(textures, directory, &load_error) != 0)
-            return luz_error_set(error, "%s: %s", source, load_error.message);
-    }
-    return luz_options_resolve_textures(options, textures, error);
 }

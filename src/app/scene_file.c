@@ -27,9 +27,15 @@
  * ordinary character. luz_options_write_scene quotes only the text that
  * needs it, so that what it writes always reads back the same.
  *
- * Values go through luz_options_set(), the command line's own parser, so a
- * file accepts exactly what the command line accepts. Every error names
- * FILE:LINE.
+ * Values go through luz_options_set_value(), the command line's own
+ * setter, so a file accepts exactly what the command line accepts. Every
+ * error names FILE:LINE. The writer saves the keys the option table marks
+ * as saved (luz_options_row), each formatted by luz_options_format.
+ *
+ * Uses options.c (the table, one value set or formatted) and io; options.c
+ * knows nothing of files and never calls back. command_line.c calls the
+ * reader for --scene; option_textures.c resolves the texture names that
+ * the cube lines leave behind.
  */
 #include "app/options.h"
 #include "io/new_file.h"
@@ -410,7 +416,7 @@ static int read_line(scene_reader *reader, char *text, luz_error *error)
                                  "quote, got '%s'",
                                  where, option_quote(after + strspn(after, " \t")).text);
     }
-    return luz_options_set(reader->options, name, value, where, error);
+    return luz_options_set_value(reader->options, name, value, where, error);
 }
 
 int luz_options_read_scene_file(luz_options *options, const char *path, luz_error *error)
@@ -459,45 +465,6 @@ int luz_options_read_scene_file(luz_options *options, const char *path, luz_erro
                                strerror(errno));
     fclose(file);
     return status;
-}
-
-/* ---- textures named by cube lines --------------------------------------------------- */
-
-int luz_options_resolve_textures(luz_options *options, const luz_texture_set *textures,
-                                 luz_error *error)
-{
-    for (int i = 0; i < options->scene.custom_cube_count; i++) {
-        const luz_cube_source *source = &options->cube_sources[i];
-        if (source->texture_name == NULL) {
-            options->cubes[i].texture = LUZ_TEXTURE_BY_INDEX;
-            continue;
-        }
-        int index = textures ? luz_texture_set_find(textures, source->texture_name) : -1;
-        if (index >= 0) {
-            options->cubes[i].texture = index;
-            continue;
-        }
-        /* Name a few of the images that are there, which is usually enough to
-         * spot the typo. */
-        char available[200] = "";
-        int count = textures ? textures->count : 0;
-        for (int k = 0; k < count && k < 6; k++) {
-            size_t used = strlen(available);
-            snprintf(available + used, sizeof available - used, "%s%s", k ? ", " : "",
-                     option_quote(textures->names[k]).text);
-        }
-        if (count > 6) {
-            size_t used = strlen(available);
-            snprintf(available + used, sizeof available - used, ", ...");
-        }
-        return luz_error_set(error,
-                             "%s:%d: cube: texture '%s' is not an image of the textures "
-                             "directory (expected one of: %s)",
-                             options->scene_path ? options->scene_path : "scene", source->line,
-                             option_quote(source->texture_name).text,
-                             count ? available : "none, textures are off");
-    }
-    return 0;
 }
 
 /* ---- writing ------------------------------------------------------------------------ */
