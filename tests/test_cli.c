@@ -1033,6 +1033,8 @@ static void assert_scene_options_equal(const luz_options *a, const luz_options *
     assert_float_same(la->spot_outer_degrees, lb->spot_outer_degrees);
     assert_float_same(la->spot_reach, lb->spot_reach);
     assert_int_equal(a->scene.filter, b->scene.filter);
+    assert_int_equal(a->scene.view, b->scene.view);
+    assert_int_equal(a->scene.interpolation, b->scene.interpolation);
     if (a->textures_directory == NULL || b->textures_directory == NULL)
         assert_ptr_equal(a->textures_directory, b->textures_directory);
     else
@@ -1164,6 +1166,293 @@ static void set_named_cubes(luz_options *options, const char *const *names, int 
     }
     options->scene.custom_cubes = options->cubes;
     options->scene.custom_cube_count = count;
+}
+
+/* What luz_options_write_scene writes for options, as one string. */
+static char *scene_text(const luz_options *options)
+{
+    char *text = NULL;
+    size_t length = 0;
+    FILE *stream = open_memstream(&text, &length);
+    assert_non_null(stream);
+    luz_options_write_scene(options, stream);
+    assert_int_equal(fclose(stream), 0);
+    assert_non_null(text);
+    return text;
+}
+
+/* Every option set by hand to a value that is not its default (docs/cli.md's
+ * defaults column), the scene's and the run's alike. The struct is filled
+ * directly, so that the parser is not also what sets the test up. */
+static void set_every_option_by_hand(luz_options *options)
+{
+    luz_options_init(options);
+    options->width = 640;
+    options->height = 360;
+    options->scene.time_seconds = 2.75;
+    options->scene.seed = 12345;
+    options->scene.cube_count = 25;
+    options->scene.camera.position = luz_vec3_make(0.5f, -1.25f, 4.0f);
+    options->scene.camera.yaw_degrees = -100.7f;
+    options->scene.camera.pitch_degrees = 12.5f;
+    options->scene.camera.fov_degrees = 60.0f;
+    luz_lights *lights = &options->scene.lights;
+    lights->ambient = (luz_light){.colour = luz_vec3_make(0.1f, 0.2f, 0.3f), .strength = 0.4f};
+    lights->diffuse = (luz_light){.colour = luz_vec3_make(0.5f, 0.6f, 0.7f), .strength = 0.25f};
+    lights->specular = (luz_light){.colour = luz_vec3_make(1.0f, 0.5f, 0.0f), .strength = 0.75f};
+    lights->shininess = 64.0f;
+    lights->point = (luz_light){.colour = luz_vec3_make(0.3f, 0.3f, 0.9f), .strength = 0.1f};
+    lights->spot = (luz_light){.colour = luz_vec3_make(1.0f, 1.0f, 0.9f), .strength = 0.5f};
+    lights->spot_inner_degrees = 5.5f;
+    lights->spot_outer_degrees = 20.25f;
+    lights->spot_reach = 7.5f;
+    lights->directional = (luz_light){.colour = luz_vec3_make(0.9f, 0.8f, 0.7f), .strength = 0.2f};
+    options->scene.filter = LUZ_FILTER_NEAREST;
+    options->scene.view = LUZ_VIEW_DEPTH;
+    options->scene.interpolation = LUZ_INTERPOLATION_AFFINE;
+    options->textures_directory = strdup("hand/textures");
+    assert_non_null(options->textures_directory);
+    /* and what a scene file does not keep (docs/cli.md, Writing scene
+     * files): --only (its effect is in the strengths, which are set above
+     * and not zeroed, since luz_options_finish is not called) and a run's
+     * settings */
+    options->only_terms = 1u << LUZ_TERM_SPOT;
+    options->thread_count = 3;
+    options->output_path = strdup("hand_%02d.png");
+    assert_non_null(options->output_path);
+    options->frame_count = 4;
+    options->frames_per_second = 12.0;
+    options->bench_frames = 5;
+    options->reference = true;
+}
+
+/* The text of set_every_option_by_hand's options, written out by hand from
+ * docs/cli.md's format: the keys in the order saved files have always had,
+ * view and interp last as the settings written only when changed. */
+static const char every_option_text[] =
+    "# luz scene: render it with luz-render --scene FILE (see docs/cli.md)\n"
+    "size = 640x360\n"
+    "time = 2.75\n"
+    "seed = 12345\n"
+    "cubes = 25\n"
+    "camera-pos = 0.5, -1.25, 4\n"
+    "camera-yaw = -100.7\n"
+    "camera-pitch = 12.5\n"
+    "fov = 60\n"
+    "ambient = 0.1, 0.2, 0.3, 0.4\n"
+    "diffuse = 0.5, 0.6, 0.7, 0.25\n"
+    "specular = 1, 0.5, 0, 0.75\n"
+    "shininess = 64\n"
+    "point = 0.3, 0.3, 0.9, 0.1\n"
+    "spot = 1, 1, 0.9, 0.5\n"
+    "spot-inner = 5.5\n"
+    "spot-outer = 20.25\n"
+    "spot-reach = 7.5\n"
+    "directional = 0.9, 0.8, 0.7, 0.2\n"
+    "filter = nearest\n"
+    "textures = hand/textures\n"
+    "view = depth\n"
+    "interp = affine\n";
+
+static void assert_light_is(const luz_light *light, float r, float g, float b, float strength)
+{
+    assert_float_same(light->colour.x, r);
+    assert_float_same(light->colour.y, g);
+    assert_float_same(light->colour.z, b);
+    assert_float_same(light->strength, strength);
+}
+
+/* Every key the writer saves, each at a value that is not its default:
+ * written, read back into fresh options, written again. The two texts are
+ * the same, and every field read back is the value set by hand (compared
+ * with the literals, not with the options that were written). */
+static void test_scene_round_trip_every_saved_key(void **state)
+{
+    (void)state;
+    sandbox box;
+    sandbox_create(&box);
+    luz_options original, copy;
+    set_every_option_by_hand(&original);
+    char *first = scene_text(&original);
+    assert_string_equal(first, every_option_text);
+
+    char path[600];
+    snprintf(path, sizeof path, "%s/every.luz", box.root);
+    write_text(box.root, "every.luz", first);
+    read_scene_from(&copy, path);
+    char *second = scene_text(&copy);
+    assert_string_equal(first, second);
+
+    assert_int_equal(copy.width, 640);
+    assert_int_equal(copy.height, 360);
+    assert_true(copy.scene.time_seconds == 2.75);
+    assert_int_equal(copy.scene.seed, 12345);
+    assert_int_equal(copy.scene.cube_count, 25);
+    assert_int_equal(copy.scene.custom_cube_count, 0);
+    assert_float_same(copy.scene.camera.position.x, 0.5f);
+    assert_float_same(copy.scene.camera.position.y, -1.25f);
+    assert_float_same(copy.scene.camera.position.z, 4.0f);
+    assert_float_same(copy.scene.camera.yaw_degrees, -100.7f);
+    assert_float_same(copy.scene.camera.pitch_degrees, 12.5f);
+    assert_float_same(copy.scene.camera.fov_degrees, 60.0f);
+    const luz_lights *lights = &copy.scene.lights;
+    assert_light_is(&lights->ambient, 0.1f, 0.2f, 0.3f, 0.4f);
+    assert_light_is(&lights->diffuse, 0.5f, 0.6f, 0.7f, 0.25f);
+    assert_light_is(&lights->specular, 1.0f, 0.5f, 0.0f, 0.75f);
+    assert_float_same(lights->shininess, 64.0f);
+    assert_light_is(&lights->point, 0.3f, 0.3f, 0.9f, 0.1f);
+    assert_light_is(&lights->spot, 1.0f, 1.0f, 0.9f, 0.5f);
+    assert_float_same(lights->spot_inner_degrees, 5.5f);
+    assert_float_same(lights->spot_outer_degrees, 20.25f);
+    assert_float_same(lights->spot_reach, 7.5f);
+    assert_light_is(&lights->directional, 0.9f, 0.8f, 0.7f, 0.2f);
+    assert_int_equal(copy.scene.filter, LUZ_FILTER_NEAREST);
+    assert_int_equal(copy.scene.view, LUZ_VIEW_DEPTH);
+    assert_int_equal(copy.scene.interpolation, LUZ_INTERPOLATION_AFFINE);
+    assert_string_equal(copy.textures_directory, "hand/textures");
+    /* what is not written comes back as the defaults */
+    assert_int_equal(copy.only_terms, 0);
+    assert_int_equal(copy.thread_count, LUZ_THREADS_AUTO);
+    assert_string_equal(copy.output_path, "luz.png");
+    assert_int_equal(copy.frame_count, 1);
+    assert_true(copy.frames_per_second == 30.0);
+    assert_int_equal(copy.bench_frames, 0);
+    assert_false(copy.reference);
+
+    free(first);
+    free(second);
+    luz_options_free(&copy);
+    luz_options_free(&original);
+    sandbox_destroy(&box);
+}
+
+/* The keys of a scene file's `name = value` lines, in order, into keys
+ * (at most capacity); `cube` lines are counted in *cube_lines instead.
+ * Returns the number of keys. */
+static int scene_keys(const char *text, char keys[][32], int capacity, int *cube_lines)
+{
+    int count = 0;
+    *cube_lines = 0;
+    for (const char *line = text; *line != '\0';) {
+        const char *end = strchr(line, '\n');
+        size_t length = end ? (size_t)(end - line) : strlen(line);
+        const char *equals = memchr(line, '=', length);
+        if (line[0] != '#' && equals != NULL) {
+            size_t key_length = (size_t)(equals - line);
+            while (key_length > 0 && line[key_length - 1] == ' ')
+                key_length--;
+            if (key_length == 4 && memcmp(line, "cube", 4) == 0) {
+                (*cube_lines)++;
+            } else {
+                assert_true(count < capacity && key_length < 32);
+                snprintf(keys[count++], 32, "%.*s", (int)key_length, line);
+            }
+        }
+        if (end == NULL)
+            break;
+        line = end + 1;
+    }
+    return count;
+}
+
+static bool is_one_of(const char *name, const char *const *names, size_t count)
+{
+    for (size_t i = 0; i < count; i++)
+        if (strcmp(name, names[i]) == 0)
+            return true;
+    return false;
+}
+
+/* With every option changed, the writer writes exactly the option table's
+ * scene keys less those docs/cli.md says it leaves out (Writing scene
+ * files): `only`, and a run's threads, output, frames, fps and bench; each
+ * once. With custom cubes, `cubes` goes too and the cube lines stand for
+ * it. So a key dropped by the writer, or a key added to the table that the
+ * writer does not save nor the docs exclude, fails here. */
+static void test_scene_writer_saves_every_scene_key(void **state)
+{
+    (void)state;
+    static const char *const left_out[] = {"only", "threads", "output", "frames", "fps",
+                                           "bench"};
+    const size_t left_out_count = sizeof left_out / sizeof left_out[0];
+    luz_options options;
+    set_every_option_by_hand(&options);
+
+    for (int custom = 0; custom <= 1; custom++) {
+        if (custom) {
+            static const char *const names[] = {"a.bmp", "b.bmp"};
+            set_named_cubes(&options, names, 2);
+        }
+        char *text = scene_text(&options);
+        char keys[64][32];
+        int cube_lines;
+        int key_count = scene_keys(text, keys, 64, &cube_lines);
+        assert_int_equal(cube_lines, custom ? 2 : 0);
+
+        /* every expected key is written, once */
+        int expected_count = 0;
+        bool saw_view = false;
+        luz_option_info row;
+        for (size_t i = 0; luz_options_row(i, &row); i++) {
+            if (!luz_options_is_scene_key(row.name) ||
+                is_one_of(row.name, left_out, left_out_count) ||
+                (custom && strcmp(row.name, "cubes") == 0))
+                continue;
+            expected_count++;
+            saw_view = saw_view || strcmp(row.name, "view") == 0;
+            int times = 0;
+            for (int k = 0; k < key_count; k++)
+                times += strcmp(keys[k], row.name) == 0;
+            if (times != 1)
+                fail_msg("scene key '%s' written %d times in:\n%s", row.name, times, text);
+        }
+        /* and nothing else: every written key is a table row, expected above */
+        assert_true(saw_view);
+        if (key_count != expected_count)
+            fail_msg("%d keys written, %d expected, in:\n%s", key_count, expected_count, text);
+        free(text);
+    }
+    luz_options_free(&options);
+}
+
+/* The defaults, written: SCENE.md's scene at 1280x720 (docs/cli.md's
+ * defaults column), without view, interp (both at their defaults) or
+ * textures (not set). */
+static void test_scene_text_of_the_defaults(void **state)
+{
+    (void)state;
+    luz_options options;
+    luz_options_init(&options);
+    char *text = scene_text(&options);
+    assert_string_equal(text,
+                        "# luz scene: render it with luz-render --scene FILE (see docs/cli.md)\n"
+                        "size = 1280x720\n"
+                        "time = 0\n"
+                        "seed = 0\n"
+                        "cubes = 10\n"
+                        "camera-pos = 0, 0, 3\n"
+                        "camera-yaw = -90\n"
+                        "camera-pitch = 0\n"
+                        "fov = 45\n"
+                        "ambient = 1, 1, 1, 0.2\n"
+                        "diffuse = 1, 1, 1, 0.6\n"
+                        "specular = 1, 1, 1, 0.5\n"
+                        "shininess = 32\n"
+                        "point = 1, 1, 1, 0.7\n"
+                        "spot = 1, 1, 1, 1\n"
+                        "spot-inner = 12.5\n"
+                        "spot-outer = 17.5\n"
+                        "spot-reach = 10\n"
+                        "directional = 1, 1, 1, 0.4\n"
+                        "filter = trilinear\n");
+    free(text);
+    /* one of the two changed: only that one is written */
+    options.scene.interpolation = LUZ_INTERPOLATION_AFFINE;
+    text = scene_text(&options);
+    assert_contains(text, "\nfilter = trilinear\ninterp = affine\n");
+    assert_null(strstr(text, "view ="));
+    free(text);
+    luz_options_free(&options);
 }
 
 /* A textures directory with `#` and a trailing blank, and texture names
@@ -1487,6 +1776,9 @@ int main(void)
         cmocka_unit_test(test_options_reach_the_image),
         cmocka_unit_test(test_huge_size_refused_at_once),
         cmocka_unit_test(test_scene_round_trip),
+        cmocka_unit_test(test_scene_round_trip_every_saved_key),
+        cmocka_unit_test(test_scene_text_of_the_defaults),
+        cmocka_unit_test(test_scene_writer_saves_every_scene_key),
         cmocka_unit_test(test_scene_quoted_round_trip),
         cmocka_unit_test(test_scene_quoted_values_read),
         cmocka_unit_test(test_save_scene_never_replaces_unless_asked),

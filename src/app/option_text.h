@@ -1,7 +1,8 @@
 /*
- * option_text.h: the text helpers that options.c (the command line) and
- * scene_file.c (scene files) share, so that both read a number, and print
- * one back, in exactly the same way. Private to src/io; not installed.
+ * option_text.h: the text helpers that the option files share (options.c,
+ * scene_file.c, command_line.c, option_textures.c), so that all read a
+ * number, print one back, and quote a user's text in a message, in exactly
+ * the same way. Private to src/app; not installed.
  */
 #ifndef LUZ_OPTION_TEXT_H
 #define LUZ_OPTION_TEXT_H

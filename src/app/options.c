@@ -1,11 +1,14 @@
 /*
- * options.c: the command line of luz-render and the viewer, one table.
+ * options.c: the options of luz-render and the viewer, one table.
  *
  * Every option is a row of `option_table` below: its name, what kind of
  * value it takes, where that value lives in luz_options, the range it must
- * lie in, and its --help line. Parsing, checking, --help and the scene-file
- * writer (scene_file.c, through luz_options_format) all read that one table,
- * so an option cannot be accepted in one place and forgotten in another.
+ * lie in, whether (and when) a saved scene file keeps it, and its --help
+ * line. Parsing (command_line.c, through luz_options_find), setting and
+ * checking a value, --help, and the scene-file reader and writer
+ * (scene_file.c, through luz_options_set_value, luz_options_row and
+ * luz_options_format) all read that one table, so an option cannot be
+ * accepted in one place and forgotten in another.
  *
  * The rules the table enforces come from SCENE.md (pitch within [-89, 89],
  * spot angles within [0, 89], strengths in [0, 1], ...) and from the
@@ -14,9 +17,10 @@
  * line that names the flag and what was expected: no partial numbers
  * ("12abc"), no NaN or infinity, nothing after the last number.
  *
- * This file deliberately does no I/O besides --help and the look-up of the
- * default textures directory; the scene-file reader and writer live in
- * scene_file.c.
+ * The bottom of the option files: it calls none of the others
+ * (scene_file.c, command_line.c, option_textures.c); they call it. It
+ * reads no file: its only I/O is --help's text and the look-up of the
+ * default textures directory, and --scene is command_line.c's to read.
  */
 #include "app/options.h"
 
@@ -67,6 +71,8 @@ typedef struct option_spec {
     double min, max;           /* the accepted range of a number */
     bool min_open, max_open;   /* whether the range excludes its ends */
     bool in_scene_file;        /* may a scene file set it? */
+    luz_option_saving saving;  /* does luz_options_write_scene save it, and
+                                  when? (left out: never) */
     const char *syntax;        /* the value's form, for --help */
     const char *summary;       /* what it does, for --help */
     const char *default_text;  /* --help's default when it is not a value */
@@ -76,71 +82,89 @@ typedef struct option_spec {
 #define UNBOUNDED .min = -INFINITY, .max = INFINITY
 
 static const option_spec option_table[] = {
-    {.name = "size", .kind = OPTION_SIZE, .in_scene_file = true, .syntax = "WxH",
-     .summary = "image size in pixels"},
+    {.name = "size", .kind = OPTION_SIZE,
+     .in_scene_file = true, .saving = LUZ_OPTION_SAVED,
+     .syntax = "WxH", .summary = "image size in pixels"},
     {.name = "time", .kind = OPTION_DOUBLE, .offset = FIELD(scene.time_seconds), UNBOUNDED,
-     .in_scene_file = true, .syntax = "T",
+     .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "T",
      .summary = "scene time in seconds: the cubes' angles and the lights' orbits"},
-    {.name = "seed", .kind = OPTION_SEED, .min = 0, .max = UINT32_MAX, .in_scene_file = true,
-     .syntax = "N", .summary = "seed of the cube colours, 0 to 4294967295 (0 means 0x9E3779B9)"},
+    {.name = "seed", .kind = OPTION_SEED, .min = 0, .max = UINT32_MAX,
+     .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "N",
+     .summary = "seed of the cube colours, 0 to 4294967295 (0 means 0x9E3779B9)"},
+    /* not saved when there are custom cubes: the cube lines stand for it */
     {.name = "cubes", .kind = OPTION_CUBES, .offset = FIELD(scene.cube_count), .min = 1,
-     .max = LUZ_MAX_CUBES, .in_scene_file = true, .syntax = "N",
+     .max = LUZ_MAX_CUBES, .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "N",
      .summary = "number of cubes, 1 to 100000, the ten repeated in tiles (SCENE.md)"},
     {.name = "camera-pos", .kind = OPTION_VEC3, .offset = FIELD(scene.camera.position),
-     .in_scene_file = true, .syntax = "x,y,z", .summary = "camera position"},
+     .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "x,y,z",
+     .summary = "camera position"},
     {.name = "camera-yaw", .kind = OPTION_FLOAT, .offset = FIELD(scene.camera.yaw_degrees),
-     UNBOUNDED, .in_scene_file = true, .syntax = "D",
+     UNBOUNDED, .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "D",
      .summary = "camera yaw in degrees (-90 looks down -Z)"},
     {.name = "camera-pitch", .kind = OPTION_FLOAT, .offset = FIELD(scene.camera.pitch_degrees),
-     .min = -89, .max = 89, .in_scene_file = true, .syntax = "D",
+     .min = -89, .max = 89, .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "D",
      .summary = "camera pitch in degrees, -89 to 89"},
     {.name = "fov", .kind = OPTION_FLOAT, .offset = FIELD(scene.camera.fov_degrees), .min = 0,
-     .max = 180, .min_open = true, .max_open = true, .in_scene_file = true, .syntax = "D",
+     .max = 180, .min_open = true, .max_open = true,
+     .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "D",
      .summary = "vertical field of view in degrees, above 0 and below 180"},
     {.name = "ambient", .kind = OPTION_LIGHT, .offset = FIELD(scene.lights.ambient),
-     .in_scene_file = true, .syntax = "r,g,b,a",
+     .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "r,g,b,a",
      .summary = "ambient light: colour and strength, each from 0 to 1"},
     {.name = "diffuse", .kind = OPTION_LIGHT, .offset = FIELD(scene.lights.diffuse),
-     .in_scene_file = true, .syntax = "r,g,b,a", .summary = "diffuse headlight at the camera"},
+     .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "r,g,b,a",
+     .summary = "diffuse headlight at the camera"},
     {.name = "specular", .kind = OPTION_LIGHT, .offset = FIELD(scene.lights.specular),
-     .in_scene_file = true, .syntax = "r,g,b,a", .summary = "specular headlight at the camera"},
+     .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "r,g,b,a",
+     .summary = "specular headlight at the camera"},
     {.name = "shininess", .kind = OPTION_FLOAT, .offset = FIELD(scene.lights.shininess), .min = 0,
-     .max = INFINITY, .in_scene_file = true, .syntax = "S",
+     .max = INFINITY, .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "S",
      .summary = "specular exponent, at least 0"},
     {.name = "point", .kind = OPTION_LIGHT, .offset = FIELD(scene.lights.point),
-     .in_scene_file = true, .syntax = "r,g,b,a",
+     .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "r,g,b,a",
      .summary = "point light orbiting the origin (drawn as a small cube)"},
     {.name = "spot", .kind = OPTION_LIGHT, .offset = FIELD(scene.lights.spot),
-     .in_scene_file = true, .syntax = "r,g,b,a", .summary = "spot light riding on the camera"},
+     .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "r,g,b,a",
+     .summary = "spot light riding on the camera"},
     {.name = "spot-inner", .kind = OPTION_FLOAT, .offset = FIELD(scene.lights.spot_inner_degrees),
-     .min = 0, .max = 89, .in_scene_file = true, .syntax = "D",
+     .min = 0, .max = 89, .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "D",
      .summary = "spot's full-intensity cone in degrees, 0 to 89, at most --spot-outer"},
     {.name = "spot-outer", .kind = OPTION_FLOAT, .offset = FIELD(scene.lights.spot_outer_degrees),
-     .min = 0, .max = 89, .in_scene_file = true, .syntax = "D",
+     .min = 0, .max = 89, .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "D",
      .summary = "spot's cut-off cone in degrees, 0 to 89"},
     {.name = "spot-reach", .kind = OPTION_FLOAT, .offset = FIELD(scene.lights.spot_reach),
-     .min = 0, .max = INFINITY, .min_open = true, .in_scene_file = true, .syntax = "R",
+     .min = 0, .max = INFINITY, .min_open = true,
+     .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "R",
      .summary = "distance at which the spot fades out, above 0"},
     {.name = "directional", .kind = OPTION_LIGHT, .offset = FIELD(scene.lights.directional),
-     .in_scene_file = true, .syntax = "r,g,b,a", .summary = "directional light (the sun)"},
+     .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "r,g,b,a",
+     .summary = "directional light (the sun)"},
+    /* not saved: its effect is already in the strengths it set to 0 */
     {.name = "only", .kind = OPTION_ONLY, .in_scene_file = true, .syntax = "TERM[,TERM...]",
      .summary = "keep only these lights, the others' strength set to 0; terms: ambient "
                 "diffuse specular point spot directional",
      .default_text = "all six"},
-    {.name = "filter", .kind = OPTION_FILTER, .in_scene_file = true,
+    {.name = "filter", .kind = OPTION_FILTER,
+     .in_scene_file = true, .saving = LUZ_OPTION_SAVED,
      .syntax = "nearest|bilinear|trilinear", .summary = "texture filter"},
-    {.name = "view", .kind = OPTION_VIEW, .in_scene_file = true,
-     .syntax = "NAME",
+    /* The teaching settings, saved when changed: a view saved while looking
+     * at the depth buffer renders the depth buffer. */
+    {.name = "view", .kind = OPTION_VIEW,
+     .in_scene_file = true, .saving = LUZ_OPTION_SAVED_IF_CHANGED, .syntax = "NAME",
      .summary = "what the image shows: color, or a picture of a pipeline stage: depth, "
                 "normals, uv, mip, overdraw, bands, triangles (README, Guided tour)"},
-    {.name = "interp", .kind = OPTION_INTERP, .in_scene_file = true,
+    {.name = "interp", .kind = OPTION_INTERP,
+     .in_scene_file = true, .saving = LUZ_OPTION_SAVED_IF_CHANGED,
      .syntax = "perspective|affine",
      .summary = "interpolation of texture coordinates and the other varyings: "
                 "perspective-correct, or affine in screen space (textures swim)"},
+    /* saved once set (luz_options_format has nothing to write before) */
     {.name = "textures", .kind = OPTION_PATH, .offset = FIELD(textures_directory),
-     .in_scene_file = true, .syntax = "DIR|none",
+     .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "DIR|none",
      .summary = "directory of cube images (.png .jpg .jpeg .bmp .tga); none: all white",
      .default_text = "$LUZ_TEXTURES, else the built-in textures"},
+    /* The settings of a run, which a file may give but the writer leaves
+     * out: a saved view is a scene, not a render job. */
     {.name = "threads", .kind = OPTION_THREADS, .offset = FIELD(thread_count), .min = 0,
      .max = LUZ_MAX_THREADS, .in_scene_file = true, .syntax = "N|auto",
      .summary = "rendering threads, 0 to 256 (0 and 1: the calling thread only)"},
@@ -184,6 +208,31 @@ static const option_spec *find_option(const char *name, size_t length)
             return &option_table[i];
     }
     return NULL;
+}
+
+static luz_option_info option_info(const option_spec *spec)
+{
+    return (luz_option_info){.name = spec->name,
+                             .syntax = spec->syntax,
+                             .is_flag = spec->kind == OPTION_FLAG,
+                             .saving = spec->saving};
+}
+
+bool luz_options_row(size_t index, luz_option_info *info)
+{
+    if (index >= OPTION_COUNT)
+        return false;
+    *info = option_info(&option_table[index]);
+    return true;
+}
+
+bool luz_options_find(const char *name, size_t length, luz_option_info *info)
+{
+    const option_spec *spec = find_option(name, length);
+    if (spec == NULL)
+        return false;
+    *info = option_info(spec);
+    return true;
 }
 
 static void *option_field(luz_options *options, const option_spec *spec)
@@ -460,8 +509,8 @@ static int set_path(luz_options *options, const option_spec *spec, const char *v
     return 0;
 }
 
-int luz_options_set(luz_options *options, const char *name, const char *value,
-                    const char *where, luz_error *error)
+int luz_options_set_value(luz_options *options, const char *name, const char *value,
+                          const char *where, luz_error *error)
 {
     const option_spec *spec = find_option(name, strlen(name));
     char default_where[32];
@@ -507,7 +556,10 @@ int luz_options_set(luz_options *options, const char *name, const char *value,
     case OPTION_PATH:
         return set_path(options, spec, value, where, error);
     case OPTION_SCENE:
-        return luz_options_read_scene_file(options, value, error);
+        /* Reading a file is not this file's business: luz_options_set
+         * (command_line.c) reads it with scene_file.c. */
+        return luz_error_set(error, "%s: a scene file is read by luz_options_set, not here",
+                             where);
     case OPTION_FLAG:
         break;
     }
@@ -775,91 +827,6 @@ int luz_options_finish(luz_options *options, luz_error *error)
     return 0;
 }
 
-/* ---- the command line ------------------------------------------------------------ */
-
-/* One argument (and its value) of the command line. */
-typedef struct command_argument {
-    const option_spec *spec;
-    const char *value;   /* NULL for a flag */
-    char where[32];      /* "--size" or "-o", for messages */
-} command_argument;
-
-/* Reads argv[*index] (and its value) and moves *index past them. Checks the
- * shape only: a known option, a value present when one is needed. */
-static int read_argument(int argc, char **argv, int *index, command_argument *argument,
-                         luz_error *error)
-{
-    const char *text = argv[(*index)++];
-    const char *equals = NULL;
-    if (strcmp(text, "-o") == 0) {
-        argument->spec = find_option("output", 6);
-        snprintf(argument->where, sizeof argument->where, "-o");
-    } else if (text[0] == '-' && text[1] == '-' && text[2] != '\0') {
-        const char *name = text + 2;
-        equals = strchr(name, '=');
-        size_t length = equals ? (size_t)(equals - name) : strlen(name);
-        argument->spec = find_option(name, length);
-        if (argument->spec == NULL || length == 1) {
-            char flag[64];
-            snprintf(flag, sizeof flag, "%.*s", (int)(length + 2 < 60 ? length + 2 : 60), text);
-            return luz_error_set(error, "unknown option '%s' (see --help)",
-                                 option_quote(flag).text);
-        }
-        snprintf(argument->where, sizeof argument->where, "--%s", argument->spec->name);
-    } else if (text[0] == '-' && text[1] != '\0') {
-        return luz_error_set(error, "unknown option '%s' (see --help)", option_quote(text).text);
-    } else {
-        return luz_error_set(error,
-                             "unexpected argument '%s' (options start with --; see --help)",
-                             option_quote(text).text);
-    }
-
-    if (argument->spec->kind == OPTION_FLAG) {
-        if (equals != NULL)
-            return luz_error_set(error, "%s: takes no value, got '%s'", argument->where,
-                                 option_quote(equals + 1).text);
-        argument->value = NULL;
-        return 0;
-    }
-    if (equals != NULL)
-        argument->value = equals + 1;
-    else if (*index < argc)
-        argument->value = argv[(*index)++];
-    else
-        argument->value = NULL;
-    if (argument->value == NULL || argument->value[0] == '\0')
-        return luz_error_set(error, "%s: missing value (expected %s)", argument->where,
-                             argument->spec->syntax);
-    return 0;
-}
-
-int luz_options_parse(luz_options *options, int argc, char **argv, luz_error *error)
-{
-    command_argument argument;
-    /* Three passes: the shape of every argument first, so that a typo is
-     * reported before any file is opened; then the scene files; then the
-     * rest, so that the command line overrides a file whatever the order. */
-    for (int index = 1; index < argc;) {
-        if (read_argument(argc, argv, &index, &argument, error) != 0)
-            return -1;
-    }
-    for (int index = 1; index < argc;) {
-        read_argument(argc, argv, &index, &argument, error);
-        if (argument.spec->kind == OPTION_SCENE &&
-            luz_options_set(options, argument.spec->name, argument.value, argument.where,
-                            error) != 0)
-            return -1;
-    }
-    for (int index = 1; index < argc;) {
-        read_argument(argc, argv, &index, &argument, error);
-        if (argument.spec->kind != OPTION_SCENE &&
-            luz_options_set(options, argument.spec->name, argument.value, argument.where,
-                            error) != 0)
-            return -1;
-    }
-    return luz_options_finish(options, error);
-}
-
 /* ---- --help -------------------------------------------------------------------------- */
 
 /* A blank that print_wrapped() does not break a line at. */
@@ -958,24 +925,4 @@ const char *luz_default_textures_directory(char *buffer, size_t size)
     if (size > 0)
         snprintf(buffer, size, "%s", directory);
     return buffer;
-}
-
-/* Loads the textures the options name; see options.h. */
-int luz_options_load_textures(luz_options *options, luz_texture_set *textures, luz_error *error)
-{
-    char default_directory[4096];
-    const char *directory = options->textures_directory;
-    const char *source = "--textures";
-    if (directory == NULL) {
-        const char *environment = getenv("LUZ_TEXTURES");
-        source = environment && environment[0] ? "LUZ_TEXTURES"
-                                               : "default textures (see --textures)";
-        directory = luz_default_textures_directory(default_directory, sizeof default_directory);
-    }
-    if (strcmp(directory, "none") != 0) {
-        luz_error load_error = {{0}};
-        if (luz_texture_set_load(textures, directory, &load_error) != 0)
-            return luz_error_set(error, "%s: %s", source, load_error.message);
-    }
-    return luz_options_resolve_textures(options, textures, error);
 }

@@ -1,5 +1,5 @@
 /*
- * luz/options.h: the scene options both programs share.
+ * app/options.h: the scene options both programs share.
  *
  * luz-render and the viewer take the same long options (the knobs of
  * SCENE.md) and the same scene files, through this one parser. A scene file
@@ -8,6 +8,10 @@
  * `#` or blanks in it), and `cube = ...` lines that replace the cube list;
  * options given on the command line override the file whatever their order.
  * docs/cli.md is the user's reference for both.
+ *
+ * Four files stand behind this header, each calling only those listed
+ * before it: options.c (the option table), scene_file.c (scene files),
+ * command_line.c (argv) and option_textures.c (the textures named).
  *
  * Every error is one line naming the flag (or file:line) and what was
  * expected, e.g. "--size: expected WIDTHxHEIGHT such as 1280x720, got '0x5'".
@@ -64,30 +68,56 @@ typedef struct luz_options {
     int cube_capacity;
 } luz_options;
 
+/* ---- options.c: the option table, one option at a time ---------------------
+ * The bottom of the four files behind this header: it calls none of the
+ * others and knows nothing of files. */
+
 /* The defaults of every option. */
 void luz_options_init(luz_options *options);
 void luz_options_free(luz_options *options);
 
-/* Parses argv (argv[0] is the program name) and, with --scene, the file:
- * first every argument's shape is checked, then the scene file is read, then
- * the other arguments are applied over it, then luz_options_finish() runs.
- * Accepts `--name value` and `--name=value`. Returns 0, or -1 with a
- * one-line message. */
-int luz_options_parse(luz_options *options, int argc, char **argv, luz_error *error);
-
-/* Sets one option from its text, as the command line and scene files do.
- * name is a long option without its dashes ("size", "camera-pos"; "o" is
- * -o); value is NULL for the flags help and version. Error messages start
- * with `where` ("--size" on the command line, "scene.luz:3: size" in a
- * file); NULL means "--NAME". Setting "scene" reads that scene file. Returns
- * 0, or -1 with a message. */
-int luz_options_set(luz_options *options, const char *name, const char *value,
-                    const char *where, luz_error *error);
+/* Sets one option from its text, as the command line and scene files do:
+ * every option but scene, whose file luz_options_set reads (setting it
+ * here is an error). name is a long option without its dashes ("size",
+ * "camera-pos"; "o" is -o); value is NULL for the flags help, version and
+ * reference. Error messages start with `where` ("--size" on the command
+ * line, "scene.luz:3: size" in a file); NULL means "--NAME". Returns 0, or
+ * -1 with a message. */
+int luz_options_set_value(luz_options *options, const char *name, const char *value,
+                          const char *where, luz_error *error);
 
 /* True for the names a scene file may set with `name = value`: every long
  * option that takes a value, except scene. (`cube` lines are the scene
  * file's own.) */
 bool luz_options_is_scene_key(const char *name);
+
+/* Whether and when luz_options_write_scene saves an option: a column of
+ * the option table, so that the writer follows the table rather than a
+ * list of its own that could forget a key. */
+typedef enum luz_option_saving {
+    LUZ_OPTION_NOT_SAVED,         /* the flags, scene, only (its effect is in
+                                     the strengths) and a run's settings */
+    LUZ_OPTION_SAVED,             /* whenever it has a value (textures: once
+                                     set) */
+    LUZ_OPTION_SAVED_IF_CHANGED,  /* only when it is not the default */
+} luz_option_saving;
+
+/* One row of the option table, as the rest of the app sees it. */
+typedef struct luz_option_info {
+    const char *name;          /* the long option without its dashes */
+    const char *syntax;        /* the value's form ("WxH"), for messages;
+                                  NULL for a flag */
+    bool is_flag;              /* takes no value: help, version, reference */
+    luz_option_saving saving;
+} luz_option_info;
+
+/* Row `index` of the option table, in --help's order, into *info. Returns
+ * false past the last row. */
+bool luz_options_row(size_t index, luz_option_info *info);
+
+/* The row named by the first `length` characters of name ("o" is output),
+ * into *info. Returns false if there is none. */
+bool luz_options_find(const char *name, size_t length, luz_option_info *info);
 
 /* Writes the current value of option `name` in the text form that
  * luz_options_set() reads back exactly (floats with %.9g, doubles with
@@ -107,40 +137,6 @@ int luz_options_finish(luz_options *options, luz_error *error);
  * scene.cube_count cubes. */
 void luz_options_clear_cubes(luz_options *options);
 
-/* Reads a scene file into options (luz_options_parse() does it for --scene)
- * and records its path in scene_path. Its `cube` lines replace the cube
- * list. Does not call luz_options_finish(). Returns 0, or -1 with a message
- * that starts with FILE:LINE. */
-int luz_options_read_scene_file(luz_options *options, const char *path, luz_error *error);
-
-/* Writes the scene part of options (size, time, seed, camera, lights,
- * filter, textures, cubes) in the scene-file format, so that what the
- * viewer shows can be rendered again with luz-render --scene; reading the
- * file back gives the same options. Program settings (threads, output,
- * frames, fps, bench) are not written. */
-void luz_options_write_scene(const luz_options *options, FILE *out);
-
-/* The same text as a file at path, complete or absent (written to a
- * temporary name first). replace false: an existing file is never
- * replaced; LUZ_FILE_EXISTS is returned instead, as the viewer's F2 needs
- * to number its files safely. Returns 0, LUZ_FILE_EXISTS or -1 with a
- * message naming path. */
-int luz_options_save_scene(const luz_options *options, const char *path, bool replace,
-                           luz_error *error);
-
-/* Turns the custom cubes' texture names into indices of the loaded set.
- * Returns 0, or -1 naming FILE:LINE of a cube whose texture is not in it. */
-int luz_options_resolve_textures(luz_options *options, const luz_texture_set *textures,
-                                 luz_error *error);
-
-/* Loads the textures the options name (--textures, else $LUZ_TEXTURES,
- * else luz_default_textures_directory()) into an empty set, "none" leaving
- * it empty (every texel white), then resolves the custom cubes' texture
- * names (luz_options_resolve_textures). Both programs start this way.
- * Returns 0, or -1 with a message that says where the directory came from. */
-int luz_options_load_textures(luz_options *options, luz_texture_set *textures,
-                              luz_error *error);
-
 /* The file that frame frame_index goes to: output_path with its %d
  * conversion (if any) replaced by the index and %% by %. Returns 0, or -1 if
  * the pattern is malformed or the name does not fit in buffer. */
@@ -156,5 +152,62 @@ void luz_options_print_help(FILE *out);
  * inside the build directory; else the installed ones. Writes into buffer and
  * returns it. */
 const char *luz_default_textures_directory(char *buffer, size_t size);
+
+/* ---- scene_file.c: scene files, read and written (uses options.c) ---------- */
+
+/* Reads a scene file into options (luz_options_parse() does it for --scene)
+ * and records its path in scene_path. Its `cube` lines replace the cube
+ * list. Does not call luz_options_finish(). Returns 0, or -1 with a message
+ * that starts with FILE:LINE. */
+int luz_options_read_scene_file(luz_options *options, const char *path, luz_error *error);
+
+/* Writes the scene part of options in the scene-file format, so that what
+ * the viewer shows can be rendered again with luz-render --scene; reading
+ * the file back gives the same options. The keys written are the option
+ * table's saved rows (luz_options_row): first those saved whenever they
+ * have a value, then those saved only when changed (view, interp), each
+ * group in the table's order; then the custom cubes' lines, which replace
+ * `cubes`. Not written: only, and a run's settings (threads, output,
+ * frames, fps, bench). */
+void luz_options_write_scene(const luz_options *options, FILE *out);
+
+/* The same text as a file at path, complete or absent (written to a
+ * temporary name first). replace false: an existing file is never
+ * replaced; LUZ_FILE_EXISTS is returned instead, as the viewer's F2 needs
+ * to number its files safely. Returns 0, LUZ_FILE_EXISTS or -1 with a
+ * message naming path. */
+int luz_options_save_scene(const luz_options *options, const char *path, bool replace,
+                           luz_error *error);
+
+/* ---- command_line.c: argv, --scene files included (uses both above) -------- */
+
+/* Parses argv (argv[0] is the program name) and, with --scene, the file:
+ * first every argument's shape is checked, then the scene file is read, then
+ * the other arguments are applied over it, then luz_options_finish() runs.
+ * Accepts `--name value` and `--name=value`. Returns 0, or -1 with a
+ * one-line message. */
+int luz_options_parse(luz_options *options, int argc, char **argv, luz_error *error);
+
+/* Sets one option from its text, as the command line does: "scene" reads
+ * that scene file (luz_options_read_scene_file), any other name goes to
+ * luz_options_set_value, with the same arguments and messages. Returns 0,
+ * or -1 with a message. */
+int luz_options_set(luz_options *options, const char *name, const char *value,
+                    const char *where, luz_error *error);
+
+/* ---- option_textures.c: the textures the options name (uses options.c) ---- */
+
+/* Turns the custom cubes' texture names into indices of the loaded set.
+ * Returns 0, or -1 naming FILE:LINE of a cube whose texture is not in it. */
+int luz_options_resolve_textures(luz_options *options, const luz_texture_set *textures,
+                                 luz_error *error);
+
+/* Loads the textures the options name (--textures, else $LUZ_TEXTURES,
+ * else luz_default_textures_directory()) into an empty set, "none" leaving
+ * it empty (every texel white), then resolves the custom cubes' texture
+ * names (luz_options_resolve_textures). Both programs start this way.
+ * Returns 0, or -1 with a message that says where the directory came from. */
+int luz_options_load_textures(luz_options *options, luz_texture_set *textures,
+                              luz_error *error);
 
 #endif

@@ -27,9 +27,15 @@
  * ordinary character. luz_options_write_scene quotes only the text that
  * needs it, so that what it writes always reads back the same.
  *
- * Values go through luz_options_set(), the command line's own parser, so a
- * file accepts exactly what the command line accepts. Every error names
- * FILE:LINE.
+ * Values go through luz_options_set_value(), the command line's own
+ * setter, so a file accepts exactly what the command line accepts. Every
+ * error names FILE:LINE. The writer saves the keys the option table marks
+ * as saved (luz_options_row), each formatted by luz_options_format.
+ *
+ * Uses options.c (the table, one value set or formatted) and io; options.c
+ * knows nothing of files and never calls back. command_line.c calls the
+ * reader for --scene; option_textures.c resolves the texture names that
+ * the cube lines leave behind.
  */
 #include "app/options.h"
 #include "io/new_file.h"
@@ -410,7 +416,7 @@ static int read_line(scene_reader *reader, char *text, luz_error *error)
                                  "quote, got '%s'",
                                  where, option_quote(after + strspn(after, " \t")).text);
     }
-    return luz_options_set(reader->options, name, value, where, error);
+    return luz_options_set_value(reader->options, name, value, where, error);
 }
 
 int luz_options_read_scene_file(luz_options *options, const char *path, luz_error *error)
@@ -461,45 +467,6 @@ int luz_options_read_scene_file(luz_options *options, const char *path, luz_erro
     return status;
 }
 
-/* ---- textures named by cube lines --------------------------------------------------- */
-
-int luz_options_resolve_textures(luz_options *options, const luz_texture_set *textures,
-                                 luz_error *error)
-{
-    for (int i = 0; i < options->scene.custom_cube_count; i++) {
-        const luz_cube_source *source = &options->cube_sources[i];
-        if (source->texture_name == NULL) {
-            options->cubes[i].texture = LUZ_TEXTURE_BY_INDEX;
-            continue;
-        }
-        int index = textures ? luz_texture_set_find(textures, source->texture_name) : -1;
-        if (index >= 0) {
-            options->cubes[i].texture = index;
-            continue;
-        }
-        /* Name a few of the images that are there, which is usually enough to
-         * spot the typo. */
-        char available[200] = "";
-        int count = textures ? textures->count : 0;
-        for (int k = 0; k < count && k < 6; k++) {
-            size_t used = strlen(available);
-            snprintf(available + used, sizeof available - used, "%s%s", k ? ", " : "",
-                     option_quote(textures->names[k]).text);
-        }
-        if (count > 6) {
-            size_t used = strlen(available);
-            snprintf(available + used, sizeof available - used, ", ...");
-        }
-        return luz_error_set(error,
-                             "%s:%d: cube: texture '%s' is not an image of the textures "
-                             "directory (expected one of: %s)",
-                             options->scene_path ? options->scene_path : "scene", source->line,
-                             option_quote(source->texture_name).text,
-                             count ? available : "none, textures are off");
-    }
-    return 0;
-}
-
 /* ---- writing ------------------------------------------------------------------------ */
 
 /* Writes text as the reader will read it back: as it is when it can be,
@@ -538,32 +505,41 @@ static void write_text(FILE *out, const char *text, bool is_word)
 
 void luz_options_write_scene(const luz_options *options, FILE *out)
 {
-    /* The scene, in the order of --help; not the program's own settings
-     * (threads, output, frames, fps, bench), which belong to a run, and not
-     * `only`, whose effect the strengths already carry. */
-    static const char *const keys[] = {
-        "size",       "time",        "seed",     "cubes",     "camera-pos",
-        "camera-yaw", "camera-pitch", "fov",     "ambient",   "diffuse",
-        "specular",   "shininess",   "point",    "spot",      "spot-inner",
-        "spot-outer", "spot-reach",  "directional", "filter", "textures",
-    };
-    char value[4200];
+    /* The keys, and when each is written, come from the option table's
+     * `saving` column. Those saved whenever they have a value come first,
+     * then those saved only when changed, each group in the table's order:
+     * the order files have always had (textures before view and interp),
+     * so that a view saved again diffs only where it changed. */
+    static const luz_option_saving groups[] = {LUZ_OPTION_SAVED,
+                                               LUZ_OPTION_SAVED_IF_CHANGED};
+    luz_options defaults;
+    luz_options_init(&defaults);
+    char value[4200], default_value[4200];
+    luz_option_info row;
     fprintf(out, "# luz scene: render it with luz-render --scene FILE (see docs/cli.md)\n");
-    for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++) {
-        if (strcmp(keys[i], "cubes") == 0 && options->scene.custom_cube_count > 0)
-            continue;
-        if (luz_options_format(options, keys[i], value, sizeof value) == 0) {
-            fprintf(out, "%s = ", keys[i]);
+    for (size_t group = 0; group < sizeof groups / sizeof groups[0]; group++) {
+        for (size_t i = 0; luz_options_row(i, &row); i++) {
+            if (row.saving != groups[group])
+                continue;
+            /* The cube lines below replace the tiling's count, and a file
+             * may not have both. */
+            if (strcmp(row.name, "cubes") == 0 && options->scene.custom_cube_count > 0)
+                continue;
+            /* Nothing to write: a value left unset (textures). */
+            if (luz_options_format(options, row.name, value, sizeof value) != 0)
+                continue;
+            /* The text reads back exactly, so equal text is an equal value. */
+            if (row.saving == LUZ_OPTION_SAVED_IF_CHANGED &&
+                luz_options_format(&defaults, row.name, default_value,
+                                   sizeof default_value) == 0 &&
+                strcmp(value, default_value) == 0)
+                continue;
+            fprintf(out, "%s = ", row.name);
             write_text(out, value, false);
             fputc('\n', out);
         }
     }
-    /* The teaching settings, only when they are not the defaults: a view
-     * saved while looking at the depth buffer renders the depth buffer. */
-    if (options->scene.view != LUZ_VIEW_COLOR)
-        fprintf(out, "view = %s\n", luz_view_name(options->scene.view));
-    if (options->scene.interpolation != LUZ_INTERPOLATION_PERSPECTIVE)
-        fprintf(out, "interp = %s\n", luz_interpolation_name(options->scene.interpolation));
+    luz_options_free(&defaults);
     for (int i = 0; i < options->scene.custom_cube_count; i++) {
         const luz_cube *cube = &options->cubes[i];
         char x[32], y[32], z[32];

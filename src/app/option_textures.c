@@ -1,0 +1,77 @@
+/*
+ * option_textures.c: the textures the options name, loaded, and the custom
+ * cubes' texture names resolved against them.
+ *
+ * Both programs start this way once the options are read. A scene file's
+ * `texture NAME` is kept as text while the file is read (scene_file.c),
+ * since the textures directory is only known once every option is; here
+ * the names become indices of the loaded set, and an unknown one is
+ * reported at its FILE:LINE.
+ *
+ * Uses options.c (the default textures directory) and io; no other file of
+ * the app calls it.
+ */
+#include "app/options.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "app/option_text.h"
+
+int luz_options_resolve_textures(luz_options *options, const luz_texture_set *textures,
+                                 luz_error *error)
+{
+    for (int i = 0; i < options->scene.custom_cube_count; i++) {
+        const luz_cube_source *source = &options->cube_sources[i];
+        if (source->texture_name == NULL) {
+            options->cubes[i].texture = LUZ_TEXTURE_BY_INDEX;
+            continue;
+        }
+        int index = textures ? luz_texture_set_find(textures, source->texture_name) : -1;
+        if (index >= 0) {
+            options->cubes[i].texture = index;
+            continue;
+        }
+        /* Name a few of the images that are there, which is usually enough to
+         * spot the typo. */
+        char available[200] = "";
+        int count = textures ? textures->count : 0;
+        for (int k = 0; k < count && k < 6; k++) {
+            size_t used = strlen(available);
+            snprintf(available + used, sizeof available - used, "%s%s", k ? ", " : "",
+                     option_quote(textures->names[k]).text);
+        }
+        if (count > 6) {
+            size_t used = strlen(available);
+            snprintf(available + used, sizeof available - used, ", ...");
+        }
+        return luz_error_set(error,
+                             "%s:%d: cube: texture '%s' is not an image of the textures "
+                             "directory (expected one of: %s)",
+                             options->scene_path ? options->scene_path : "scene", source->line,
+                             option_quote(source->texture_name).text,
+                             count ? available : "none, textures are off");
+    }
+    return 0;
+}
+
+/* Loads the textures the options name; see options.h. */
+int luz_options_load_textures(luz_options *options, luz_texture_set *textures, luz_error *error)
+{
+    char default_directory[4096];
+    const char *directory = options->textures_directory;
+    const char *source = "--textures";
+    if (directory == NULL) {
+        const char *environment = getenv("LUZ_TEXTURES");
+        source = environment && environment[0] ? "LUZ_TEXTURES"
+                                               : "default textures (see --textures)";
+        directory = luz_default_textures_directory(default_directory, sizeof default_directory);
+    }
+    if (strcmp(directory, "none") != 0) {
+        luz_error load_error = {{0}};
+        if (luz_texture_set_load(textures, directory, &load_error) != 0)
+            return luz_error_set(error, "%s: %s", source, load_error.message);
+    }
+    return luz_options_resolve_textures(options, textures, error);
+}
