@@ -15,7 +15,6 @@
 
 #include <luz/luz.h>
 
-#define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb_image_write.h>
 
 enum { SIZE = 256, RINGS = 48, SIDES = 24 };

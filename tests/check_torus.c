@@ -23,7 +23,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#define STB_IMAGE_IMPLEMENTATION
 #include <stb_image.h>
 
 static int failures;

@@ -51,7 +51,7 @@ done
 
 # The example, built against the installed library only.
 "$cc" -std=c11 -Wall -Wextra -o "$work/torus" "$source_root/examples/torus.c" \
-    $(luz_pkg --cflags --libs) $(pkg-config --cflags stb) -lm > "$work/build.log" 2>&1 ||
+    $(luz_pkg --cflags --libs) $(pkg-config --cflags --libs stb) -lm > "$work/build.log" 2>&1 ||
     fail "examples/torus.c does not build: $(head -n 5 "$work/build.log")"
 LD_LIBRARY_PATH=$lib_dir "$work/torus" "$work/torus.png" > "$work/run.log" 2>&1 ||
     fail "examples/torus failed: $(cat "$work/run.log")"

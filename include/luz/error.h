@@ -9,6 +9,8 @@
 #ifndef LUZ_ERROR_H
 #define LUZ_ERROR_H
 
+#include "luz/api.h"
+
 /* What a function that never replaces a file returns when the name is
  * taken (luz_framebuffer_write_new_png, luz_options_save_scene). */
 #define LUZ_FILE_EXISTS 1
@@ -22,11 +24,11 @@ typedef struct luz_error {
 #if defined(__GNUC__)
 __attribute__((format(printf, 2, 3)))
 #endif
-int luz_error_set(luz_error *error, const char *format, ...);
+LUZ_API int luz_error_set(luz_error *error, const char *format, ...);
 
 /* Prints "program: message" as one line on stderr: control characters in
  * the message (a file name with a newline in it, say) are shown as '?', so
  * that users and tests always see exactly one line. */
-void luz_error_print(const char *program, const char *message);
+LUZ_API void luz_error_print(const char *program, const char *message);
 
 #endif

@@ -20,6 +20,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "luz/api.h"
 #include "luz/error.h"
 #include "luz/mesh.h"
 #include "luz/texture.h"
@@ -62,9 +63,9 @@ typedef enum luz_term {
     LUZ_TERM_COUNT
 } luz_term;
 
-const char *luz_term_name(luz_term term);          /* "ambient", ... */
+LUZ_API const char *luz_term_name(luz_term term);          /* "ambient", ... */
 /* The light of a term; NULL for a value that is not a term. */
-luz_light *luz_lights_term(luz_lights *lights, luz_term term);
+LUZ_API luz_light *luz_lights_term(luz_lights *lights, luz_term term);
 
 /* ---- materials ---------------------------------------------------------- */
 
@@ -107,8 +108,8 @@ typedef struct luz_frame {
 /* Appends a copy of *draw to the frame's list (which grows as needed, and
  * is kept from frame to frame: set draw_count to 0 to reuse it). Returns 0,
  * or -1 with the reason if the draw has no mesh or memory ran out. */
-int luz_frame_add_draw(luz_frame *frame, const luz_draw *draw, luz_error *error);
+LUZ_API int luz_frame_add_draw(luz_frame *frame, const luz_draw *draw, luz_error *error);
 /* Frees the draw list (not the meshes or textures it names). */
-void luz_frame_free(luz_frame *frame);
+LUZ_API void luz_frame_free(luz_frame *frame);
 
 #endif

@@ -18,6 +18,7 @@
 
 #include <stdint.h>
 
+#include "luz/api.h"
 #include "luz/error.h"
 #include "luz/vecmath.h"
 
@@ -50,10 +51,10 @@ typedef struct luz_framebuffer {
 
 /* Returns 0 if width x height is a size the renderer supports, else -1 with
  * a message. */
-int luz_framebuffer_check_size(int width, int height, luz_error *error);
-luz_framebuffer *luz_framebuffer_create(int width, int height, luz_error *error);
-int luz_framebuffer_resize(luz_framebuffer *framebuffer, int width, int height, luz_error *error);
-void luz_framebuffer_destroy(luz_framebuffer *framebuffer);
+LUZ_API int luz_framebuffer_check_size(int width, int height, luz_error *error);
+LUZ_API luz_framebuffer *luz_framebuffer_create(int width, int height, luz_error *error);
+LUZ_API int luz_framebuffer_resize(luz_framebuffer *framebuffer, int width, int height, luz_error *error);
+LUZ_API void luz_framebuffer_destroy(luz_framebuffer *framebuffer);
 
 /* Draw the colour into the caller's memory from now on: pixels holds
  * width * height * 4 bytes, rows packed, in the given order. pixels NULL
@@ -61,13 +62,13 @@ void luz_framebuffer_destroy(luz_framebuffer *framebuffer);
  * caller keeps the memory alive while it is in use; the framebuffer never
  * frees it. luz_framebuffer_resize goes back to the framebuffer's own
  * memory and keeps the order. */
-void luz_framebuffer_use_colour(luz_framebuffer *framebuffer, uint8_t *pixels,
-                                luz_channel_order order);
+LUZ_API void luz_framebuffer_use_colour(luz_framebuffer *framebuffer, uint8_t *pixels,
+                                        luz_channel_order order);
 
 /* Clears rows [first_row, end_row): depth to 1.0, visibility to 0. Colour
  * is not touched: the shading pass writes the clear colour wherever
  * visibility stays 0. */
-void luz_framebuffer_clear_rows(luz_framebuffer *framebuffer, int first_row, int end_row);
+LUZ_API void luz_framebuffer_clear_rows(luz_framebuffer *framebuffer, int first_row, int end_row);
 
 /* SCENE.md's colour output: round(clamp(c, 0, 1) * 255). */
 static inline uint8_t luz_colour_to_byte(float c)

@@ -22,6 +22,7 @@
 
 #include <stdint.h>
 
+#include "luz/api.h"
 #include "luz/error.h"
 #include "luz/vecmath.h"
 
@@ -58,12 +59,12 @@ typedef struct luz_mesh luz_mesh;
 
 /* Returns the new mesh, or NULL with the reason in error (NULL desc means
  * the zero desc). */
-luz_mesh *luz_mesh_create(const luz_mesh_desc *desc, luz_error *error);
-void luz_mesh_destroy(luz_mesh *mesh);
+LUZ_API luz_mesh *luz_mesh_create(const luz_mesh_desc *desc, luz_error *error);
+LUZ_API void luz_mesh_destroy(luz_mesh *mesh);
 
-uint32_t luz_mesh_vertex_count(const luz_mesh *mesh);
-uint32_t luz_mesh_triangle_count(const luz_mesh *mesh);
+LUZ_API uint32_t luz_mesh_vertex_count(const luz_mesh *mesh);
+LUZ_API uint32_t luz_mesh_triangle_count(const luz_mesh *mesh);
 /* The box around every vertex position, in object space. */
-luz_bounds luz_mesh_bounds(const luz_mesh *mesh);
+LUZ_API luz_bounds luz_mesh_bounds(const luz_mesh *mesh);
 
 #endif

@@ -22,6 +22,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "luz/api.h"
 #include "luz/error.h"
 #include "luz/frame.h"
 #include "luz/framebuffer.h"
@@ -46,10 +47,10 @@ typedef struct luz_renderer_desc {
 typedef struct luz_renderer luz_renderer;
 
 /* Returns the renderer, or NULL with the reason in error. */
-luz_renderer *luz_renderer_create(const luz_renderer_desc *desc, luz_error *error);
-void luz_renderer_destroy(luz_renderer *renderer);
+LUZ_API luz_renderer *luz_renderer_create(const luz_renderer_desc *desc, luz_error *error);
+LUZ_API void luz_renderer_destroy(luz_renderer *renderer);
 /* The number of threads that work on a frame, the caller's included. */
-int luz_renderer_thread_count(const luz_renderer *renderer);
+LUZ_API int luz_renderer_thread_count(const luz_renderer *renderer);
 
 /* How varyings are interpolated across a triangle on the screen. */
 typedef enum luz_interpolation {
@@ -57,12 +58,12 @@ typedef enum luz_interpolation {
     LUZ_INTERPOLATION_AFFINE,        /* linear in screen space: textures swim */
 } luz_interpolation;
 
-const char *luz_interpolation_name(luz_interpolation interpolation);  /* "perspective", ... */
+LUZ_API const char *luz_interpolation_name(luz_interpolation interpolation);  /* "perspective", ... */
 
 typedef struct luz_frame_stats {
-    double geometry_ms;        /* vertex, clip, setup (wall clock) */
-    double raster_ms;          /* raster, depth, shade, colour (wall clock) */
-    double total_ms;
+            double geometry_ms;        /* vertex, clip, setup (wall clock) */
+            double raster_ms;          /* raster, depth, shade, colour (wall clock) */
+            double total_ms;
     uint64_t triangles_submitted;
     uint64_t triangles_clipped;   /* triangles that crossed a clip plane */
     uint64_t triangles_culled;    /* back faces and zero-area triangles */
@@ -104,8 +105,8 @@ typedef struct luz_render_options {
 /* Draws the frame into the framebuffer (cleared first: every pixel is
  * written). Returns 0, or -1 with the reason in error (memory ran out, or
  * a draw the frame should not hold). */
-int luz_renderer_draw(luz_renderer *renderer, const luz_frame *frame,
-                      luz_framebuffer *framebuffer, const luz_render_options *options,
-                      luz_error *error);
+LUZ_API int luz_renderer_draw(luz_renderer *renderer, const luz_frame *frame,
+                              luz_framebuffer *framebuffer, const luz_render_options *options,
+                              luz_error *error);
 
 #endif

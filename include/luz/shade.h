@@ -22,6 +22,7 @@
 
 #include <stdbool.h>
 
+#include "luz/api.h"
 #include "luz/frame.h"
 #include "luz/vecmath.h"
 
@@ -148,7 +149,7 @@ typedef struct luz_shade_uniforms {
     float spot_cos_outer;
 } luz_shade_uniforms;
 
-luz_shade_uniforms luz_shade_uniforms_of(luz_vec3 eye, const luz_lights *lights);
+LUZ_API luz_shade_uniforms luz_shade_uniforms_of(luz_vec3 eye, const luz_lights *lights);
 
 /* The sum of the six terms at world position P with normal N (normalised
  * here, as SCENE.md asks after interpolation). */

@@ -17,6 +17,7 @@
 
 #include <stdint.h>
 
+#include "luz/api.h"
 #include "luz/error.h"
 #include "luz/vecmath.h"
 
@@ -31,10 +32,10 @@ typedef enum luz_filter {
     LUZ_FILTER_NEAREST,     /* GL_NEAREST, level 0 only */
 } luz_filter;
 
-const char *luz_filter_name(luz_filter filter);    /* "nearest", ... */
+LUZ_API const char *luz_filter_name(luz_filter filter);    /* "nearest", ... */
 
 typedef struct luz_texture_level {
-    int width;
+            int width;
     int height;
     const uint8_t *texels;  /* RGBA8, row 0 first */
 } luz_texture_level;
@@ -46,17 +47,17 @@ typedef struct luz_texture {
 } luz_texture;
 
 /* Builds a texture and its mip chain from RGBA8 texels (copied). */
-luz_texture *luz_texture_create(int width, int height, const uint8_t *rgba, luz_error *error);
-void luz_texture_destroy(luz_texture *texture);
+LUZ_API luz_texture *luz_texture_create(int width, int height, const uint8_t *rgba, luz_error *error);
+LUZ_API void luz_texture_destroy(luz_texture *texture);
 
 /* The level of detail lambda = log2(rho) from the derivatives of (u, v) in
  * texture coordinates per pixel; rho is measured in texels of level 0:
  * rho = max(|(du/dx, dv/dx)|, |(du/dy, dv/dy)|) * (width, height). */
-float luz_texture_level_of_detail(const luz_texture *texture,
-                                  float du_dx, float dv_dx, float du_dy, float dv_dy);
+LUZ_API float luz_texture_level_of_detail(const luz_texture *texture,
+                                          float du_dx, float dv_dx, float du_dy, float dv_dy);
 
-luz_vec3 luz_texture_sample_nearest(const luz_texture *texture, int level, luz_vec2 uv);
-luz_vec3 luz_texture_sample_bilinear(const luz_texture *texture, int level, luz_vec2 uv);
+LUZ_API luz_vec3 luz_texture_sample_nearest(const luz_texture *texture, int level, luz_vec2 uv);
+LUZ_API luz_vec3 luz_texture_sample_bilinear(const luz_texture *texture, int level, luz_vec2 uv);
 /* The two mip levels trilinear filtering reads at level of detail lambda
  * and the weight of the upper one: lambda <= 0 (or NaN) reads level 0
  * alone, lambda past the last level reads the last alone (lower == upper,
@@ -67,12 +68,12 @@ typedef struct luz_texture_mip_pair {
     float blend;
 } luz_texture_mip_pair;
 
-luz_texture_mip_pair luz_texture_mip_levels(const luz_texture *texture, float lambda);
+LUZ_API luz_texture_mip_pair luz_texture_mip_levels(const luz_texture *texture, float lambda);
 
 /* Trilinear (GL_LINEAR_MIPMAP_LINEAR) at the given level of detail. */
-luz_vec3 luz_texture_sample_trilinear(const luz_texture *texture, luz_vec2 uv, float lambda);
+LUZ_API luz_vec3 luz_texture_sample_trilinear(const luz_texture *texture, luz_vec2 uv, float lambda);
 /* Dispatches on the filter; a NULL texture samples white. */
-luz_vec3 luz_texture_sample(const luz_texture *texture, luz_filter filter, luz_vec2 uv,
-                            float lambda);
+LUZ_API luz_vec3 luz_texture_sample(const luz_texture *texture, luz_filter filter, luz_vec2 uv,
+                                    float lambda);
 
 #endif

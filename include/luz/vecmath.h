@@ -19,6 +19,8 @@
 
 #include <math.h>
 
+#include "luz/api.h"
+
 typedef struct luz_vec2 { float x, y; } luz_vec2;
 typedef struct luz_vec3 { float x, y, z; } luz_vec3;
 typedef struct luz_vec4 { float x, y, z, w; } luz_vec4;
@@ -52,21 +54,21 @@ static inline luz_vec3 luz_vec3_normalize(luz_vec3 a)
     return length > 0.0f ? luz_vec3_scale(a, 1.0f / length) : a;
 }
 
-luz_mat4 luz_mat4_identity(void);
-luz_mat4 luz_mat4_multiply(luz_mat4 a, luz_mat4 b);           /* a * b */
-luz_mat4 luz_mat4_translate(luz_mat4 m, luz_vec3 offset);     /* m * T(offset) */
-luz_mat4 luz_mat4_scale(luz_mat4 m, luz_vec3 factors);        /* m * S(factors) */
+LUZ_API luz_mat4 luz_mat4_identity(void);
+LUZ_API luz_mat4 luz_mat4_multiply(luz_mat4 a, luz_mat4 b);           /* a * b */
+LUZ_API luz_mat4 luz_mat4_translate(luz_mat4 m, luz_vec3 offset);     /* m * T(offset) */
+LUZ_API luz_mat4 luz_mat4_scale(luz_mat4 m, luz_vec3 factors);        /* m * S(factors) */
 /* m * R, R the right-handed rotation by angle_radians about axis (any
- * non-zero length; normalised here as gl-matrix does). */
-luz_mat4 luz_mat4_rotate(luz_mat4 m, float angle_radians, luz_vec3 axis);
-luz_mat4 luz_mat4_look_at(luz_vec3 eye, luz_vec3 centre, luz_vec3 up);
-luz_mat4 luz_mat4_perspective(float fovy_radians, float aspect, float near, float far);
-luz_vec4 luz_mat4_transform(luz_mat4 m, luz_vec4 v);
-luz_vec3 luz_mat4_transform_point(luz_mat4 m, luz_vec3 p);    /* w = 1, no divide */
+         * non-zero length; normalised here as gl-matrix does). */
+LUZ_API luz_mat4 luz_mat4_rotate(luz_mat4 m, float angle_radians, luz_vec3 axis);
+LUZ_API luz_mat4 luz_mat4_look_at(luz_vec3 eye, luz_vec3 centre, luz_vec3 up);
+LUZ_API luz_mat4 luz_mat4_perspective(float fovy_radians, float aspect, float near, float far);
+LUZ_API luz_vec4 luz_mat4_transform(luz_mat4 m, luz_vec4 v);
+LUZ_API luz_vec3 luz_mat4_transform_point(luz_mat4 m, luz_vec3 p);    /* w = 1, no divide */
 
 /* The normal matrix: the inverse transpose of m's upper-left 3x3. Returns
- * the 3x3 itself if it is singular (nothing sensible can be done). */
-luz_mat3 luz_mat3_normal_matrix(luz_mat4 m);
-luz_vec3 luz_mat3_transform(luz_mat3 m, luz_vec3 v);
+         * the 3x3 itself if it is singular (nothing sensible can be done). */
+LUZ_API luz_mat3 luz_mat3_normal_matrix(luz_mat4 m);
+LUZ_API luz_vec3 luz_mat3_transform(luz_mat3 m, luz_vec3 v);
 
 #endif

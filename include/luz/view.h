@@ -28,6 +28,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "luz/api.h"
 #include "luz/vecmath.h"
 
 /* What the pipeline writes into the colour buffer: the shaded image, or a
@@ -45,39 +46,39 @@ typedef enum luz_view {
     LUZ_VIEW_COUNT
 } luz_view;
 
-const char *luz_view_name(luz_view view);          /* "color", "depth", ... */
+LUZ_API const char *luz_view_name(luz_view view);          /* "color", "depth", ... */
 
 /* The view called name ("depth", ...); false if there is none. */
-bool luz_view_from_name(const char *name, luz_view *view);
+LUZ_API bool luz_view_from_name(const char *name, luz_view *view);
 
 /* One line that says how to read the view's colours (the viewer's HUD). */
-const char *luz_view_legend(luz_view view);
+LUZ_API const char *luz_view_legend(luz_view view);
 
 /* Overdraw: the colour of a pixel that had `count` depth tests; 0 black,
  * then dark blue, blue, cyan, green, yellow, orange, red, and white for 8
  * or more. */
-luz_vec3 luz_view_overdraw_colour(uint32_t count);
+LUZ_API luz_vec3 luz_view_overdraw_colour(uint32_t count);
 
 /* Mip: the colour of level `level` (0 red, 1 orange, 2 yellow, 3 green,
  * 4 cyan, 5 blue, 6 violet, 7 magenta, 8 white, grey beyond); an
  * untextured surface is LUZ_VIEW_MIP_UNTEXTURED. */
-luz_vec3 luz_view_mip_colour(int level);
+LUZ_API luz_vec3 luz_view_mip_colour(int level);
 #define LUZ_VIEW_MIP_UNTEXTURED ((luz_vec3){0.35f, 0.35f, 0.35f})
 
 /* Bands: the tint of worker thread `worker` (0 is the calling thread). A
  * pixel of the bands view is (1 - LUZ_VIEW_BANDS_TINT) * its colour-view
  * value + LUZ_VIEW_BANDS_TINT * the tint of its band's thread. */
-luz_vec3 luz_view_thread_colour(int worker);
+LUZ_API luz_vec3 luz_view_thread_colour(int worker);
 #define LUZ_VIEW_BANDS_TINT 0.55f
 
 /* Triangles: the flat colour of triangle `id` (ids count from 1 in
  * submission order); consecutive ids get hues far apart. */
-luz_vec3 luz_view_triangle_colour(uint32_t id);
+LUZ_API luz_vec3 luz_view_triangle_colour(uint32_t id);
 
 /* Depth: the brightness in [0, 1] shown for window depth `depth` under
  * `projection` (a perspective matrix, as luz_mat4_perspective builds):
  * the eye distance d = B / (z_ndc + A), z_ndc = 2 depth - 1, A and B the
  * matrix's z row, then 1 - log(d / near) / log(far / near). */
-float luz_view_depth_brightness(float depth, const luz_mat4 *projection);
+LUZ_API float luz_view_depth_brightness(float depth, const luz_mat4 *projection);
 
 #endif
