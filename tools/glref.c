@@ -679,34 +679,38 @@ static int llvmpipe_threads(void)
 
 /* The frames of luz-render --bench (one warm-up at --time, then frame k at
  * time + k / fps), and its line of figures. */
+typedef struct bench_context {
+    gl_reference *gl;
+    const scene_data *data;
+} bench_context;
+
+static int bench_frame(void *context, double time_seconds, double parts[LUZ_BENCH_MAX_PARTS],
+                       luz_error *error)
+{
+    (void)error;
+    bench_context *bench = context;
+    frame_times times;
+    draw_frame(bench->gl, bench->data, time_seconds, &times);
+    parts[0] = times.submit_ms;
+    parts[1] = times.finish_ms;
+    return 0;
+}
+
 static int bench(gl_reference *gl, const scene_data *data, luz_error *error)
 {
     const luz_options *options = data->options;
-    int count = options->bench_frames;
-    double *storage = calloc((size_t)count * 4, sizeof *storage);
-    if (storage == NULL) return luz_error_set(error, "--bench: out of memory for %d frames", count);
-    double *wall = storage, *cpu = storage + count, *submit = storage + 2 * count,
-           *finish = storage + 3 * count;
-
-    draw_frame(gl, data, options->scene.time_seconds, NULL);
-    for (int k = 0; k < count; k++) {
-        double t = options->scene.time_seconds + k / options->frames_per_second;
-        frame_times times;
-        double wall_start = luz_wall_ms();
-        double cpu_start = luz_cpu_ms();
-        draw_frame(gl, data, t, &times);
-        cpu[k] = luz_cpu_ms() - cpu_start;
-        wall[k] = luz_wall_ms() - wall_start;
-        submit[k] = times.submit_ms;
-        finish[k] = times.finish_ms;
-    }
-    double median_ms = luz_median(wall, count);
-    printf("frames=%d size=%dx%d threads=%d cubes=%d filter=%s ", count, gl->width, gl->height,
-           llvmpipe_threads(), data->cube_count, luz_filter_name(options->scene.filter));
-    printf("median_ms=%.3f min_ms=%.3f fps=%.2f cpu_ms=%.3f geometry_ms=%.3f raster_ms=%.3f\n",
-           median_ms, wall[0], median_ms > 0.0 ? 1000.0 / median_ms : 0.0, luz_median(cpu, count),
-           luz_median(submit, count), luz_median(finish, count));
-    free(storage);
+    /* submit and finish stand where luz-render has geometry and raster, so
+     * that tools/bench reads both lines alike. */
+    luz_bench measured = {.part_names = {"geometry_ms", "raster_ms"}};
+    if (luz_bench_run(&measured, options->bench_frames, options->scene.time_seconds,
+                      options->frames_per_second, bench_frame, &(bench_context){gl, data},
+                      error) != 0)
+        return -1;
+    printf("frames=%d size=%dx%d threads=%d cubes=%d filter=%s ", measured.frames, gl->width,
+           gl->height, llvmpipe_threads(), data->cube_count, luz_filter_name(options->scene.filter));
+    luz_bench_print_figures(stdout, &measured);
+    printf("\n");
+    luz_bench_free(&measured);
     return 0;
 }
 

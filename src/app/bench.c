@@ -1,7 +1,8 @@
 /*
- * bench.c: the median behind every --bench line (see luz/bench.h).
+ * bench.c: the --bench loop, its medians and its line (see app/bench.h).
  */
 #include <stdbool.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <time.h>
 
@@ -50,4 +51,52 @@ void luz_bench_print_case(FILE *out, const luz_options *options, int frames, int
         fprintf(out, "view=%s ", luz_view_name(scene->view));
     if (scene->interpolation != LUZ_INTERPOLATION_PERSPECTIVE)
         fprintf(out, "interp=%s ", luz_interpolation_name(scene->interpolation));
+}
+
+int luz_bench_run(luz_bench *bench, int frame_count, double start_seconds,
+                  double frames_per_second, luz_bench_frame_function *frame, void *context,
+                  luz_error *error)
+{
+    luz_bench_free(bench);
+    const size_t count = frame_count > 0 ? (size_t)frame_count : 0;
+    const size_t series = 2 + LUZ_BENCH_MAX_PARTS;
+    double *storage = calloc(count * series + 1, sizeof *storage);
+    if (storage == NULL)
+        return luz_error_set(error, "--bench: out of memory for %d frames", frame_count);
+    bench->wall_ms = storage;
+    bench->cpu_ms = storage + count;
+    for (int p = 0; p < LUZ_BENCH_MAX_PARTS; p++) bench->parts[p] = storage + (2 + p) * count;
+
+    double parts[LUZ_BENCH_MAX_PARTS];
+    int status = frame(context, start_seconds, parts, error);   /* the warm-up */
+    for (int k = 0; k < frame_count && status == 0; k++) {
+        const double wall = luz_wall_ms(), cpu = luz_cpu_ms();
+        status = frame(context, start_seconds + k / frames_per_second, parts, error);
+        if (status != 0) break;
+        bench->cpu_ms[k] = luz_cpu_ms() - cpu;
+        bench->wall_ms[k] = luz_wall_ms() - wall;
+        for (int p = 0; p < LUZ_BENCH_MAX_PARTS; p++) bench->parts[p][k] = parts[p];
+        bench->frames = k + 1;
+    }
+    return status < 0 ? -1 : 0;
+}
+
+void luz_bench_print_figures(FILE *out, luz_bench *bench)
+{
+    const int n = bench->frames;
+    if (n == 0) return;
+    const double median_ms = luz_median(bench->wall_ms, n);
+    const double min_ms = bench->wall_ms[0];   /* sorted by luz_median */
+    fprintf(out, "median_ms=%.3f min_ms=%.3f fps=%.2f cpu_ms=%.3f", median_ms, min_ms,
+            median_ms > 0.0 ? 1000.0 / median_ms : 0.0, luz_median(bench->cpu_ms, n));
+    for (int p = 0; p < LUZ_BENCH_MAX_PARTS && bench->part_names[p] != NULL; p++)
+        fprintf(out, " %s=%.3f", bench->part_names[p], luz_median(bench->parts[p], n));
+}
+
+void luz_bench_free(luz_bench *bench)
+{
+    free(bench->wall_ms);
+    bench->wall_ms = bench->cpu_ms = NULL;
+    for (int p = 0; p < LUZ_BENCH_MAX_PARTS; p++) bench->parts[p] = NULL;
+    bench->frames = 0;
 }

@@ -128,44 +128,31 @@ static int render_files(render_context *context, luz_renderer *renderer, luz_err
     return 0;
 }
 
-/* The per-frame measurements of one benchmark run, each over bench_frames. */
-typedef struct bench_samples {
-    double *wall_ms, *cpu_ms, *geometry_ms, *raster_ms;
-} bench_samples;
+/* A frame of the benchmark: the scene at time_seconds, drawn by the
+ * renderer the context holds for it. */
+typedef struct bench_context {
+    render_context *render;
+    luz_renderer *renderer;
+} bench_context;
 
-/* Renders the benchmark's frames with one renderer, after one warm-up frame
- * that fills the caches and lets the worker threads start. */
-static int bench_run(render_context *context, luz_renderer *renderer, bench_samples *samples,
-                     luz_error *error)
+static int bench_frame(void *context, double time_seconds, double parts[LUZ_BENCH_MAX_PARTS],
+                       luz_error *error)
 {
-    const luz_options *options = context->options;
-    if (render_at(context, renderer, options->scene.time_seconds, NULL, error) != 0)
+    bench_context *bench = context;
+    luz_frame_stats stats;
+    if (render_at(bench->render, bench->renderer, time_seconds, &stats, error) != 0)
         return -1;
-    for (int k = 0; k < options->bench_frames; k++) {
-        double time_seconds = options->scene.time_seconds + k / options->frames_per_second;
-        luz_frame_stats stats;
-        double wall = luz_wall_ms();
-        double cpu = luz_cpu_ms();
-        if (render_at(context, renderer, time_seconds, &stats, error) != 0)
-            return -1;
-        samples->cpu_ms[k] = luz_cpu_ms() - cpu;
-        samples->wall_ms[k] = luz_wall_ms() - wall;
-        samples->geometry_ms[k] = stats.geometry_ms;
-        samples->raster_ms[k] = stats.raster_ms;
-    }
+    parts[0] = stats.geometry_ms;
+    parts[1] = stats.raster_ms;
     return 0;
 }
 
 static int bench(render_context *context, luz_renderer *renderer, luz_error *error)
 {
     const luz_options *options = context->options;
-    int count = options->bench_frames;
-    double *storage = calloc((size_t)count * 4, sizeof *storage);
-    if (storage == NULL)
-        return luz_error_set(error, "--bench: out of memory for %d frames", count);
-    bench_samples samples = {storage, storage + count, storage + 2 * count, storage + 3 * count};
-    int threads = luz_renderer_thread_count(renderer);
-    int status = 0;
+    const double start = options->scene.time_seconds;
+    const int threads = luz_renderer_thread_count(renderer);
+    luz_bench measured = {.part_names = {"geometry_ms", "raster_ms"}};
 
     /* With threads, the same frames on the caller's thread alone first, so
      * that the line says what the threads bought. */
@@ -173,29 +160,34 @@ static int bench(render_context *context, luz_renderer *renderer, luz_error *err
     if (threads > 1) {
         luz_renderer *single = luz_renderer_create(
             &(luz_renderer_desc){.thread_count = 1, .reference = options->reference}, error);
-        status = single ? bench_run(context, single, &samples, error) : -1;
-        if (single != NULL)
-            luz_renderer_destroy(single);
-        if (status == 0)
-            single_thread_median = luz_median(samples.wall_ms, count);
+        if (single == NULL)
+            return -1;
+        int status = luz_bench_run(&measured, options->bench_frames, start,
+                                   options->frames_per_second, bench_frame,
+                                   &(bench_context){context, single}, error);
+        luz_renderer_destroy(single);
+        if (status != 0) {
+            luz_bench_free(&measured);
+            return -1;
+        }
+        single_thread_median = luz_median(measured.wall_ms, measured.frames);
     }
-    if (status == 0)
-        status = bench_run(context, renderer, &samples, error);
-    if (status == 0) {
-        double median_ms = luz_median(samples.wall_ms, count);
-        double min_ms = samples.wall_ms[0];   /* sorted by luz_median() */
-        luz_bench_print_case(stdout, options, count, options->width, options->height, threads);
-        printf("median_ms=%.3f min_ms=%.3f fps=%.2f cpu_ms=%.3f geometry_ms=%.3f raster_ms=%.3f",
-               median_ms, min_ms, median_ms > 0.0 ? 1000.0 / median_ms : 0.0,
-               luz_median(samples.cpu_ms, count), luz_median(samples.geometry_ms, count),
-               luz_median(samples.raster_ms, count));
-        if (threads > 1)
-            printf(" single_thread_median_ms=%.3f speedup=%.2f", single_thread_median,
-                   median_ms > 0.0 ? single_thread_median / median_ms : 0.0);
-        printf("\n");
+    if (luz_bench_run(&measured, options->bench_frames, start, options->frames_per_second,
+                      bench_frame, &(bench_context){context, renderer}, error) != 0) {
+        luz_bench_free(&measured);
+        return -1;
     }
-    free(storage);
-    return status;
+    luz_bench_print_case(stdout, options, measured.frames, options->width, options->height,
+                         threads);
+    luz_bench_print_figures(stdout, &measured);
+    if (threads > 1) {
+        const double median_ms = luz_median(measured.wall_ms, measured.frames);
+        printf(" single_thread_median_ms=%.3f speedup=%.2f", single_thread_median,
+               median_ms > 0.0 ? single_thread_median / median_ms : 0.0);
+    }
+    printf("\n");
+    luz_bench_free(&measured);
+    return 0;
 }
 
 /* ---- main ----------------------------------------------------------------------------- */

@@ -689,53 +689,44 @@ static int run(viewer *v, luz_error *error)
  * layer is filled within raster_ms, band by band.
  * Esc or closing the window ends the run early; the line then covers the
  * frames shown so far. */
+static int bench_frame(void *context, double time_seconds, double parts[LUZ_BENCH_MAX_PARTS],
+                       luz_error *error)
+{
+    viewer *v = context;
+    SDL_Event event;
+    while (SDL_PollEvent(&event))
+        handle_event(v, &event);
+    if (!v->running)
+        return 1;
+    tick(v);   /* for the HUD */
+    v->options->scene.time_seconds = time_seconds;
+    if (draw_frame(v, error) != 0)
+        return -1;
+    parts[0] = v->stats.geometry_ms;
+    parts[1] = v->stats.raster_ms;
+    parts[2] = v->present_ms;
+    return 0;
+}
+
 static int run_bench(viewer *v, luz_error *error)
 {
-    const int count = v->options->bench_frames;
-    double *storage = calloc((size_t)count * 5, sizeof *storage);
-    if (storage == NULL)
-        return luz_error_set(error, "--bench: out of memory for %d frames", count);
-    double *wall = storage, *cpu = storage + count, *geometry = storage + 2 * count,
-           *raster = storage + 3 * count, *present = storage + 4 * count;
-    const double start_seconds = v->options->scene.time_seconds;
-    int shown = 0;
+    luz_bench measured = {.part_names = {"geometry_ms", "raster_ms", "present_ms"}};
     v->running = true;
-    for (int k = -1; k < count && v->running; k++) {
-        double wall_start = luz_wall_ms(), cpu_start = luz_cpu_ms();
-        SDL_Event event;
-        while (SDL_PollEvent(&event))
-            handle_event(v, &event);
-        if (!v->running)
-            break;
-        tick(v);   /* for the HUD */
-        v->options->scene.time_seconds =
-            start_seconds + (k > 0 ? k : 0) / v->options->frames_per_second;
-        if (draw_frame(v, error) != 0) {
-            free(storage);
-            return -1;
-        }
-        if (k < 0)
-            continue;   /* the warm-up frame */
-        wall[k] = luz_wall_ms() - wall_start;
-        cpu[k] = luz_cpu_ms() - cpu_start;
-        geometry[k] = v->stats.geometry_ms;
-        raster[k] = v->stats.raster_ms;
-        present[k] = v->present_ms;
-        shown = k + 1;
+    if (luz_bench_run(&measured, v->options->bench_frames, v->options->scene.time_seconds,
+                      v->options->frames_per_second, bench_frame, v, error) != 0) {
+        luz_bench_free(&measured);
+        return -1;
     }
-    if (shown > 0) {
-        double median_ms = luz_median(wall, shown);
-        luz_bench_print_case(stdout, v->options, shown, v->window_width, v->window_height,
-                             luz_renderer_thread_count(v->renderer));
+    if (measured.frames > 0) {
+        luz_bench_print_case(stdout, v->options, measured.frames, v->window_width,
+                             v->window_height, luz_renderer_thread_count(v->renderer));
         if (v->settings.render_scale != 1.0f)
             printf("render_scale=%g ", v->settings.render_scale);
-        printf("present=%s median_ms=%.3f min_ms=%.3f fps=%.2f cpu_ms=%.3f geometry_ms=%.3f "
-               "raster_ms=%.3f present_ms=%.3f\n",
-               presenter_name(v), median_ms, wall[0], median_ms > 0.0 ? 1000.0 / median_ms : 0.0,
-               luz_median(cpu, shown), luz_median(geometry, shown), luz_median(raster, shown),
-               luz_median(present, shown));
+        printf("present=%s ", presenter_name(v));
+        luz_bench_print_figures(stdout, &measured);
+        printf("\n");
     }
-    free(storage);
+    luz_bench_free(&measured);
     return 0;
 }
 
