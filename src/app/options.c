@@ -183,7 +183,7 @@ static const option_spec option_table[] = {
      .summary = "time N frames, write no file, print one line of key=value results",
      .default_text = "off"},
     {.name = "reference", .kind = OPTION_FLAG, .offset = FIELD(reference),
-     .summary = "shade with the plain scalar fragment stage (src/pipeline/fragment.c) "
+     .summary = "shade with the plain scalar fragment stage (src/renderer/fragment.c) "
                 "instead of the SIMD one; the images agree",
      .default_text = "off"},
     {.name = "scene", .kind = OPTION_SCENE, .syntax = "FILE",
