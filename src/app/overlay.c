@@ -13,7 +13,7 @@
  * Drawing records rectangles into a luz_layer; luz_layer_finish indexes
  * them by bands of rows (a counting sort, as frame.c bins triangles), and
  * luz_layer_draw_rows fills a band's share of them, which is what the
- * renderer's threads call per band (luz_renderer_draw_with_hook).
+ * renderer's threads call per band (a luz_band_hook).
  */
 #include "app/panel.h"
 
@@ -104,7 +104,7 @@ static void fill_rect(luz_framebuffer *framebuffer, luz_rect rect, luz_rgba colo
              * corner has left the caches: asking for the rows four ahead,
              * a cache line at a time, hides most of the wait (0.2 ms down
              * to 0.13 ms for the HUD at 1280x720). Filled band by band
-             * (luz_renderer_draw_with_hook) the rows are still cached and
+             * (a luz_band_hook) the rows are still cached and
              * the prefetch costs next to nothing. */
             if ((x & 63) == 0 && y + 4 < rect.height)
                 __builtin_prefetch(row + 4 * stride + x, 1);

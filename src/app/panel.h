@@ -46,7 +46,7 @@ static inline bool luz_rect_contains(luz_rect rect, int x, int y)
  * once or a band of rows at a time.
  *
  * Recording first and filling later is what lets the renderer's threads do
- * the filling: luz_renderer_draw_with_hook calls luz_layer_draw_rows for
+ * the filling: the renderer's band hook calls luz_layer_draw_rows for
  * each band of rows right after shading it, on the thread that shaded it,
  * while those rows are still in its cache, instead of one thread blending
  * the HUD's corner after the whole frame, when it has left the cache.
