@@ -16,6 +16,10 @@
  * 17/64, y_ndc = 1 - 89/64 = -25/64. The ray t (x_ndc, y_ndc, -1) meets
  * y = -1 at t = 64/25 = 2.56: the point (0.68, -1, -2.56), so u = 0.84 and
  * v = 1.56 / 3 = 0.52.
+ *
+ * Last, a triangle whose vertices lie between the 1/256-pixel grid points
+ * against barycentric interpolation from its exact positions: the planes
+ * must not be solved from the snapped ones.
  */
 #include <math.h>
 #include <setjmp.h>
@@ -221,6 +225,128 @@ static void test_depth_at_the_pixel(void **state)
     assert_near(fixture->framebuffer->depth[PIXEL_Y * SIZE + PIXEL_X], 0.96189940, 1e-5);
 }
 
+/* THE PLANES COME FROM THE EXACT POSITIONS. Setup snaps window positions
+ * to 1/256 pixel for coverage only (setup.c, step 5); the planes are
+ * solved from the unsnapped positions, as OpenGL's interpolation formula
+ * (OpenGL 4.6, equations 14.9 and 14.10) takes them. A triangle whose
+ * vertices sit between grid points, 0.3 to 0.4 of a step off each, tells
+ * the two apart: solved from the snapped positions, every varying would
+ * be read as if the vertices had moved by up to 1/640 pixel.
+ *
+ * Window positions (x, y) and w at the three vertices; clip x = x_ndc w
+ * with x_ndc = 2 x / 64 - 1, y_ndc = 1 - 2 y / 64 (SCENE.md's viewport
+ * read backwards). It is a front face: (15)(16) - (3)(3) > 0, the doubled
+ * area setup culls on. */
+#define STEP (1.0 / 256.0)
+static const double off_grid_window[3][2] = {
+    {10.0 + 0.4 * STEP, 12.0 + 0.3 * STEP},
+    {13.0 - 0.3 * STEP, 27.0 + 0.4 * STEP},
+    {26.0 + 0.4 * STEP, 15.0 - 0.4 * STEP},
+};
+static const float off_grid_w[3] = {1.0f, 2.0f, 0.5f};
+static const float off_grid_z_ndc[3] = {0.1f, 0.5f, -0.3f};
+static const float off_grid_u[3] = {0.0f, 3.0f, 1.0f};
+static const float off_grid_v[3] = {2.0f, 0.0f, 4.0f};
+
+/* Doubled signed area of (a, b, c) in window coordinates. */
+static double doubled_area(const double a[2], const double b[2], const double c[2])
+{
+    return (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
+}
+
+typedef struct interpolated {
+    double u, v, depth;
+    bool inside;
+} interpolated;
+
+/* The values at window point p of the triangle with window positions
+ * window[k], in double: barycentric weights from areas, u and v
+ * perspective-correct (the weights over w, renormalised: equation 14.9),
+ * depth affine on the screen (equation 14.10). */
+static interpolated interpolate_by_hand(const double window[3][2], const double w[3],
+                                        const double depth[3], double px, double py)
+{
+    const double p[2] = {px, py};
+    const double area = doubled_area(window[0], window[1], window[2]);
+    const double weight[3] = {doubled_area(p, window[1], window[2]) / area,
+                              doubled_area(window[0], p, window[2]) / area,
+                              doubled_area(window[0], window[1], p) / area};
+    double over_w = 0, u = 0, v = 0;
+    interpolated result = {0, 0, 0, true};
+    for (int k = 0; k < 3; k++) {
+        over_w += weight[k] / w[k];
+        u += weight[k] * off_grid_u[k] / w[k];
+        v += weight[k] * off_grid_v[k] / w[k];
+        result.depth += weight[k] * depth[k];
+        if (weight[k] <= 0) result.inside = false;
+    }
+    result.u = u / over_w;
+    result.v = v / over_w;
+    return result;
+}
+
+/* Float planes and a float division are good to about 1e-6 here (the
+ * values are below 4); snapped planes would be off by up to about 1e-3
+ * (u and v change by up to 0.75 a pixel, times 1/640 pixel), so the
+ * tolerance sits between the two, and the test checks that the second is
+ * really there for this triangle. */
+#define EXACT_TOLERANCE 1e-5
+
+static void test_planes_use_unsnapped_positions(void **state)
+{
+    (void)state;
+    luz_clip_vertex vertex[3];
+    double window[3][2], snapped[3][2], w[3], depth[3];
+    for (int k = 0; k < 3; k++) {
+        double x_ndc = 2.0 * off_grid_window[k][0] / SIZE - 1.0;
+        double y_ndc = 1.0 - 2.0 * off_grid_window[k][1] / SIZE;
+        memset(&vertex[k], 0, sizeof vertex[k]);
+        vertex[k].position = (luz_vec4){(float)(x_ndc * off_grid_w[k]),
+                                        (float)(y_ndc * off_grid_w[k]),
+                                        off_grid_z_ndc[k] * off_grid_w[k], off_grid_w[k]};
+        vertex[k].varyings[LUZ_VARYING_NORMAL + 2] = 1.0f;
+        vertex[k].varyings[LUZ_VARYING_UV + 0] = off_grid_u[k];
+        vertex[k].varyings[LUZ_VARYING_UV + 1] = off_grid_v[k];
+        /* What the clip vertex really holds, through the viewport: the
+         * float rounding of x_ndc w moves it by under 1e-5 of a step. */
+        const luz_vec4 clip = vertex[k].position;
+        w[k] = clip.w;
+        window[k][0] = ((double)clip.x / clip.w + 1.0) / 2.0 * SIZE;
+        window[k][1] = (1.0 - (double)clip.y / clip.w) / 2.0 * SIZE;
+        depth[k] = ((double)clip.z / clip.w + 1.0) / 2.0;
+        for (int axis = 0; axis < 2; axis++) {
+            snapped[k][axis] = nearbyint(window[k][axis] / STEP) * STEP;
+            assert_true(fabs(window[k][axis] - snapped[k][axis]) > 0.25 * STEP);
+        }
+    }
+    luz_triangle triangle;
+    assert_int_equal(luz_setup_triangle(&vertex[0], &vertex[1], &vertex[2], SIZE, SIZE, 0,
+                                        LUZ_INTERPOLATION_PERSPECTIVE, &triangle),
+                     LUZ_SETUP_VISIBLE);
+
+    int inside = 0;
+    double snapping_effect = 0;
+    for (int y = 0; y < SIZE; y++) {
+        for (int x = 0; x < SIZE; x++) {
+            interpolated exact = interpolate_by_hand(window, w, depth, x + 0.5, y + 0.5);
+            if (!exact.inside) continue;
+            inside++;
+            interpolated moved = interpolate_by_hand(snapped, w, depth, x + 0.5, y + 0.5);
+            snapping_effect = fmax(snapping_effect, fabs(moved.u - exact.u));
+            snapping_effect = fmax(snapping_effect, fabs(moved.v - exact.v));
+            luz_fragment fragment;
+            luz_fragment_interpolate(&triangle, x, y, &fragment);
+            assert_near(fragment.uv.x, exact.u, EXACT_TOLERANCE);
+            assert_near(fragment.uv.y, exact.v, EXACT_TOLERANCE);
+            assert_near(fragment.depth, exact.depth, EXACT_TOLERANCE);
+        }
+    }
+    assert_true(inside > 50);
+    /* The test can tell: planes through the snapped positions would be off
+     * by far more than the tolerance somewhere inside. */
+    assert_true(snapping_effect > 20 * EXACT_TOLERANCE);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -229,6 +355,7 @@ int main(void)
         cmocka_unit_test(test_varyings_along_a_row_and_a_column),
         cmocka_unit_test(test_texture_coordinate_derivatives),
         cmocka_unit_test(test_depth_at_the_pixel),
+        cmocka_unit_test(test_planes_use_unsnapped_positions),
     };
     return cmocka_run_group_tests(tests, setup_floor, teardown_floor);
 }

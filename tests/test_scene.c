@@ -3,11 +3,14 @@
  * xorshift32 colours, the tiling of more cubes, the frame of draws and
  * the uniforms at a time t, against values derived from SCENE.md's text.
  */
+#include <limits.h>
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
 
 #include <cmocka.h>
 
@@ -101,6 +104,92 @@ static void test_tiled_positions(void **state)
     assert_vec3_near(luz_scene_tiled_position(240), 18, 16, -32, 0);
     assert_vec3_near(luz_scene_tiled_position(250), -27, -24, -48, 0);
     assert_vec3_near(luz_scene_tiled_position(257), 1.5 - 27, 2 - 24, -2.5 - 48, TOLERANCE);
+}
+
+/* SCENE.md's ten positions, typed again from its text. */
+static const float scene_md_positions[10][3] = {
+    { 0.0f,  0.0f,   0.0f}, { 2.0f,  5.0f, -15.0f}, {-1.5f, -2.2f,  -2.5f},
+    {-3.8f, -2.0f, -12.3f}, { 2.4f, -0.4f,  -3.5f}, {-1.7f,  3.0f,  -7.5f},
+    { 1.3f, -2.0f,  -2.5f}, { 1.5f,  2.0f,  -2.5f}, { 1.5f,  0.2f,  -1.5f},
+    {-1.3f,  1.0f,  -1.5f},
+};
+
+typedef struct tile_cell {
+    int gx, gy, ring;
+} tile_cell;
+
+#define TILE_COUNT ((LUZ_MAX_CUBES + 9) / 10)
+
+/* Fails unless got holds exactly the bits of expected: position p[i mod
+ * 10] plus the offset (9 gx, 8 gy, -16 r), each a float sum of the
+ * table's float and the offset's (exact: small whole numbers). */
+static void assert_tiled_position_bits(int cube_index, tile_cell cell)
+{
+    const float *p = scene_md_positions[cube_index % 10];
+    const float expected[3] = {p[0] + 9.0f * cell.gx, p[1] + 8.0f * cell.gy,
+                               p[2] + -16.0f * cell.ring};
+    luz_vec3 position = luz_scene_tiled_position(cube_index);
+    const float got[3] = {position.x, position.y, position.z};
+    if (memcmp(got, expected, sizeof got) != 0)
+        fail_msg("cube %d (cell %d, %d in ring %d): (%.9g, %.9g, %.9g), expected (%.9g, %.9g, "
+                 "%.9g)",
+                 cube_index, cell.gx, cell.gy, cell.ring, got[0], got[1], got[2], expected[0],
+                 expected[1], expected[2]);
+}
+
+/* Every cube up to LUZ_MAX_CUBES against SCENE.md's tiling enumerated
+ * literally: ring 0 is the single cell (0, 0); then for r = 1, 2, ...,
+ * gy from -r to r and, for each gy, gx from -r to r, keeping the cells
+ * with max(|gx|, |gy|) = r, numbering the tiles as they come. Bit for
+ * bit: the tiling may be computed any way, but not rounded differently. */
+static void test_tiling_matches_scene_md_enumeration(void **state)
+{
+    (void)state;
+    static tile_cell cells[TILE_COUNT];
+    int tiles = 0;
+    cells[tiles++] = (tile_cell){0, 0, 0};
+    for (int r = 1; tiles < TILE_COUNT; r++) {
+        int in_ring = 0;
+        for (int gy = -r; gy <= r; gy++) {
+            for (int gx = -r; gx <= r; gx++) {
+                int ring = abs(gx) > abs(gy) ? abs(gx) : abs(gy);
+                if (ring != r) continue;
+                in_ring++;
+                if (tiles < TILE_COUNT) cells[tiles++] = (tile_cell){gx, gy, r};
+            }
+        }
+        assert_int_equal(in_ring, 8 * r);   /* the square's border */
+    }
+    /* The enumeration is SCENE.md's: tiles 1-8 start (-1,-1), (0,-1),
+     * (1,-1), (-1,0), (1,0), (-1,1), ... */
+    assert_true(cells[1].gx == -1 && cells[1].gy == -1 && cells[2].gx == 0 &&
+                cells[2].gy == -1 && cells[4].gx == -1 && cells[4].gy == 0 &&
+                cells[5].gx == 1 && cells[5].gy == 0 && cells[6].gx == -1 && cells[6].gy == 1);
+
+    for (int i = 0; i < LUZ_MAX_CUBES; i++) assert_tiled_position_bits(i, cells[i / 10]);
+}
+
+/* Beyond LUZ_MAX_CUBES, where an integer square root taken through
+ * floating point could land on the wrong side of a perfect square: for
+ * every ring r whose tiles have cube indices within int, the first tile
+ * of the ring, (2r - 1)^2, is cell (-r, -r), and its last,
+ * (2r + 1)^2 - 1, is (r, r) (rings before r fill the (2r - 1)^2 square;
+ * the order ends on the bottom row's last cell). */
+static void test_tiling_ring_boundaries_up_to_int_max(void **state)
+{
+    (void)state;
+    int rings = 0;
+    for (int r = 1;; r++) {
+        int64_t first = (int64_t)(2 * r - 1) * (2 * r - 1);
+        int64_t last = (int64_t)(2 * r + 1) * (2 * r + 1) - 1;
+        if (10 * last + 9 > INT_MAX) break;
+        for (int k = 0; k < 10; k++) {
+            assert_tiled_position_bits((int)(10 * first) + k, (tile_cell){-r, -r, r});
+            assert_tiled_position_bits((int)(10 * last) + k, (tile_cell){r, r, r});
+        }
+        rings++;
+    }
+    assert_true(rings > 7000);   /* sqrt(INT_MAX / 10) / 2 = 7327 */
 }
 
 /* The default frame: ten cubes in index order, then the point-light
@@ -305,6 +394,8 @@ int main(void)
         cmocka_unit_test(test_random_colours_follow_xorshift32),
         cmocka_unit_test(test_seed_zero_means_golden_ratio_constant),
         cmocka_unit_test(test_tiled_positions),
+        cmocka_unit_test(test_tiling_matches_scene_md_enumeration),
+        cmocka_unit_test(test_tiling_ring_boundaries_up_to_int_max),
         cmocka_unit_test(test_frame_has_ten_cubes_and_a_marker),
         cmocka_unit_test(test_frame_colours_and_textures),
         cmocka_unit_test(test_custom_cubes_keep_their_colour),

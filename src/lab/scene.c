@@ -7,7 +7,6 @@
  * and a list of draws, which is all the renderer sees.
  */
 #include <limits.h>
-#include <stdlib.h>
 #include <string.h>
 
 #include "lab/scene.h"
@@ -57,28 +56,61 @@ luz_vec3 luz_camera_front(const luz_camera *camera)
     return luz_vec3_normalize(front);
 }
 
+/* floor(sqrt(n)), exactly, in integers: the binary digit-by-digit method
+ * (two bits of n, one bit of the root per step; at most 16 steps), so no
+ * floating-point rounding can put a perfect square on the wrong side. */
+static uint32_t integer_square_root(uint32_t n)
+{
+    uint32_t root = 0;
+    uint32_t bit = UINT32_C(1) << 30;   /* the highest power of 4 in 32 bits */
+    while (bit > n) bit >>= 2;
+    while (bit != 0) {
+        if (n >= root + bit) {
+            n -= root + bit;
+            root = (root >> 1) + bit;
+        } else {
+            root >>= 1;
+        }
+        bit >>= 2;
+    }
+    return root;
+}
+
 /* SCENE.md "More cubes": tiles around the original ten, ring by ring; in
- * ring r the cells (gx, gy) with max(|gx|, |gy|) = r, row by row. Rings
- * before r hold (2r - 1)^2 tiles. */
+ * ring r the cells (gx, gy) with max(|gx|, |gy|) = r, row by row.
+ *
+ * In closed form, O(1) per cube (the frame asks for every cube every
+ * frame). Rings 0..r-1 fill the (2r - 1)^2 square, so tile t >= 1 is in
+ * the ring r with (2r - 1)^2 <= t < (2r + 1)^2, that is
+ * 2r - 1 <= floor(sqrt(t)) <= 2r: r = (floor(sqrt(t)) + 1) / 2. Its index
+ * j = t - (2r - 1)^2 in the ring, 0 <= j < 8r, falls in one of three runs
+ * of the row-by-row order:
+ *   gy = -r, the whole row:         2r + 1 cells, gx = -r + j;
+ *   gy = -r + 1 .. r - 1, two ends: 2(2r - 1) cells, gx = -r then r;
+ *   gy = r, the whole row:          2r + 1 cells. */
 luz_vec3 luz_scene_tiled_position(int cube_index)
 {
     if (cube_index < 0) cube_index = 0;   /* not a cube: stay in the table */
     int tile = cube_index / 10;
     luz_vec3 base = cube_positions[cube_index % 10];
     if (tile == 0) return base;
-    int ring = 1;
-    while ((2 * ring + 1) * (2 * ring + 1) <= tile) ring++;
+    int ring = ((int)integer_square_root((uint32_t)tile) + 1) / 2;
     int index_in_ring = tile - (2 * ring - 1) * (2 * ring - 1);
-    for (int gy = -ring; gy <= ring; gy++) {
-        for (int gx = -ring; gx <= ring; gx++) {
-            if (abs(gx) != ring && abs(gy) != ring) continue;
-            if (index_in_ring-- == 0) {
-                luz_vec3 offset = {9.0f * gx, 8.0f * gy, -16.0f * ring};
-                return luz_vec3_add(base, offset);
-            }
-        }
+    int full_row = 2 * ring + 1;
+    int gx, gy;
+    if (index_in_ring < full_row) {
+        gy = -ring;
+        gx = -ring + index_in_ring;
+    } else if (index_in_ring < full_row + 2 * (2 * ring - 1)) {
+        int k = index_in_ring - full_row;
+        gy = -ring + 1 + k / 2;
+        gx = k % 2 == 0 ? -ring : ring;
+    } else {
+        gy = ring;
+        gx = -ring + (index_in_ring - full_row - 2 * (2 * ring - 1));
     }
-    return base; /* not reached: ring r has 8r cells */
+    luz_vec3 offset = {9.0f * gx, 8.0f * gy, -16.0f * ring};
+    return luz_vec3_add(base, offset);
 }
 
 /* xorshift32 (Marsaglia 2003). */
