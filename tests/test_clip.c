@@ -1,5 +1,5 @@
 /*
- * test_clip.c: clipping in homogeneous clip space (src/pipeline/clip.c)
+ * test_clip.c: clipping in homogeneous clip space (src/renderer/clip.c)
  * against crossing points computed by hand: OpenGL's clip volume is
  * -w <= z <= w, and luz clips x and y to a guard band |x|, |y| <= 4 w.
  */

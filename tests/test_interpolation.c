@@ -1,6 +1,6 @@
 /*
  * test_interpolation.c: perspective-correct interpolation of varyings
- * (src/pipeline/fragment.c, luz_fragment_interpolate) against a ray-plane
+ * (src/renderer/fragment.c, luz_fragment_interpolate) against a ray-plane
  * intersection worked out by hand.
  *
  * The scene: a camera at the origin looking down -z with a 90 degree

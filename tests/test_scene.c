@@ -1,5 +1,5 @@
 /*
- * test_scene.c: SCENE.md's scene as data (src/scene/scene.c): the
+ * test_scene.c: SCENE.md's scene as data (src/lab/scene.c): the
  * xorshift32 colours, the tiling of more cubes, the frame of draws and
  * the uniforms at a time t, against values derived from SCENE.md's text.
  */

@@ -1,5 +1,5 @@
 /*
- * test_setup_raster.c: triangle setup and rasterisation (src/pipeline/
+ * test_setup_raster.c: triangle setup and rasterisation (src/renderer/
  * setup.c, raster.c) on a 16x16 framebuffer, driven directly with clip
  * vertices placed on exact window coordinates. With w = 1 clip space is
  * NDC, and x_ndc = 2 x_win / 16 - 1, y_ndc = 1 - 2 y_win / 16 (SCENE.md's

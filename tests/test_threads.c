@@ -1,5 +1,5 @@
 /*
- * test_threads.c: the renderer's thread pool (src/pipeline/bands.c). Every
+ * test_threads.c: the renderer's thread pool (src/renderer/bands.c). Every
  * job index of a batch must run exactly once, on a worker index below the
  * pool's thread count that names its thread (0 the caller's, one index a
  * thread), and the pool must survive batch after batch. Run under

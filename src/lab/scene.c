@@ -6,7 +6,8 @@
  * luz_scene_build_frame(). What comes out is a luz_frame: a camera, lights
  * and a list of draws, which is all the renderer sees.
  */
-#include <limits.h>
+#include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "lab/scene.h"
