@@ -6,12 +6,17 @@
 #   - examples/torus.c builds with `pkg-config luz` and runs;
 #   - its picture has the torus where its geometry puts it (check_torus).
 #
-# Usage: installed_library.sh SOURCE_ROOT BUILD_ROOT CHECK_TORUS
+# Usage: installed_library.sh SOURCE_ROOT BUILD_ROOT CHECK_TORUS SANITIZE
+# (SANITIZE: the build's b_sanitize, so that the example is built with the
+# same sanitizers as the library it loads; "none" for none).
 set -u
 source_root=$1
 build_root=$2
 check_torus=$3
+sanitize=${4:-none}
 cc=${CC:-cc}
+sanitize_flags=
+[ "$sanitize" = none ] || sanitize_flags="-fsanitize=$sanitize"
 work=$(mktemp -d) || exit 1
 trap 'rm -rf "$work"' EXIT INT TERM
 fail() {
@@ -50,7 +55,7 @@ for header in "$include_dir"/luz/*.h; do
 done
 
 # The example, built against the installed library only.
-"$cc" -std=c11 -Wall -Wextra -o "$work/torus" "$source_root/examples/torus.c" \
+"$cc" -std=c11 -Wall -Wextra $sanitize_flags -o "$work/torus" "$source_root/examples/torus.c" \
     $(luz_pkg --cflags --libs) $(pkg-config --cflags --libs stb) -lm > "$work/build.log" 2>&1 ||
     fail "examples/torus.c does not build: $(head -n 5 "$work/build.log")"
 LD_LIBRARY_PATH=$lib_dir "$work/torus" "$work/torus.png" > "$work/run.log" 2>&1 ||
