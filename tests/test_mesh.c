@@ -375,6 +375,20 @@ static void test_zero_desc_is_one_thread_per_cpu(void **state)
     assert_non_null(strstr(error.message, "thread count -2"));
 }
 
+/* Textures and framebuffers refuse what they cannot hold, and say why. */
+static void test_textures_and_framebuffers_say_why(void **state)
+{
+    (void)state;
+    luz_error error = {{0}};
+    assert_null(luz_texture_create(4, 4, NULL, &error));
+    assert_non_null(strstr(error.message, "texture 4x4: no pixels"));
+    const uint8_t texel[4] = {0};
+    assert_null(luz_texture_create(0, 1, texel, &error));
+    assert_non_null(strstr(error.message, "texture size 0x1"));
+    assert_null(luz_framebuffer_create(LUZ_MAX_DIMENSION + 1, 1, &error));
+    assert_true(error.message[0] != '\0');
+}
+
 /* A frame whose draw has no mesh, and render options that name no view,
  * are refused with a reason before anything is drawn. */
 static void test_bad_frames_are_refused_with_a_reason(void **state)
@@ -413,6 +427,7 @@ int main(void)
         cmocka_unit_test(test_more_than_65536_vertices),
         cmocka_unit_test(test_each_draw_has_its_own_material),
         cmocka_unit_test(test_zero_desc_is_one_thread_per_cpu),
+        cmocka_unit_test(test_textures_and_framebuffers_say_why),
         cmocka_unit_test(test_bad_frames_are_refused_with_a_reason),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -81,7 +81,7 @@ luz_framebuffer *luz_framebuffer_create(int width, int height, luz_error *error)
     if (luz_framebuffer_check_size(width, height, error) != 0) return NULL;
     luz_framebuffer *framebuffer = calloc(1, sizeof *framebuffer);
     if (!framebuffer) {
-        luz_error_set(error, "out of memory");
+        luz_error_set(error, "out of memory for a %dx%d framebuffer", width, height);
         return NULL;
     }
     framebuffer->channel_order = LUZ_CHANNELS_RGBA;

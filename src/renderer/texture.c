@@ -31,6 +31,11 @@ luz_texture *luz_texture_create(int width, int height, const uint8_t *rgba, luz_
                       LUZ_TEXTURE_MAX_SIZE, LUZ_TEXTURE_MAX_SIZE);
         return NULL;
     }
+    if (rgba == NULL) {
+        luz_error_set(error, "texture %dx%d: no pixels (expected %dx%dx4 bytes of RGBA8)",
+                      width, height, width, height);
+        return NULL;
+    }
 
     /* Sizes of the chain first, to make one allocation: each level is
      * max(1, floor(w / 2)) x max(1, floor(h / 2)) of the one before; the
