@@ -1039,11 +1039,11 @@ static void assert_scene_options_equal(const luz_options *a, const luz_options *
         assert_ptr_equal(a->textures_directory, b->textures_directory);
     else
         assert_string_equal(a->textures_directory, b->textures_directory);
-    assert_int_equal(a->scene.custom_cube_count, b->scene.custom_cube_count);
-    if (a->scene.custom_cube_count == 0)
+    assert_int_equal(a->scene.object_count, b->scene.object_count);
+    if (a->scene.object_count == 0)
         assert_int_equal(a->scene.cube_count, b->scene.cube_count);
-    for (int i = 0; i < a->scene.custom_cube_count; i++) {
-        const luz_cube *ca = &a->scene.custom_cubes[i], *cb = &b->scene.custom_cubes[i];
+    for (int i = 0; i < a->scene.object_count; i++) {
+        const luz_object *ca = &a->scene.objects[i], *cb = &b->scene.objects[i];
         assert_float_same(ca->position.x, cb->position.x);
         assert_float_same(ca->position.y, cb->position.y);
         assert_float_same(ca->position.z, cb->position.z);
@@ -1135,8 +1135,8 @@ static void test_scene_round_trip(void **state)
                "cube = 1e-3, 0, 0\n"
                "seed = 7\n");
     read_scene_from(&original, scene);
-    assert_int_equal(original.scene.custom_cube_count, 4);
-    assert_ptr_equal(original.scene.custom_cubes, original.cubes);
+    assert_int_equal(original.scene.object_count, 4);
+    assert_ptr_equal(original.scene.objects, original.cubes);
     write_scene_to(&original, first);
     read_scene_from(&again, first);
     assert_scene_options_equal(&original, &again);
@@ -1159,13 +1159,13 @@ static void set_named_cubes(luz_options *options, const char *const *names, int 
     assert_non_null(options->cube_sources);
     options->cube_capacity = count;
     for (int i = 0; i < count; i++) {
-        options->cubes[i] = (luz_cube){.position = luz_vec3_make((float)i, 0.0f, 0.0f),
+        options->cubes[i] = (luz_object){.position = luz_vec3_make((float)i, 0.0f, 0.0f),
                                        .texture = LUZ_TEXTURE_BY_INDEX};
         options->cube_sources[i].texture_name = strdup(names[i]);
         assert_non_null(options->cube_sources[i].texture_name);
     }
-    options->scene.custom_cubes = options->cubes;
-    options->scene.custom_cube_count = count;
+    options->scene.objects = options->cubes;
+    options->scene.object_count = count;
 }
 
 /* What luz_options_write_scene writes for options, as one string. */
@@ -1288,7 +1288,7 @@ static void test_scene_round_trip_every_saved_key(void **state)
     assert_true(copy.scene.time_seconds == 2.75);
     assert_int_equal(copy.scene.seed, 12345);
     assert_int_equal(copy.scene.cube_count, 25);
-    assert_int_equal(copy.scene.custom_cube_count, 0);
+    assert_int_equal(copy.scene.object_count, 0);
     assert_float_same(copy.scene.camera.position.x, 0.5f);
     assert_float_same(copy.scene.camera.position.y, -1.25f);
     assert_float_same(copy.scene.camera.position.z, 4.0f);
@@ -1487,7 +1487,7 @@ static void test_scene_quoted_round_trip(void **state)
     read_scene_from(&copy, path);
     assert_scene_options_equal(&original, &copy);
     assert_string_equal(copy.textures_directory, "dir # with hash ");
-    assert_int_equal(copy.scene.custom_cube_count, 4);
+    assert_int_equal(copy.scene.object_count, 4);
     assert_string_equal(copy.cube_sources[0].texture_name, "old wood.png");
     assert_string_equal(copy.cube_sources[1].texture_name, "a#b.png");
     assert_string_equal(copy.cube_sources[2].texture_name, "quote\"d.png");
@@ -1569,7 +1569,7 @@ static void test_scene_quoted_values_read(void **state)
     luz_options options;
     read_scene_from(&options, path);
     assert_string_equal(options.textures_directory, "a # b");
-    assert_int_equal(options.scene.custom_cube_count, 4);
+    assert_int_equal(options.scene.object_count, 4);
     assert_string_equal(options.cube_sources[0].texture_name, "x y.png");
     assert_true(options.cubes[0].has_colour);
     assert_float_same(options.cubes[0].colour.x, 1.0f);
@@ -1651,15 +1651,15 @@ static void test_parse_precedence_and_forms(void **state)
     assert_float_same(b.scene.camera.fov_degrees, 60.0f);
     assert_true(a.scene.time_seconds == 5.0);
     assert_scene_options_equal(&a, &b);
-    assert_int_equal(a.scene.custom_cube_count, 1);
+    assert_int_equal(a.scene.object_count, 1);
     assert_string_equal(a.scene_path, scene);
     luz_options_free(&b);
 
     /* --cubes on the command line replaces the file's cube lines */
     char *argv_c[] = {"luz-render", "--cubes", "30", "--scene", scene};
     parse_or_fail(&b, 5, argv_c);
-    assert_int_equal(b.scene.custom_cube_count, 0);
-    assert_null(b.scene.custom_cubes);
+    assert_int_equal(b.scene.object_count, 0);
+    assert_null(b.scene.objects);
     assert_int_equal(b.scene.cube_count, 30);
     luz_options_free(&b);
     luz_options_free(&a);

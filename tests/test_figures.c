@@ -339,7 +339,7 @@ static void check_single_term_figure(const figure *f)
     const luz_scene *scene = &options.scene;
     /* The ray caster knows SCENE.md's ten cubes, unmoved camera settings
      * aside. */
-    assert_null(scene->custom_cubes);
+    assert_null(scene->objects);
     assert_int_equal(scene->cube_count, 10);
     assert_int_equal(options.width, f->width);
 

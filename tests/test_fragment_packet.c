@@ -374,7 +374,7 @@ static void ambient_only_is_exact(void **state)
     const luz_texture_set none = {0};
 
     for (int i = 0; i < 10; i++) {
-        const luz_cube cube = {
+        const luz_object cube = {
             .position = luz_scene_tiled_position(i),
             .has_colour = true,
             .colour = colours[i],
@@ -382,8 +382,8 @@ static void ambient_only_is_exact(void **state)
         };
         luz_scene scene = luz_scene_defaults();
         scene.time_seconds = 2.0;
-        scene.custom_cubes = &cube;
-        scene.custom_cube_count = 1;
+        scene.objects = &cube;
+        scene.object_count = 1;
         for (int term = 0; term < LUZ_TERM_COUNT; term++)
             if (term != LUZ_TERM_AMBIENT)
                 luz_lights_term(&scene.lights, (luz_term)term)->strength = 0.0f;

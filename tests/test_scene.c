@@ -266,13 +266,14 @@ static void test_custom_cubes_keep_their_colour(void **state)
     (void)state;
     luz_lab *lab = luz_lab_create(NULL);
     assert_non_null(lab);
-    const luz_cube cubes[2] = {
-        {{1, 2, 3}, true, {0.25f, 0.5f, 0.75f}, LUZ_TEXTURE_BY_INDEX},
-        {{-1, 0, 0}, false, {0, 0, 0}, LUZ_TEXTURE_BY_INDEX},
+    const luz_object cubes[2] = {
+        {.position = {1, 2, 3}, .has_colour = true, .colour = {0.25f, 0.5f, 0.75f},
+         .texture = LUZ_TEXTURE_BY_INDEX},
+        {.position = {-1, 0, 0}, .texture = LUZ_TEXTURE_BY_INDEX},
     };
     luz_scene scene = luz_scene_defaults();
-    scene.custom_cubes = cubes;
-    scene.custom_cube_count = 2;
+    scene.objects = cubes;
+    scene.object_count = 2;
     scene.lights.point.strength = 0.0f;
     luz_frame frame = {0};
     assert_int_equal(luz_scene_build_frame(lab, &scene, NULL, 0, 1.0f, &frame, NULL), 0);

@@ -595,7 +595,7 @@ static void draw_frame(gl_reference *gl, const scene_data *data, double t, frame
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 
     /* Cubes 0 .. N-1 in order: M_i = T(p_i) R((i + 1) / 3 * t * 50 degrees). */
-    const luz_cube *custom = scene->custom_cubes;
+    const luz_object *custom = scene->objects;
     int textured = -1;
     for (int i = 0; i < data->cube_count; i++) {
         luz_vec3 p = custom ? custom[i].position : luz_scene_tiled_position(i);
@@ -802,7 +802,7 @@ int main(int argc, char **argv)
     }
 
     status = EXIT_RUNTIME;
-    data.cube_count = options.scene.custom_cubes ? options.scene.custom_cube_count
+    data.cube_count = options.scene.objects ? options.scene.object_count
                                                  : options.scene.cube_count;
     data.colours = malloc((size_t)(data.cube_count > 0 ? data.cube_count : 1) *
                           sizeof *data.colours);

@@ -41,7 +41,7 @@ void luz_bench_print_case(FILE *out, const luz_options *options, int frames, int
                           int height, int threads)
 {
     const luz_scene *scene = &options->scene;
-    int cubes = scene->custom_cubes ? scene->custom_cube_count : scene->cube_count;
+    int cubes = scene->objects ? scene->object_count : scene->cube_count;
     /* The teaching views are drawn by view.c, which is scalar code. */
     bool reference = options->reference || scene->view != LUZ_VIEW_COLOR;
     fprintf(out, "frames=%d size=%dx%d threads=%d cubes=%d filter=%s fragment=%s ", frames, width,

@@ -22,7 +22,7 @@
 int luz_options_resolve_textures(luz_options *options, const luz_texture_set *textures,
                                  luz_error *error)
 {
-    for (int i = 0; i < options->scene.custom_cube_count; i++) {
+    for (int i = 0; i < options->scene.object_count; i++) {
         const luz_cube_source *source = &options->cube_sources[i];
         if (source->texture_name == NULL) {
             options->cubes[i].texture = LUZ_TEXTURE_BY_INDEX;

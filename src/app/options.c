@@ -690,15 +690,15 @@ void luz_options_init(luz_options *options)
 
 void luz_options_clear_cubes(luz_options *options)
 {
-    for (int i = 0; i < options->scene.custom_cube_count; i++)
+    for (int i = 0; i < options->scene.object_count; i++)
         free(options->cube_sources[i].texture_name);
     free(options->cubes);
     free(options->cube_sources);
     options->cubes = NULL;
     options->cube_sources = NULL;
     options->cube_capacity = 0;
-    options->scene.custom_cubes = NULL;
-    options->scene.custom_cube_count = 0;
+    options->scene.objects = NULL;
+    options->scene.object_count = 0;
 }
 
 void luz_options_free(luz_options *options)

@@ -16,10 +16,10 @@
  * Every error is one line naming the flag (or file:line) and what was
  * expected, e.g. "--size: expected WIDTHxHEIGHT such as 1280x720, got '0x5'".
  *
- * A luz_options owns its strings and cube arrays, and scene.custom_cubes
+ * A luz_options owns its strings and cube arrays, and scene.objects
  * points into its own `cubes`: initialise it with luz_options_init(), release
  * it with luz_options_free(), and do not copy the struct by value (the copy's
- * scene.custom_cubes would point into the original).
+ * scene.objects would point into the original).
  */
 #ifndef LUZ_OPTIONS_H
 #define LUZ_OPTIONS_H
@@ -45,7 +45,7 @@ typedef struct luz_cube_source {
 #define LUZ_MAX_FRAMES 1000000
 
 typedef struct luz_options {
-    luz_scene scene;            /* custom_cubes points into `cubes` below */
+    luz_scene scene;            /* objects points into `cubes` below */
     int width, height;          /* default 1280 x 720 */
     int thread_count;           /* LUZ_THREADS_AUTO unless --threads */
     char *textures_directory;   /* NULL: luz_default_textures_directory();
@@ -62,8 +62,8 @@ typedef struct luz_options {
     bool reference;             /* --reference: the plain scalar fragment stage */
     bool help;
     bool version;
-    luz_cube *cubes;            /* a scene file's own cubes (owned), as many
-                                   as scene.custom_cube_count */
+    luz_object *cubes;            /* a scene file's own cubes (owned), as many
+                                   as scene.object_count */
     luz_cube_source *cube_sources;  /* one per cube (owned) */
     int cube_capacity;
 } luz_options;

@@ -205,22 +205,22 @@ static char *find_field(char *text)
     return text + strlen(text);
 }
 
-static int add_cube(scene_reader *reader, const luz_cube *cube, const char *texture_name,
+static int add_cube(scene_reader *reader, const luz_object *cube, const char *texture_name,
                     luz_error *error)
 {
     luz_options *options = reader->options;
-    int count = options->scene.custom_cube_count;
+    int count = options->scene.object_count;
     if (count >= LUZ_MAX_CUBES)
         return luz_error_set(error, "%s:%d: cube: too many cubes (at most %d)", reader->path,
                              reader->line, LUZ_MAX_CUBES);
     if (count == options->cube_capacity) {
         int capacity = count ? count * 2 : 16;
-        luz_cube *cubes = realloc(options->cubes, (size_t)capacity * sizeof *cubes);
+        luz_object *cubes = realloc(options->cubes, (size_t)capacity * sizeof *cubes);
         if (cubes == NULL)
             return luz_error_set(error, "%s:%d: out of memory", reader->path, reader->line);
         options->cubes = cubes;
         if (count > 0)
-            options->scene.custom_cubes = cubes;   /* never left dangling */
+            options->scene.objects = cubes;   /* never left dangling */
         luz_cube_source *sources =
             realloc(options->cube_sources, (size_t)capacity * sizeof *sources);
         if (sources == NULL)
@@ -233,8 +233,8 @@ static int add_cube(scene_reader *reader, const luz_cube *cube, const char *text
         return luz_error_set(error, "%s:%d: out of memory", reader->path, reader->line);
     options->cubes[count] = *cube;
     options->cube_sources[count] = (luz_cube_source){.texture_name = name, .line = reader->line};
-    options->scene.custom_cubes = options->cubes;
-    options->scene.custom_cube_count = count + 1;
+    options->scene.objects = options->cubes;
+    options->scene.object_count = count + 1;
     return 0;
 }
 
@@ -255,7 +255,7 @@ static int read_cube(scene_reader *reader, char *value, luz_error *error)
                              path, line);
     option_quoted original = option_quote(value);
 
-    luz_cube cube = {.texture = LUZ_TEXTURE_BY_INDEX};
+    luz_object cube = {.texture = LUZ_TEXTURE_BY_INDEX};
     const char *texture_name = NULL;
     char *fields = find_field(value);
     char saved = *fields;
@@ -523,7 +523,7 @@ void luz_options_write_scene(const luz_options *options, FILE *out)
                 continue;
             /* The cube lines below replace the tiling's count, and a file
              * may not have both. */
-            if (strcmp(row.name, "cubes") == 0 && options->scene.custom_cube_count > 0)
+            if (strcmp(row.name, "cubes") == 0 && options->scene.object_count > 0)
                 continue;
             /* Nothing to write: a value left unset (textures). */
             if (luz_options_format(options, row.name, value, sizeof value) != 0)
@@ -540,8 +540,8 @@ void luz_options_write_scene(const luz_options *options, FILE *out)
         }
     }
     luz_options_free(&defaults);
-    for (int i = 0; i < options->scene.custom_cube_count; i++) {
-        const luz_cube *cube = &options->cubes[i];
+    for (int i = 0; i < options->scene.object_count; i++) {
+        const luz_object *cube = &options->cubes[i];
         char x[32], y[32], z[32];
         option_format_float(x, sizeof x, cube->position.x);
         option_format_float(y, sizeof y, cube->position.y);

@@ -9,6 +9,7 @@
  */
 #include <dirent.h>
 #include <errno.h>
+#include <limits.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -19,30 +20,81 @@
 
 #include "io/textures.h"
 
-luz_texture *luz_texture_load(const char *path, luz_error *error)
+/* The checks and the decoding both paths share: the size from the header
+ * first, so that an image claiming to be huge is refused before anything
+ * is allocated; then the pixels, as RGBA8. name is what errors call it. */
+static luz_texture *decode(const char *name, int (*info)(const void *, int *, int *, int *),
+                           unsigned char *(*load)(const void *, int *, int *, int *, int),
+                           const void *source, luz_error *error)
 {
     int width, height, channels;
-    if (!stbi_info(path, &width, &height, &channels)) {
-        luz_error_set(error, "%s: not a readable image (%s)", path, stbi_failure_reason());
+    if (!info(source, &width, &height, &channels)) {
+        luz_error_set(error, "%s: not a readable image (%s)", name, stbi_failure_reason());
         return NULL;
     }
     if (width < 1 || height < 1 || width > LUZ_TEXTURE_MAX_SIZE ||
         height > LUZ_TEXTURE_MAX_SIZE) {
-        luz_error_set(error, "%s: image is %dx%d, expected at most %dx%d", path, width, height,
+        luz_error_set(error, "%s: image is %dx%d, expected at most %dx%d", name, width, height,
                       LUZ_TEXTURE_MAX_SIZE, LUZ_TEXTURE_MAX_SIZE);
         return NULL;
     }
-    unsigned char *pixels = stbi_load(path, &width, &height, &channels, 4);
+    unsigned char *pixels = load(source, &width, &height, &channels, 4);
     if (!pixels) {
-        luz_error_set(error, "%s: corrupt or unsupported image (%s)", path,
+        luz_error_set(error, "%s: corrupt or unsupported image (%s)", name,
                       stbi_failure_reason());
         return NULL;
     }
     luz_error inner;
     luz_texture *texture = luz_texture_create(width, height, pixels, &inner);
     stbi_image_free(pixels);
-    if (!texture) luz_error_set(error, "%s: %s", path, inner.message);
+    if (!texture) luz_error_set(error, "%s: %s", name, inner.message);
     return texture;
+}
+
+static int file_info(const void *path, int *width, int *height, int *channels)
+{
+    return stbi_info(path, width, height, channels);
+}
+
+static unsigned char *file_load(const void *path, int *width, int *height, int *channels,
+                                int wanted)
+{
+    return stbi_load(path, width, height, channels, wanted);
+}
+
+luz_texture *luz_texture_load(const char *path, luz_error *error)
+{
+    return decode(path, file_info, file_load, path, error);
+}
+
+/* An encoded image in memory, for stb's _from_memory functions. */
+typedef struct memory_image {
+    const unsigned char *bytes;
+    int size;
+} memory_image;
+
+static int memory_info(const void *source, int *width, int *height, int *channels)
+{
+    const memory_image *image = source;
+    return stbi_info_from_memory(image->bytes, image->size, width, height, channels);
+}
+
+static unsigned char *memory_load(const void *source, int *width, int *height, int *channels,
+                                  int wanted)
+{
+    const memory_image *image = source;
+    return stbi_load_from_memory(image->bytes, image->size, width, height, channels, wanted);
+}
+
+luz_texture *luz_texture_load_memory(const unsigned char *bytes, size_t size, const char *name,
+                                     luz_error *error)
+{
+    if (bytes == NULL || size == 0 || size > INT_MAX) {
+        luz_error_set(error, "%s: %zu bytes is not an image", name, size);
+        return NULL;
+    }
+    const memory_image image = {bytes, (int)size};
+    return decode(name, memory_info, memory_load, &image, error);
 }
 
 static bool is_image_name(const char *name)

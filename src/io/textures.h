@@ -7,11 +7,17 @@
 #ifndef LUZ_IO_TEXTURES_H
 #define LUZ_IO_TEXTURES_H
 
+#include <stddef.h>
+
 #include "luz/error.h"
 #include "luz/texture.h"
 
 /* Loads a .png/.jpg/.bmp/.tga file through stb_image. */
 luz_texture *luz_texture_load(const char *path, luz_error *error);
+/* The same for an encoded image in memory (a model's embedded texture);
+ * name is what an error calls it. */
+luz_texture *luz_texture_load_memory(const unsigned char *bytes, size_t size, const char *name,
+                                     luz_error *error);
 
 /* ---- a directory of textures ------------------------------------------ */
 

@@ -211,6 +211,49 @@ luz_render_options luz_scene_render_options(const luz_scene *scene)
     return (luz_render_options){.view = scene->view, .interpolation = scene->interpolation};
 }
 
+luz_mat4 luz_lab_model_normalisation(const luz_lab_model *model)
+{
+    const luz_bounds b = model->bounds;
+    const luz_vec3 centre = luz_vec3_scale(luz_vec3_add(b.min, b.max), 0.5f);
+    const luz_vec3 size = luz_vec3_sub(b.max, b.min);
+    float side = size.x > size.y ? size.x : size.y;
+    if (size.z > side) side = size.z;
+    const float k = 2.0f / side;
+    return luz_mat4_translate(luz_mat4_scale(luz_mat4_identity(), (luz_vec3){k, k, k}),
+                              luz_vec3_scale(centre, -1.0f));
+}
+
+/* Object i, a model: M_i(t) = Translate(p) Rotate(angle_i, axis) Scale(k)
+ * Norm (placed holds the first two), one draw per part in the file's
+ * order. C: the object's colour, else the part's material's, else the
+ * seed's for index i. T: none without texture coordinates, else the
+ * object's texture, else the material's, else white. */
+static int add_model(luz_frame *frame, const luz_scene *scene, const luz_object *object,
+                     luz_mat4 placed, luz_vec3 seed_colour, luz_texture *const *textures,
+                     int texture_count, luz_error *error)
+{
+    const luz_lab_model *model = object->model;
+    const float k = object->scale > 0.0f ? object->scale : 1.0f;
+    const luz_mat4 matrix = luz_mat4_multiply(luz_mat4_scale(placed, (luz_vec3){k, k, k}),
+                                              luz_lab_model_normalisation(model));
+    for (int p = 0; p < model->part_count; p++) {
+        const luz_lab_model_part *part = &model->parts[p];
+        luz_draw draw = {.mesh = part->mesh, .model = matrix};
+        draw.material.filter = scene->filter;
+        draw.material.colour = object->has_colour ? object->colour
+                               : part->has_colour ? part->colour
+                                                  : seed_colour;
+        if (part->has_uvs) {
+            if (object->texture != LUZ_TEXTURE_BY_INDEX && texture_count > 0)
+                draw.material.texture = textures[object->texture % texture_count];
+            else
+                draw.material.texture = part->texture;
+        }
+        if (luz_frame_add_draw(frame, &draw, error) != 0) return -1;
+    }
+    return 0;
+}
+
 int luz_scene_build_frame(const luz_lab *lab, const luz_scene *scene,
                           luz_texture *const *textures, int texture_count, float aspect,
                           luz_frame *frame, luz_error *error)
@@ -218,42 +261,43 @@ int luz_scene_build_frame(const luz_lab *lab, const luz_scene *scene,
     luz_scene_set_camera_and_lights(scene, aspect, frame);
     frame->draw_count = 0;
 
-    const bool custom = scene->custom_cubes != NULL;
-    const int cube_count = custom ? scene->custom_cube_count : scene->cube_count;
+    const bool custom = scene->objects != NULL;
+    const int object_count = custom ? scene->object_count : scene->cube_count;
     const luz_vec3 axis = {1.0f, 0.5f, 1.0f};
     uint32_t colour_state = seed_state(scene->seed);
 
-    for (int i = 0; i < cube_count; i++) {
-        luz_draw draw = {0};
-        draw.mesh = lab->cube;
-        draw.material.filter = scene->filter;
-
-        /* objectColor: drawn in index order whether used or not, so a cube
-         * keeps its colour when an earlier one has a colour of its own. */
+    for (int i = 0; i < object_count; i++) {
+        /* objectColor: drawn in index order whether used or not, so an
+         * object keeps its colour when an earlier one has a colour of its
+         * own. */
         luz_vec3 random_colour;
         random_colour.x = next_random_float(&colour_state);
         random_colour.y = next_random_float(&colour_state);
         random_colour.z = next_random_float(&colour_state);
 
-        luz_vec3 position;
-        int texture_index = LUZ_TEXTURE_BY_INDEX;
-        draw.material.colour = random_colour;
-        if (custom) {
-            const luz_cube *cube = &scene->custom_cubes[i];
-            position = cube->position;
-            if (cube->has_colour) draw.material.colour = cube->colour;
-            texture_index = cube->texture;
-        } else {
-            position = luz_scene_tiled_position(i);
-        }
-        if (texture_count > 0) {
-            int index = texture_index == LUZ_TEXTURE_BY_INDEX ? i : texture_index;
-            draw.material.texture = textures[index % texture_count];
+        const luz_object *object = custom ? &scene->objects[i] : NULL;
+        const luz_vec3 position = object ? object->position : luz_scene_tiled_position(i);
+        const bool turning = !(object && object->model && object->still);
+        const double angle_degrees = turning ? (i + 1) / 3.0 * scene->time_seconds * 50.0 : 0.0;
+        const luz_mat4 placed = luz_mat4_rotate(luz_mat4_translate(luz_mat4_identity(), position),
+                                                turn_radians(angle_degrees), axis);
+        if (object && object->model) {
+            if (add_model(frame, scene, object, placed, random_colour, textures, texture_count,
+                          error) != 0)
+                return -1;
+            continue;
         }
 
-        double angle_degrees = (i + 1) / 3.0 * scene->time_seconds * 50.0;
-        draw.model = luz_mat4_rotate(luz_mat4_translate(luz_mat4_identity(), position),
-                                     turn_radians(angle_degrees), axis);
+        luz_draw draw = {0};
+        draw.mesh = lab->cube;
+        draw.model = placed;
+        draw.material.filter = scene->filter;
+        draw.material.colour = object && object->has_colour ? object->colour : random_colour;
+        if (texture_count > 0) {
+            int texture = object ? object->texture : LUZ_TEXTURE_BY_INDEX;
+            int index = texture == LUZ_TEXTURE_BY_INDEX ? i : texture;
+            draw.material.texture = textures[index % texture_count];
+        }
         if (luz_frame_add_draw(frame, &draw, error) != 0) return -1;
     }
 

@@ -45,14 +45,50 @@ luz_vec3 luz_camera_front(const luz_camera *camera);
 
 #define LUZ_TEXTURE_BY_INDEX (-1)
 
-/* A cube of the user's own (a scene file's `cube` line). */
-typedef struct luz_cube {
-    luz_vec3 position;
-    bool has_colour;     /* else the seed's colour for its index */
+/* ---- models --------------------------------------------------------------- */
+
+/* What the lab needs of a model file (SCENE.md, "Models"): its triangle
+ * meshes in the file's order, each with the colour and texture of its
+ * material, and the box around them all. The programs read files into this
+ * (src/io/model.h, through src/app); the lab reads nothing itself. */
+typedef struct luz_lab_model_part {
+    const luz_mesh *mesh;
+    bool has_colour;               /* the material's diffuse colour */
     luz_vec3 colour;
-    int texture;         /* index into the texture set, or LUZ_TEXTURE_BY_INDEX
-                            for SCENE.md's "image i mod N" */
-} luz_cube;
+    bool has_uvs;                  /* without, T = 1 */
+    const luz_texture *texture;    /* the material's, or NULL */
+} luz_lab_model_part;
+
+typedef struct luz_lab_model {
+    const char *name;              /* the file's name */
+    const luz_lab_model_part *parts;
+    int part_count;
+    luz_bounds bounds;             /* around every part's vertices */
+} luz_lab_model;
+
+/* Norm = Scale(2 / s) * Translate(-c): c the bounds' centre, s their
+ * largest side, so the model is centred on the origin and spans [-1, 1]
+ * along its longest axis. s must be above 0. */
+luz_mat4 luz_lab_model_normalisation(const luz_lab_model *model);
+
+/* ---- the scene's objects -------------------------------------------------- */
+
+#define LUZ_TEXTURE_BY_INDEX (-1)
+
+/* An object of the user's own: a cube (a scene file's `cube` line) or a
+ * model (`model` line, or --model). */
+typedef struct luz_object {
+    luz_vec3 position;
+    bool has_colour;     /* else the seed's colour for its index (a model:
+                            its materials' colours first) */
+    luz_vec3 colour;
+    int texture;         /* index into the texture set, or LUZ_TEXTURE_BY_INDEX:
+                            SCENE.md's "image i mod N" for a cube, the
+                            materials' textures for a model */
+    const luz_lab_model *model;   /* NULL: a cube */
+    float scale;         /* a model's k; 0 means 1 */
+    bool still;          /* a model that does not turn */
+} luz_object;
 
 #define LUZ_MAX_CUBES 100000
 
@@ -60,8 +96,9 @@ typedef struct luz_scene {
     double time_seconds;
     uint32_t seed;           /* 0 means 0x9E3779B9 */
     int cube_count;          /* SCENE.md's tiling of the ten positions */
-    const luz_cube *custom_cubes;   /* if non-NULL, replaces the tiling */
-    int custom_cube_count;
+    const luz_object *objects;   /* if non-NULL, replaces the tiling: cubes
+                                    and models in the order drawn */
+    int object_count;
     luz_camera camera;
     luz_lights lights;
     luz_filter filter;

@@ -1,0 +1,57 @@
+/*
+ * io/model.h: the user's model files, read with assimp, as libluz meshes
+ * and textures (SCENE.md, "Models").
+ *
+ * A luz_model is what the lab needs of a file and nothing of assimp: one
+ * part per triangle mesh of the file, in the file's order, each a luz_mesh
+ * with the colour and texture its material gives, and the bounding box of
+ * all of them (which the lab's normalisation reads). Textures are decoded
+ * with the cube textures' loader, from files beside the model or from the
+ * file itself (embedded), and shared between the parts that name the same
+ * one.
+ */
+#ifndef LUZ_IO_MODEL_H
+#define LUZ_IO_MODEL_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "luz/error.h"
+#include "luz/mesh.h"
+#include "luz/texture.h"
+#include "luz/vecmath.h"
+
+typedef struct luz_model_part {
+    luz_mesh *mesh;
+    bool has_colour;              /* the material's diffuse colour, if it has
+                                     one and is not assimp's stand-in */
+    luz_vec3 colour;
+    bool has_uvs;                 /* without, T = 1 */
+    const luz_texture *texture;   /* the material's first diffuse texture,
+                                     NULL for none (or no uvs); owned by the
+                                     model */
+} luz_model_part;
+
+typedef struct luz_model {
+    char *path;                   /* as opened */
+    char *name;                   /* the file's name, for the HUD and errors */
+    luz_model_part *parts;
+    int part_count;
+    luz_texture **textures;       /* every texture the parts use, once */
+    int texture_count;
+    luz_bounds bounds;            /* around every part's vertices */
+    uint64_t triangle_count;
+} luz_model;
+
+/* Whether this build reads models (built with assimp: -Dmodels). */
+bool luz_models_supported(void);
+
+/* Reads the model at path into *model (zeroed first). Returns 0, or -1
+ * with one line naming the file and what is wrong: not a regular file,
+ * unreadable, a format assimp does not know, no triangles, a position that
+ * is not finite, an index out of range, zero size, a texture it names that
+ * is missing or corrupt. */
+int luz_model_load(luz_model *model, const char *path, luz_error *error);
+void luz_model_free(luz_model *model);
+
+#endif
