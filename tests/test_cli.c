@@ -1053,7 +1053,7 @@ static void assert_scene_options_equal(const luz_options *a, const luz_options *
             assert_float_same(ca->colour.y, cb->colour.y);
             assert_float_same(ca->colour.z, cb->colour.z);
         }
-        const char *na = a->cube_sources[i].texture_name, *nb = b->cube_sources[i].texture_name;
+        const char *na = a->object_sources[i].texture_name, *nb = b->object_sources[i].texture_name;
         if (na == NULL || nb == NULL)
             assert_ptr_equal(na, nb);
         else
@@ -1136,12 +1136,12 @@ static void test_scene_round_trip(void **state)
                "seed = 7\n");
     read_scene_from(&original, scene);
     assert_int_equal(original.scene.object_count, 4);
-    assert_ptr_equal(original.scene.objects, original.cubes);
+    assert_ptr_equal(original.scene.objects, original.objects);
     write_scene_to(&original, first);
     read_scene_from(&again, first);
     assert_scene_options_equal(&original, &again);
-    assert_string_equal(again.cube_sources[0].texture_name, "wood.png");
-    assert_null(again.cube_sources[2].texture_name);
+    assert_string_equal(again.object_sources[0].texture_name, "wood.png");
+    assert_null(again.object_sources[2].texture_name);
     luz_options_free(&again);
     luz_options_free(&original);
     sandbox_destroy(&box);
@@ -1152,19 +1152,19 @@ static void test_scene_round_trip(void **state)
  * under test is not also what set them up. */
 static void set_named_cubes(luz_options *options, const char *const *names, int count)
 {
-    luz_options_clear_cubes(options);
-    options->cubes = calloc((size_t)count, sizeof *options->cubes);
-    options->cube_sources = calloc((size_t)count, sizeof *options->cube_sources);
-    assert_non_null(options->cubes);
-    assert_non_null(options->cube_sources);
-    options->cube_capacity = count;
+    luz_options_clear_objects(options);
+    options->objects = calloc((size_t)count, sizeof *options->objects);
+    options->object_sources = calloc((size_t)count, sizeof *options->object_sources);
+    assert_non_null(options->objects);
+    assert_non_null(options->object_sources);
+    options->object_capacity = count;
     for (int i = 0; i < count; i++) {
-        options->cubes[i] = (luz_object){.position = luz_vec3_make((float)i, 0.0f, 0.0f),
+        options->objects[i] = (luz_object){.position = luz_vec3_make((float)i, 0.0f, 0.0f),
                                        .texture = LUZ_TEXTURE_BY_INDEX};
-        options->cube_sources[i].texture_name = strdup(names[i]);
-        assert_non_null(options->cube_sources[i].texture_name);
+        options->object_sources[i].texture_name = strdup(names[i]);
+        assert_non_null(options->object_sources[i].texture_name);
     }
-    options->scene.objects = options->cubes;
+    options->scene.objects = options->objects;
     options->scene.object_count = count;
 }
 
@@ -1488,10 +1488,10 @@ static void test_scene_quoted_round_trip(void **state)
     assert_scene_options_equal(&original, &copy);
     assert_string_equal(copy.textures_directory, "dir # with hash ");
     assert_int_equal(copy.scene.object_count, 4);
-    assert_string_equal(copy.cube_sources[0].texture_name, "old wood.png");
-    assert_string_equal(copy.cube_sources[1].texture_name, "a#b.png");
-    assert_string_equal(copy.cube_sources[2].texture_name, "quote\"d.png");
-    assert_string_equal(copy.cube_sources[3].texture_name, "stone.png");
+    assert_string_equal(copy.object_sources[0].texture_name, "old wood.png");
+    assert_string_equal(copy.object_sources[1].texture_name, "a#b.png");
+    assert_string_equal(copy.object_sources[2].texture_name, "quote\"d.png");
+    assert_string_equal(copy.object_sources[3].texture_name, "stone.png");
     luz_options_free(&copy);
 
     /* the viewer's F2 writes the same text */
@@ -1522,7 +1522,7 @@ static void test_scene_quoted_round_trip(void **state)
     read_scene_from(&copy, path);
     assert_scene_options_equal(&original, &copy);
     assert_string_equal(copy.textures_directory, "\\\\server\\share");
-    assert_string_equal(copy.cube_sources[2].texture_name, "line\nbreak\r");
+    assert_string_equal(copy.object_sources[2].texture_name, "line\nbreak\r");
     luz_options_free(&copy);
 
     /* blanks: at the ends they need quotes, inside a value they do not */
@@ -1570,17 +1570,17 @@ static void test_scene_quoted_values_read(void **state)
     read_scene_from(&options, path);
     assert_string_equal(options.textures_directory, "a # b");
     assert_int_equal(options.scene.object_count, 4);
-    assert_string_equal(options.cube_sources[0].texture_name, "x y.png");
-    assert_true(options.cubes[0].has_colour);
-    assert_float_same(options.cubes[0].colour.x, 1.0f);
-    assert_float_same(options.cubes[0].colour.y, 0.0f);
-    assert_float_same(options.cubes[0].colour.z, 0.0f);
-    assert_string_equal(options.cube_sources[1].texture_name, "c:\\t\"x\"\t#1");
-    assert_true(options.cubes[1].has_colour);
-    assert_float_same(options.cubes[1].colour.y, 0.5f);
-    assert_string_equal(options.cube_sources[2].texture_name, "");
-    assert_float_same(options.cubes[2].position.z, 6.0f);
-    assert_string_equal(options.cube_sources[3].texture_name, "it\"s.png");
+    assert_string_equal(options.object_sources[0].texture_name, "x y.png");
+    assert_true(options.objects[0].has_colour);
+    assert_float_same(options.objects[0].colour.x, 1.0f);
+    assert_float_same(options.objects[0].colour.y, 0.0f);
+    assert_float_same(options.objects[0].colour.z, 0.0f);
+    assert_string_equal(options.object_sources[1].texture_name, "c:\\t\"x\"\t#1");
+    assert_true(options.objects[1].has_colour);
+    assert_float_same(options.objects[1].colour.y, 0.5f);
+    assert_string_equal(options.object_sources[2].texture_name, "");
+    assert_float_same(options.objects[2].position.z, 6.0f);
+    assert_string_equal(options.object_sources[3].texture_name, "it\"s.png");
     assert_string_equal(options.output_path, "say \"hi\".png");
     luz_options_free(&options);
     sandbox_destroy(&box);

@@ -37,16 +37,28 @@ double luz_cpu_ms(void)
     return milliseconds_of(CLOCK_PROCESS_CPUTIME_ID);
 }
 
+uint64_t luz_bench_triangles(const luz_frame *frame)
+{
+    uint64_t triangles = 0;
+    for (int d = 0; d < frame->draw_count; d++)
+        triangles += luz_mesh_triangle_count(frame->draws[d].mesh);
+    return triangles;
+}
+
 void luz_bench_print_case(FILE *out, const luz_options *options, int frames, int width,
-                          int height, int threads)
+                          int height, int threads, uint64_t triangles)
 {
     const luz_scene *scene = &options->scene;
-    int cubes = scene->objects ? scene->object_count : scene->cube_count;
+    int cubes = scene->cube_count;
+    if (scene->objects) {
+        cubes = 0;
+        for (int i = 0; i < scene->object_count; i++) cubes += scene->objects[i].model == NULL;
+    }
     /* The teaching views are drawn by view.c, which is scalar code. */
     bool reference = options->reference || scene->view != LUZ_VIEW_COLOR;
-    fprintf(out, "frames=%d size=%dx%d threads=%d cubes=%d filter=%s fragment=%s ", frames, width,
-            height, threads, cubes, luz_filter_name(scene->filter),
-            reference ? "reference" : "packet");
+    fprintf(out, "frames=%d size=%dx%d threads=%d cubes=%d triangles=%llu filter=%s fragment=%s ",
+            frames, width, height, threads, cubes, (unsigned long long)triangles,
+            luz_filter_name(scene->filter), reference ? "reference" : "packet");
     if (scene->view != LUZ_VIEW_COLOR)
         fprintf(out, "view=%s ", luz_view_name(scene->view));
     if (scene->interpolation != LUZ_INTERPOLATION_PERSPECTIVE)

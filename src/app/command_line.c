@@ -29,6 +29,16 @@ int luz_options_set(luz_options *options, const char *name, const char *value,
      * the same message ("--scene: missing value (expected FILE)"). */
     if (strcmp(name, "scene") == 0 && value != NULL && value[0] != '\0')
         return luz_options_read_scene_file(options, value, error);
+    if (strcmp(name, "model") == 0 && value != NULL && value[0] != '\0') {
+        /* The model replaces every object: it is object 0, at the origin,
+         * scale 1, turning as cube 0. */
+        char path[4096];
+        if (luz_options_model_path(NULL, value, path, sizeof path, error) != 0) return -1;
+        luz_options_clear_objects(options);
+        const luz_object model = {.texture = LUZ_TEXTURE_BY_INDEX, .scale = 1.0f};
+        return luz_options_add_object(options, &model, NULL, path, 0, where ? where : "--model",
+                                      error);
+    }
     return luz_options_set_value(options, name, value, where, error);
 }
 

@@ -23,14 +23,14 @@ int luz_options_resolve_textures(luz_options *options, const luz_texture_set *te
                                  luz_error *error)
 {
     for (int i = 0; i < options->scene.object_count; i++) {
-        const luz_cube_source *source = &options->cube_sources[i];
+        const luz_object_source *source = &options->object_sources[i];
         if (source->texture_name == NULL) {
-            options->cubes[i].texture = LUZ_TEXTURE_BY_INDEX;
+            options->objects[i].texture = LUZ_TEXTURE_BY_INDEX;
             continue;
         }
         int index = textures ? luz_texture_set_find(textures, source->texture_name) : -1;
         if (index >= 0) {
-            options->cubes[i].texture = index;
+            options->objects[i].texture = index;
             continue;
         }
         /* Name a few of the images that are there, which is usually enough to
@@ -47,9 +47,10 @@ int luz_options_resolve_textures(luz_options *options, const luz_texture_set *te
             snprintf(available + used, sizeof available - used, ", ...");
         }
         return luz_error_set(error,
-                             "%s:%d: cube: texture '%s' is not an image of the textures "
+                             "%s:%d: %s: texture '%s' is not an image of the textures "
                              "directory (expected one of: %s)",
                              options->scene_path ? options->scene_path : "scene", source->line,
+                             source->model_path ? "model" : "cube",
                              option_quote(source->texture_name).text,
                              count ? available : "none, textures are off");
     }

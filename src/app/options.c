@@ -62,6 +62,7 @@ typedef enum option_kind {
     OPTION_ONLY,      /* a comma-separated list of light terms */
     OPTION_PATH,      /* a string the options own */
     OPTION_SCENE,     /* a scene file, read at once */
+    OPTION_MODEL,     /* a model file, the one object (command_line.c) */
 } option_kind;
 
 typedef struct option_spec {
@@ -186,6 +187,11 @@ static const option_spec option_table[] = {
      .summary = "shade with the plain scalar fragment stage (src/renderer/fragment.c) "
                 "instead of the SIMD one; the images agree",
      .default_text = "off"},
+    {.name = "model", .kind = OPTION_MODEL, .syntax = "FILE",
+     .summary = "draw this model (OBJ, glTF, PLY, STL, FBX, ... read with assimp) instead of "
+                "the cubes, at the origin, turning as cube 0; a scene file places models with "
+                "model lines",
+     .default_text = "none: the cubes"},
     {.name = "scene", .kind = OPTION_SCENE, .syntax = "FILE",
      .summary = "read options and cubes from a scene file (the command line wins)",
      .default_text = "none"},
@@ -378,7 +384,7 @@ static int set_integer(luz_options *options, const option_spec *spec, const char
     case OPTION_CUBES:
         /* A count replaces any cube list a scene file gave: the command line
          * overrides the file. */
-        luz_options_clear_cubes(options);
+        luz_options_clear_objects(options);
         options->scene.cube_count = (int)number;
         break;
     default:
@@ -556,9 +562,11 @@ int luz_options_set_value(luz_options *options, const char *name, const char *va
     case OPTION_PATH:
         return set_path(options, spec, value, where, error);
     case OPTION_SCENE:
-        /* Reading a file is not this file's business: luz_options_set
-         * (command_line.c) reads it with scene_file.c. */
-        return luz_error_set(error, "%s: a scene file is read by luz_options_set, not here",
+    case OPTION_MODEL:
+        /* Files are not this file's business: luz_options_set
+         * (command_line.c) reads a scene file with scene_file.c, and takes
+         * a model's path to its absolute form. */
+        return luz_error_set(error, "%s: a file option is set by luz_options_set, not here",
                              where);
     case OPTION_FLAG:
         break;
@@ -669,6 +677,7 @@ int luz_options_format(const luz_options *options, const char *name, char *buffe
     }
     case OPTION_FLAG:
     case OPTION_SCENE:
+    case OPTION_MODEL:
         return -1;
     }
     return (written >= 0 && (size_t)written < size) ? 0 : -1;
@@ -688,22 +697,57 @@ void luz_options_init(luz_options *options)
     };
 }
 
-void luz_options_clear_cubes(luz_options *options)
+int luz_options_add_object(luz_options *options, const luz_object *object,
+                           const char *texture_name, const char *model_path, int line,
+                           const char *where, luz_error *error)
 {
-    for (int i = 0; i < options->scene.object_count; i++)
-        free(options->cube_sources[i].texture_name);
-    free(options->cubes);
-    free(options->cube_sources);
-    options->cubes = NULL;
-    options->cube_sources = NULL;
-    options->cube_capacity = 0;
+    int count = options->scene.object_count;
+    if (count >= LUZ_MAX_CUBES)
+        return luz_error_set(error, "%s: too many objects (at most %d)", where, LUZ_MAX_CUBES);
+    if (count == options->object_capacity) {
+        int capacity = count ? count * 2 : 16;
+        luz_object *objects = realloc(options->objects, (size_t)capacity * sizeof *objects);
+        if (objects == NULL) return luz_error_set(error, "%s: out of memory", where);
+        options->objects = objects;
+        if (count > 0) options->scene.objects = objects;   /* never left dangling */
+        luz_object_source *sources =
+            realloc(options->object_sources, (size_t)capacity * sizeof *sources);
+        if (sources == NULL) return luz_error_set(error, "%s: out of memory", where);
+        options->object_sources = sources;
+        options->object_capacity = capacity;
+    }
+    char *name = NULL, *path = NULL;
+    if ((texture_name != NULL && (name = strdup(texture_name)) == NULL) ||
+        (model_path != NULL && (path = strdup(model_path)) == NULL)) {
+        free(name);
+        return luz_error_set(error, "%s: out of memory", where);
+    }
+    options->objects[count] = *object;
+    options->object_sources[count] =
+        (luz_object_source){.texture_name = name, .model_path = path, .line = line};
+    options->scene.objects = options->objects;
+    options->scene.object_count = count + 1;
+    return 0;
+}
+
+void luz_options_clear_objects(luz_options *options)
+{
+    for (int i = 0; i < options->scene.object_count; i++) {
+        free(options->object_sources[i].texture_name);
+        free(options->object_sources[i].model_path);
+    }
+    free(options->objects);
+    free(options->object_sources);
+    options->objects = NULL;
+    options->object_sources = NULL;
+    options->object_capacity = 0;
     options->scene.objects = NULL;
     options->scene.object_count = 0;
 }
 
 void luz_options_free(luz_options *options)
 {
-    luz_options_clear_cubes(options);
+    luz_options_clear_objects(options);
     free(options->textures_directory);
     free(options->output_path);
     free(options->scene_path);

@@ -30,22 +30,28 @@
 
 #include "luz/error.h"
 #include "lab/scene.h"
+#include "io/model.h"
 #include "io/textures.h"
 
-/* Where a scene file's own cube came from: its `texture NAME` field is kept
- * as a name until the textures are loaded (luz_options_resolve_textures), and
- * its line is kept for the error message if that name is not found. */
-typedef struct luz_cube_source {
-    char *texture_name;   /* owned; NULL: SCENE.md's image i mod N */
+/* Where an object of the user's own came from: its `texture NAME` field is
+ * kept as a name until the textures are loaded (luz_options_resolve_textures),
+ * a model's file as a path until the models are (luz_options_load_models),
+ * and its line for the error message if either fails. */
+typedef struct luz_object_source {
+    char *texture_name;   /* owned; NULL: SCENE.md's image i mod N (a cube)
+                             or the materials' textures (a model) */
+    char *model_path;     /* owned; NULL for a cube, else the model file,
+                             absolute (a scene file's relative FILE joined
+                             to the file's directory) */
     int line;             /* line in scene_path, 0 if not from a file */
-} luz_cube_source;
+} luz_object_source;
 
 /* The upper bound of --frames and --bench: it bounds the memory that timing
  * a benchmark takes, and no sequence needs more. */
 #define LUZ_MAX_FRAMES 1000000
 
 typedef struct luz_options {
-    luz_scene scene;            /* objects points into `cubes` below */
+    luz_scene scene;            /* objects points into `objects` below */
     int width, height;          /* default 1280 x 720 */
     int thread_count;           /* LUZ_THREADS_AUTO unless --threads */
     char *textures_directory;   /* NULL: luz_default_textures_directory();
@@ -62,10 +68,10 @@ typedef struct luz_options {
     bool reference;             /* --reference: the plain scalar fragment stage */
     bool help;
     bool version;
-    luz_object *cubes;            /* a scene file's own cubes (owned), as many
-                                   as scene.object_count */
-    luz_cube_source *cube_sources;  /* one per cube (owned) */
-    int cube_capacity;
+    luz_object *objects;        /* the user's own cubes and models (owned), as
+                                   many as scene.object_count */
+    luz_object_source *object_sources;  /* one per object (owned) */
+    int object_capacity;
 } luz_options;
 
 /* ---- options.c: the option table, one option at a time ---------------------
@@ -135,7 +141,39 @@ int luz_options_finish(luz_options *options, luz_error *error);
 
 /* Drops the custom cubes: the scene goes back to SCENE.md's tiling of
  * scene.cube_count cubes. */
-void luz_options_clear_cubes(luz_options *options);
+void luz_options_clear_objects(luz_options *options);
+
+/* Appends an object to the user's list (a copy of *object, with copies of
+ * texture_name and model_path, either NULL; line for messages). Errors
+ * start with `where`. Returns 0, or -1 with a message. */
+int luz_options_add_object(luz_options *options, const luz_object *object,
+                           const char *texture_name, const char *model_path, int line,
+                           const char *where, luz_error *error);
+
+/* ---- models (option_models.c) ---- */
+
+/* The model files the options name, each read once, and the lab's view of
+ * each; the objects point into views. */
+typedef struct luz_model_set {
+    luz_model *models;
+    luz_lab_model *views;
+    int count;
+} luz_model_set;
+
+/* Reads every model file the objects name into an empty set and points
+ * each model object at its view. A file that takes more than a second to
+ * read is announced on stderr when that is a terminal. Returns 0, or -1
+ * with a message naming the file (and FILE:LINE of the scene file's model
+ * line). */
+int luz_options_load_models(luz_options *options, luz_model_set *set, luz_error *error);
+void luz_model_set_free(luz_model_set *set);
+
+/* path as an absolute path: as it is if it is one, else joined to
+ * base_directory (a scene file's directory; NULL or "" for the working
+ * directory), itself joined to the working directory if relative. Returns
+ * 0, or -1 if it does not fit in buffer. */
+int luz_options_model_path(const char *base_directory, const char *path, char *buffer,
+                           size_t size, luz_error *error);
 
 /* The file that frame frame_index goes to: output_path with its %d
  * conversion (if any) replaced by the index and %% by %. Returns 0, or -1 if

@@ -14,10 +14,14 @@
  * version and scene), each set at most once; `#` starts a comment anywhere
  * on a line but inside a quoted string (below); blank lines are ignored.
  * `cube = x, y, z` lines, optionally followed by `colour r,g,b` and
- * `texture NAME`, replace the cube list with the user's own cubes. A
+ * `texture NAME`, and `model = FILE` lines, optionally followed by
+ * `at x,y,z`, `scale k`, `colour r,g,b`, `texture NAME` and `still`,
+ * replace the cube list with the user's own objects, in the order given. A
  * texture NAME is kept as text until the textures are loaded
  * (luz_options_resolve_textures), since the file is read before the
- * textures directory is known.
+ * textures directory is known; a model FILE, relative to the scene file's
+ * directory, is kept as an absolute path until the models are read
+ * (luz_options_load_models).
  *
  * A value, or a texture NAME, may be written as a quoted string, "...", in
  * which `#` and blanks are part of the text and \" \\ \n \t \r are the only
@@ -41,6 +45,7 @@
 #include "io/new_file.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
@@ -205,145 +210,191 @@ static char *find_field(char *text)
     return text + strlen(text);
 }
 
-static int add_cube(scene_reader *reader, const luz_object *cube, const char *texture_name,
-                    luz_error *error)
+/* A quoted or plain word at text (a texture NAME, a model FILE): sets
+ * *word to it, ends it with a NUL, and returns where the next field
+ * starts; NULL with a message if it is malformed. what is for messages
+ * ("cube: texture"). */
+static char *read_word(scene_reader *reader, char *text, const char *what, char **word,
+                       luz_error *error)
 {
-    luz_options *options = reader->options;
-    int count = options->scene.object_count;
-    if (count >= LUZ_MAX_CUBES)
-        return luz_error_set(error, "%s:%d: cube: too many cubes (at most %d)", reader->path,
-                             reader->line, LUZ_MAX_CUBES);
-    if (count == options->cube_capacity) {
-        int capacity = count ? count * 2 : 16;
-        luz_object *cubes = realloc(options->cubes, (size_t)capacity * sizeof *cubes);
-        if (cubes == NULL)
-            return luz_error_set(error, "%s:%d: out of memory", reader->path, reader->line);
-        options->cubes = cubes;
-        if (count > 0)
-            options->scene.objects = cubes;   /* never left dangling */
-        luz_cube_source *sources =
-            realloc(options->cube_sources, (size_t)capacity * sizeof *sources);
-        if (sources == NULL)
-            return luz_error_set(error, "%s:%d: out of memory", reader->path, reader->line);
-        options->cube_sources = sources;
-        options->cube_capacity = capacity;
+    char where[600];
+    snprintf(where, sizeof where, "%s:%d: %s", reader->path, reader->line, what);
+    if (text[0] == '"') {
+        char *after;
+        if (unquote(text, &after, where, error) != 0)
+            return NULL;
+        if (*after != '\0' && *after != ' ' && *after != '\t') {
+            luz_error_set(error,
+                          "%s: expected blanks then the next field after the closing quote, "
+                          "got '%s'",
+                          where, option_quote(after).text);
+            return NULL;
+        }
+        *word = text;
+        return after + strspn(after, " \t");
     }
-    char *name = NULL;
-    if (texture_name != NULL && (name = strdup(texture_name)) == NULL)
-        return luz_error_set(error, "%s:%d: out of memory", reader->path, reader->line);
-    options->cubes[count] = *cube;
-    options->cube_sources[count] = (luz_cube_source){.texture_name = name, .line = reader->line};
-    options->scene.objects = options->cubes;
-    options->scene.object_count = count + 1;
-    return 0;
+    size_t length = strcspn(text, " \t");
+    if (length == 0) {
+        luz_error_set(error, "%s: missing", where);
+        return NULL;
+    }
+    char *after = text + length;
+    char *next = after + strspn(after, " \t");
+    *after = '\0';
+    *word = text;
+    return next;
 }
 
-/* `cube = x, y, z [colour r,g,b] [texture NAME]`, the fields in any order. */
-static int read_cube(scene_reader *reader, char *value, luz_error *error)
+/* Three numbers up to the next field; *next is moved to it. */
+static option_parse_result read_triple(char *text, double numbers[3], char **next)
+{
+    char *end = find_field(text);
+    char saved = *end;
+    *end = '\0';
+    option_parse_result result = option_read_numbers(text, numbers, 3, true);
+    *end = saved;
+    *next = end;
+    return result;
+}
+
+/* The object lines:
+ *   cube = x, y, z [colour r,g,b] [texture NAME]
+ *   model = FILE [at x,y,z] [scale k] [colour r,g,b] [texture NAME] [still]
+ * the fields in any order. A model's FILE is relative to the scene file's
+ * directory and kept absolute. */
+static int read_object(scene_reader *reader, char *value, bool is_model, luz_error *error)
 {
     const char *path = reader->path;
-    int line = reader->line;
+    const int line = reader->line;
+    const char *kind = is_model ? "model" : "cube";
+    const char *syntax = is_model ? "FILE [at x,y,z] [scale k] [colour r,g,b] [texture NAME] "
+                                    "[still]"
+                                  : "x,y,z [colour r,g,b] [texture NAME]";
     if (reader->cubes_key_line != 0)
         return luz_error_set(error,
-                             "%s:%d: cube: expected either `cubes = N` or `cube` lines, not both "
-                             "(cubes is set on line %d)",
-                             path, line, reader->cubes_key_line);
+                             "%s:%d: %s: expected either `cubes = N` or cube and model lines, "
+                             "not both (cubes is set on line %d)",
+                             path, line, kind, reader->cubes_key_line);
     if (value[0] == '\0')
-        return luz_error_set(error,
-                             "%s:%d: cube: missing value (expected x,y,z [colour r,g,b] "
-                             "[texture NAME])",
-                             path, line);
+        return luz_error_set(error, "%s:%d: %s: missing value (expected %s)", path, line, kind,
+                             syntax);
     option_quoted original = option_quote(value);
 
-    luz_object cube = {.texture = LUZ_TEXTURE_BY_INDEX};
+    luz_object object = {.texture = LUZ_TEXTURE_BY_INDEX, .scale = 1.0f};
     const char *texture_name = NULL;
-    char *fields = find_field(value);
-    char saved = *fields;
-    *fields = '\0';
+    char model_path[4096];
+    char *fields;
     double numbers[3];
-    option_parse_result position = option_read_numbers(value, numbers, 3, true);
-    *fields = saved;
-    if (position == OPTION_PARSE_NOT_FINITE)
-        return luz_error_set(error, "%s:%d: cube: expected finite numbers, got '%s'", path, line,
-                             original.text);
-    if (position != OPTION_PARSE_OK)
-        return luz_error_set(error,
-                             "%s:%d: cube: expected x,y,z (three numbers) then optional colour "
-                             "r,g,b and texture NAME, got '%s'",
-                             path, line, original.text);
-    cube.position = luz_vec3_make((float)numbers[0], (float)numbers[1], (float)numbers[2]);
+    bool has_position = false, has_scale = false;
+    if (is_model) {
+        char *file;
+        if ((fields = read_word(reader, value, "model: FILE", &file, error)) == NULL)
+            return -1;
+        char directory[4096];
+        const char *slash = strrchr(path, '/');
+        snprintf(directory, sizeof directory, "%.*s", slash ? (int)(slash - path) : 0, path);
+        char where[600];
+        snprintf(where, sizeof where, "%s:%d: model", path, line);
+        luz_error inner;
+        if (luz_options_model_path(directory, file, model_path, sizeof model_path, &inner) != 0)
+            return luz_error_set(error, "%s: %s", where, inner.message);
+    } else {
+        option_parse_result position = read_triple(value, numbers, &fields);
+        if (position == OPTION_PARSE_NOT_FINITE)
+            return luz_error_set(error, "%s:%d: cube: expected finite numbers, got '%s'", path,
+                                 line, original.text);
+        if (position != OPTION_PARSE_OK)
+            return luz_error_set(error,
+                                 "%s:%d: cube: expected x,y,z (three numbers) then optional "
+                                 "colour r,g,b and texture NAME, got '%s'",
+                                 path, line, original.text);
+        object.position = luz_vec3_make((float)numbers[0], (float)numbers[1], (float)numbers[2]);
+    }
 
     while (*fields != '\0') {
         size_t length = strcspn(fields, " \t");
         char *rest = fields + length + strspn(fields + length, " \t");
-        bool is_colour = (length == 6 && memcmp(fields, "colour", 6) == 0) ||
-                         (length == 5 && memcmp(fields, "color", 5) == 0);
-        bool is_texture = length == 7 && memcmp(fields, "texture", 7) == 0;
-        if (is_colour) {
-            if (cube.has_colour)
-                return luz_error_set(error, "%s:%d: cube: duplicate colour field in '%s'", path,
-                                     line, original.text);
-            char *next = find_field(rest);
-            saved = *next;
-            *next = '\0';
-            option_parse_result colour = option_read_numbers(rest, numbers, 3, true);
-            *next = saved;
+#define FIELD_IS(word) (length == sizeof word - 1 && memcmp(fields, word, length) == 0)
+        if (FIELD_IS("colour") || FIELD_IS("color")) {
+            if (object.has_colour)
+                return luz_error_set(error, "%s:%d: %s: duplicate colour field in '%s'", path,
+                                     line, kind, original.text);
+            option_parse_result colour = read_triple(rest, numbers, &fields);
             bool in_range = colour == OPTION_PARSE_OK;
             for (int i = 0; i < 3 && in_range; i++)
                 in_range = numbers[i] >= 0.0 && numbers[i] <= 1.0;
             if (!in_range)
                 return luz_error_set(error,
-                                     "%s:%d: cube: expected colour r,g,b, each in [0, 1], got "
+                                     "%s:%d: %s: expected colour r,g,b, each in [0, 1], got "
                                      "'%s'",
-                                     path, line, original.text);
-            cube.has_colour = true;
-            cube.colour = luz_vec3_make((float)numbers[0], (float)numbers[1], (float)numbers[2]);
-            fields = next;
-        } else if (is_texture) {
+                                     path, line, kind, original.text);
+            object.has_colour = true;
+            object.colour = luz_vec3_make((float)numbers[0], (float)numbers[1], (float)numbers[2]);
+        } else if (FIELD_IS("texture")) {
             if (texture_name != NULL)
-                return luz_error_set(error, "%s:%d: cube: duplicate texture field in '%s'", path,
-                                     line, original.text);
-            if (rest[0] == '"') {
-                char where[600];
-                snprintf(where, sizeof where, "%s:%d: cube: texture", path, line);
-                char *after;
-                if (unquote(rest, &after, where, error) != 0)
-                    return -1;
-                if (*after != '\0' && *after != ' ' && *after != '\t')
-                    return luz_error_set(error,
-                                         "%s: expected blanks then the next field after the "
-                                         "closing quote, got '%s'",
-                                         where, option_quote(after).text);
-                fields = after + strspn(after, " \t");
-                texture_name = rest;
-                continue;
-            }
-            size_t name_length = strcspn(rest, " \t");
-            if (name_length == 0)
+                return luz_error_set(error, "%s:%d: %s: duplicate texture field in '%s'", path,
+                                     line, kind, original.text);
+            char what[32], *name;
+            snprintf(what, sizeof what, "%s: texture", kind);
+            if (rest[0] == '\0')
                 return luz_error_set(error,
-                                     "%s:%d: cube: expected texture NAME, a file of the textures "
+                                     "%s:%d: %s: expected texture NAME, a file of the textures "
                                      "directory, got '%s'",
+                                     path, line, kind, original.text);
+            if ((fields = read_word(reader, rest, what, &name, error)) == NULL)
+                return -1;
+            texture_name = name;
+        } else if (is_model && FIELD_IS("at")) {
+            option_parse_result at = read_triple(rest, numbers, &fields);
+            if (has_position || at != OPTION_PARSE_OK)
+                return luz_error_set(error,
+                                     "%s:%d: model: expected `at x,y,z` once, three finite "
+                                     "numbers, got '%s'",
                                      path, line, original.text);
-            char *after = rest + name_length;
-            fields = after + strspn(after, " \t");
-            *after = '\0';
-            texture_name = rest;
+            has_position = true;
+            object.position = luz_vec3_make((float)numbers[0], (float)numbers[1], (float)numbers[2]);
+        } else if (is_model && FIELD_IS("scale")) {
+            char *end = find_field(rest);
+            char saved = *end;
+            *end = '\0';
+            option_parse_result scale = option_read_numbers(rest, numbers, 1, true);
+            *end = saved;
+            const float k = (float)numbers[0];   /* above 0 and finite as a float */
+            if (has_scale || scale != OPTION_PARSE_OK || !(k > 0.0f) || isinf(k))
+                return luz_error_set(error,
+                                     "%s:%d: model: expected `scale k` once, k a number above "
+                                     "0, got '%s'",
+                                     path, line, original.text);
+            has_scale = true;
+            object.scale = (float)numbers[0];
+            fields = end;
+        } else if (is_model && FIELD_IS("still")) {
+            if (object.still)
+                return luz_error_set(error, "%s:%d: model: duplicate still field in '%s'", path,
+                                     line, original.text);
+            object.still = true;
+            fields = rest;
         } else {
             fields[length] = '\0';
-            return luz_error_set(error,
-                                 "%s:%d: cube: unknown field '%s' (expected colour r,g,b or "
-                                 "texture NAME)",
-                                 path, line, option_quote(fields).text);
+            return luz_error_set(error, "%s:%d: %s: unknown field '%s' (expected %s)", path,
+                                 line, kind, option_quote(fields).text,
+                                 is_model ? "at x,y,z, scale k, colour r,g,b, texture NAME or "
+                                            "still"
+                                          : "colour r,g,b or texture NAME");
         }
+#undef FIELD_IS
     }
 
-    /* The file's first cube line replaces whatever cubes came before (an
-     * earlier file, the tiling); the later ones add to it. */
+    /* The file's first object line replaces whatever objects came before
+     * (an earlier file, the tiling); the later ones add to it. */
     if (reader->first_cube_line == 0) {
-        luz_options_clear_cubes(reader->options);
+        luz_options_clear_objects(reader->options);
         reader->first_cube_line = line;
     }
-    return add_cube(reader, &cube, texture_name, error);
+    char where[600];
+    snprintf(where, sizeof where, "%s:%d: %s", path, line, kind);
+    return luz_options_add_object(reader->options, &object, texture_name,
+                                  is_model ? model_path : NULL, line, where, error);
 }
 
 /* ---- reading ------------------------------------------------------------------------- */
@@ -371,8 +422,8 @@ static int read_line(scene_reader *reader, char *text, luz_error *error)
         return luz_error_set(error, "%s:%d: expected `name = value`, got '%s'", path, line,
                              original.text);
 
-    if (strcmp(name, "cube") == 0)
-        return read_cube(reader, value, error);
+    if (strcmp(name, "cube") == 0 || strcmp(name, "model") == 0)
+        return read_object(reader, value, name[0] == 'm', error);
     if (strcmp(name, "help") == 0 || strcmp(name, "version") == 0 || strcmp(name, "scene") == 0)
         return luz_error_set(error, "%s:%d: `%s` is not allowed in a scene file", path, line,
                              name);
@@ -397,8 +448,8 @@ static int read_line(scene_reader *reader, char *text, luz_error *error)
     if (strcmp(name, "cubes") == 0) {
         if (reader->first_cube_line != 0)
             return luz_error_set(error,
-                                 "%s:%d: cubes: expected either `cubes = N` or `cube` lines, "
-                                 "not both (the first cube line is line %d)",
+                                 "%s:%d: cubes: expected either `cubes = N` or cube and model "
+                                 "lines, not both (the first is line %d)",
                                  path, line, reader->first_cube_line);
         reader->cubes_key_line = line;
     }
@@ -541,22 +592,38 @@ void luz_options_write_scene(const luz_options *options, FILE *out)
     }
     luz_options_free(&defaults);
     for (int i = 0; i < options->scene.object_count; i++) {
-        const luz_object *cube = &options->cubes[i];
+        const luz_object *object = &options->objects[i];
+        const luz_object_source *source = &options->object_sources[i];
         char x[32], y[32], z[32];
-        option_format_float(x, sizeof x, cube->position.x);
-        option_format_float(y, sizeof y, cube->position.y);
-        option_format_float(z, sizeof z, cube->position.z);
-        fprintf(out, "cube = %s, %s, %s", x, y, z);
-        if (cube->has_colour) {
-            option_format_float(x, sizeof x, cube->colour.x);
-            option_format_float(y, sizeof y, cube->colour.y);
-            option_format_float(z, sizeof z, cube->colour.z);
+        option_format_float(x, sizeof x, object->position.x);
+        option_format_float(y, sizeof y, object->position.y);
+        option_format_float(z, sizeof z, object->position.z);
+        if (source->model_path != NULL) {
+            /* The path is absolute, so the file opens from anywhere. */
+            fputs("model = ", out);
+            write_text(out, source->model_path, true);
+            if (object->position.x != 0.0f || object->position.y != 0.0f ||
+                object->position.z != 0.0f)
+                fprintf(out, " at %s, %s, %s", x, y, z);
+            if (object->scale != 1.0f && object->scale > 0.0f) {
+                option_format_float(x, sizeof x, object->scale);
+                fprintf(out, " scale %s", x);
+            }
+        } else {
+            fprintf(out, "cube = %s, %s, %s", x, y, z);
+        }
+        if (object->has_colour) {
+            option_format_float(x, sizeof x, object->colour.x);
+            option_format_float(y, sizeof y, object->colour.y);
+            option_format_float(z, sizeof z, object->colour.z);
             fprintf(out, " colour %s, %s, %s", x, y, z);
         }
-        if (options->cube_sources[i].texture_name != NULL) {
+        if (source->texture_name != NULL) {
             fputs(" texture ", out);
-            write_text(out, options->cube_sources[i].texture_name, true);
+            write_text(out, source->texture_name, true);
         }
+        if (source->model_path != NULL && object->still)
+            fputs(" still", out);
         fputc('\n', out);
     }
 }

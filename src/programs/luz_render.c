@@ -178,7 +178,7 @@ static int bench(render_context *context, luz_renderer *renderer, luz_error *err
         return -1;
     }
     luz_bench_print_case(stdout, options, measured.frames, options->width, options->height,
-                         threads);
+                         threads, luz_bench_triangles(&context->frame));
     luz_bench_print_figures(stdout, &measured);
     if (threads > 1) {
         const double median_ms = luz_median(measured.wall_ms, measured.frames);
@@ -196,6 +196,7 @@ int main(int argc, char **argv)
 {
     luz_options options;
     luz_texture_set textures = {0};
+    luz_model_set models = {0};
     luz_renderer *renderer = NULL;
     luz_lab *lab = NULL;
     render_context context = {.options = &options, .textures = &textures};
@@ -215,7 +216,8 @@ int main(int argc, char **argv)
         printf("luz-render %s\n", LUZ_VERSION);
         goto done;
     }
-    if (luz_options_load_textures(&options, &textures, &error) != 0) {
+    if (luz_options_load_textures(&options, &textures, &error) != 0 ||
+        luz_options_load_models(&options, &models, &error) != 0) {
         status = EXIT_USAGE;
         goto done;
     }
@@ -250,6 +252,7 @@ done:
     if (renderer != NULL)
         luz_renderer_destroy(renderer);
     luz_lab_destroy(lab);
+    luz_model_set_free(&models);
     luz_texture_set_free(&textures);
     luz_options_free(&options);
     if (fflush(stdout) != 0 && status == EXIT_OK) {

@@ -719,7 +719,8 @@ static int run_bench(viewer *v, luz_error *error)
     }
     if (measured.frames > 0) {
         luz_bench_print_case(stdout, v->options, measured.frames, v->window_width,
-                             v->window_height, luz_renderer_thread_count(v->renderer));
+                             v->window_height, luz_renderer_thread_count(v->renderer),
+                             luz_bench_triangles(&v->frame));
         if (v->settings.render_scale != 1.0f)
             printf("render_scale=%g ", v->settings.render_scale);
         printf("present=%s ", presenter_name(v));
@@ -788,6 +789,7 @@ int main(int argc, char **argv)
 {
     luz_options options;
     luz_texture_set textures = {0};
+    luz_model_set models = {0};
     viewer v = {
         .options = &options,
         .textures = &textures,
@@ -819,7 +821,8 @@ int main(int argc, char **argv)
         status = EXIT_OK;
         goto done;
     }
-    if (luz_options_load_textures(&options, &textures, &error) != 0 || open_window(&v, &error) != 0)
+    if (luz_options_load_textures(&options, &textures, &error) != 0 ||
+        luz_options_load_models(&options, &models, &error) != 0 || open_window(&v, &error) != 0)
         goto done;
 
     status = EXIT_RUNTIME;
@@ -866,6 +869,7 @@ done:
     if (v.window != NULL)
         SDL_DestroyWindow(v.window);
     SDL_Quit();
+    luz_model_set_free(&models);
     luz_texture_set_free(&textures);
     luz_options_free(&options);
     free(scene_argv);
