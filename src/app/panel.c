@@ -399,7 +399,7 @@ void luz_hud_draw_message(luz_layer *layer, const char *message)
 
 void luz_hud_draw(luz_layer *layer, const luz_hud *hud)
 {
-    enum { MAX_LINES = 10 };
+    enum { MAX_LINES = 12 };
     const luz_scene *scene = hud->scene;
     const luz_camera *camera = &scene->camera;
     char lines[MAX_LINES][160];
@@ -420,9 +420,24 @@ void luz_hud_draw(luz_layer *layer, const luz_hud *hud)
     snprintf(lines[4], sizeof lines[4], "time %.2f s%s  filter %s  seed %lu", scene->time_seconds,
              hud->paused ? " (paused)" : "", luz_filter_name(scene->filter),
              (unsigned long)scene->seed);
+    /* What is drawn: the model's name (the first model's, with how many
+     * more there are), or the cubes, and the triangles. */
+    const luz_lab_model *model = NULL;
+    const int objects = scene->objects ? scene->object_count : scene->cube_count;
+    for (int i = 0; scene->objects && i < scene->object_count && model == NULL; i++)
+        model = scene->objects[i].model;
+    if (model != NULL && objects > 1)
+        snprintf(lines[5], sizeof lines[5], "%s and %d more objects  %llu triangles",
+                 model->name, objects - 1, (unsigned long long)hud->triangles);
+    else if (model != NULL)
+        snprintf(lines[5], sizeof lines[5], "%s  %llu triangles", model->name,
+                 (unsigned long long)hud->triangles);
+    else
+        snprintf(lines[5], sizeof lines[5], "%d cubes  %llu triangles", objects,
+                 (unsigned long long)hud->triangles);
     /* The teaching controls: the view (V) with its legend, the
      * interpolation (X) and the step mode (G). */
-    int count = 5;
+    int count = 6;
     snprintf(lines[count++], sizeof lines[0], "view %s (V)  interp %s (X)",
              luz_view_name(scene->view), luz_interpolation_name(scene->interpolation));
     if (scene->view != LUZ_VIEW_COLOR)

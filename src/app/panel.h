@@ -205,6 +205,7 @@ typedef struct luz_hud {
     bool panel_open;
     uint32_t step_shown;      /* the step mode's triangles drawn, 0 when off */
     uint64_t step_total;      /* and the frame's triangles */
+    uint64_t triangles;       /* the last frame's, submitted */
     const luz_scene *scene;   /* its view and interpolation are shown too, with
                                  the view's legend (luz_view_legend) */
 } luz_hud;

@@ -567,6 +567,7 @@ static int record_overlays(viewer *v, luz_error *error)
                 .panel_open = v->panel_open,
                 .step_shown = v->step_limit,
                 .step_total = v->stats.triangles_rasterised,
+                .triangles = v->stats.triangles_submitted,
                 .scene = &v->options->scene,
             };
             luz_hud_draw(layer, &hud);
