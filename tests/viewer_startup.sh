@@ -59,6 +59,23 @@ if [ "$status" -ne 2 ] || [ "$(wc -l <"$work/err")" -ne 1 ] ||
    ! grep -q '^luz: cannot open a window: no display available .*luz-render' "$work/err"; then
     fail "without a display: status $status, stderr '$(cat "$work/err")'"
 fi
+# The same when SDL is left to choose, with no display or a dead one: SDL
+# would fall back to its offscreen driver and luz would render into nothing
+# forever. One line, status 2, well within the time limit.
+for display in "" ":97"; do
+    if [ -n "$display" ]; then
+        DISPLAY=$display timeout 10 env -u WAYLAND_DISPLAY -u SDL_VIDEODRIVER "$luz" \
+            >"$work/out" 2>"$work/err"
+    else
+        timeout 10 env -u DISPLAY -u WAYLAND_DISPLAY -u SDL_VIDEODRIVER "$luz" \
+            >"$work/out" 2>"$work/err"
+    fi
+    status=$?
+    if [ "$status" -ne 2 ] || [ "$(wc -l <"$work/err")" -ne 1 ] ||
+       ! grep -q '^luz: cannot open a window: no display available' "$work/err"; then
+        fail "no display '${display:-unset}', SDL's choice: status $status, stderr '$(cat "$work/err")'"
+    fi
+done
 
 # --help and --version succeed on stdout.
 "$luz" --version >"$work/out" 2>"$work/err" || fail "luz --version failed"

@@ -748,12 +748,27 @@ static int open_window(viewer *v, luz_error *error)
     SDL_SetHint(SDL_HINT_RENDER_VSYNC, "0");          /* as fast as it renders */
     SDL_SetHint(SDL_HINT_RENDER_SCALE_QUALITY, "nearest");   /* luz's own pixels */
     SDL_SetHint(SDL_HINT_VIDEO_MINIMIZE_ON_FOCUS_LOSS, "0");
+    /* Without a Wayland display, asking libwayland for one only prints
+     * its own complaint on stderr: try X11 alone, unless the user chose. */
+    const char *asked = getenv("SDL_VIDEODRIVER");
+    const char *wayland = getenv("WAYLAND_DISPLAY");
+    if ((asked == NULL || asked[0] == '\0') && (wayland == NULL || wayland[0] == '\0'))
+        SDL_SetHint(SDL_HINT_VIDEODRIVER, "x11");
     if (SDL_Init(SDL_INIT_VIDEO) != 0)
         return luz_error_set(error,
                              "cannot open a window: no display available (%s); luz-render "
                              "renders the same scene to PNG files",
                              SDL_GetError());
     const char *driver = SDL_GetCurrentVideoDriver();
+    /* With no display to reach, SDL falls back to drivers that show
+     * nothing (offscreen, dummy): a window nobody can see, rendered into
+     * forever. Only a user who asked for such a driver gets one. */
+    if ((asked == NULL || asked[0] == '\0') && driver != NULL &&
+        (strcmp(driver, "offscreen") == 0 || strcmp(driver, "dummy") == 0))
+        return luz_error_set(error,
+                             "cannot open a window: no display available (no X11 or Wayland "
+                             "display could be reached); luz-render renders the same scene to "
+                             "PNG files");
     if (driver != NULL && strcmp(driver, "x11") == 0) {
         SDL_SetHint(SDL_HINT_FRAMEBUFFER_ACCELERATION, "0");
         SDL_SetHint(SDL_HINT_RENDER_DRIVER, "software");
