@@ -17,10 +17,15 @@
  *     mip chains, which SCENE.md defines to the bit;
  *   - its own: the cube's vertices (copied from SCENE.md's table), every
  *     transform (camera front, lookAt, perspective, the cubes' rotation, the
- *     orbits), written here in double precision, and the fragment shader,
- *     GLSL that follows SCENE.md's equations line by line. A mistake in
- *     luz's math therefore shows up as a difference instead of hiding in
- *     both renderers.
+ *     orbits, the normal matrix), written here in double precision, and the
+ *     fragment shader, GLSL that follows SCENE.md's equations line by line.
+ *     A mistake in luz's math therefore shows up as a difference instead of
+ *     hiding in both renderers.
+ *   - models (SCENE.md, "Models"): glref reads the files with assimp's C API
+ *     itself, with the contract's post-processing steps, and computes the
+ *     bounds, the normalisation, the placement and each mesh's colour and
+ *     texture on its own; of luz it uses only the image decoder for the
+ *     textures the materials name (files, or embedded ones from memory).
  *
  * Making the two images comparable pixel for pixel:
  *
@@ -45,17 +50,29 @@
  */
 #define GL_GLEXT_PROTOTYPES 1
 
+#include <errno.h>
+#include <math.h>
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 #include <GL/glcorearb.h>
+
+#if defined(GLREF_HAVE_ASSIMP)
+#include <assimp/cimport.h>
+#include <assimp/material.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <assimp/version.h>
+#endif
 
 #include "luz/luz.h"
 #include "app/bench.h"
@@ -80,9 +97,10 @@ enum {
 
 /* ---- the cube of SCENE.md, copied from its table ------------------------------------ */
 
-typedef struct cube_vertex {
+/* A vertex as the vertex shader reads it: the cube's, and the models'. */
+typedef struct gl_vertex {
     float position[3], normal[3], uv[2];
-} cube_vertex;
+} gl_vertex;
 
 /* Face by face in SCENE.md's order (+Z, -Z, +X, -X, +Y, -Y); the corners of
  * each with uv (0,1), (1,1), (1,0), (0,0). */
@@ -181,6 +199,33 @@ static matrix perspective(double fovy_radians, double aspect, double near, doubl
     return a;
 }
 
+static matrix matrix_multiply(matrix a, matrix b)
+{
+    matrix product = {{0}};
+    for (int r = 0; r < 4; r++)
+        for (int c = 0; c < 4; c++)
+            for (int k = 0; k < 4; k++) M(product, r, c) += M(a, r, k) * M(b, k, c);
+    return product;
+}
+
+/* The inverse transpose of a's upper 3x3 (SCENE.md: normals go to world
+ * space with it), column-major like GL's mat3: the cofactor matrix divided
+ * by the determinant. */
+static void normal_matrix(matrix a, float out[9])
+{
+    double cofactor[3][3];
+    for (int r = 0; r < 3; r++) {
+        for (int c = 0; c < 3; c++) {
+            int r0 = (r + 1) % 3, r1 = (r + 2) % 3, c0 = (c + 1) % 3, c1 = (c + 2) % 3;
+            cofactor[r][c] = M(a, r0, c0) * M(a, r1, c1) - M(a, r0, c1) * M(a, r1, c0);
+        }
+    }
+    double determinant = M(a, 0, 0) * cofactor[0][0] + M(a, 0, 1) * cofactor[0][1] +
+                         M(a, 0, 2) * cofactor[0][2];
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++) out[c * 3 + r] = (float)(cofactor[r][c] / determinant);
+}
+
 static void matrix_to_floats(matrix a, float out[16])
 {
     for (int k = 0; k < 16; k++) out[k] = (float)a.m[k];
@@ -194,6 +239,7 @@ static const char *const vertex_shader_source =
     "layout(location = 1) in vec3 normal;\n"
     "layout(location = 2) in vec2 uv;\n"
     "uniform mat4 model;\n"
+    "uniform mat3 normal_matrix;   // inverse transpose of mat3(model), in double on the CPU\n"
     "uniform mat4 view;\n"
     "uniform mat4 projection;\n"
     "out vec3 world_position;\n"
@@ -203,7 +249,7 @@ static const char *const vertex_shader_source =
     "{\n"
     "    vec4 world = model * vec4(position, 1.0);\n"
     "    world_position = world.xyz;\n"
-    "    world_normal = transpose(inverse(mat3(model))) * normal;\n"
+    "    world_normal = normal_matrix * normal;\n"
     "    texture_coordinate = uv;\n"
     "    gl_Position = projection * view * world;\n"
     "    gl_Position.y = -gl_Position.y;   // luz's row 0 is the top\n"
@@ -267,19 +313,44 @@ static const char *const fragment_shader_source =
 /* ---- the GL state ---------------------------------------------------------------------- */
 
 typedef struct uniform_locations {
-    GLint model, view, projection;
+    GLint model, normal_matrix, view, projection;
     GLint lights[LUZ_TERM_COUNT];
     GLint shininess, camera_position, camera_front, point_position, sun_direction;
     GLint cos_inner, cos_outer, reach, object_colour, unlit, textured, image;
 } uniform_locations;
 
+/* One triangle mesh of a model file, in GL buffers (uploaded once), with
+ * its colour and texture by SCENE.md's rules for the material. */
+typedef struct gl_model_mesh {
+    GLuint vertex_array, vertex_buffer, index_buffer;
+    GLsizei index_count;
+    bool has_colour;      /* the material's diffuse colour (not DefaultMaterial's) */
+    float colour[3];
+    bool has_uvs;         /* without, T = 1 */
+    GLuint texture;       /* the material's first diffuse texture; 0: white */
+} gl_model_mesh;
+
+/* One model file, read once however many objects place it. */
+typedef struct gl_model {
+    const char *path;     /* the options' absolute path */
+    gl_model_mesh *meshes;
+    int mesh_count;
+    GLuint *textures;     /* every texture its materials name, once */
+    char **texture_names;
+    int texture_count;
+    matrix normalisation; /* Norm = Scale(2 / s) * Translate(-c) */
+    uint64_t triangle_count;
+} gl_model;
+
 typedef struct gl_reference {
     EGLDisplay display;
     EGLContext context;
     GLuint framebuffer, colour_buffer, depth_buffer;
-    GLuint program, vertex_array, vertex_buffer, index_buffer;
+    GLuint program, vertex_array, vertex_buffer, index_buffer;   /* the cube */
     GLuint *textures;   /* one per texture in the set */
     int texture_count;
+    gl_model *models;   /* the model files the objects name */
+    int model_count;
     uniform_locations uniforms;
     int width, height;
 } gl_reference;
@@ -387,6 +458,7 @@ static int build_program(gl_reference *gl, luz_error *error)
     uniform_locations *u = &gl->uniforms;
     GLuint p = gl->program;
     u->model = glGetUniformLocation(p, "model");
+    u->normal_matrix = glGetUniformLocation(p, "normal_matrix");
     u->view = glGetUniformLocation(p, "view");
     u->projection = glGetUniformLocation(p, "projection");
     static const char *const light_names[LUZ_TERM_COUNT] = {"A", "D", "S", "Pt", "Sp", "Dl"};
@@ -408,13 +480,25 @@ static int build_program(gl_reference *gl, luz_error *error)
     return 0;
 }
 
+/* The layout of gl_vertex for the vertex array and buffer bound. */
+static void describe_vertices(void)
+{
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(gl_vertex),
+                          (void *)offsetof(gl_vertex, position));
+    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(gl_vertex),
+                          (void *)offsetof(gl_vertex, normal));
+    glVertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, sizeof(gl_vertex),
+                          (void *)offsetof(gl_vertex, uv));
+    for (GLuint k = 0; k < 3; k++) glEnableVertexAttribArray(k);
+}
+
 static void upload_cube(gl_reference *gl)
 {
-    cube_vertex vertices[24];
+    gl_vertex vertices[24];
     uint16_t indices[36];
     for (int face = 0; face < 6; face++) {
         for (int corner = 0; corner < 4; corner++) {
-            cube_vertex *v = &vertices[face * 4 + corner];
+            gl_vertex *v = &vertices[face * 4 + corner];
             memcpy(v->position, face_corners[face][corner], sizeof v->position);
             memcpy(v->normal, face_normals[face], sizeof v->normal);
             memcpy(v->uv, corner_uvs[corner], sizeof v->uv);
@@ -431,17 +515,33 @@ static void upload_cube(gl_reference *gl)
     glGenBuffers(1, &gl->index_buffer);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, gl->index_buffer);
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, sizeof indices, indices, GL_STATIC_DRAW);
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(cube_vertex),
-                          (void *)offsetof(cube_vertex, position));
-    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(cube_vertex),
-                          (void *)offsetof(cube_vertex, normal));
-    glVertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, sizeof(cube_vertex),
-                          (void *)offsetof(cube_vertex, uv));
-    for (GLuint k = 0; k < 3; k++) glEnableVertexAttribArray(k);
+    describe_vertices();
 }
 
 /* Every level of luz's chain (SCENE.md's box filter) as it is, rows in file
- * order, with the filter --filter names. */
+ * order, with the filter --filter names, into the texture object `name`. */
+static void upload_texture(GLuint name, const luz_texture *texture, luz_filter filter)
+{
+    GLint minify = filter == LUZ_FILTER_NEAREST    ? GL_NEAREST
+                   : filter == LUZ_FILTER_BILINEAR ? GL_LINEAR
+                                                   : GL_LINEAR_MIPMAP_LINEAR;
+    GLint magnify = filter == LUZ_FILTER_NEAREST ? GL_NEAREST : GL_LINEAR;
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glBindTexture(GL_TEXTURE_2D, name);
+    for (int level = 0; level < texture->level_count; level++) {
+        const luz_texture_level *l = &texture->levels[level];
+        glTexImage2D(GL_TEXTURE_2D, level, GL_RGBA8, l->width, l->height, 0, GL_RGBA,
+                     GL_UNSIGNED_BYTE, l->texels);
+    }
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, 0);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, texture->level_count - 1);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, minify);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, magnify);
+}
+
+/* The cube textures: the set's images, in its order. */
 static int upload_textures(gl_reference *gl, const luz_texture_set *set, luz_filter filter,
                            luz_error *error)
 {
@@ -450,28 +550,344 @@ static int upload_textures(gl_reference *gl, const luz_texture_set *set, luz_fil
     gl->textures = calloc((size_t)set->count, sizeof *gl->textures);
     if (gl->textures == NULL) return luz_error_set(error, "out of memory for the textures");
     glGenTextures(set->count, gl->textures);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    GLint minify = filter == LUZ_FILTER_NEAREST    ? GL_NEAREST
-                   : filter == LUZ_FILTER_BILINEAR ? GL_LINEAR
-                                                   : GL_LINEAR_MIPMAP_LINEAR;
-    GLint magnify = filter == LUZ_FILTER_NEAREST ? GL_NEAREST : GL_LINEAR;
-    for (int i = 0; i < set->count; i++) {
-        const luz_texture *texture = set->textures[i];
-        glBindTexture(GL_TEXTURE_2D, gl->textures[i]);
-        for (int level = 0; level < texture->level_count; level++) {
-            const luz_texture_level *l = &texture->levels[level];
-            glTexImage2D(GL_TEXTURE_2D, level, GL_RGBA8, l->width, l->height, 0, GL_RGBA,
-                         GL_UNSIGNED_BYTE, l->texels);
-        }
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, 0);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, texture->level_count - 1);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, minify);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, magnify);
-    }
+    for (int i = 0; i < set->count; i++) upload_texture(gl->textures[i], set->textures[i], filter);
     if (glGetError() != GL_NO_ERROR)
         return luz_error_set(error, "OpenGL refused the textures");
+    return 0;
+}
+
+/* ---- models: SCENE.md's "Models", read with assimp here, not with luz's io ---------- */
+
+static void free_model(gl_model *model)
+{
+    for (int m = 0; m < model->mesh_count; m++) {
+        gl_model_mesh *mesh = &model->meshes[m];
+        glDeleteBuffers(1, &mesh->vertex_buffer);
+        glDeleteBuffers(1, &mesh->index_buffer);
+        glDeleteVertexArrays(1, &mesh->vertex_array);
+    }
+    if (model->texture_count > 0) glDeleteTextures(model->texture_count, model->textures);
+    for (int k = 0; k < model->texture_count; k++) free(model->texture_names[k]);
+    free(model->texture_names);
+    free(model->textures);
+    free(model->meshes);
+    memset(model, 0, sizeof *model);
+}
+
+#if !defined(GLREF_HAVE_ASSIMP)
+
+static int load_model(gl_model *model, const char *path, luz_filter filter, luz_error *error)
+{
+    (void)model;
+    (void)filter;
+    return luz_error_set(error, "%s: this glref was built without assimp (libassimp-dev), "
+                                "so it draws no models", path);
+}
+
+#else
+
+/* SCENE.md's post-processing steps, exactly. */
+static const unsigned int model_steps =
+    aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_GenSmoothNormals |
+    aiProcess_PreTransformVertices | aiProcess_SortByPType | aiProcess_FlipUVs |
+    aiProcess_ValidateDataStructure;
+
+/* The embedded texture a material names: "*N", or the embedded texture's
+ * own file name. NULL if there is none. */
+static const struct aiTexture *embedded_texture(const struct aiScene *scene, const char *name)
+{
+    if (name[0] == '*') {
+        char *end;
+        errno = 0;
+        unsigned long index = strtoul(name + 1, &end, 10);
+        if (errno != 0 || end == name + 1 || *end != '\0' || index >= scene->mNumTextures)
+            return NULL;
+        return scene->mTextures[index];
+    }
+    for (unsigned k = 0; k < scene->mNumTextures; k++)
+        if (strcmp(scene->mTextures[k]->mFilename.data, name) == 0) return scene->mTextures[k];
+    return NULL;
+}
+
+/* An embedded texture decoded: an encoded image of mWidth bytes (mHeight
+ * 0), or mWidth x mHeight aiTexels (b, g, r, a). */
+static luz_texture *decode_embedded(const struct aiTexture *embedded, const char *name,
+                                    luz_error *error)
+{
+    if (embedded->mHeight == 0)
+        return luz_texture_load_memory((const unsigned char *)embedded->pcData,
+                                       embedded->mWidth, name, error);
+    size_t count = (size_t)embedded->mWidth * embedded->mHeight;
+    uint8_t *rgba = malloc(count * 4 + 1);
+    if (rgba == NULL) {
+        luz_error_set(error, "out of memory");
+        return NULL;
+    }
+    for (size_t k = 0; k < count; k++) {
+        rgba[k * 4 + 0] = embedded->pcData[k].r;
+        rgba[k * 4 + 1] = embedded->pcData[k].g;
+        rgba[k * 4 + 2] = embedded->pcData[k].b;
+        rgba[k * 4 + 3] = embedded->pcData[k].a;
+    }
+    luz_texture *texture =
+        luz_texture_create((int)embedded->mWidth, (int)embedded->mHeight, rgba, error);
+    free(rgba);
+    return texture;
+}
+
+/* The texture a material names, as a GL texture, decoded and uploaded once
+ * per model: embedded in the file, else a file relative to the model's
+ * directory with backslashes read as slashes. */
+static int model_texture(gl_model *model, const struct aiScene *scene, const char *name,
+                         luz_filter filter, GLuint *out, luz_error *error)
+{
+    for (int k = 0; k < model->texture_count; k++) {
+        if (strcmp(model->texture_names[k], name) == 0) {
+            *out = model->textures[k];
+            return 0;
+        }
+    }
+    luz_error inner = {{0}};
+    luz_texture *texture = NULL;
+    const struct aiTexture *embedded = embedded_texture(scene, name);
+    if (embedded != NULL) {
+        texture = decode_embedded(embedded, name, &inner);
+    } else if (name[0] == '*') {
+        luz_error_set(&inner, "no such embedded texture");
+    } else {
+        char file[4096], joined[8192];
+        snprintf(file, sizeof file, "%s", name);
+        for (char *c = file; *c != '\0'; c++)
+            if (*c == '\\') *c = '/';
+        const char *slash = strrchr(model->path, '/');
+        if (file[0] == '/' || slash == NULL)
+            snprintf(joined, sizeof joined, "%s", file);
+        else
+            snprintf(joined, sizeof joined, "%.*s/%s", (int)(slash - model->path), model->path,
+                     file);
+        struct stat status;
+        if (stat(joined, &status) != 0)
+            luz_error_set(&inner, "%s: %s", joined, strerror(errno));
+        else if (!S_ISREG(status.st_mode))
+            luz_error_set(&inner, "%s: not a regular file", joined);
+        else
+            texture = luz_texture_load(joined, &inner);
+    }
+    if (texture == NULL)
+        return luz_error_set(error, "%s: texture '%s': %s", model->path, name, inner.message);
+
+    GLuint *textures = realloc(model->textures, (size_t)(model->texture_count + 1) *
+                                                    sizeof *textures);
+    if (textures != NULL) model->textures = textures;
+    char **names = realloc(model->texture_names, (size_t)(model->texture_count + 1) *
+                                                     sizeof *names);
+    if (names != NULL) model->texture_names = names;
+    char *copy = malloc(strlen(name) + 1);
+    if (textures == NULL || names == NULL || copy == NULL) {
+        free(copy);
+        luz_texture_destroy(texture);
+        return luz_error_set(error, "%s: out of memory for its textures", model->path);
+    }
+    strcpy(copy, name);
+    GLuint gl_name;
+    glGenTextures(1, &gl_name);
+    upload_texture(gl_name, texture, filter);
+    luz_texture_destroy(texture);
+    model->textures[model->texture_count] = gl_name;
+    model->texture_names[model->texture_count++] = copy;
+    *out = gl_name;
+    return 0;
+}
+
+/* The mesh's colour C by SCENE.md (before the object's own): the
+ * material's diffuse colour, unless the material is assimp's stand-in
+ * "DefaultMaterial" or has none. */
+static bool material_colour(const struct aiMaterial *material, float colour[3])
+{
+    struct aiString name;
+    if (aiGetMaterialString(material, AI_MATKEY_NAME, &name) == aiReturn_SUCCESS &&
+        strcmp(name.data, "DefaultMaterial") == 0)
+        return false;
+    struct aiColor4D diffuse;
+    if (aiGetMaterialColor(material, AI_MATKEY_COLOR_DIFFUSE, &diffuse) != aiReturn_SUCCESS)
+        return false;
+    colour[0] = diffuse.r;
+    colour[1] = diffuse.g;
+    colour[2] = diffuse.b;
+    return true;
+}
+
+/* One mesh of the file with its triangles (faces of 3 indices; points and
+ * lines dropped): its vertices and 32-bit indices into GL buffers, its
+ * colour and texture. *kept is false for a mesh with no triangles. bounds
+ * grows by its vertices (min x, y, z, then max). */
+static int load_mesh(gl_model *model, const struct aiScene *scene, unsigned index,
+                     luz_filter filter, bool *kept, double bounds[6], luz_error *error)
+{
+    const struct aiMesh *source = scene->mMeshes[index];
+    *kept = false;
+    size_t triangles = 0;
+    for (unsigned f = 0; f < source->mNumFaces; f++) triangles += source->mFaces[f].mNumIndices == 3;
+    if (triangles == 0 || source->mNumVertices == 0) return 0;
+
+    gl_vertex *vertices = malloc((size_t)source->mNumVertices * sizeof *vertices);
+    uint32_t *indices = malloc(triangles * 3 * sizeof *indices);
+    if (vertices == NULL || indices == NULL) {
+        free(vertices);
+        free(indices);
+        return luz_error_set(error, "%s: out of memory for mesh %u", model->path, index);
+    }
+    const struct aiVector3D *uvs = source->mTextureCoords[0];
+    for (unsigned v = 0; v < source->mNumVertices; v++) {
+        const struct aiVector3D p = source->mVertices[v];
+        if (!isfinite(p.x) || !isfinite(p.y) || !isfinite(p.z)) {
+            free(vertices);
+            free(indices);
+            return luz_error_set(error, "%s: mesh %u: vertex %u is not finite", model->path,
+                                 index, v);
+        }
+        const double position[3] = {p.x, p.y, p.z};
+        for (int k = 0; k < 3; k++) {
+            bounds[k] = fmin(bounds[k], position[k]);
+            bounds[3 + k] = fmax(bounds[3 + k], position[k]);
+        }
+        gl_vertex *out = &vertices[v];
+        *out = (gl_vertex){{p.x, p.y, p.z}, {0.0f, 0.0f, 0.0f}, {0.0f, 0.0f}};
+        if (source->mNormals != NULL) {
+            out->normal[0] = source->mNormals[v].x;
+            out->normal[1] = source->mNormals[v].y;
+            out->normal[2] = source->mNormals[v].z;
+        }
+        if (uvs != NULL) {
+            out->uv[0] = uvs[v].x;
+            out->uv[1] = uvs[v].y;
+        }
+    }
+    size_t written = 0;
+    for (unsigned f = 0; f < source->mNumFaces; f++) {
+        const struct aiFace *face = &source->mFaces[f];
+        if (face->mNumIndices != 3) continue;
+        for (int k = 0; k < 3; k++) {
+            if (face->mIndices[k] >= source->mNumVertices) {
+                free(vertices);
+                free(indices);
+                return luz_error_set(error, "%s: mesh %u: index %u out of range", model->path,
+                                     index, face->mIndices[k]);
+            }
+            indices[written++] = face->mIndices[k];
+        }
+    }
+
+    gl_model_mesh mesh = {.index_count = (GLsizei)(triangles * 3), .has_uvs = uvs != NULL};
+    glGenVertexArrays(1, &mesh.vertex_array);
+    glBindVertexArray(mesh.vertex_array);
+    glGenBuffers(1, &mesh.vertex_buffer);
+    glBindBuffer(GL_ARRAY_BUFFER, mesh.vertex_buffer);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(source->mNumVertices * sizeof *vertices), vertices,
+                 GL_STATIC_DRAW);
+    glGenBuffers(1, &mesh.index_buffer);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.index_buffer);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(triangles * 3 * sizeof *indices), indices,
+                 GL_STATIC_DRAW);
+    describe_vertices();
+    free(vertices);
+    free(indices);
+    gl_model_mesh *meshes = realloc(model->meshes, (size_t)(model->mesh_count + 1) * sizeof *meshes);
+    if (meshes == NULL) {
+        glDeleteBuffers(1, &mesh.vertex_buffer);
+        glDeleteBuffers(1, &mesh.index_buffer);
+        glDeleteVertexArrays(1, &mesh.vertex_array);
+        return luz_error_set(error, "%s: out of memory for its meshes", model->path);
+    }
+    model->meshes = meshes;
+    model->meshes[model->mesh_count++] = mesh;
+    model->triangle_count += triangles;
+    *kept = true;
+
+    /* Colour and texture of its material: the first diffuse texture, for a
+     * mesh with texture coordinates. */
+    gl_model_mesh *added = &model->meshes[model->mesh_count - 1];
+    if (source->mMaterialIndex >= scene->mNumMaterials) return 0;
+    const struct aiMaterial *material = scene->mMaterials[source->mMaterialIndex];
+    added->has_colour = material_colour(material, added->colour);
+    struct aiString texture_name;
+    if (added->has_uvs && aiGetMaterialTextureCount(material, aiTextureType_DIFFUSE) > 0 &&
+        aiGetMaterialTexture(material, aiTextureType_DIFFUSE, 0, &texture_name, NULL, NULL, NULL,
+                             NULL, NULL, NULL) == aiReturn_SUCCESS &&
+        texture_name.data[0] != '\0')
+        return model_texture(model, scene, texture_name.data, filter, &added->texture, error);
+    return 0;
+}
+
+/* Reads the model file at path (absolute, from the options) into GL
+ * buffers and textures, and computes its normalisation. Returns 0, or -1
+ * with a message naming the file. */
+static int load_model(gl_model *model, const char *path, luz_filter filter, luz_error *error)
+{
+    memset(model, 0, sizeof *model);
+    model->path = path;
+    const struct aiScene *scene = aiImportFile(path, model_steps);
+    if (scene == NULL)
+        return luz_error_set(error, "%s: assimp cannot read it (%s)", path, aiGetErrorString());
+    double bounds[6] = {INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY, -INFINITY};
+    int status = 0;
+    for (unsigned m = 0; m < scene->mNumMeshes && status == 0; m++) {
+        bool kept;
+        status = load_mesh(model, scene, m, filter, &kept, bounds, error);
+    }
+    aiReleaseImport(scene);
+    glBindVertexArray(0);
+    if (status != 0) return -1;
+    if (model->mesh_count == 0) return luz_error_set(error, "%s: no triangles", path);
+    if (glGetError() != GL_NO_ERROR)
+        return luz_error_set(error, "%s: OpenGL refused its buffers or textures", path);
+
+    /* Norm = Scale(2 / s) * Translate(-c): c the box's centre, s its largest side. */
+    double centre[3], side = 0.0;
+    for (int k = 0; k < 3; k++) {
+        centre[k] = (bounds[k] + bounds[3 + k]) / 2.0;
+        side = fmax(side, bounds[3 + k] - bounds[k]);
+    }
+    if (!(side > 0.0)) return luz_error_set(error, "%s: the model has zero size", path);
+    matrix norm = matrix_identity();
+    for (int k = 0; k < 3; k++) {
+        M(norm, k, k) = 2.0 / side;
+        M(norm, k, 3) = -centre[k] * (2.0 / side);
+    }
+    model->normalisation = norm;
+    return 0;
+}
+
+#endif
+
+/* Every model file the objects name, each read once; object_models[i] is
+ * object i's model (an index into gl->models), or -1 for a cube. */
+static int load_models(gl_reference *gl, const luz_options *options, luz_filter filter,
+                       int *object_models, luz_error *error)
+{
+    const int count = options->scene.objects ? options->scene.object_count : 0;
+    for (int i = 0; i < count; i++) {
+        const char *path = options->object_sources[i].model_path;
+        object_models[i] = -1;
+        if (path == NULL) continue;
+        for (int m = 0; m < gl->model_count && object_models[i] < 0; m++)
+            if (strcmp(gl->models[m].path, path) == 0) object_models[i] = m;
+        if (object_models[i] >= 0) continue;
+        gl_model *models = realloc(gl->models, (size_t)(gl->model_count + 1) * sizeof *models);
+        if (models == NULL) return luz_error_set(error, "out of memory for the models");
+        gl->models = models;
+        gl_model *model = &gl->models[gl->model_count++];
+        if (load_model(model, path, filter, error) != 0) {
+            const luz_object_source *source = &options->object_sources[i];
+            if (source->line > 0 && options->scene_path != NULL) {
+                luz_error inner = *error;
+                luz_error_set(error, "%s:%d: model: %s", options->scene_path, source->line,
+                              inner.message);
+            }
+            return -1;
+        }
+        object_models[i] = gl->model_count - 1;
+    }
     return 0;
 }
 
@@ -521,6 +937,7 @@ static void close_reference(gl_reference *gl)
     if (gl->context != EGL_NO_CONTEXT) {
         if (gl->textures != NULL) glDeleteTextures(gl->texture_count, gl->textures);
         if (gl->program != 0) glDeleteProgram(gl->program);
+        for (int m = 0; m < gl->model_count; m++) free_model(&gl->models[m]);
         glDeleteBuffers(1, &gl->vertex_buffer);
         glDeleteBuffers(1, &gl->index_buffer);
         glDeleteVertexArrays(1, &gl->vertex_array);
@@ -532,15 +949,27 @@ static void close_reference(gl_reference *gl)
     }
     eglTerminate(gl->display);
     free(gl->textures);
+    free(gl->models);
 }
 
 /* ---- one frame ---------------------------------------------------------------------------- */
 
 typedef struct scene_data {
     const luz_options *options;
-    luz_vec3 *colours;   /* objectColor per cube */
-    int cube_count;
+    luz_vec3 *colours;   /* objectColor per object index (the seed's) */
+    int object_count;    /* cubes and models */
+    int *object_models;  /* per object: index into gl->models, -1 a cube */
 } scene_data;
+
+/* The model matrix and its normal matrix, from double precision. */
+static void set_model(const uniform_locations *u, matrix model)
+{
+    float floats[16], normals[9];
+    matrix_to_floats(model, floats);
+    normal_matrix(model, normals);
+    glUniformMatrix4fv(u->model, 1, GL_FALSE, floats);
+    glUniformMatrix3fv(u->normal_matrix, 1, GL_FALSE, normals);
+}
 
 static void set_light(GLint location, const luz_light *light)
 {
@@ -594,39 +1023,81 @@ static void draw_frame(gl_reference *gl, const scene_data *data, double t, frame
 
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 
-    /* Cubes 0 .. N-1 in order: M_i = T(p_i) R((i + 1) / 3 * t * 50 degrees). */
+    /* Objects 0 .. N-1 in order, cubes and models: M_i = T(p_i) R(angle_i)
+     * for a cube, T(p_i) R(angle_i) S(k) Norm for a model (angle_i 0 if it
+     * is still), angle_i = (i + 1) / 3 * t * 50 degrees. */
     const luz_object *custom = scene->objects;
     int textured = -1;
-    for (int i = 0; i < data->cube_count; i++) {
+    GLuint bound_array = 0;
+    for (int i = 0; i < data->object_count; i++) {
         luz_vec3 p = custom ? custom[i].position : luz_scene_tiled_position(i);
-        luz_vec3 colour = custom && custom[i].has_colour ? custom[i].colour : data->colours[i];
         double position[3] = {p.x, p.y, p.z};
-        double degrees = fmod((i + 1) / 3.0 * t * 50.0, 360.0);
-        float model[16];
-        matrix_to_floats(model_matrix(position, degrees * (PI / 180.0), 1.0), model);
-        glUniformMatrix4fv(u->model, 1, GL_FALSE, model);
-        glUniform3f(u->object_colour, colour.x, colour.y, colour.z);
-        int has_texture = gl->texture_count > 0;
-        if (has_texture) {
-            int index = custom && custom[i].texture != LUZ_TEXTURE_BY_INDEX ? custom[i].texture : i;
-            glBindTexture(GL_TEXTURE_2D, gl->textures[index % gl->texture_count]);
+        const gl_model *model = custom && data->object_models[i] >= 0
+                                    ? &gl->models[data->object_models[i]]
+                                    : NULL;
+        double degrees = model && custom[i].still ? 0.0 : fmod((i + 1) / 3.0 * t * 50.0, 360.0);
+        /* A texture of the textures directory given for the object. */
+        int chosen = custom ? custom[i].texture : LUZ_TEXTURE_BY_INDEX;
+        if (model == NULL) {
+            luz_vec3 colour = custom && custom[i].has_colour ? custom[i].colour : data->colours[i];
+            set_model(u, model_matrix(position, degrees * (PI / 180.0), 1.0));
+            glUniform3f(u->object_colour, colour.x, colour.y, colour.z);
+            int has_texture = gl->texture_count > 0;
+            if (has_texture) {
+                int index = chosen != LUZ_TEXTURE_BY_INDEX ? chosen : i;
+                glBindTexture(GL_TEXTURE_2D, gl->textures[index % gl->texture_count]);
+            }
+            if (has_texture != textured) {
+                glUniform1i(u->textured, has_texture);
+                textured = has_texture;
+            }
+            if (bound_array != gl->vertex_array) {
+                glBindVertexArray(gl->vertex_array);
+                bound_array = gl->vertex_array;
+            }
+            glDrawElements(GL_TRIANGLES, 36, GL_UNSIGNED_SHORT, NULL);
+            continue;
         }
-        if (has_texture != textured) {
-            glUniform1i(u->textured, has_texture);
-            textured = has_texture;
+
+        /* A model: its meshes in the file's order. C: the object's colour,
+         * else the material's, else the seed's for index i. T: white
+         * without texture coordinates, else the object's texture, else
+         * the material's, else white. */
+        double k = custom[i].scale > 0.0f ? custom[i].scale : 1.0;
+        set_model(u, matrix_multiply(model_matrix(position, degrees * (PI / 180.0), k),
+                                     model->normalisation));
+        for (int m = 0; m < model->mesh_count; m++) {
+            const gl_model_mesh *mesh = &model->meshes[m];
+            luz_vec3 colour = custom[i].has_colour ? custom[i].colour
+                              : mesh->has_colour
+                                  ? (luz_vec3){mesh->colour[0], mesh->colour[1], mesh->colour[2]}
+                                  : data->colours[i];
+            glUniform3f(u->object_colour, colour.x, colour.y, colour.z);
+            GLuint texture = 0;
+            if (mesh->has_uvs)
+                texture = chosen != LUZ_TEXTURE_BY_INDEX && gl->texture_count > 0
+                              ? gl->textures[chosen % gl->texture_count]
+                              : mesh->texture;
+            int has_texture = texture != 0;
+            if (has_texture) glBindTexture(GL_TEXTURE_2D, texture);
+            if (has_texture != textured) {
+                glUniform1i(u->textured, has_texture);
+                textured = has_texture;
+            }
+            glBindVertexArray(mesh->vertex_array);
+            bound_array = mesh->vertex_array;
+            glDrawElements(GL_TRIANGLES, mesh->index_count, GL_UNSIGNED_INT, NULL);
         }
-        glDrawElements(GL_TRIANGLES, 36, GL_UNSIGNED_SHORT, NULL);
     }
 
     /* The point light's marker: scale 0.2, unrotated, unlit, Pt.rgb, drawn
      * while the light shines. */
     if (lights->point.strength > 0.0f) {
-        float model[16];
-        matrix_to_floats(model_matrix(point, 0.0, 0.2), model);
-        glUniformMatrix4fv(u->model, 1, GL_FALSE, model);
+        set_model(u, model_matrix(point, 0.0, 0.2));
         glUniform3f(u->object_colour, lights->point.colour.x, lights->point.colour.y,
                     lights->point.colour.z);
         glUniform1i(u->unlit, 1);
+        if (bound_array != gl->vertex_array) glBindVertexArray(gl->vertex_array);
         glDrawElements(GL_TRIANGLES, 36, GL_UNSIGNED_SHORT, NULL);
     }
 
@@ -706,8 +1177,18 @@ static int bench(gl_reference *gl, const scene_data *data, luz_error *error)
                       options->frames_per_second, bench_frame, &(bench_context){gl, data},
                       error) != 0)
         return -1;
-    printf("frames=%d size=%dx%d threads=%d cubes=%d filter=%s ", measured.frames, gl->width,
-           gl->height, llvmpipe_threads(), data->cube_count, luz_filter_name(options->scene.filter));
+    /* cubes= and triangles= as luz-render's line: the cubes among the
+     * objects, and every triangle a frame draws (the marker's included). */
+    int cubes = 0;
+    uint64_t triangles = options->scene.lights.point.strength > 0.0f ? 12 : 0;
+    for (int i = 0; i < data->object_count; i++) {
+        int model = options->scene.objects ? data->object_models[i] : -1;
+        cubes += model < 0;
+        triangles += model < 0 ? 12 : gl->models[model].triangle_count;
+    }
+    printf("frames=%d size=%dx%d threads=%d cubes=%d triangles=%llu filter=%s ", measured.frames,
+           gl->width, gl->height, llvmpipe_threads(), cubes, (unsigned long long)triangles,
+           luz_filter_name(options->scene.filter));
     luz_bench_print_figures(stdout, &measured);
     printf("\n");
     luz_bench_free(&measured);
@@ -795,25 +1276,37 @@ int main(int argc, char **argv)
     if (options.version) {
         /* The version, and which llvmpipe it runs on (tools/conformance
          * prints it, and uses it to see whether llvmpipe is there at all). */
-        printf("glref (luz %s)\nOpenGL %s on %s\n", LUZ_VERSION,
-               (const char *)glGetString(GL_VERSION), renderer);
+#if defined(GLREF_HAVE_ASSIMP)
+        printf("glref (luz %s, models read with assimp %u.%u.%u)\n", LUZ_VERSION,
+               aiGetVersionMajor(), aiGetVersionMinor(), aiGetVersionRevision());
+#else
+        printf("glref (luz %s, no models: built without assimp)\n", LUZ_VERSION);
+#endif
+        printf("OpenGL %s on %s\n", (const char *)glGetString(GL_VERSION), renderer);
         status = EXIT_OK;
         goto done;
     }
 
     status = EXIT_RUNTIME;
-    data.cube_count = options.scene.objects ? options.scene.object_count
-                                                 : options.scene.cube_count;
-    data.colours = malloc((size_t)(data.cube_count > 0 ? data.cube_count : 1) *
-                          sizeof *data.colours);
-    if (data.colours == NULL) {
-        luz_error_set(&error, "out of memory for %d cubes", data.cube_count);
+    data.object_count = options.scene.objects ? options.scene.object_count
+                                              : options.scene.cube_count;
+    size_t slots = (size_t)(data.object_count > 0 ? data.object_count : 1);
+    data.colours = malloc(slots * sizeof *data.colours);
+    data.object_models = malloc(slots * sizeof *data.object_models);
+    if (data.colours == NULL || data.object_models == NULL) {
+        luz_error_set(&error, "out of memory for %d objects", data.object_count);
         goto done;
     }
-    luz_scene_random_colours(options.scene.seed, data.cube_count, data.colours);
+    luz_scene_random_colours(options.scene.seed, data.object_count, data.colours);
     if (build_program(&gl, &error) != 0) goto done;
     upload_cube(&gl);
     if (upload_textures(&gl, &textures, options.scene.filter, &error) != 0) goto done;
+    /* A model that cannot be read is the user's error, as in luz-render. */
+    if (load_models(&gl, &options, options.scene.filter, data.object_models, &error) != 0) {
+        status = EXIT_USAGE;
+        goto done;
+    }
+    glBindVertexArray(gl.vertex_array);
     if (create_framebuffer(&gl, options.width, options.height, &error) != 0) {
         status = EXIT_USAGE;
         goto done;
@@ -827,6 +1320,7 @@ done:
     if (status != EXIT_OK) print_error(error.message[0] ? error.message : "failed");
     close_reference(&gl);
     free(data.colours);
+    free(data.object_models);
     luz_texture_set_free(&textures);
     luz_options_free(&options);
     if (fflush(stdout) != 0 && status == EXIT_OK) {
