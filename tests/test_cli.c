@@ -28,6 +28,7 @@
 #include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -271,6 +272,7 @@ static void sandbox_path(const sandbox *box, const char *name, char *out, size_t
 typedef struct run_result {
     int status;       /* the exit status, or 128 + signal */
     char *out;        /* stdout */
+    size_t out_length;   /* its bytes (it may hold PNGs, NUL bytes and all) */
     char *err;        /* stderr */
     double seconds;
 } run_result;
@@ -282,15 +284,20 @@ static double now_seconds(void)
     return (double)now.tv_sec + (double)now.tv_nsec * 1e-9;
 }
 
-/* Runs luz-render with the NULL-terminated arguments in box->work.
- * textures_environment sets $LUZ_TEXTURES; NULL unsets it, so that no test
- * depends on the caller's environment. */
-static run_result run_in(const sandbox *box, const char *const *arguments,
-                         const char *textures_environment)
+static const char *luz_render_path(void)
 {
     const char *program = getenv("LUZ_RENDER");
     if (program == NULL)
         fail_msg("LUZ_RENDER is not set (tests/meson.build sets it to luz-render's path)");
+    return program;
+}
+
+/* Runs program with the NULL-terminated arguments in box->work.
+ * textures_environment sets $LUZ_TEXTURES; NULL unsets it, so that no test
+ * depends on the caller's environment. */
+static run_result run_program_in(const sandbox *box, const char *program,
+                                 const char *const *arguments, const char *textures_environment)
+{
     char out_path[400], err_path[400];
     snprintf(out_path, sizeof out_path, "%s/stdout", box->root);
     snprintf(err_path, sizeof err_path, "%s/stderr", box->root);
@@ -325,11 +332,18 @@ static run_result run_in(const sandbox *box, const char *const *arguments,
     run_result result;
     result.seconds = now_seconds() - start;
     result.status = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    result.out = read_file(out_path, NULL);
+    result.out = read_file(out_path, &result.out_length);
     result.err = read_file(err_path, NULL);
     assert_non_null(result.out);
     assert_non_null(result.err);
     return result;
+}
+
+/* Runs luz-render, as run_program_in does. */
+static run_result run_in(const sandbox *box, const char *const *arguments,
+                         const char *textures_environment)
+{
+    return run_program_in(box, luz_render_path(), arguments, textures_environment);
 }
 
 static void run_result_free(run_result *result)
@@ -483,6 +497,47 @@ static const error_case error_cases[] = {
     {"output-trailing-percent", {"-o", "out%"}, NULL, NULL, {"-o", "%d"}},
     {"output-default-pattern-long-option", {"--frames", "2", "--output", "x%5x.png"}, NULL, NULL,
      {"-o", "%d"}},
+    /* a slice of a sequence (--frame-range, --shard) and its files */
+    {"frame-range-reversed", {"--frames", "24", "--frame-range", "7:3"}, NULL, NULL,
+     {"--frame-range", "0 <= A <= B <= 23", "'7:3'"}},
+    {"frame-range-past-the-end", {"--frame-range", "0:24", "--frames", "24"}, NULL, NULL,
+     {"--frame-range", "0 <= A <= B <= 23", "'0:24'"}},
+    {"frame-range-open-start-past-the-end", {"--frames", "24", "--frame-range", "24:"}, NULL,
+     NULL, {"--frame-range", "<= 23", "'24:'"}},
+    {"frame-range-without-frames", {"--frame-range", "1:1"}, NULL, NULL,
+     {"--frame-range", "<= 0", "--frames 1"}},
+    {"frame-range-one-number", {"--frames", "24", "--frame-range", "3"}, NULL, NULL,
+     {"--frame-range", "A:B", "'3'"}},
+    {"frame-range-negative", {"--frames", "24", "--frame-range", "-1:2"}, NULL, NULL,
+     {"--frame-range", "A:B"}},
+    {"frame-range-three-numbers", {"--frames", "24", "--frame-range", "1:2:3"}, NULL, NULL,
+     {"--frame-range", "A:B"}},
+    {"frame-range-words", {"--frames", "24", "--frame-range=a:b"}, NULL, NULL,
+     {"--frame-range", "A:B"}},
+    {"frame-range-missing-value", {"--frames", "24", "--frame-range"}, NULL, NULL,
+     {"--frame-range", "missing", "A:B"}},
+    {"shard-index-equals-count", {"--frames", "24", "--shard", "4/4"}, NULL, NULL,
+     {"--shard", "0 <= K < M", "'4/4'"}},
+    {"shard-no-shards", {"--frames", "24", "--shard", "0/0"}, NULL, NULL,
+     {"--shard", "0 <= K < M"}},
+    {"shard-negative", {"--frames", "24", "--shard", "-1/4"}, NULL, NULL,
+     {"--shard", "K/M"}},
+    {"shard-no-slash", {"--frames", "24", "--shard", "2"}, NULL, NULL, {"--shard", "K/M"}},
+    {"shard-fraction", {"--frames", "24", "--shard", "1.5/4"}, NULL, NULL, {"--shard", "K/M"}},
+    {"shard-too-many", {"--frames", "24", "--shard", "0/1000001"}, NULL, NULL,
+     {"--shard", "1000000"}},
+    {"skip-existing-with-stdout", {"--frames", "2", "-o", "-", "--skip-existing"}, NULL, NULL,
+     {"--skip-existing", "-o -", "standard output"}},
+    {"skip-existing-with-value", {"--skip-existing=yes"}, NULL, NULL,
+     {"--skip-existing", "no value"}},
+    {"scene-frame-range-key", {"--scene", "s.luz"}, "frames = 24\nframe-range = 1:2\n", NULL,
+     {"s.luz:2", "frame-range", "not allowed"}},
+    {"scene-shard-key", {"--scene", "s.luz"}, "shard = 1/4\n", NULL,
+     {"s.luz:1", "shard", "not allowed"}},
+    {"scene-skip-existing-key", {"--scene", "s.luz"}, "skip-existing = 1\n", NULL,
+     {"s.luz:1", "skip-existing", "not allowed"}},
+    {"scene-reference-key", {"--scene", "s.luz"}, "reference = 1\n", NULL,
+     {"s.luz:1", "reference", "not allowed"}},
     /* textures */
     {"textures-missing-directory", {"--size", "8x8", "--textures", "nowhere"}, NULL, NULL,
      {"--textures", "nowhere"}},
@@ -624,7 +679,7 @@ static void test_help(void **state)
         "--spot-reach",   "--directional", "--filter",     "--textures",   "--cubes",
         "--threads",      "--only",       "-o",            "--frames",     "--fps",
         "--bench",        "--scene",      "--help",        "--version",    "--reference",
-        "--view",         "--interp",
+        "--view",         "--interp",     "--frame-range", "--shard",     "--skip-existing",
     };
     /* defaults that SCENE.md and the issue fix */
     static const char *const defaults[] = {
@@ -1760,6 +1815,766 @@ static void test_default_textures_directory(void **state)
     }
 }
 
+/* ---- sequences beyond one run: --frame-range, --shard, --skip-existing, -o - ---------- */
+
+/* luz_shard_frames against shares worked out by hand: with q = N / M and
+ * r = N mod M, shares 0 to r - 1 get q + 1 frames, the others q, in
+ * order; an empty share starts where the frames ran out. */
+static void test_shard_arithmetic(void **state)
+{
+    (void)state;
+    static const struct {
+        int first, count, index, shards;
+        int expected_first, expected_frames;
+    } cases[] = {
+        /* 24 frames in 4 shares: 6 each */
+        {0, 24, 0, 4, 0, 6}, {0, 24, 1, 4, 6, 6}, {0, 24, 2, 4, 12, 6}, {0, 24, 3, 4, 18, 6},
+        /* 10 in 4: q = 2, r = 2: frames 0-2, 3-5, 6-7, 8-9 */
+        {0, 10, 0, 4, 0, 3}, {0, 10, 1, 4, 3, 3}, {0, 10, 2, 4, 6, 2}, {0, 10, 3, 4, 8, 2},
+        /* 3 in 5: q = 0, r = 3: one frame each for shares 0 to 2, then empty */
+        {0, 3, 0, 5, 0, 1}, {0, 3, 1, 5, 1, 1}, {0, 3, 2, 5, 2, 1}, {0, 3, 3, 5, 3, 0},
+        {0, 3, 4, 5, 3, 0},
+        /* one share: all of them */
+        {0, 7, 0, 1, 0, 7},
+        /* frames 10 to 19 in 3: q = 3, r = 1: 10-13, 14-16, 17-19 */
+        {10, 10, 0, 3, 10, 4}, {10, 10, 1, 3, 14, 3}, {10, 10, 2, 3, 17, 3},
+        /* 1000000 frames in 7: q = 142857, r = 1; share 6 starts at
+         * 6 * 142857 + 1 = 857143 and ends at 999999 */
+        {0, 1000000, 0, 7, 0, 142858}, {0, 1000000, 1, 7, 142858, 142857},
+        {0, 1000000, 6, 7, 857143, 142857},
+        /* 1000000 shares of 1000000 frames: the last is frame 999999 */
+        {0, 1000000, 999999, 1000000, 999999, 1},
+        /* ... and of one frame: share 0 has it, the last is empty */
+        {0, 1, 0, 1000000, 0, 1}, {0, 1, 999999, 1000000, 1, 0},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        int first = -1, frames = -1;
+        luz_shard_frames(cases[i].first, cases[i].count, cases[i].index, cases[i].shards, &first,
+                         &frames);
+        if (first != cases[i].expected_first || frames != cases[i].expected_frames)
+            fail_msg("%d frames from %d, share %d/%d: got %d frames from %d, expected %d from "
+                     "%d",
+                     cases[i].count, cases[i].first, cases[i].index, cases[i].shards, frames,
+                     first, cases[i].expected_frames, cases[i].expected_first);
+    }
+
+    /* and for every small case: the shares cover the frames once, in
+     * order, and differ by at most one frame, the longer ones first */
+    for (int count = 0; count <= 30; count++) {
+        for (int shards = 1; shards <= 40; shards++) {
+            int next = 5, previous_frames = count + 1;
+            for (int index = 0; index < shards; index++) {
+                int first, frames;
+                luz_shard_frames(5, count, index, shards, &first, &frames);
+                assert_int_equal(first, next);
+                assert_true(frames == count / shards || frames == count / shards + 1);
+                assert_true(frames <= previous_frames);
+                next = first + frames;
+                previous_frames = frames;
+            }
+            assert_int_equal(next, 5 + count);
+        }
+    }
+}
+
+/* --frame-range and --shard, parsed, and the frames a run then renders,
+ * worked out by hand for --frames 24. */
+static void test_frame_range_and_shard_parsing(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *range, *shard;
+        int first, last;             /* range_first, range_last */
+        int render_first, render_count;
+        const char *formatted;       /* luz_options_format's frame-range */
+    } cases[] = {
+        {NULL, NULL, 0, LUZ_FRAME_RANGE_OPEN, 0, 24, NULL},
+        {"5:9", NULL, 5, 9, 5, 5, "5:9"},
+        {"5:", NULL, 5, LUZ_FRAME_RANGE_OPEN, 5, 19, "5:"},
+        {":4", NULL, 0, 4, 0, 5, "0:4"},
+        {":", NULL, 0, LUZ_FRAME_RANGE_OPEN, 0, 24, NULL},
+        {" 2 : 3 ", NULL, 2, 3, 2, 2, "2:3"},
+        {"23:23", NULL, 23, 23, 23, 1, "23:23"},
+        {"0:23", NULL, 0, 23, 0, 24, "0:23"},
+        /* 24 in 4: frames 6-11 */
+        {NULL, "1/4", 0, LUZ_FRAME_RANGE_OPEN, 6, 6, NULL},
+        /* 24 in 5: q = 4, r = 4: 5, 5, 5, 5, 4 frames */
+        {NULL, "3/5", 0, LUZ_FRAME_RANGE_OPEN, 15, 5, NULL},
+        {NULL, "4/5", 0, LUZ_FRAME_RANGE_OPEN, 20, 4, NULL},
+        /* frames 4-13 (10) in 3: 4-7, 8-10, 11-13 */
+        {"4:13", "2/3", 4, 13, 11, 3, "4:13"},
+        /* frames 20-23 in 4: one each */
+        {"20:", "3/4", 20, LUZ_FRAME_RANGE_OPEN, 23, 1, "20:"},
+        /* frames 0-1 in 4: shares 2 and 3 are empty */
+        {":1", "3/4", 0, 1, 2, 0, "0:1"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char *argv[8] = {"luz-render", "--frames", "24"};
+        int argc = 3;
+        if (cases[i].range != NULL) {
+            argv[argc++] = "--frame-range";
+            argv[argc++] = (char *)cases[i].range;
+        }
+        if (cases[i].shard != NULL) {
+            argv[argc++] = "--shard";
+            argv[argc++] = (char *)cases[i].shard;
+        }
+        luz_options options;
+        parse_or_fail(&options, argc, argv);
+        assert_int_equal(options.range_first, cases[i].first);
+        assert_int_equal(options.range_last, cases[i].last);
+        int first = -1, count = -1;
+        luz_options_frames_to_render(&options, &first, &count);
+        if (first != cases[i].render_first || count != cases[i].render_count)
+            fail_msg("--frame-range %s --shard %s: %d frames from %d, expected %d from %d",
+                     cases[i].range ? cases[i].range : "(none)",
+                     cases[i].shard ? cases[i].shard : "(none)", count, first,
+                     cases[i].render_count, cases[i].render_first);
+        char text[32];
+        if (cases[i].formatted == NULL) {
+            assert_int_equal(luz_options_format(&options, "frame-range", text, sizeof text), -1);
+        } else {
+            assert_int_equal(luz_options_format(&options, "frame-range", text, sizeof text), 0);
+            assert_string_equal(text, cases[i].formatted);
+        }
+        if (cases[i].shard != NULL) {
+            assert_int_equal(luz_options_format(&options, "shard", text, sizeof text), 0);
+            assert_string_equal(text, cases[i].shard);
+        } else {
+            assert_int_equal(options.shard_count, 0);
+        }
+        luz_options_free(&options);
+    }
+
+    /* the range is checked once --frames is known, whatever the order */
+    luz_options options;
+    parse_or_fail(&options, 5,
+                  (char *[]){"luz-render", "--frame-range", "20:23", "--frames", "24", NULL});
+    assert_int_equal(options.range_first, 20);
+    luz_options_free(&options);
+    /* without --frames a sequence is one frame, frame 0 */
+    parse_or_fail(&options, 3, (char *[]){"luz-render", "--frame-range", "0:0", NULL});
+    int first, count;
+    luz_options_frames_to_render(&options, &first, &count);
+    assert_int_equal(first, 0);
+    assert_int_equal(count, 1);
+    assert_false(options.skip_existing);
+    assert_false(luz_options_output_is_stdout(&options));
+    luz_options_free(&options);
+    parse_or_fail(&options, 4, (char *[]){"luz-render", "--skip-existing", "-o", "x.png", NULL});
+    assert_true(options.skip_existing);
+    luz_options_free(&options);
+    parse_or_fail(&options, 5, (char *[]){"luz-render", "--frames", "3", "-o", "-", NULL});
+    assert_true(luz_options_output_is_stdout(&options));
+    luz_options_free(&options);
+}
+
+/* The test sequence: 24 small frames, with the sandbox's textures. */
+#define SEQUENCE "--frames", "24", "--fps", "12", "--size", "160x90", "--textures", "tex"
+
+static void make_directory(const sandbox *box, const char *name)
+{
+    char path[600];
+    sandbox_path(box, name, path, sizeof path);
+    assert_int_equal(mkdir(path, 0755), 0);
+}
+
+static int count_lines(const char *text)
+{
+    int lines = 0;
+    for (; *text != '\0'; text++)
+        lines += *text == '\n';
+    return lines;
+}
+
+/* Directories a and b (under work/) hold the same file names, `count` of
+ * them, with the same bytes. */
+static void assert_same_files(const sandbox *box, const char *a, const char *b, int count)
+{
+    char path_a[600], path_b[600], names_a[8192] = "", names_b[8192] = "";
+    sandbox_path(box, a, path_a, sizeof path_a);
+    sandbox_path(box, b, path_b, sizeof path_b);
+    list_tree(path_a, "", names_a, sizeof names_a);
+    list_tree(path_b, "", names_b, sizeof names_b);
+    if (strcmp(names_a, names_b) != 0)
+        fail_msg("%s/ holds\n%s\nbut %s/ holds\n%s", a, names_a, b, names_b);
+    assert_int_equal(count_lines(names_a), count);
+    for (const char *name = names_a; *name != '\0';) {
+        const char *end = strchr(name, '\n');
+        char file_a[128], file_b[128];
+        snprintf(file_a, sizeof file_a, "%s/%.*s", a, (int)(end - name), name);
+        snprintf(file_b, sizeof file_b, "%s/%.*s", b, (int)(end - name), name);
+        if (!files_equal(box, file_a, file_b))
+            fail_msg("%s and %s differ", file_a, file_b);
+        name = end + 1;
+    }
+}
+
+/* The PNGs of frames first..last of directory `directory`, named
+ * f_%02d.png, are those of one/, and the directory holds nothing else. */
+static void assert_frames_of_one_run(const sandbox *box, const char *directory, int first,
+                                     int last)
+{
+    char path[600], names[8192] = "", expected[8192] = "";
+    sandbox_path(box, directory, path, sizeof path);
+    list_tree(path, "", names, sizeof names);
+    for (int k = first; k <= last; k++) {
+        size_t used = strlen(expected);
+        snprintf(expected + used, sizeof expected - used, "f_%02d.png\n", k);
+        char mine[128], theirs[128];
+        snprintf(mine, sizeof mine, "%s/f_%02d.png", directory, k);
+        snprintf(theirs, sizeof theirs, "one/f_%02d.png", k);
+        if (file_exists(box, mine) && !files_equal(box, mine, theirs))
+            fail_msg("%s differs from %s", mine, theirs);
+    }
+    if (strcmp(names, expected) != 0)
+        fail_msg("%s/ holds\n%s\nexpected\n%s", directory, names, expected);
+}
+
+/* One run of the sequence into one/. */
+static void render_one_run(const sandbox *box)
+{
+    make_directory(box, "one");
+    run_result result = run_in(box, ARGS(SEQUENCE, "-o", "one/f_%02d.png"), NULL);
+    assert_success(&result);
+    assert_string_equal(result.out, "");
+    run_result_free(&result);
+}
+
+static bool have_programs(const char *names)
+{
+    char command[256];
+    snprintf(command, sizeof command, "for p in %s; do command -v $p; done >/dev/null 2>&1",
+             names);
+    return system(command) == 0;
+}
+
+/* The sequence in one run, and as 4 shards that tools/render-sequence runs
+ * with GNU parallel: the same file names, the same bytes. */
+static void test_shards_by_parallel_match_one_run(void **state)
+{
+    (void)state;
+    const char *tool = getenv("RENDER_SEQUENCE");
+    if (tool == NULL)
+        fail_msg("RENDER_SEQUENCE is not set (tests/meson.build sets it to tools/render-sequence)");
+    if (!have_programs("parallel")) {
+        print_message("skipped: GNU parallel is not installed (tools/install-deps test "
+                      "installs it)\n");
+        skip();
+    }
+    sandbox box;
+    sandbox_create(&box);
+    /* a value with blanks must reach every shard whole */
+    make_directory(&box, "one");
+    run_result result = run_in(
+        &box, ARGS(SEQUENCE, "--camera-pos", "0, 0.2, 3.5", "-o", "one/f_%02d.png"), NULL);
+    assert_success(&result);
+    run_result_free(&result);
+    make_directory(&box, "shards");
+    result = run_program_in(&box, tool,
+                            ARGS("--shards", "4", "--luz-render", luz_render_path(), "--",
+                                 SEQUENCE, "--camera-pos", "0, 0.2, 3.5", "-o",
+                                 "shards/f_%02d.png"),
+                            NULL);
+    assert_success(&result);
+    assert_string_equal(result.out, "");
+    run_result_free(&result);
+    assert_same_files(&box, "one", "shards", 24);
+    sandbox_destroy(&box);
+}
+
+/* --shard and --frame-range alone write exactly their frames, with the
+ * bytes of the whole run; an empty shard writes nothing and succeeds. */
+static void test_slices_match_one_run(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *option, *value;
+        int first, last;   /* by hand, for 24 frames */
+    } slices[] = {
+        {"--shard", "2/4", 12, 17},      {"--shard", "4/5", 20, 23},
+        {"--frame-range", "5:9", 5, 9},  {"--frame-range", "20:", 20, 23},
+        {"--frame-range", ":2", 0, 2},   {"--frame-range", "23:23", 23, 23},
+    };
+    sandbox box;
+    sandbox_create(&box);
+    render_one_run(&box);
+    for (size_t i = 0; i < sizeof slices / sizeof slices[0]; i++) {
+        char directory[32], pattern[64];
+        snprintf(directory, sizeof directory, "slice%zu", i);
+        snprintf(pattern, sizeof pattern, "%s/f_%%02d.png", directory);
+        make_directory(&box, directory);
+        run_result result =
+            run_in(&box, ARGS(SEQUENCE, slices[i].option, slices[i].value, "-o", pattern), NULL);
+        assert_success(&result);
+        run_result_free(&result);
+        assert_frames_of_one_run(&box, directory, slices[i].first, slices[i].last);
+    }
+
+    /* both: frames 4 to 13 in 3 shares, 4-7, 8-10, 11-13; the last */
+    make_directory(&box, "both");
+    run_result result = run_in(
+        &box, ARGS(SEQUENCE, "--frame-range", "4:13", "--shard", "2/3", "-o", "both/f_%02d.png"),
+        NULL);
+    assert_success(&result);
+    run_result_free(&result);
+    assert_frames_of_one_run(&box, "both", 11, 13);
+
+    /* 3 frames in 5 shares: shard 4 is empty; nothing at all is written */
+    char before[8192] = "", after[8192] = "";
+    list_tree(box.work, "", before, sizeof before);
+    result = run_in(&box, ARGS("--frames", "3", "--size", "16x9", "--textures", "tex", "--shard",
+                               "4/5", "-o", "empty_%d.png"),
+                    NULL);
+    assert_success(&result);
+    assert_string_equal(result.out, "");
+    run_result_free(&result);
+    list_tree(box.work, "", after, sizeof after);
+    assert_string_equal(before, after);
+    sandbox_destroy(&box);
+}
+
+static struct stat stat_or_fail(const sandbox *box, const char *name)
+{
+    char path[600];
+    struct stat info;
+    sandbox_path(box, name, path, sizeof path);
+    if (stat(path, &info) != 0)
+        fail_msg("%s: %s", name, strerror(errno));
+    return info;
+}
+
+static bool same_file_version(const struct stat *a, const struct stat *b)
+{
+    return a->st_ino == b->st_ino && a->st_mtim.tv_sec == b->st_mtim.tv_sec &&
+           a->st_mtim.tv_nsec == b->st_mtim.tv_nsec;
+}
+
+/* Starts luz-render in box->work with stdout and stderr thrown away. */
+static pid_t start_in(const sandbox *box, const char *const *arguments)
+{
+    const char *program = luz_render_path();
+    char *argv[64];
+    int argc = 0;
+    argv[argc++] = (char *)program;
+    for (int i = 0; arguments[i] != NULL && argc < 63; i++)
+        argv[argc++] = (char *)arguments[i];
+    argv[argc] = NULL;
+    fflush(NULL);
+    pid_t child = fork();
+    assert_true(child >= 0);
+    if (child == 0) {
+        int null = open("/dev/null", O_WRONLY);
+        if (null < 0 || chdir(box->work) != 0 || dup2(null, STDOUT_FILENO) < 0 ||
+            dup2(null, STDERR_FILENO) < 0)
+            _exit(127);
+        unsetenv("LUZ_TEXTURES");
+        execv(program, argv);
+        _exit(127);
+    }
+    return child;
+}
+
+/* A shard killed (SIGKILL: no clean-up at all) after its first frames,
+ * then run again with --skip-existing: the frames it had finished keep
+ * their inode and modification time (not rendered again), the others are
+ * written, and every frame is the one run's. The frames are made slow
+ * (20000 cubes on one thread) so that the kill lands inside the shard. */
+static void test_killed_shard_resumed(void **state)
+{
+    (void)state;
+#define SLOW_SEQUENCE \
+    "--frames", "8", "--fps", "12", "--size", "160x90", "--textures", "tex", "--cubes", \
+        "20000", "--threads", "1"
+    sandbox box;
+    sandbox_create(&box);
+    make_directory(&box, "one");
+    run_result result = run_in(&box, ARGS(SLOW_SEQUENCE, "-o", "one/f_%02d.png"), NULL);
+    assert_success(&result);
+    run_result_free(&result);
+
+    /* shard 1 of 2 is frames 4 to 7; kill it once frame 5 is there */
+    char directory[32] = "", pattern[64] = "";
+    bool caught = false;
+    for (int attempt = 0; attempt < 5 && !caught; attempt++) {
+        snprintf(directory, sizeof directory, "killed%d", attempt);
+        snprintf(pattern, sizeof pattern, "%s/f_%%02d.png", directory);
+        make_directory(&box, directory);
+        char second[64];
+        snprintf(second, sizeof second, "%s/f_05.png", directory);
+        pid_t child = start_in(&box, ARGS(SLOW_SEQUENCE, "--shard", "1/2", "-o", pattern));
+        for (int polls = 0; polls < 600000 && !file_exists(&box, second); polls++)
+            nanosleep(&(struct timespec){.tv_nsec = 100000}, NULL);
+        kill(child, SIGKILL);
+        int status;
+        assert_int_equal(waitpid(child, &status, 0), child);
+        char last[64];
+        snprintf(last, sizeof last, "%s/f_07.png", directory);
+        caught = WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL &&
+                 file_exists(&box, second) && !file_exists(&box, last);
+    }
+    if (!caught)
+        fail_msg("the shard finished before it could be killed, 5 times");
+
+    struct stat before[8];
+    bool existed[8] = {false};
+    int finished = 0;
+    for (int k = 4; k <= 7; k++) {
+        char name[64];
+        snprintf(name, sizeof name, "%s/f_%02d.png", directory, k);
+        existed[k] = file_exists(&box, name);
+        if (existed[k]) {
+            before[k] = stat_or_fail(&box, name);
+            finished++;
+        }
+    }
+    assert_true(existed[4] && existed[5] && !existed[7]);
+
+    result = run_in(&box, ARGS(SLOW_SEQUENCE, "--shard", "1/2", "--skip-existing", "-o", pattern),
+                    NULL);
+    assert_success(&result);
+    run_result_free(&result);
+    for (int k = 4; k <= 7; k++) {
+        char name[64], theirs[64];
+        snprintf(name, sizeof name, "%s/f_%02d.png", directory, k);
+        snprintf(theirs, sizeof theirs, "one/f_%02d.png", k);
+        struct stat after = stat_or_fail(&box, name);
+        if (existed[k] && !same_file_version(&before[k], &after))
+            fail_msg("%s was written again (%d of 4 frames were finished)", name, finished);
+        if (!files_equal(&box, name, theirs))
+            fail_msg("%s differs from %s", name, theirs);
+    }
+    /* the directory holds frames 4 to 7, and at most the temporary file a
+     * SIGKILL can leave (NAME.tmp-XXXXXX) */
+    char path[600], names[8192] = "";
+    sandbox_path(&box, directory, path, sizeof path);
+    list_tree(path, "", names, sizeof names);
+    for (const char *name = names; *name != '\0'; name = strchr(name, '\n') + 1) {
+        int k = -1;
+        if (sscanf(name, "f_%2d.png\n", &k) == 1 && k >= 4 && k <= 7)
+            continue;
+        if (strstr(name, ".png.tmp-") != NULL && strchr(name, '\n') - name == 19)
+            continue;
+        fail_msg("unexpected file in %s/: %s", directory, name);
+    }
+
+    /* the control: without --skip-existing the same run writes frame 4
+     * again, and the check above sees it */
+    result = run_in(&box, ARGS(SLOW_SEQUENCE, "--shard", "1/2", "-o", pattern), NULL);
+    assert_success(&result);
+    run_result_free(&result);
+    char first[64];
+    snprintf(first, sizeof first, "%s/f_04.png", directory);
+    struct stat rewritten = stat_or_fail(&box, first);
+    assert_false(same_file_version(&before[4], &rewritten));
+    sandbox_destroy(&box);
+#undef SLOW_SEQUENCE
+}
+
+/* Splits a stream of PNGs by their structure (PNG specification, 5.2 and
+ * 5.3): the 8-byte signature, then chunks, each a 4-byte big-endian data
+ * length, a 4-byte type, the data and a 4-byte CRC, up to and including
+ * IEND. Fails on anything else. Returns the number of PNGs. */
+static size_t split_png_stream(const unsigned char *data, size_t length, size_t *starts,
+                               size_t *lengths, size_t capacity)
+{
+    static const unsigned char signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    size_t count = 0, at = 0;
+    while (at < length) {
+        if (length - at < 8 || memcmp(data + at, signature, 8) != 0)
+            fail_msg("byte %zu of the stream: expected a PNG signature", at);
+        size_t start = at;
+        at += 8;
+        for (;;) {
+            if (length - at < 12)
+                fail_msg("PNG %zu of the stream is cut short at byte %zu", count, at);
+            uint32_t chunk = (uint32_t)data[at] << 24 | (uint32_t)data[at + 1] << 16 |
+                             (uint32_t)data[at + 2] << 8 | data[at + 3];
+            if (chunk > length - at - 12)
+                fail_msg("PNG %zu of the stream: a chunk of %u bytes runs past the end", count,
+                         chunk);
+            bool end = memcmp(data + at + 4, "IEND", 4) == 0;
+            at += 12 + (size_t)chunk;
+            if (end)
+                break;
+        }
+        if (count == capacity)
+            fail_msg("more than %zu PNGs in the stream", capacity);
+        starts[count] = start;
+        lengths[count] = at - start;
+        count++;
+    }
+    return count;
+}
+
+/* PNG `index` of the stream is file `name` of the sandbox, byte for byte. */
+static void assert_stream_png_is(const sandbox *box, const run_result *result,
+                                 const size_t *starts, const size_t *lengths, size_t index,
+                                 const char *name)
+{
+    char path[600];
+    size_t length = 0;
+    sandbox_path(box, name, path, sizeof path);
+    char *file = read_file(path, &length);
+    assert_non_null(file);
+    if (lengths[index] != length || memcmp(result->out + starts[index], file, length) != 0)
+        fail_msg("PNG %zu of the stream is not %s", index, name);
+    free(file);
+}
+
+/* -o -: the PNGs of the sequence on stdout, in order, each the file that
+ * one run writes, and nothing else; no file is written. */
+static void test_stdout_stream_is_the_files(void **state)
+{
+    (void)state;
+    sandbox box;
+    sandbox_create(&box);
+    render_one_run(&box);
+    char before[8192] = "", after[8192] = "";
+    list_tree(box.work, "", before, sizeof before);
+
+    size_t starts[32], lengths[32];
+    run_result result = run_in(&box, ARGS(SEQUENCE, "-o", "-"), NULL);
+    assert_success(&result);
+    size_t count = split_png_stream((const unsigned char *)result.out, result.out_length,
+                                    starts, lengths, 32);
+    assert_int_equal(count, 24);
+    for (size_t k = 0; k < count; k++) {
+        char name[32];
+        snprintf(name, sizeof name, "one/f_%02zu.png", k);
+        assert_stream_png_is(&box, &result, starts, lengths, k, name);
+    }
+    run_result_free(&result);
+
+    /* a slice of the sequence streams its own frames */
+    result = run_in(&box, ARGS(SEQUENCE, "--frame-range", "5:9", "-o", "-"), NULL);
+    assert_success(&result);
+    count = split_png_stream((const unsigned char *)result.out, result.out_length, starts,
+                             lengths, 32);
+    assert_int_equal(count, 5);
+    for (size_t i = 0; i < count; i++) {
+        char name[32];
+        snprintf(name, sizeof name, "one/f_%02zu.png", 5 + i);
+        assert_stream_png_is(&box, &result, starts, lengths, i, name);
+    }
+    run_result_free(&result);
+
+    list_tree(box.work, "", after, sizeof after);
+    assert_string_equal(before, after);
+    sandbox_destroy(&box);
+}
+
+/* The reader of -o - quits after 1000 bytes (as ffmpeg might): luz-render
+ * says so in one line and exits with status 1, not killed by SIGPIPE
+ * (which the child is given at its default, as a shell would). */
+static void test_stdout_reader_quits(void **state)
+{
+    (void)state;
+    const char *program = luz_render_path();
+    sandbox box;
+    sandbox_create(&box);
+    char before[8192] = "", after[8192] = "", err_path[400];
+    list_tree(box.work, "", before, sizeof before);
+    snprintf(err_path, sizeof err_path, "%s/stderr", box.root);
+    int pipe_ends[2];
+    assert_int_equal(pipe(pipe_ends), 0);
+    fflush(NULL);
+    pid_t child = fork();
+    assert_true(child >= 0);
+    if (child == 0) {
+        int err = open(err_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        signal(SIGPIPE, SIG_DFL);
+        if (err < 0 || chdir(box.work) != 0 || dup2(pipe_ends[1], STDOUT_FILENO) < 0 ||
+            dup2(err, STDERR_FILENO) < 0)
+            _exit(127);
+        close(pipe_ends[0]);
+        close(pipe_ends[1]);
+        unsetenv("LUZ_TEXTURES");
+        /* 24 PNGs of some 15 kB: more than a pipe holds, so the writer
+         * is still writing when the reader goes */
+        execl(program, program, SEQUENCE, "-o", "-", (char *)NULL);
+        _exit(127);
+    }
+    close(pipe_ends[1]);
+    unsigned char head[1000];
+    size_t got = 0;
+    while (got < sizeof head) {
+        ssize_t n = read(pipe_ends[0], head + got, sizeof head - got);
+        if (n < 0 && errno == EINTR)
+            continue;
+        assert_true(n > 0);
+        got += (size_t)n;
+    }
+    close(pipe_ends[0]);
+    int status;
+    assert_int_equal(waitpid(child, &status, 0), child);
+    if (!WIFEXITED(status))
+        fail_msg("luz-render was killed by signal %d", WTERMSIG(status));
+    assert_int_equal(WEXITSTATUS(status), 1);
+    assert_memory_equal(head, "\x89PNG\r\n\x1a\n", 8);
+    char *err = read_file(err_path, NULL);
+    assert_non_null(err);
+    assert_int_equal(count_lines(err), 1);
+    assert_true(strncmp(err, "luz-render: ", 12) == 0);
+    assert_contains(err, "standard output");
+    assert_contains(err, "cannot write");
+    free(err);
+    list_tree(box.work, "", after, sizeof after);
+    assert_string_equal(before, after);
+    sandbox_destroy(&box);
+}
+
+/* A terminal as stdout for -o - is refused: status 2, one line, nothing
+ * on the terminal, no file. */
+static void test_stdout_terminal_refused(void **state)
+{
+    (void)state;
+    const char *program = luz_render_path();
+    sandbox box;
+    sandbox_create(&box);
+    char before[8192] = "", after[8192] = "", err_path[400];
+    list_tree(box.work, "", before, sizeof before);
+    snprintf(err_path, sizeof err_path, "%s/stderr", box.root);
+    int master = posix_openpt(O_RDWR | O_NOCTTY);
+    assert_true(master >= 0);
+    assert_int_equal(grantpt(master), 0);
+    assert_int_equal(unlockpt(master), 0);
+    char terminal[256];
+    snprintf(terminal, sizeof terminal, "%s", ptsname(master));
+    fflush(NULL);
+    pid_t child = fork();
+    assert_true(child >= 0);
+    if (child == 0) {
+        int out = open(terminal, O_RDWR | O_NOCTTY);
+        int err = open(err_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (out < 0 || err < 0 || chdir(box.work) != 0 || dup2(out, STDOUT_FILENO) < 0 ||
+            dup2(err, STDERR_FILENO) < 0)
+            _exit(127);
+        close(master);
+        execl(program, program, "--frames", "2", "--size", "8x6", "--textures", "none", "-o",
+              "-", (char *)NULL);
+        _exit(127);
+    }
+    char text[4096];
+    size_t length = 0;
+    for (;;) {
+        ssize_t got = read(master, text + length, sizeof text - 1 - length);
+        if (got > 0)
+            length += (size_t)got;
+        else if (!(got < 0 && errno == EINTR))
+            break;
+        if (length == sizeof text - 1)
+            break;
+    }
+    close(master);
+    int status;
+    assert_int_equal(waitpid(child, &status, 0), child);
+    assert_true(WIFEXITED(status));
+    assert_int_equal(WEXITSTATUS(status), 2);
+    assert_int_equal(length, 0);
+    char *err = read_file(err_path, NULL);
+    assert_non_null(err);
+    assert_int_equal(count_lines(err), 1);
+    assert_contains(err, "luz-render: -o -: ");
+    assert_contains(err, "terminal");
+    free(err);
+    list_tree(box.work, "", after, sizeof after);
+    assert_string_equal(before, after);
+    sandbox_destroy(&box);
+}
+
+/* With -o -, the progress bar still goes to stderr when that is a
+ * terminal, and stdout holds the PNGs alone. */
+static void test_stdout_stream_with_progress_bar(void **state)
+{
+    (void)state;
+    const char *program = luz_render_path();
+    sandbox box;
+    sandbox_create(&box);
+    char out_path[400];
+    snprintf(out_path, sizeof out_path, "%s/stdout", box.root);
+    int master = posix_openpt(O_RDWR | O_NOCTTY);
+    assert_true(master >= 0);
+    assert_int_equal(grantpt(master), 0);
+    assert_int_equal(unlockpt(master), 0);
+    char terminal[256];
+    snprintf(terminal, sizeof terminal, "%s", ptsname(master));
+    fflush(NULL);
+    pid_t child = fork();
+    assert_true(child >= 0);
+    if (child == 0) {
+        int err = open(terminal, O_RDWR | O_NOCTTY);
+        int out = open(out_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (err < 0 || out < 0 || chdir(box.work) != 0 || dup2(err, STDERR_FILENO) < 0 ||
+            dup2(out, STDOUT_FILENO) < 0)
+            _exit(127);
+        close(master);
+        execl(program, program, "--frames", "3", "--size", "8x6", "--textures", "none", "-o",
+              "-", (char *)NULL);
+        _exit(127);
+    }
+    char text[4096];
+    size_t length = 0;
+    for (;;) {
+        ssize_t got = read(master, text + length, sizeof text - 1 - length);
+        if (got > 0)
+            length += (size_t)got;
+        else if (!(got < 0 && errno == EINTR))
+            break;
+        if (length == sizeof text - 1)
+            break;
+    }
+    text[length] = '\0';
+    close(master);
+    int status;
+    assert_int_equal(waitpid(child, &status, 0), child);
+    assert_true(WIFEXITED(status));
+    assert_int_equal(WEXITSTATUS(status), 0);
+    assert_contains(text, "3/3 frames");
+    assert_null(memchr(text, 0x89, length));   /* no PNG signature on the terminal */
+    size_t out_length = 0, starts[4], lengths[4];
+    char *out = read_file(out_path, &out_length);
+    assert_non_null(out);
+    assert_int_equal(split_png_stream((const unsigned char *)out, out_length, starts, lengths, 4),
+                     3);
+    free(out);
+    sandbox_destroy(&box);
+}
+
+/* Where ffmpeg is installed: the -o - stream piped into ffmpeg as the
+ * README shows makes a video of 24 frames, as ffprobe counts them. */
+static void test_video_through_ffmpeg(void **state)
+{
+    (void)state;
+    if (!have_programs("ffmpeg ffprobe")) {
+        print_message("skipped: ffmpeg is not installed (tools/install-deps test installs it; "
+                      "the rest of the sequence tests ran)\n");
+        skip();
+    }
+    sandbox box;
+    sandbox_create(&box);
+    char command[2048];
+    snprintf(command, sizeof command,
+             "{ '%s' --frames 24 --fps 12 --size 160x90 --textures tex -o -; "
+             "echo $? > luz-status; } | "
+             "ffmpeg -loglevel error -f image2pipe -framerate 12 -i - out.mp4 && "
+             "ffprobe -v error -count_frames -select_streams v:0 "
+             "-show_entries stream=nb_read_frames -of csv=p=0 out.mp4",
+             luz_render_path());
+    run_result result = run_program_in(&box, "/bin/sh", ARGS("-c", command), NULL);
+    if (result.status != 0)
+        fail_msg("ffmpeg or ffprobe failed (%d): %s", result.status, result.err);
+    char status_path[600];
+    sandbox_path(&box, "luz-status", status_path, sizeof status_path);
+    char *luz_status = read_file(status_path, NULL);
+    assert_non_null(luz_status);
+    assert_string_equal(luz_status, "0\n");
+    assert_string_equal(result.out, "24\n");
+    free(luz_status);
+    run_result_free(&result);
+    sandbox_destroy(&box);
+}
+
 int main(void)
 {
     static const struct CMUnitTest fixed_tests[] = {
@@ -1785,6 +2600,16 @@ int main(void)
         cmocka_unit_test(test_parse_precedence_and_forms),
         cmocka_unit_test(test_output_pattern),
         cmocka_unit_test(test_default_textures_directory),
+        cmocka_unit_test(test_shard_arithmetic),
+        cmocka_unit_test(test_frame_range_and_shard_parsing),
+        cmocka_unit_test(test_shards_by_parallel_match_one_run),
+        cmocka_unit_test(test_slices_match_one_run),
+        cmocka_unit_test(test_killed_shard_resumed),
+        cmocka_unit_test(test_stdout_stream_is_the_files),
+        cmocka_unit_test(test_stdout_reader_quits),
+        cmocka_unit_test(test_stdout_terminal_refused),
+        cmocka_unit_test(test_stdout_stream_with_progress_bar),
+        cmocka_unit_test(test_video_through_ffmpeg),
     };
     enum { FIXED = sizeof fixed_tests / sizeof fixed_tests[0] };
     /* One named test per refused input, so that a failure says which. */

@@ -47,6 +47,9 @@ expect_refusal "--render-scale" --render-scale=abc
 expect_refusal "--render-scale" --render-scale
 expect_refusal "--print-state: takes no value" --print-state=yes
 expect_refusal "--frames: .*luz-render" --frames 5
+expect_refusal "--frame-range: .*luz-render" --frame-range 0:3
+expect_refusal "--shard: .*luz-render" --shard=1/4
+expect_refusal "--skip-existing: .*luz-render" --skip-existing
 expect_refusal "--bench" --bench -1
 expect_refusal "-o: .*luz-render" -o out.png
 expect_refusal "missing.luz: cannot open" --scene "$work/missing.luz"

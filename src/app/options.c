@@ -61,6 +61,8 @@ typedef enum option_kind {
     OPTION_INTERP,    /* perspective | affine */
     OPTION_ONLY,      /* a comma-separated list of light terms */
     OPTION_PATH,      /* a string the options own */
+    OPTION_FRAME_RANGE, /* A:B, A: or :B, frame numbers from 0 */
+    OPTION_SHARD,     /* K/M with 0 <= K < M */
     OPTION_SCENE,     /* a scene file, read at once */
     OPTION_MODEL,     /* a model file, the one object (command_line.c) */
 } option_kind;
@@ -171,7 +173,8 @@ static const option_spec option_table[] = {
      .summary = "rendering threads, 0 to 256 (0 and 1: the calling thread only)"},
     {.name = "output", .kind = OPTION_PATH, .offset = FIELD(output_path), .in_scene_file = true,
      .syntax = "FILE.png",
-     .summary = "output PNG; with --frames a pattern such as out_%04d.png",
+.summary = "output PNG; with --frames a pattern such as out_%04d.png; - writes the PNGs "
+                "to standard output, one after another",
      .default_text = "luz.png; luz_%04d.png for frames"},
     {.name = "frames", .kind = OPTION_INTEGER, .offset = FIELD(frame_count), .min = 1,
      .max = LUZ_MAX_FRAMES, .in_scene_file = true, .syntax = "N",
@@ -179,6 +182,21 @@ static const option_spec option_table[] = {
     {.name = "fps", .kind = OPTION_DOUBLE, .offset = FIELD(frames_per_second), .min = 0,
      .max = INFINITY, .min_open = true, .in_scene_file = true, .syntax = "F",
      .summary = "frames per second of --frames and --bench, above 0"},
+    /* Which frames of the sequence this run renders, and whether it
+     * renders those already written: a job's slice of the sequence, given
+     * by the scheduler to each task, so not in scene files. */
+    {.name = "frame-range", .kind = OPTION_FRAME_RANGE, .syntax = "A:B",
+     .summary = "render only frames A to B of --frames (from 0, both included), with the "
+                "names and bytes the whole run gives them; A: and :B leave an end open",
+     .default_text = "all"},
+    {.name = "shard", .kind = OPTION_SHARD, .min = 1, .max = LUZ_MAX_FRAMES, .syntax = "K/M",
+     .summary = "render the K-th of M contiguous shares of the frames (of --frame-range, "
+                "else all), 0 <= K < M <= 1000000; the first N mod M shares get one frame "
+                "more; a share may be empty",
+     .default_text = "off"},
+    {.name = "skip-existing", .kind = OPTION_FLAG, .offset = FIELD(skip_existing),
+     .summary = "do not render a frame whose output file exists (resumes a sequence)",
+     .default_text = "off"},
     {.name = "bench", .kind = OPTION_INTEGER, .offset = FIELD(bench_frames), .min = 1,
      .max = LUZ_MAX_FRAMES, .in_scene_file = true, .syntax = "N",
      .summary = "time N frames, write no file, print one line of key=value results",
@@ -503,6 +521,66 @@ static int set_only(luz_options *options, const char *value, const char *where,
                          where, option_quote(value).text);
 }
 
+/* --frame-range A:B, A: or :B (or :, every frame). Whether the frames
+ * exist is luz_options_finish()'s question, once --frames is known. */
+static int set_frame_range(luz_options *options, const char *value, const char *where,
+                           luz_error *error)
+{
+    const char *colon = strchr(value, ':');
+    long long first = 0, last = LUZ_FRAME_RANGE_OPEN;
+    bool well_formed = colon != NULL;
+    if (well_formed) {
+        char text[64];
+        size_t length = (size_t)(colon - value);
+        /* A: and :B, with blanks allowed around each number */
+        well_formed = length < sizeof text;
+        if (well_formed) {
+            memcpy(text, value, length);
+            text[length] = '\0';
+            if (*option_skip_blanks(text) != '\0')
+                well_formed = read_integer(text, 0, LUZ_MAX_FRAMES - 1, &first);
+        }
+        if (well_formed && *option_skip_blanks(colon + 1) != '\0')
+            well_formed = read_integer(colon + 1, 0, LUZ_MAX_FRAMES - 1, &last);
+    }
+    if (!well_formed)
+        return luz_error_set(error,
+                             "%s: expected A:B, A: or :B, frame numbers from 0 (such as 0:99), "
+                             "got '%s'",
+                             where, option_quote(value).text);
+    options->range_first = (int)first;
+    options->range_last = (int)last;
+    return 0;
+}
+
+/* --shard K/M. */
+static int set_shard(luz_options *options, const option_spec *spec, const char *value,
+                     const char *where, luz_error *error)
+{
+    const char *slash = strchr(value, '/');
+    long long index = -1, count = 0;
+    bool well_formed = slash != NULL && read_integer(slash + 1, (long long)spec->min,
+                                                     (long long)spec->max, &count);
+    if (well_formed) {
+        char text[64];
+        size_t length = (size_t)(slash - value);
+        well_formed = length < sizeof text;
+        if (well_formed) {
+            memcpy(text, value, length);
+            text[length] = '\0';
+            well_formed = read_integer(text, 0, count - 1, &index);
+        }
+    }
+    if (!well_formed)
+        return luz_error_set(error,
+                             "%s: expected K/M, share K of M with 0 <= K < M <= %lld "
+                             "(such as 0/4), got '%s'",
+                             where, (long long)spec->max, option_quote(value).text);
+    options->shard_index = (int)index;
+    options->shard_count = (int)count;
+    return 0;
+}
+
 static int set_path(luz_options *options, const option_spec *spec, const char *value,
                     const char *where, luz_error *error)
 {
@@ -561,6 +639,10 @@ int luz_options_set_value(luz_options *options, const char *name, const char *va
         return set_only(options, value, where, error);
     case OPTION_PATH:
         return set_path(options, spec, value, where, error);
+    case OPTION_FRAME_RANGE:
+        return set_frame_range(options, value, where, error);
+    case OPTION_SHARD:
+        return set_shard(options, spec, value, where, error);
     case OPTION_SCENE:
     case OPTION_MODEL:
         /* Files are not this file's business: luz_options_set
@@ -675,6 +757,20 @@ int luz_options_format(const luz_options *options, const char *name, char *buffe
         written = snprintf(buffer, size, "%s", path);
         break;
     }
+    case OPTION_FRAME_RANGE: {
+        if (options->range_first == 0 && options->range_last == LUZ_FRAME_RANGE_OPEN)
+            return -1;
+        char last[16] = "";
+        if (options->range_last != LUZ_FRAME_RANGE_OPEN)
+            snprintf(last, sizeof last, "%d", options->range_last);
+        written = snprintf(buffer, size, "%d:%s", options->range_first, last);
+        break;
+    }
+    case OPTION_SHARD:
+        if (options->shard_count == 0)
+            return -1;
+        written = snprintf(buffer, size, "%d/%d", options->shard_index, options->shard_count);
+        break;
     case OPTION_FLAG:
     case OPTION_SCENE:
     case OPTION_MODEL:
@@ -694,6 +790,7 @@ void luz_options_init(luz_options *options)
         .thread_count = LUZ_THREADS_AUTO,
         .frame_count = 1,
         .frames_per_second = 30.0,
+        .range_last = LUZ_FRAME_RANGE_OPEN,
     };
 }
 
@@ -833,6 +930,33 @@ int luz_options_output_path(const luz_options *options, int frame_index, char *b
     return 0;
 }
 
+bool luz_options_output_is_stdout(const luz_options *options)
+{
+    return options->output_path != NULL && strcmp(options->output_path, "-") == 0;
+}
+
+void luz_shard_frames(int first, int count, int shard_index, int shard_count,
+                      int *shard_first, int *shard_frames)
+{
+    const int share = count / shard_count, remainder = count % shard_count;
+    /* shares before this one: shard_index of them, the first `remainder`
+     * of which have one frame more */
+    *shard_first = first + shard_index * share +
+                   (shard_index < remainder ? shard_index : remainder);
+    *shard_frames = share + (shard_index < remainder ? 1 : 0);
+}
+
+void luz_options_frames_to_render(const luz_options *options, int *first, int *count)
+{
+    const int last = options->range_last == LUZ_FRAME_RANGE_OPEN ? options->frame_count - 1
+                                                                 : options->range_last;
+    *first = options->range_first;
+    *count = last - options->range_first + 1;
+    if (options->shard_count > 0)
+        luz_shard_frames(*first, *count, options->shard_index, options->shard_count, first,
+                         count);
+}
+
 int luz_options_finish(luz_options *options, luz_error *error)
 {
     luz_lights *lights = &options->scene.lights;
@@ -852,6 +976,19 @@ int luz_options_finish(luz_options *options, luz_error *error)
                              (double)lights->spot_outer_degrees,
                              (double)lights->spot_inner_degrees);
 
+    /* The range is checked once --frames is known, whatever the order. */
+    const int last_frame = options->frame_count - 1;
+    if (options->range_first > last_frame ||
+        (options->range_last != LUZ_FRAME_RANGE_OPEN &&
+         (options->range_last > last_frame || options->range_first > options->range_last))) {
+        char range[40] = "";
+        luz_options_format(options, "frame-range", range, sizeof range);
+        return luz_error_set(error,
+                             "--frame-range: expected A:B with 0 <= A <= B <= %d, frames of "
+                             "--frames %d (A: and :B leave an end open), got '%s'",
+                             last_frame, options->frame_count, range);
+    }
+
     if (options->output_path == NULL) {
         options->output_path = strdup(options->frame_count > 1 ? "luz_%04d.png" : "luz.png");
         if (options->output_path == NULL)
@@ -863,6 +1000,13 @@ int luz_options_finish(luz_options *options, luz_error *error)
                              "-o: expected a file name with at most one %%d conversion "
                              "(%%d, %%4d or %%04d; %%%% for a percent sign), got '%s'",
                              option_quote(options->output_path).text);
+    if (luz_options_output_is_stdout(options)) {
+        if (options->skip_existing)
+            return luz_error_set(error,
+                                 "--skip-existing: expected output files to look for, but "
+                                 "-o - writes to standard output");
+        return 0;
+    }
     if (options->frame_count > 1 && pattern.conversions == 0)
         return luz_error_set(error,
                              "-o: expected a pattern with a %%d conversion such as out_%%04d.png "

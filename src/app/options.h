@@ -50,6 +50,9 @@ typedef struct luz_object_source {
  * a benchmark takes, and no sequence needs more. */
 #define LUZ_MAX_FRAMES 1000000
 
+/* --frame-range's B when the range runs to the last frame (A: or no range). */
+#define LUZ_FRAME_RANGE_OPEN (-1)
+
 typedef struct luz_options {
     luz_scene scene;            /* objects points into `objects` below */
     int width, height;          /* default 1280 x 720 */
@@ -62,6 +65,13 @@ typedef struct luz_options {
     char *scene_path;           /* the last scene file read (--scene) */
     int frame_count;            /* --frames, default 1 */
     double frames_per_second;   /* --fps, default 30 */
+    int range_first;            /* --frame-range A:B: A, default 0 */
+    int range_last;             /* B, or LUZ_FRAME_RANGE_OPEN (the default):
+                                   to the last frame */
+    int shard_index;            /* --shard K/M: K */
+    int shard_count;            /* M; 0 (the default): no --shard */
+    bool skip_existing;         /* --skip-existing: leave frames whose file
+                                   exists */
     int bench_frames;           /* --bench N, 0 when not benchmarking */
     unsigned only_terms;        /* --only: bit (1u << luz_term) per light term
                                    kept; 0 keeps them all */
@@ -135,8 +145,9 @@ int luz_options_format(const luz_options *options, const char *name,
 /* What must wait until every option is known, called by luz_options_parse()
  * and by anyone who sets options one by one or reads a scene file directly:
  * applies --only (the strengths of the other terms become 0), checks the
- * spot's inner angle against its outer one, sets the default output path
- * and checks the -o pattern. Returns 0, or -1 with a message. */
+ * spot's inner angle against its outer one, sets the default output path,
+ * checks the -o pattern, checks --frame-range against --frames and refuses
+ * --skip-existing with -o -. Returns 0, or -1 with a message. */
 int luz_options_finish(luz_options *options, luz_error *error);
 
 /* Drops the custom cubes: the scene goes back to SCENE.md's tiling of
@@ -180,6 +191,23 @@ int luz_options_model_path(const char *base_directory, const char *path, char *b
  * the pattern is malformed or the name does not fit in buffer. */
 int luz_options_output_path(const luz_options *options, int frame_index,
                             char *buffer, size_t size, luz_error *error);
+
+/* Whether -o is `-`: the PNGs go to standard output, one after another. */
+bool luz_options_output_is_stdout(const luz_options *options);
+
+/* Share shard_index of shard_count contiguous shares of `count` frames
+ * starting at `first` (0 <= shard_index < shard_count): with
+ * q = count / shard_count and r = count % shard_count, shares 0 to r - 1
+ * get q + 1 frames and the others q, in order. Sets *shard_first and
+ * *shard_frames; *shard_frames is 0 for an empty share (more shares than
+ * frames), and *shard_first is then where it would start. */
+void luz_shard_frames(int first, int count, int shard_index, int shard_count,
+                      int *shard_first, int *shard_frames);
+
+/* The frames a run renders, after luz_options_finish(): --frame-range's
+ * (all of --frames without it), then --shard's share of those. Sets *first
+ * and *count (0: nothing to render). */
+void luz_options_frames_to_render(const luz_options *options, int *first, int *count);
 
 /* The usage text of the scene options, for --help: every option, its value
  * and its default. */

@@ -424,7 +424,11 @@ static int read_line(scene_reader *reader, char *text, luz_error *error)
 
     if (strcmp(name, "cube") == 0 || strcmp(name, "model") == 0)
         return read_object(reader, value, name[0] == 'm', error);
-    if (strcmp(name, "help") == 0 || strcmp(name, "version") == 0 || strcmp(name, "scene") == 0)
+    /* An option of the command line that a file may not set (help,
+     * reference, scene, shard, ...): say so, rather than "unknown". */
+    luz_option_info row;
+    if (strcmp(name, "o") != 0 && luz_options_find(name, strlen(name), &row) &&
+        !luz_options_is_scene_key(name))
         return luz_error_set(error, "%s:%d: `%s` is not allowed in a scene file", path, line,
                              name);
     if (!luz_options_is_scene_key(name) || strlen(name) >= KEY_MAX)

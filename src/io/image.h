@@ -1,7 +1,8 @@
 /*
- * luz/image.h: writing the framebuffer to a PNG file.
+ * luz/image.h: writing the framebuffer to a PNG file (or to an open
+ * stream, luz_framebuffer_write_png_stream).
  *
- * The file is written to a temporary name beside the target and renamed
+ * A file is written to a temporary name beside the target and renamed
  * into place only once complete, so a failed or interrupted render never
  * leaves a partial PNG under the requested name. Each function returns 0,
  * or -1 with the reason in error.
@@ -10,6 +11,7 @@
 #define LUZ_IMAGE_H
 
 #include <stdint.h>
+#include <stdio.h>
 
 #include "luz/error.h"
 #include "luz/framebuffer.h"
@@ -27,5 +29,13 @@ int luz_framebuffer_write_png(const luz_framebuffer *framebuffer, const char *pa
  * overwrite each other's file. */
 int luz_framebuffer_write_new_png(const luz_framebuffer *framebuffer, const char *path,
                                   luz_error *error);
+
+/* Writes the framebuffer as a PNG to an open stream (standard output, for a
+ * video encoder reading image after image) and flushes it. A stream cannot
+ * be written complete-or-absent: if a write fails (EPIPE when the reader
+ * has quit), -1 is returned with "NAME: cannot write (REASON)", name
+ * standing for the stream in the message. */
+int luz_framebuffer_write_png_stream(const luz_framebuffer *framebuffer, FILE *stream,
+                                     const char *name, luz_error *error);
 
 #endif

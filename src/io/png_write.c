@@ -15,16 +15,23 @@
  * race with another program saving under the same name), and then
  * unlinked. The viewer's numbered screenshots rely on it.
  *
+ * luz_framebuffer_write_png_stream writes to a stream that is already open
+ * (standard output, for a video encoder): no temporary file is possible
+ * there, so a failed write is reported and the reader sees a PNG cut
+ * short.
+ *
  * A PNG's pixels are RGBA. A framebuffer drawn in BGRA (a window's order,
  * see luz/framebuffer.h) is converted into a temporary copy first, so the
  * framebuffer itself is left as it was, and the file is still either
  * complete or absent.
  */
+#include <errno.h>
 #include <pthread.h>
 #include <signal.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include <stb_image_write.h>
 
@@ -74,12 +81,57 @@ int luz_png_write(const char *path, int width, int height, const uint8_t *rgba,
     return write_png(path, width, height, rgba, true, error);
 }
 
-static int write_framebuffer(const luz_framebuffer *framebuffer, const char *path, bool replace,
+/* Where a PNG goes: a new file at path, or an open stream (then path only
+ * names it in messages). */
+typedef struct png_target {
+    const char *path;
+    bool replace;
+    FILE *stream;   /* NULL: a new file */
+} png_target;
+
+typedef struct stream_writer {
+    FILE *stream;
+    int error;   /* errno of the first failed write, 0 while all went well */
+} stream_writer;
+
+static void write_to_stream(void *context, void *data, int size)
+{
+    stream_writer *writer = context;
+    if (writer->error == 0 && fwrite(data, 1, (size_t)size, writer->stream) != (size_t)size)
+        writer->error = errno ? errno : EIO;
+}
+
+static int write_png_to_stream(FILE *stream, const char *name, int width, int height,
+                               const uint8_t *rgba, luz_error *error)
+{
+    stream_writer writer = {.stream = stream};
+    errno = 0;
+    if (!stbi_write_png_to_func(write_to_stream, &writer, width, height, 4, rgba, width * 4))
+        return luz_error_set(error, "%s: cannot write (PNG encoding failed)", name);
+    /* flushed, so that the reader has each image whole as soon as it is
+     * written, and a failure is seen at this image */
+    if (writer.error == 0 && fflush(stream) != 0)
+        writer.error = errno ? errno : EIO;
+    if (writer.error != 0)
+        return luz_error_set(error, "%s: cannot write (%s)", name, strerror(writer.error));
+    return 0;
+}
+
+static int write_target(const png_target *target, int width, int height, const uint8_t *rgba,
+                        luz_error *error)
+{
+    if (target->stream != NULL)
+        return write_png_to_stream(target->stream, target->path, width, height, rgba, error);
+    return write_png(target->path, width, height, rgba, target->replace, error);
+}
+
+static int write_framebuffer(const luz_framebuffer *framebuffer, const png_target *target,
                              luz_error *error)
 {
+    const char *path = target->path;
     const int width = framebuffer->width, height = framebuffer->height;
     if (framebuffer->channel_order == LUZ_CHANNELS_RGBA)
-        return write_png(path, width, height, framebuffer->colour, replace, error);
+        return write_target(target, width, height, framebuffer->colour, error);
 
     /* BGRA: red and blue, bytes 0 and 2, trade places; green and alpha
      * stay. The copy is made before any file exists, so running out of
@@ -96,7 +148,7 @@ static int write_framebuffer(const luz_framebuffer *framebuffer, const char *pat
         rgba[i + 2] = bgra[i + 0];
         rgba[i + 3] = bgra[i + 3];
     }
-    int status = write_png(path, width, height, rgba, replace, error);
+    int status = write_target(target, width, height, rgba, error);
     free(rgba);
     return status;
 }
@@ -104,11 +156,18 @@ static int write_framebuffer(const luz_framebuffer *framebuffer, const char *pat
 int luz_framebuffer_write_png(const luz_framebuffer *framebuffer, const char *path,
                               luz_error *error)
 {
-    return write_framebuffer(framebuffer, path, true, error);
+    return write_framebuffer(framebuffer, &(png_target){.path = path, .replace = true}, error);
 }
 
 int luz_framebuffer_write_new_png(const luz_framebuffer *framebuffer, const char *path,
                                   luz_error *error)
 {
-    return write_framebuffer(framebuffer, path, false, error);
+    return write_framebuffer(framebuffer, &(png_target){.path = path, .replace = false}, error);
+}
+
+int luz_framebuffer_write_png_stream(const luz_framebuffer *framebuffer, FILE *stream,
+                                     const char *name, luz_error *error)
+{
+    return write_framebuffer(framebuffer, &(png_target){.path = name, .stream = stream},
+                             error);
 }

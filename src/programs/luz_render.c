@@ -4,23 +4,28 @@
  *
  *   luz-render --size 640x360 --time 2 -o lab.png
  *   luz-render --frames 60 --fps 30 -o frames/lab_%04d.png
+ *   luz-render --frames 240 --shard 3/8 --skip-existing -o frames/lab_%04d.png
+ *   luz-render --frames 60 -o - | ffmpeg -f image2pipe -framerate 30 -i - lab.mp4
  *   luz-render --bench 20 --threads 2
  *
  * The program is a thin shell around libluz: luz_options_parse() reads and
  * checks every option (and the scene file) before anything is rendered, so
  * a bad option never leaves a file behind; the frames are drawn by
  * luz_renderer_draw() and written by luz_framebuffer_write_png(), which
- * writes a temporary file and renames it into place.
+ * writes a temporary file and renames it into place. With -o - the PNGs
+ * go to standard output instead, one after another, and nothing else does.
  *
  * Exit status: 0 on success; 2 for a usage error (an option, a scene file or
  * a textures directory that is not right), with one line on stderr; 1 when
  * rendering or writing fails for another reason (out of memory, a disk
  * error). docs/cli.md is the user's reference.
  */
+#include <signal.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -107,23 +112,56 @@ static void show_progress(int done, int total)
     fflush(stderr);
 }
 
-/* Renders frame_count frames (one, or a --frames sequence) to PNG files. */
-static int render_files(render_context *context, luz_renderer *renderer, luz_error *error)
+/* Is there a file under path already? Only a regular file counts: luz's
+ * own are complete or absent, so one that is there is finished. */
+static bool frame_exists(const char *path)
+{
+    struct stat info;
+    return stat(path, &info) == 0 && S_ISREG(info.st_mode);
+}
+
+/* Renders frame k of the sequence (frame 0 of a single image) to its file,
+ * or to standard output for -o -. With --skip-existing, a frame whose file
+ * exists is left as it is. */
+static int render_frame(render_context *context, luz_renderer *renderer, int k,
+                        luz_error *error)
 {
     const luz_options *options = context->options;
-    bool progress = options->frame_count > 1 && isatty(STDERR_FILENO);
+    /* the same arithmetic for every run, so that any slice of the sequence
+     * gets the whole run's bytes */
+    double time_seconds = options->scene.time_seconds + k / options->frames_per_second;
+    if (luz_options_output_is_stdout(options)) {
+        if (render_at(context, renderer, time_seconds, NULL, error) != 0)
+            return -1;
+        return luz_framebuffer_write_png_stream(context->framebuffer, stdout, "standard output",
+                                                error);
+    }
     char path[4096];
-    for (int k = 0; k < options->frame_count; k++) {
-        double time_seconds = options->scene.time_seconds + k / options->frames_per_second;
-        if (luz_options_output_path(options, k, path, sizeof path, error) != 0 ||
-            render_at(context, renderer, time_seconds, NULL, error) != 0 ||
-            luz_framebuffer_write_png(context->framebuffer, path, error) != 0) {
+    if (luz_options_output_path(options, k, path, sizeof path, error) != 0)
+        return -1;
+    if (options->skip_existing && frame_exists(path))
+        return 0;
+    if (render_at(context, renderer, time_seconds, NULL, error) != 0 ||
+        luz_framebuffer_write_png(context->framebuffer, path, error) != 0)
+        return -1;
+    return 0;
+}
+
+/* Renders the frames of this run: one, a --frames sequence, or the part of
+ * it that --frame-range and --shard select (none, for an empty shard). */
+static int render_files(render_context *context, luz_renderer *renderer, luz_error *error)
+{
+    int first, count;
+    luz_options_frames_to_render(context->options, &first, &count);
+    bool progress = count > 1 && isatty(STDERR_FILENO);
+    for (int i = 0; i < count; i++) {
+        if (render_frame(context, renderer, first + i, error) != 0) {
             if (progress)
                 fputc('\n', stderr);   /* the error goes on its own line */
             return -1;
         }
         if (progress)
-            show_progress(k + 1, options->frame_count);
+            show_progress(i + 1, count);
     }
     return 0;
 }
@@ -215,6 +253,18 @@ int main(int argc, char **argv)
     if (options.version) {
         printf("luz-render %s\n", LUZ_VERSION);
         goto done;
+    }
+    if (luz_options_output_is_stdout(&options) && options.bench_frames == 0) {
+        /* PNG bytes would garble a terminal; as gzip does, refuse. */
+        if (isatty(STDOUT_FILENO)) {
+            luz_error_set(&error, "-o -: standard output is a terminal; expected a pipe "
+                                  "(| ffmpeg -f image2pipe -i - ...) or a file (> frames.bin)");
+            status = EXIT_USAGE;
+            goto done;
+        }
+        /* A reader that quits (ffmpeg, head) makes a write fail with EPIPE:
+         * one line and status 1, rather than death by SIGPIPE. */
+        signal(SIGPIPE, SIG_IGN);
     }
     if (luz_options_load_textures(&options, &textures, &error) != 0 ||
         luz_options_load_models(&options, &models, &error) != 0) {

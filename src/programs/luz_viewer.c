@@ -24,8 +24,8 @@
  * --print-state. luz-render's --bench N and --fps F mean the same here:
  * the same N frames, drawn and shown in the window, and the same line of
  * results, so that the two programs' frame rates can be compared (tools/
- * viewer-bench). luz-render's file options (-o, --frames) are refused: the
- * viewer writes no frames.
+ * viewer-bench). luz-render's file options (-o, --frames, --frame-range,
+ * --shard, --skip-existing) are refused: the viewer writes no frames.
  *
  * Exit status: 0 when the window is closed or Esc is pressed; 2 for a bad
  * option, scene file or textures directory, or when no display is
@@ -102,7 +102,8 @@ static int read_render_scale(const char *text, float *scale, luz_error *error)
 static int split_arguments(int argc, char **argv, viewer_settings *settings, char **scene_argv,
                            int *scene_argc, luz_error *error)
 {
-    static const char *const batch_only[] = {"-o", "--output", "--frames"};
+    static const char *const batch_only[] = {"-o", "--output", "--frames", "--frame-range",
+                                             "--shard", "--skip-existing"};
     int count = 0;
     scene_argv[count++] = argv[0];
     for (int i = 1; i < argc; i++) {
@@ -146,9 +147,10 @@ static void print_usage(FILE *out)
             "Fly through the luz lighting lab (rotating textured cubes lit by six lights, as\n"
             "SCENE.md describes) in a window, rendered in real time on the CPU.\n"
             "\n"
-            "The scene options are luz-render's (-o and --frames are luz-render's alone;\n"
-            "the viewer refuses them; --bench N shows its N frames in the window and\n"
-            "prints the same line, window included, then quits):\n");
+            "The scene options are luz-render's (-o, --frames, --frame-range, --shard and\n"
+            "--skip-existing are luz-render's alone; the viewer refuses them; --bench N\n"
+            "shows its N frames in the window and prints the same line, window included,\n"
+            "then quits):\n");
     luz_options_print_help(out);
     fprintf(out,
             "\n"
