@@ -10,7 +10,8 @@
  * assimp does the parsing with exactly SCENE.md's post-processing steps;
  * this file then checks what it returns as it would check any stranger's
  * data (luz_mesh_create refuses an index out of range or a position that
- * is not finite) and keeps nothing of assimp once it returns.
+ * is not finite; the positions are also checked before the steps, which
+ * could merge a NaN away) and keeps nothing of assimp once it returns.
  */
 #include "io/model.h"
 
@@ -314,6 +315,25 @@ static int add_part(luz_model *model, texture_cache *cache, const struct aiScene
     return 0;
 }
 
+/* Every position the file gives, checked before the steps run: a NaN
+ * compares equal to nothing, so JoinIdenticalVertices can merge a NaN
+ * vertex into a finite one and leave a degenerate triangle that draws
+ * nothing, and the file would load as if it were sound. */
+static int check_positions(const struct aiScene *scene, const char *path, luz_error *error)
+{
+    for (unsigned m = 0; m < scene->mNumMeshes; m++) {
+        const struct aiMesh *mesh = scene->mMeshes[m];
+        if (mesh == NULL || mesh->mVertices == NULL) continue;
+        for (unsigned v = 0; v < mesh->mNumVertices; v++) {
+            const struct aiVector3D p = mesh->mVertices[v];
+            if (!isfinite(p.x) || !isfinite(p.y) || !isfinite(p.z))
+                return luz_error_set(error, "%s: mesh %u: vertex %u has a position that is not "
+                                            "finite", path, m, v);
+        }
+    }
+    return 0;
+}
+
 static void grow_bounds(luz_bounds *bounds, luz_bounds more, bool first)
 {
     if (first) {
@@ -341,9 +361,25 @@ int luz_model_load(luz_model *model, const char *path, luz_error *error)
         return luz_error_set(error, "%s: out of memory", path);
     }
 
-    const struct aiScene *scene = aiImportFile(path, model_steps);
+    /* SCENE.md's steps in the order assimp's own aiImportFile(path, steps)
+     * runs them, validation first and then the rest, with the positions
+     * checked in between (check_positions). */
+    const struct aiScene *scene = aiImportFile(path, aiProcess_ValidateDataStructure);
     if (scene == NULL) {
         luz_error_set(error, "%s: not a model luz can read (%s)", path, aiGetErrorString());
+        luz_model_free(model);
+        return -1;
+    }
+    if (check_positions(scene, path, error) != 0) {
+        aiReleaseImport(scene);
+        luz_model_free(model);
+        return -1;
+    }
+    /* On failure this releases the scene itself, and sets no error string. */
+    scene = aiApplyPostProcessing(scene, model_steps & ~(unsigned)aiProcess_ValidateDataStructure);
+    if (scene == NULL) {
+        luz_error_set(error, "%s: not a model luz can read (assimp's post-processing failed)",
+                      path);
         luz_model_free(model);
         return -1;
     }
