@@ -236,10 +236,28 @@ static bool material_colour(const struct aiMaterial *material, luz_vec3 *colour)
     return true;
 }
 
+/* How many of the triangles have an area: corners not all on one line.
+ * The indices are in range (luz_mesh_create has checked them). */
+static uint32_t count_with_area(const luz_vertex *vertices, const uint32_t *indices,
+                                uint32_t triangles)
+{
+    uint32_t count = 0;
+    for (uint32_t t = 0; t < triangles; t++) {
+        const luz_vec3 a = vertices[indices[3 * t]].position;
+        const luz_vec3 b = vertices[indices[3 * t + 1]].position;
+        const luz_vec3 c = vertices[indices[3 * t + 2]].position;
+        const double ux = (double)b.x - a.x, uy = (double)b.y - a.y, uz = (double)b.z - a.z;
+        const double vx = (double)c.x - a.x, vy = (double)c.y - a.y, vz = (double)c.z - a.z;
+        count += uy * vz - uz * vy != 0.0 || uz * vx - ux * vz != 0.0 || ux * vy - uy * vx != 0.0;
+    }
+    return count;
+}
+
 /* One assimp mesh's triangles as a part; *added is false for a mesh with
- * none (points or lines only), which is dropped. */
+ * none (points or lines only), which is dropped. *with_area grows by the
+ * number of its triangles that have an area. */
 static int add_part(luz_model *model, texture_cache *cache, const struct aiScene *scene,
-                    unsigned mesh_index, bool *added, luz_error *error)
+                    unsigned mesh_index, bool *added, uint64_t *with_area, luz_error *error)
 {
     const struct aiMesh *source = scene->mMeshes[mesh_index];
     *added = false;
@@ -281,6 +299,7 @@ static int add_part(luz_model *model, texture_cache *cache, const struct aiScene
                                                       .indices = indices,
                                                       .index_count = triangles * 3},
                                      &inner);
+    if (mesh != NULL) *with_area += count_with_area(vertices, indices, triangles);
     free(vertices);
     free(indices);
     if (mesh == NULL)
@@ -385,9 +404,10 @@ int luz_model_load(luz_model *model, const char *path, luz_error *error)
     }
     texture_cache cache = {0};
     int status_code = 0;
+    uint64_t with_area = 0;
     for (unsigned m = 0; m < scene->mNumMeshes && status_code == 0; m++) {
         bool added;
-        status_code = add_part(model, &cache, scene, m, &added, error);
+        status_code = add_part(model, &cache, scene, m, &added, &with_area, error);
         if (status_code == 0 && added)
             grow_bounds(&model->bounds, luz_mesh_bounds(model->parts[model->part_count - 1].mesh),
                         model->part_count == 1);
@@ -405,6 +425,10 @@ int luz_model_load(luz_model *model, const char *path, luz_error *error)
             status_code = luz_error_set(error, "%s: the model has zero size (every vertex at "
                                                "one point)", path);
     }
+    /* Nothing to see from any side: every triangle a line or a point. */
+    if (status_code == 0 && with_area == 0)
+        status_code = luz_error_set(error, "%s: no triangle has an area (the corners of each "
+                                           "are on one line)", path);
     if (status_code != 0) luz_model_free(model);
     return status_code;
 }
