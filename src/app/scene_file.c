@@ -105,8 +105,9 @@ static char *skip_quoted(char *text)
 
 /* Where the line's comment starts: its first `#` outside a quoted string,
  * or NULL. A quoted string can start only where a value can: at the first
- * character of a `name = value` line's value, and, in a cube line, at the
- * start of a word (the texture NAME; anywhere else read_cube refuses it).
+ * character of a `name = value` line's value, and, in a cube or model
+ * line, at the start of a word (the texture NAME; anywhere else
+ * read_object refuses it).
  * A `"` elsewhere is an ordinary character, as it always was. An
  * unterminated quote hides the rest of the line, and unquote() says so. */
 static char *find_comment(char *text)
@@ -120,7 +121,8 @@ static char *find_comment(char *text)
     char *name_end = mark;
     while (name_end > name && (name_end[-1] == ' ' || name_end[-1] == '\t'))
         name_end--;
-    bool cube = name_end - name == 4 && memcmp(name, "cube", 4) == 0;
+    bool object = (name_end - name == 4 && memcmp(name, "cube", 4) == 0) ||
+                  (name_end - name == 5 && memcmp(name, "model", 5) == 0);
 
     char *value = mark + 1;
     while (*value == ' ' || *value == '\t')
@@ -129,7 +131,7 @@ static char *find_comment(char *text)
         if (*p == '#')
             return p;
         bool word_start = p == value || p[-1] == ' ' || p[-1] == '\t';
-        if (*p == '"' && (p == value || (cube && word_start))) {
+        if (*p == '"' && (p == value || (object && word_start))) {
             char *end = skip_quoted(p);
             if (end == NULL)
                 return NULL;

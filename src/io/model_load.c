@@ -10,7 +10,8 @@
  * assimp does the parsing with exactly SCENE.md's post-processing steps;
  * this file then checks what it returns as it would check any stranger's
  * data (luz_mesh_create refuses an index out of range or a position that
- * is not finite) and keeps nothing of assimp once it returns.
+ * is not finite; the positions are also checked before the steps, which
+ * could merge a NaN away) and keeps nothing of assimp once it returns.
  */
 #include "io/model.h"
 
@@ -235,10 +236,28 @@ static bool material_colour(const struct aiMaterial *material, luz_vec3 *colour)
     return true;
 }
 
+/* How many of the triangles have an area: corners not all on one line.
+ * The indices are in range (luz_mesh_create has checked them). */
+static uint32_t count_with_area(const luz_vertex *vertices, const uint32_t *indices,
+                                uint32_t triangles)
+{
+    uint32_t count = 0;
+    for (uint32_t t = 0; t < triangles; t++) {
+        const luz_vec3 a = vertices[indices[3 * t]].position;
+        const luz_vec3 b = vertices[indices[3 * t + 1]].position;
+        const luz_vec3 c = vertices[indices[3 * t + 2]].position;
+        const double ux = (double)b.x - a.x, uy = (double)b.y - a.y, uz = (double)b.z - a.z;
+        const double vx = (double)c.x - a.x, vy = (double)c.y - a.y, vz = (double)c.z - a.z;
+        count += uy * vz - uz * vy != 0.0 || uz * vx - ux * vz != 0.0 || ux * vy - uy * vx != 0.0;
+    }
+    return count;
+}
+
 /* One assimp mesh's triangles as a part; *added is false for a mesh with
- * none (points or lines only), which is dropped. */
+ * none (points or lines only), which is dropped. *with_area grows by the
+ * number of its triangles that have an area. */
 static int add_part(luz_model *model, texture_cache *cache, const struct aiScene *scene,
-                    unsigned mesh_index, bool *added, luz_error *error)
+                    unsigned mesh_index, bool *added, uint64_t *with_area, luz_error *error)
 {
     const struct aiMesh *source = scene->mMeshes[mesh_index];
     *added = false;
@@ -280,6 +299,7 @@ static int add_part(luz_model *model, texture_cache *cache, const struct aiScene
                                                       .indices = indices,
                                                       .index_count = triangles * 3},
                                      &inner);
+    if (mesh != NULL) *with_area += count_with_area(vertices, indices, triangles);
     free(vertices);
     free(indices);
     if (mesh == NULL)
@@ -314,6 +334,25 @@ static int add_part(luz_model *model, texture_cache *cache, const struct aiScene
     return 0;
 }
 
+/* Every position the file gives, checked before the steps run: a NaN
+ * compares equal to nothing, so JoinIdenticalVertices can merge a NaN
+ * vertex into a finite one and leave a degenerate triangle that draws
+ * nothing, and the file would load as if it were sound. */
+static int check_positions(const struct aiScene *scene, const char *path, luz_error *error)
+{
+    for (unsigned m = 0; m < scene->mNumMeshes; m++) {
+        const struct aiMesh *mesh = scene->mMeshes[m];
+        if (mesh == NULL || mesh->mVertices == NULL) continue;
+        for (unsigned v = 0; v < mesh->mNumVertices; v++) {
+            const struct aiVector3D p = mesh->mVertices[v];
+            if (!isfinite(p.x) || !isfinite(p.y) || !isfinite(p.z))
+                return luz_error_set(error, "%s: mesh %u: vertex %u has a position that is not "
+                                            "finite", path, m, v);
+        }
+    }
+    return 0;
+}
+
 static void grow_bounds(luz_bounds *bounds, luz_bounds more, bool first)
 {
     if (first) {
@@ -341,17 +380,34 @@ int luz_model_load(luz_model *model, const char *path, luz_error *error)
         return luz_error_set(error, "%s: out of memory", path);
     }
 
-    const struct aiScene *scene = aiImportFile(path, model_steps);
+    /* SCENE.md's steps in the order assimp's own aiImportFile(path, steps)
+     * runs them, validation first and then the rest, with the positions
+     * checked in between (check_positions). */
+    const struct aiScene *scene = aiImportFile(path, aiProcess_ValidateDataStructure);
     if (scene == NULL) {
         luz_error_set(error, "%s: not a model luz can read (%s)", path, aiGetErrorString());
         luz_model_free(model);
         return -1;
     }
+    if (check_positions(scene, path, error) != 0) {
+        aiReleaseImport(scene);
+        luz_model_free(model);
+        return -1;
+    }
+    /* On failure this releases the scene itself, and sets no error string. */
+    scene = aiApplyPostProcessing(scene, model_steps & ~(unsigned)aiProcess_ValidateDataStructure);
+    if (scene == NULL) {
+        luz_error_set(error, "%s: not a model luz can read (assimp's post-processing failed)",
+                      path);
+        luz_model_free(model);
+        return -1;
+    }
     texture_cache cache = {0};
     int status_code = 0;
+    uint64_t with_area = 0;
     for (unsigned m = 0; m < scene->mNumMeshes && status_code == 0; m++) {
         bool added;
-        status_code = add_part(model, &cache, scene, m, &added, error);
+        status_code = add_part(model, &cache, scene, m, &added, &with_area, error);
         if (status_code == 0 && added)
             grow_bounds(&model->bounds, luz_mesh_bounds(model->parts[model->part_count - 1].mesh),
                         model->part_count == 1);
@@ -369,6 +425,10 @@ int luz_model_load(luz_model *model, const char *path, luz_error *error)
             status_code = luz_error_set(error, "%s: the model has zero size (every vertex at "
                                                "one point)", path);
     }
+    /* Nothing to see from any side: every triangle a line or a point. */
+    if (status_code == 0 && with_area == 0)
+        status_code = luz_error_set(error, "%s: no triangle has an area (the corners of each "
+                                           "are on one line)", path);
     if (status_code != 0) luz_model_free(model);
     return status_code;
 }
