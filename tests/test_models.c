@@ -820,6 +820,14 @@ static void test_normalisation(void **state)
                      TOLERANCE);
     assert_vec3_near(luz_mat4_transform_point(tall, (luz_vec3){0, 0, 0}), -0.1, -0.1, -1,
                      TOLERANCE);
+
+    /* Huge but finite: (-3e38, -1, 0)-(3e38, 1, 0), whose max - min and
+     * min + max overflow a float. s = 6e38, so Norm takes (3e38, 0, 0) to
+     * (1, 0, 0) and (0, 1, 0) to (0, 1/3e38, 0), about 0. */
+    hand.model.bounds = (luz_bounds){{-3e38f, -1, 0}, {3e38f, 1, 0}};
+    const luz_mat4 huge = luz_lab_model_normalisation(&hand.model);
+    assert_vec3_near(luz_mat4_transform_point(huge, (luz_vec3){3e38f, 0, 0}), 1, 0, 0, 1e-3);
+    assert_vec3_near(luz_mat4_transform_point(huge, (luz_vec3){-3e38f, 1, 0}), -1, 0, 0, 1e-3);
     free_hand_model(&hand);
 }
 

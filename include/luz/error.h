@@ -11,10 +11,6 @@
 
 #include "luz/api.h"
 
-/* What a function that never replaces a file returns when the name is
- * taken (luz_framebuffer_write_new_png, luz_options_save_scene). */
-#define LUZ_FILE_EXISTS 1
-
 typedef struct luz_error {
     char message[512];
 } luz_error;

@@ -1,8 +1,8 @@
 /*
  * luz/view.h: the colours of the teaching views, and a legend for each.
  *
- * `--view NAME` (luz_scene.view, carried into luz_uniforms.show) makes the
- * pipeline write a picture of one of its stages into the colour buffer
+ * luz_render_options.view (the programs' `--view NAME`) makes the pipeline
+ * write a picture of one of its stages into the colour buffer
  * instead of the shaded image: the same triangles, rasterised by the same
  * code, only the last step (what colour a pixel gets) differs. The
  * pictures are drawn by src/renderer/view.c; this header gives their

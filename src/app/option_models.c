@@ -30,7 +30,8 @@ int luz_options_model_path(const char *base_directory, const char *path, char *b
     if (path[0] == '/') {
         written = snprintf(buffer, size, "%s", path);
     } else if (base_directory != NULL && base_directory[0] == '/') {
-        written = snprintf(buffer, size, "%s/%s", base_directory, path);
+        const bool root = base_directory[1] == '\0';
+        written = snprintf(buffer, size, "%s/%s", root ? "" : base_directory, path);
     } else {
         char cwd[4096];
         if (getcwd(cwd, sizeof cwd) == NULL)

@@ -45,6 +45,7 @@
 #include "io/new_file.h"
 
 #include <errno.h>
+#include <float.h>
 #include <math.h>
 #include <stdbool.h>
 #include <stdlib.h>
@@ -292,9 +293,14 @@ static int read_object(scene_reader *reader, char *value, bool is_model, luz_err
         char *file;
         if ((fields = read_word(reader, value, "model: FILE", &file, error)) == NULL)
             return -1;
+        /* The scene file's directory: "" for the working one, "/" for a
+         * file in the root. */
         char directory[4096];
         const char *slash = strrchr(path, '/');
-        snprintf(directory, sizeof directory, "%.*s", slash ? (int)(slash - path) : 0, path);
+        if (slash == path)
+            snprintf(directory, sizeof directory, "/");
+        else
+            snprintf(directory, sizeof directory, "%.*s", slash ? (int)(slash - path) : 0, path);
         char where[600];
         snprintf(where, sizeof where, "%s:%d: model", path, line);
         luz_error inner;
@@ -361,8 +367,11 @@ static int read_object(scene_reader *reader, char *value, bool is_model, luz_err
             *end = '\0';
             option_parse_result scale = option_read_numbers(rest, numbers, 1, true);
             *end = saved;
-            const float k = (float)numbers[0];   /* above 0 and finite as a float */
-            if (has_scale || scale != OPTION_PARSE_OK || !(k > 0.0f) || isinf(k))
+            /* above 0, and finite once it is a float */
+            const bool valid = scale == OPTION_PARSE_OK && numbers[0] > 0.0 &&
+                               numbers[0] <= FLT_MAX;
+            const float k = valid ? (float)numbers[0] : 0.0f;
+            if (has_scale || !valid || !(k > 0.0f))
                 return luz_error_set(error,
                                      "%s:%d: model: expected `scale k` once, k a number above "
                                      "0, got '%s'",

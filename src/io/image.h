@@ -13,6 +13,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include "io/new_file.h"
 #include "luz/error.h"
 #include "luz/framebuffer.h"
 
@@ -24,7 +25,7 @@ int luz_framebuffer_write_png(const luz_framebuffer *framebuffer, const char *pa
 
 /* As luz_framebuffer_write_png, but never replaces a file: if path exists
  * (or comes to exist while the PNG is encoded), nothing is left behind and
- * it returns LUZ_FILE_EXISTS (luz/error.h), so that a caller numbering its
+ * it returns LUZ_FILE_EXISTS (io/new_file.h), so that a caller numbering its
  * files takes the next number. Two programs saving at once never
  * overwrite each other's file. */
 int luz_framebuffer_write_new_png(const luz_framebuffer *framebuffer, const char *path,

@@ -271,6 +271,9 @@ static int add_part(luz_model *model, texture_cache *cache, const struct aiScene
                              mesh_index, (unsigned)triangles, (unsigned)LUZ_MESH_MAX_TRIANGLES);
 
     const unsigned vertex_count = source->mNumVertices;
+    if (vertex_count > LUZ_MESH_MAX_VERTICES)
+        return luz_error_set(error, "%s: mesh %u has %u vertices, more than %u", model->path,
+                             mesh_index, vertex_count, (unsigned)LUZ_MESH_MAX_VERTICES);
     luz_vertex *vertices = malloc((size_t)vertex_count * sizeof *vertices + 1);
     uint32_t *indices = malloc((size_t)triangles * 3 * sizeof *indices);
     if (!vertices || !indices) {
@@ -420,10 +423,20 @@ int luz_model_load(luz_model *model, const char *path, luz_error *error)
         status_code = luz_error_set(error, "%s: no triangles (only points or lines, or nothing)",
                                     path);
     if (status_code == 0) {
-        luz_vec3 size = luz_vec3_sub(model->bounds.max, model->bounds.min);
-        if (!(size.x > 0.0f || size.y > 0.0f || size.z > 0.0f))
+        /* SCENE.md's s, the largest side, in double: the float difference
+         * of two huge coordinates would overflow to infinity. The lab
+         * scales by 2 / s, which must be a float above 0. */
+        const luz_bounds b = model->bounds;
+        double side = (double)b.max.x - (double)b.min.x;
+        if ((double)b.max.y - (double)b.min.y > side) side = (double)b.max.y - (double)b.min.y;
+        if ((double)b.max.z - (double)b.min.z > side) side = (double)b.max.z - (double)b.min.z;
+        if (!(side > 0.0))
             status_code = luz_error_set(error, "%s: the model has zero size (every vertex at "
                                                "one point)", path);
+        else if (!((float)(2.0 / side) > 0.0f))
+            status_code = luz_error_set(error, "%s: the model is %g units across, too large to "
+                                               "scale to [-1, 1] in single precision", path,
+                                        side);
     }
     /* Nothing to see from any side: every triangle a line or a point. */
     if (status_code == 0 && with_area == 0)

@@ -19,6 +19,11 @@
 
 #include "luz/error.h"
 
+/* What a write that never replaces a file returns when the name is taken
+ * (luz_new_file_commit, luz_framebuffer_write_new_png,
+ * luz_options_save_scene). */
+#define LUZ_FILE_EXISTS 1
+
 typedef struct luz_new_file {
     FILE *stream;       /* write here */
     const char *path;   /* the caller's, for messages and the final name */

@@ -213,12 +213,16 @@ luz_render_options luz_scene_render_options(const luz_scene *scene)
 
 luz_mat4 luz_lab_model_normalisation(const luz_lab_model *model)
 {
+    /* In double: min + max and max - min of huge coordinates overflow a
+     * float. */
     const luz_bounds b = model->bounds;
-    const luz_vec3 centre = luz_vec3_scale(luz_vec3_add(b.min, b.max), 0.5f);
-    const luz_vec3 size = luz_vec3_sub(b.max, b.min);
-    float side = size.x > size.y ? size.x : size.y;
-    if (size.z > side) side = size.z;
-    const float k = 2.0f / side;
+    const luz_vec3 centre = {(float)(0.5 * ((double)b.min.x + b.max.x)),
+                             (float)(0.5 * ((double)b.min.y + b.max.y)),
+                             (float)(0.5 * ((double)b.min.z + b.max.z))};
+    double side = (double)b.max.x - b.min.x;
+    if ((double)b.max.y - b.min.y > side) side = (double)b.max.y - b.min.y;
+    if ((double)b.max.z - b.min.z > side) side = (double)b.max.z - b.min.z;
+    const float k = (float)(2.0 / side);
     return luz_mat4_translate(luz_mat4_scale(luz_mat4_identity(), (luz_vec3){k, k, k}),
                               luz_vec3_scale(centre, -1.0f));
 }

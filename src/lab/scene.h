@@ -73,7 +73,6 @@ luz_mat4 luz_lab_model_normalisation(const luz_lab_model *model);
 
 /* ---- the scene's objects -------------------------------------------------- */
 
-#define LUZ_TEXTURE_BY_INDEX (-1)
 
 /* An object of the user's own: a cube (a scene file's `cube` line) or a
  * model (`model` line, or --model). */
