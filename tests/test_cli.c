@@ -25,6 +25,8 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include "file_support.h"
+
 #include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
@@ -50,33 +52,6 @@
 #include "lab/scene.h"
 
 /* ---- files and directories ----------------------------------------------------- */
-
-static char *read_file(const char *path, size_t *length_out)
-{
-    FILE *file = fopen(path, "rb");
-    if (file == NULL)
-        return NULL;
-    size_t capacity = 4096, length = 0;
-    char *data = malloc(capacity + 1);
-    size_t got;
-    while (data != NULL && (got = fread(data + length, 1, capacity - length, file)) > 0) {
-        length += got;
-        if (length == capacity) {
-            capacity *= 2;
-            char *grown = realloc(data, capacity + 1);
-            if (grown == NULL)
-                free(data);
-            data = grown;
-        }
-    }
-    fclose(file);
-    if (data == NULL)
-        return NULL;
-    data[length] = '\0';
-    if (length_out)
-        *length_out = length;
-    return data;
-}
 
 static void write_file(const char *path, const void *data, size_t length)
 {
@@ -124,65 +99,6 @@ static void write_bmp(const char *path, int width, int height, uint8_t red, uint
     }
     write_file(path, data, size);
     free(data);
-}
-
-static void remove_tree(const char *path)
-{
-    struct stat info;
-    if (lstat(path, &info) != 0)
-        return;
-    if (S_ISDIR(info.st_mode)) {
-        DIR *directory = opendir(path);
-        if (directory != NULL) {
-            struct dirent *entry;
-            while ((entry = readdir(directory)) != NULL) {
-                if (strcmp(entry->d_name, ".") == 0 || strcmp(entry->d_name, "..") == 0)
-                    continue;
-                char child[1024];
-                snprintf(child, sizeof child, "%s/%s", path, entry->d_name);
-                remove_tree(child);
-            }
-            closedir(directory);
-        }
-        rmdir(path);
-    } else {
-        unlink(path);
-    }
-}
-
-static int compare_strings(const void *a, const void *b)
-{
-    return strcmp(*(char *const *)a, *(char *const *)b);
-}
-
-/* Every path under directory, sorted, one a line: what a test compares to
- * see that nothing was created (a PNG, or the writer's temporary file). */
-static void list_tree(const char *directory, const char *prefix, char *out, size_t size)
-{
-    DIR *handle = opendir(directory);
-    assert_non_null(handle);
-    char *names[256];
-    int count = 0;
-    struct dirent *entry;
-    while ((entry = readdir(handle)) != NULL && count < 256) {
-        if (strcmp(entry->d_name, ".") != 0 && strcmp(entry->d_name, "..") != 0)
-            names[count++] = strdup(entry->d_name);
-    }
-    closedir(handle);
-    qsort(names, (size_t)count, sizeof *names, compare_strings);
-    for (int i = 0; i < count; i++) {
-        char path[1024], relative[1024];
-        snprintf(path, sizeof path, "%s/%s", directory, names[i]);
-        snprintf(relative, sizeof relative, "%s%s", prefix, names[i]);
-        size_t used = strlen(out);
-        snprintf(out + used, size - used, "%s\n", relative);
-        struct stat info;
-        if (lstat(path, &info) == 0 && S_ISDIR(info.st_mode)) {
-            strcat(relative, "/");
-            list_tree(path, relative, out, size);
-        }
-        free(names[i]);
-    }
 }
 
 /* Is `line` one of the lines of text? */

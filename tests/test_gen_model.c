@@ -55,6 +55,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "file_support.h"
 #include "test_support.h"
 
 static const double PI = 3.14159265358979323846;
@@ -77,30 +78,9 @@ static void sandbox_create(sandbox *box)
     assert_int_equal(mkdir(box->work, 0755), 0);
 }
 
-static void remove_directory(const char *path)
-{
-    DIR *directory = opendir(path);
-    if (directory != NULL) {
-        struct dirent *entry;
-        while ((entry = readdir(directory)) != NULL) {
-            if (strcmp(entry->d_name, ".") == 0 || strcmp(entry->d_name, "..") == 0)
-                continue;
-            char child[1024];
-            snprintf(child, sizeof child, "%s/%s", path, entry->d_name);
-            struct stat info;
-            if (lstat(child, &info) == 0 && S_ISDIR(info.st_mode))
-                remove_directory(child);
-            else
-                unlink(child);
-        }
-        closedir(directory);
-    }
-    rmdir(path);
-}
-
 static void sandbox_destroy(sandbox *box)
 {
-    remove_directory(box->root);
+    remove_tree(box->root);
 }
 
 /* The names in box->work, sorted, one a line. */
@@ -127,29 +107,6 @@ static void list_work(const sandbox *box, char *out, size_t size)
         snprintf(out + used, size - used, "%s\n", names[i]);
         free(names[i]);
     }
-}
-
-static char *read_whole_file(const char *path, size_t *length_out)
-{
-    FILE *file = fopen(path, "rb");
-    if (file == NULL)
-        return NULL;
-    size_t capacity = 1 << 16, length = 0, got;
-    char *data = malloc(capacity + 1);
-    assert_non_null(data);
-    while ((got = fread(data + length, 1, capacity - length, file)) > 0) {
-        length += got;
-        if (length == capacity) {
-            capacity *= 2;
-            data = realloc(data, capacity + 1);
-            assert_non_null(data);
-        }
-    }
-    fclose(file);
-    data[length] = '\0';
-    if (length_out != NULL)
-        *length_out = length;
-    return data;
 }
 
 typedef struct run_result {
@@ -216,9 +173,9 @@ static run_result finish(const sandbox *box, pid_t child, double start)
     result.status = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
     char path[400];
     snprintf(path, sizeof path, "%s/stdout", box->root);
-    result.out = read_whole_file(path, NULL);
+    result.out = read_file(path, NULL);
     snprintf(path, sizeof path, "%s/stderr", box->root);
-    result.err = read_whole_file(path, NULL);
+    result.err = read_file(path, NULL);
     assert_non_null(result.out);
     assert_non_null(result.err);
     return result;
@@ -831,7 +788,7 @@ static mesh generate(const char *shape_name, const char *triangles, bool normals
 
     char path[400];
     snprintf(path, sizeof path, "%s/m.obj", box.work);
-    char *data = read_whole_file(path, NULL);
+    char *data = read_file(path, NULL);
     assert_non_null(data);
     mesh m = parse_obj(data);
     free(data);
@@ -974,7 +931,7 @@ static char *without_comments(char *text)
 static bool same_files(const char *a, const char *b, bool comments)
 {
     size_t la, lb;
-    char *x = read_whole_file(a, &la), *y = read_whole_file(b, &lb);
+    char *x = read_file(a, &la), *y = read_file(b, &lb);
     assert_non_null(x);
     assert_non_null(y);
     bool same = comments ? la == lb && memcmp(x, y, la) == 0
@@ -1067,7 +1024,7 @@ static void test_cube_by_hand(void **state)
     assert_int_equal(assert_written(&result, "cube.obj"), 12);
     char path[400];
     snprintf(path, sizeof path, "%s/cube.obj", box.work);
-    char *data = read_whole_file(path, NULL);
+    char *data = read_file(path, NULL);
     assert_non_null(data);
     assert_string_equal(data, expected);
     free(data);
@@ -1105,7 +1062,7 @@ static void test_octahedron_by_hand(void **state)
     assert_int_equal(assert_written(&result, "o.obj"), 8);
     char path[400];
     snprintf(path, sizeof path, "%s/o.obj", box.work);
-    char *data = read_whole_file(path, NULL);
+    char *data = read_file(path, NULL);
     assert_non_null(data);
     assert_string_equal(data, expected);
     free(data);

@@ -50,6 +50,7 @@
 #include <stb_image.h>
 #include <stb_image_write.h>
 
+#include "file_support.h"
 #include "test_support.h"
 #include "lab_support.h"
 
@@ -105,86 +106,6 @@ static void make_directory(const char *name)
     char path[1024];
     work_path(name, path, sizeof path);
     assert_int_equal(mkdir(path, 0755), 0);
-}
-
-static char *read_whole_file(const char *path, size_t *length_out)
-{
-    FILE *file = fopen(path, "rb");
-    if (file == NULL) return NULL;
-    size_t capacity = 4096, length = 0, got;
-    char *data = malloc(capacity + 1);
-    while (data != NULL && (got = fread(data + length, 1, capacity - length, file)) > 0) {
-        length += got;
-        if (length == capacity) {
-            capacity *= 2;
-            char *grown = realloc(data, capacity + 1);
-            if (grown == NULL) free(data);
-            data = grown;
-        }
-    }
-    fclose(file);
-    if (data == NULL) return NULL;
-    data[length] = '\0';
-    if (length_out) *length_out = length;
-    return data;
-}
-
-static void remove_tree(const char *path)
-{
-    struct stat info;
-    if (lstat(path, &info) != 0) return;
-    if (S_ISDIR(info.st_mode)) {
-        DIR *directory = opendir(path);
-        if (directory != NULL) {
-            struct dirent *entry;
-            while ((entry = readdir(directory)) != NULL) {
-                if (strcmp(entry->d_name, ".") == 0 || strcmp(entry->d_name, "..") == 0)
-                    continue;
-                char child[1024];
-                snprintf(child, sizeof child, "%s/%s", path, entry->d_name);
-                remove_tree(child);
-            }
-            closedir(directory);
-        }
-        rmdir(path);
-    } else {
-        unlink(path);
-    }
-}
-
-static int compare_strings(const void *a, const void *b)
-{
-    return strcmp(*(char *const *)a, *(char *const *)b);
-}
-
-/* Every path under directory, sorted, one a line: equal before and after
- * a run when the run made no file (neither an image nor a temporary). */
-static void list_tree(const char *directory, const char *prefix, char *out, size_t size)
-{
-    DIR *handle = opendir(directory);
-    assert_non_null(handle);
-    char *names[512];
-    int count = 0;
-    struct dirent *entry;
-    while ((entry = readdir(handle)) != NULL && count < 512) {
-        if (strcmp(entry->d_name, ".") != 0 && strcmp(entry->d_name, "..") != 0)
-            names[count++] = strdup(entry->d_name);
-    }
-    closedir(handle);
-    qsort(names, (size_t)count, sizeof *names, compare_strings);
-    for (int i = 0; i < count; i++) {
-        char path[1024], relative[1024];
-        snprintf(path, sizeof path, "%s/%s", directory, names[i]);
-        snprintf(relative, sizeof relative, "%s%s", prefix, names[i]);
-        size_t used = strlen(out);
-        snprintf(out + used, size - used, "%s\n", relative);
-        struct stat info;
-        if (lstat(path, &info) == 0 && S_ISDIR(info.st_mode)) {
-            strcat(relative, "/");
-            list_tree(path, relative, out, size);
-        }
-        free(names[i]);
-    }
 }
 
 /* A PNG of RGBA texels, row 0 first, written with stb_image_write. */
@@ -690,7 +611,7 @@ static void test_glb_embedded_texture(void **state)
     (void)state;
     REQUIRE_MODELS();
     size_t length;
-    unsigned char *file = (unsigned char *)read_whole_file(BOX_TEXTURED_GLB, &length);
+    unsigned char *file = (unsigned char *)read_file(BOX_TEXTURED_GLB, &length);
     if (file == NULL) {
         print_message("skipped: %s is not installed (Debian's assimp-testmodels)\n",
                       BOX_TEXTURED_GLB);
@@ -1237,8 +1158,8 @@ static run_result run_render(const char *const *arguments)
     while (waitpid(child, &status, 0) < 0) assert_int_equal(errno, EINTR);
     run_result result;
     result.status = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    result.out = read_whole_file(out_path, NULL);
-    result.err = read_whole_file(err_path, NULL);
+    result.out = read_file(out_path, NULL);
+    result.err = read_file(err_path, NULL);
     assert_non_null(result.out);
     assert_non_null(result.err);
     return result;
@@ -1422,7 +1343,7 @@ static bool same_file(const char *a, const char *b)
     work_path(a, path_a, sizeof path_a);
     work_path(b, path_b, sizeof path_b);
     size_t length_a, length_b;
-    char *data_a = read_whole_file(path_a, &length_a), *data_b = read_whole_file(path_b, &length_b);
+    char *data_a = read_file(path_a, &length_a), *data_b = read_file(path_b, &length_b);
     assert_non_null(data_a);
     assert_non_null(data_b);
     bool same = length_a == length_b && memcmp(data_a, data_b, length_a) == 0;

@@ -1,0 +1,102 @@
+/*
+ * file_support.h: the files and directories the tests that run programs
+ * share (test_cli, test_models, test_gen_model). Include after <cmocka.h>.
+ *
+ *   read_file(path, &length)   the whole file, NUL-terminated (NULL if it
+ *                              cannot be opened); free() it
+ *   remove_tree(path)          a file, or a directory and all below it
+ *   list_tree(dir, "", out, n) every path under dir, sorted, one a line:
+ *                              equal before and after a run that made no
+ *                              file (neither an image nor a temporary)
+ */
+#ifndef LUZ_TEST_FILE_SUPPORT_H
+#define LUZ_TEST_FILE_SUPPORT_H
+
+#include <dirent.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+static inline char *read_file(const char *path, size_t *length_out)
+{
+    if (length_out != NULL) *length_out = 0;
+    FILE *file = fopen(path, "rb");
+    if (file == NULL) return NULL;
+    size_t capacity = 1 << 16, length = 0, got;
+    char *data = malloc(capacity + 1);
+    while (data != NULL && (got = fread(data + length, 1, capacity - length, file)) > 0) {
+        length += got;
+        if (length == capacity) {
+            capacity *= 2;
+            char *grown = realloc(data, capacity + 1);
+            if (grown == NULL) free(data);
+            data = grown;
+        }
+    }
+    fclose(file);
+    if (data == NULL) return NULL;
+    data[length] = '\0';
+    if (length_out != NULL) *length_out = length;
+    return data;
+}
+
+static inline void remove_tree(const char *path)
+{
+    struct stat info;
+    if (lstat(path, &info) != 0) return;
+    if (S_ISDIR(info.st_mode)) {
+        DIR *directory = opendir(path);
+        if (directory != NULL) {
+            struct dirent *entry;
+            while ((entry = readdir(directory)) != NULL) {
+                if (strcmp(entry->d_name, ".") == 0 || strcmp(entry->d_name, "..") == 0)
+                    continue;
+                char child[4096];
+                int written = snprintf(child, sizeof child, "%s/%s", path, entry->d_name);
+                if (written > 0 && (size_t)written < sizeof child) remove_tree(child);
+            }
+            closedir(directory);
+        }
+        rmdir(path);
+    } else {
+        unlink(path);
+    }
+}
+
+static inline int file_support_compare_names(const void *a, const void *b)
+{
+    return strcmp(*(char *const *)a, *(char *const *)b);
+}
+
+static inline void list_tree(const char *directory, const char *prefix, char *out, size_t size)
+{
+    enum { MAX_ENTRIES = 512 };
+    DIR *handle = opendir(directory);
+    assert_non_null(handle);
+    char *names[MAX_ENTRIES];
+    int count = 0;
+    struct dirent *entry;
+    while ((entry = readdir(handle)) != NULL && count < MAX_ENTRIES) {
+        if (strcmp(entry->d_name, ".") != 0 && strcmp(entry->d_name, "..") != 0)
+            names[count++] = strdup(entry->d_name);
+    }
+    closedir(handle);
+    qsort(names, (size_t)count, sizeof *names, file_support_compare_names);
+    for (int i = 0; i < count; i++) {
+        char path[4096], relative[4096];
+        snprintf(path, sizeof path, "%s/%s", directory, names[i]);
+        snprintf(relative, sizeof relative, "%s%s", prefix, names[i]);
+        size_t used = strlen(out);
+        snprintf(out + used, size - used, "%s\n", relative);
+        struct stat info;
+        if (lstat(path, &info) == 0 && S_ISDIR(info.st_mode)) {
+            strcat(relative, "/");
+            list_tree(path, relative, out, size);
+        }
+        free(names[i]);
+    }
+}
+
+#endif
