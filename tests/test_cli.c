@@ -732,58 +732,74 @@ static void test_frame_sequence(void **state)
     sandbox_destroy(&box);
 }
 
-/* On a terminal a sequence draws a progress bar on stderr, redrawn in
- * place with \r; the test gives luz-render a pseudo-terminal as stderr. */
-static void test_progress_bar_on_a_terminal(void **state)
+/* Runs luz-render in box's work directory with arguments (NULL-ended,
+ * the program's name left out), with a pseudo-terminal as the descriptor
+ * on_terminal (STDOUT_FILENO or STDERR_FILENO) and the other one written to
+ * other_path. Reads what the terminal shows until it hangs up (EIO once
+ * the child has exited) into text (NUL-ended; *length bytes) and returns
+ * the exit status. */
+static int run_on_terminal(const sandbox *box, const char *const *arguments, int on_terminal,
+                           const char *other_path, char *text, size_t size, size_t *length)
 {
-    (void)state;
     const char *program = getenv("LUZ_RENDER");
     assert_non_null(program);
-    sandbox box;
-    sandbox_create(&box);
     int master = posix_openpt(O_RDWR | O_NOCTTY);
     assert_true(master >= 0);
     assert_int_equal(grantpt(master), 0);
     assert_int_equal(unlockpt(master), 0);
-    const char *terminal = ptsname(master);
-    assert_non_null(terminal);
-    char terminal_path[256];
-    snprintf(terminal_path, sizeof terminal_path, "%s", terminal);
+    const char *name = ptsname(master);
+    assert_non_null(name);
+    char terminal[256];
+    snprintf(terminal, sizeof terminal, "%s", name);
+    char *argv[64] = {(char *)program};
+    for (int i = 0; arguments[i] != NULL && i < 62; i++) argv[i + 1] = (char *)arguments[i];
 
     fflush(NULL);
     pid_t child = fork();
     assert_true(child >= 0);
     if (child == 0) {
-        int err = open(terminal_path, O_RDWR | O_NOCTTY);
-        int out = open("/dev/null", O_WRONLY);
-        if (err < 0 || out < 0 || chdir(box.work) != 0 || dup2(err, STDERR_FILENO) < 0 ||
-            dup2(out, STDOUT_FILENO) < 0)
+        int shown = open(terminal, O_RDWR | O_NOCTTY);
+        int other = open(other_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        int other_fd = on_terminal == STDOUT_FILENO ? STDERR_FILENO : STDOUT_FILENO;
+        if (shown < 0 || other < 0 || chdir(box->work) != 0 || dup2(shown, on_terminal) < 0 ||
+            dup2(other, other_fd) < 0)
             _exit(127);
         close(master);
-        execl(program, program, "--frames", "3", "--size", "8x6", "--textures", "none", "-o",
-              "bar_%d.png", (char *)NULL);
+        execv(program, argv);
         _exit(127);
     }
-    /* Read until the terminal hangs up (EIO once the child has exited). */
-    char text[4096];
-    size_t length = 0;
+    *length = 0;
     for (;;) {
-        ssize_t got = read(master, text + length, sizeof text - 1 - length);
+        ssize_t got = read(master, text + *length, size - 1 - *length);
         if (got > 0)
-            length += (size_t)got;
-        else if (got < 0 && errno == EINTR)
-            continue;
-        else
+            *length += (size_t)got;
+        else if (!(got < 0 && errno == EINTR))
             break;
-        if (length == sizeof text - 1)
+        if (*length == size - 1)
             break;
     }
-    text[length] = '\0';
+    text[*length] = '\0';
     close(master);
     int status;
     assert_int_equal(waitpid(child, &status, 0), child);
     assert_true(WIFEXITED(status));
-    assert_int_equal(WEXITSTATUS(status), 0);
+    return WEXITSTATUS(status);
+}
+
+/* On a terminal a sequence draws a progress bar on stderr, redrawn in
+ * place with \r; the test gives luz-render a pseudo-terminal as stderr. */
+static void test_progress_bar_on_a_terminal(void **state)
+{
+    (void)state;
+    sandbox box;
+    sandbox_create(&box);
+    const char *arguments[] = {"--frames", "3", "--size", "8x6", "--textures", "none", "-o",
+                               "bar_%d.png", NULL};
+    char text[4096];
+    size_t length;
+    assert_int_equal(
+        run_on_terminal(&box, arguments, STDERR_FILENO, "/dev/null", text, sizeof text, &length),
+        0);
     assert_contains(text, "\rluz-render: [");
     assert_contains(text, "1/3 frames");
     assert_contains(text, "3/3 frames");
@@ -2345,48 +2361,17 @@ static void test_stdout_reader_quits(void **state)
 static void test_stdout_terminal_refused(void **state)
 {
     (void)state;
-    const char *program = luz_render_path();
     sandbox box;
     sandbox_create(&box);
     char before[8192] = "", after[8192] = "", err_path[400];
     list_tree(box.work, "", before, sizeof before);
     snprintf(err_path, sizeof err_path, "%s/stderr", box.root);
-    int master = posix_openpt(O_RDWR | O_NOCTTY);
-    assert_true(master >= 0);
-    assert_int_equal(grantpt(master), 0);
-    assert_int_equal(unlockpt(master), 0);
-    char terminal[256];
-    snprintf(terminal, sizeof terminal, "%s", ptsname(master));
-    fflush(NULL);
-    pid_t child = fork();
-    assert_true(child >= 0);
-    if (child == 0) {
-        int out = open(terminal, O_RDWR | O_NOCTTY);
-        int err = open(err_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        if (out < 0 || err < 0 || chdir(box.work) != 0 || dup2(out, STDOUT_FILENO) < 0 ||
-            dup2(err, STDERR_FILENO) < 0)
-            _exit(127);
-        close(master);
-        execl(program, program, "--frames", "2", "--size", "8x6", "--textures", "none", "-o",
-              "-", (char *)NULL);
-        _exit(127);
-    }
+    const char *arguments[] = {"--frames", "2", "--size", "8x6", "--textures", "none", "-o", "-",
+                               NULL};
     char text[4096];
-    size_t length = 0;
-    for (;;) {
-        ssize_t got = read(master, text + length, sizeof text - 1 - length);
-        if (got > 0)
-            length += (size_t)got;
-        else if (!(got < 0 && errno == EINTR))
-            break;
-        if (length == sizeof text - 1)
-            break;
-    }
-    close(master);
-    int status;
-    assert_int_equal(waitpid(child, &status, 0), child);
-    assert_true(WIFEXITED(status));
-    assert_int_equal(WEXITSTATUS(status), 2);
+    size_t length;
+    assert_int_equal(
+        run_on_terminal(&box, arguments, STDOUT_FILENO, err_path, text, sizeof text, &length), 2);
     assert_int_equal(length, 0);
     char *err = read_file(err_path, NULL);
     assert_non_null(err);
@@ -2404,48 +2389,16 @@ static void test_stdout_terminal_refused(void **state)
 static void test_stdout_stream_with_progress_bar(void **state)
 {
     (void)state;
-    const char *program = luz_render_path();
     sandbox box;
     sandbox_create(&box);
     char out_path[400];
     snprintf(out_path, sizeof out_path, "%s/stdout", box.root);
-    int master = posix_openpt(O_RDWR | O_NOCTTY);
-    assert_true(master >= 0);
-    assert_int_equal(grantpt(master), 0);
-    assert_int_equal(unlockpt(master), 0);
-    char terminal[256];
-    snprintf(terminal, sizeof terminal, "%s", ptsname(master));
-    fflush(NULL);
-    pid_t child = fork();
-    assert_true(child >= 0);
-    if (child == 0) {
-        int err = open(terminal, O_RDWR | O_NOCTTY);
-        int out = open(out_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        if (err < 0 || out < 0 || chdir(box.work) != 0 || dup2(err, STDERR_FILENO) < 0 ||
-            dup2(out, STDOUT_FILENO) < 0)
-            _exit(127);
-        close(master);
-        execl(program, program, "--frames", "3", "--size", "8x6", "--textures", "none", "-o",
-              "-", (char *)NULL);
-        _exit(127);
-    }
+    const char *arguments[] = {"--frames", "3", "--size", "8x6", "--textures", "none", "-o", "-",
+                               NULL};
     char text[4096];
-    size_t length = 0;
-    for (;;) {
-        ssize_t got = read(master, text + length, sizeof text - 1 - length);
-        if (got > 0)
-            length += (size_t)got;
-        else if (!(got < 0 && errno == EINTR))
-            break;
-        if (length == sizeof text - 1)
-            break;
-    }
-    text[length] = '\0';
-    close(master);
-    int status;
-    assert_int_equal(waitpid(child, &status, 0), child);
-    assert_true(WIFEXITED(status));
-    assert_int_equal(WEXITSTATUS(status), 0);
+    size_t length;
+    assert_int_equal(
+        run_on_terminal(&box, arguments, STDERR_FILENO, out_path, text, sizeof text, &length), 0);
     assert_contains(text, "3/3 frames");
     assert_null(memchr(text, 0x89, length));   /* no PNG signature on the terminal */
     size_t out_length = 0, starts[4], lengths[4];
