@@ -781,6 +781,14 @@ int luz_options_format(const luz_options *options, const char *name, char *buffe
 
 /* ---- defaults, freeing, finishing ----------------------------------------------- */
 
+luz_renderer_desc luz_options_renderer_desc(const luz_options *options)
+{
+    return (luz_renderer_desc){
+        .thread_count = options->thread_count == 0 ? 1 : options->thread_count,
+        .reference = options->reference,
+    };
+}
+
 void luz_options_init(luz_options *options)
 {
     *options = (luz_options){

@@ -29,6 +29,7 @@
 #include <stdio.h>
 
 #include "luz/error.h"
+#include "luz/renderer.h"
 #include "lab/scene.h"
 #include "io/model.h"
 #include "io/textures.h"
@@ -87,6 +88,11 @@ typedef struct luz_options {
 /* ---- options.c: the option table, one option at a time ---------------------
  * The bottom of the four files behind this header: it calls none of the
  * others and knows nothing of files. */
+
+/* The renderer the options ask for: --threads and --reference. --threads 0
+ * means the caller's thread, as 1 does, where a renderer desc's 0 means
+ * one thread per CPU. */
+luz_renderer_desc luz_options_renderer_desc(const luz_options *options);
 
 /* The defaults of every option. */
 void luz_options_init(luz_options *options);

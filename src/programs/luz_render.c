@@ -273,12 +273,8 @@ int main(int argc, char **argv)
     }
 
     status = EXIT_RUNTIME;
-    /* --threads 0 means the caller's thread, as 1 does; to the renderer,
-     * 0 is a zero desc's field: one thread per CPU. */
-    renderer = luz_renderer_create(
-        &(luz_renderer_desc){.thread_count = options.thread_count == 0 ? 1 : options.thread_count,
-                             .reference = options.reference},
-        &error);
+    const luz_renderer_desc desc = luz_options_renderer_desc(&options);
+    renderer = luz_renderer_create(&desc, &error);
     if (renderer == NULL)
         goto done;
     lab = luz_lab_create(&error);

@@ -846,12 +846,8 @@ int main(int argc, char **argv)
     status = EXIT_RUNTIME;
     v.start_camera = options.scene.camera;
     luz_panel_init(&v.panel);
-    /* --threads 0 means the caller's thread, as 1 does; to the renderer,
-     * 0 is a zero desc's field: one thread per CPU. */
-    v.renderer = luz_renderer_create(
-        &(luz_renderer_desc){.thread_count = options.thread_count == 0 ? 1 : options.thread_count,
-                             .reference = options.reference},
-        &error);
+    const luz_renderer_desc desc = luz_options_renderer_desc(&options);
+    v.renderer = luz_renderer_create(&desc, &error);
     if (v.renderer == NULL)
         goto done;
     v.lab = luz_lab_create(&error);
