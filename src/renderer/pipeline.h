@@ -74,6 +74,11 @@ typedef struct luz_clip_vertex {
 /* Transforms every vertex of draw->mesh: out[i] gets clip-space position
  * view_projection * model * p and world-space varyings. */
 void luz_vertex_stage(const luz_draw *draw, luz_mat4 view_projection, luz_clip_vertex *out);
+/* The same for vertices [first, end) only: out[i] for i in that range (out
+ * is still the place of vertex 0), so that ranges of one big mesh can run
+ * on different threads. */
+void luz_vertex_stage_range(const luz_draw *draw, luz_mat4 view_projection, uint32_t first,
+                            uint32_t end, luz_clip_vertex *out);
 
 /* ---- clipping ---------------------------------------------------------- */
 
@@ -306,5 +311,35 @@ int luz_thread_pool_thread_count(const luz_thread_pool *pool);
 /* Runs the jobs and returns when all are done. */
 void luz_thread_pool_run(luz_thread_pool *pool, int job_count, luz_job_function *job,
                          void *context);
+
+/* ---- phase 1: geometry (geometry.c) -------------------------------------- */
+
+/* The buffers phase 1 keeps from frame to frame (the renderer owns one). */
+typedef struct luz_geometry luz_geometry;
+
+luz_geometry *luz_geometry_create(int thread_count);
+void luz_geometry_destroy(luz_geometry *geometry);
+
+/* What phase 1 hands to phase 2; the arrays belong to the luz_geometry and
+ * last until its next run. */
+typedef struct luz_geometry_result {
+    const luz_triangle *const *by_id;   /* by_id[id], id = 1 .. triangle_total */
+    size_t triangle_total;              /* triangles set up */
+    size_t triangle_count;              /* of which ids 1 .. count are binned */
+    int band_count;
+    const size_t *band_start;           /* band b's ids: band_ids[band_start[b] ..
+                                           band_start[b + 1]), in id order */
+    const uint32_t *band_ids;
+    uint64_t triangles_submitted, triangles_clipped, triangles_culled;
+} luz_geometry_result;
+
+/* Vertex stage, clipping, setup, numbering and binning to bands of
+ * band_height rows, over the pool's threads; only the first triangle_limit
+ * triangles are binned (0: all). Returns 0, or -1 with the reason (out of
+ * memory, too many triangles). */
+int luz_geometry_run(luz_geometry *geometry, luz_thread_pool *pool, const luz_frame *frame,
+                     const luz_uniforms *uniforms, const luz_framebuffer *framebuffer,
+                     int band_height, uint32_t triangle_limit, luz_geometry_result *out,
+                     luz_error *error);
 
 #endif
