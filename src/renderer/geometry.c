@@ -293,10 +293,9 @@ static void triangles_of_draw(geometry_batch *batch, const geometry_job *job,
             return;
         }
 
-        /* Clipping: trivially accept, trivially reject, or cut. */
-        unsigned code_a = luz_clip_outcode(a->position);
-        unsigned code_b = luz_clip_outcode(b->position);
-        unsigned code_c = luz_clip_outcode(c->position);
+        /* Clipping: trivially accept, trivially reject, or cut (the vertex
+         * stage worked out each vertex's outcode). */
+        const unsigned code_a = a->outcode, code_b = b->outcode, code_c = c->outcode;
         if ((code_a | code_b | code_c) == 0) {
             set_up(batch, job, a, b, c, draw_index);
             continue;

@@ -69,10 +69,12 @@ enum {
 typedef struct luz_clip_vertex {
     luz_vec4 position;                       /* clip space */
     float varyings[LUZ_VARYING_COUNT];
+    unsigned outcode;                        /* luz_clip_outcode(position), once
+                                                per vertex, not per triangle */
 } luz_clip_vertex;
 
 /* Transforms every vertex of draw->mesh: out[i] gets clip-space position
- * view_projection * model * p and world-space varyings. */
+ * view_projection * model * p, its outcode and world-space varyings. */
 void luz_vertex_stage(const luz_draw *draw, luz_mat4 view_projection, luz_clip_vertex *out);
 /* The same for vertices [first, end) only: out[i] for i in that range (out
  * is still the place of vertex 0), so that ranges of one big mesh can run

@@ -32,6 +32,7 @@ void luz_vertex_stage_range(const luz_draw *draw, luz_mat4 view_projection, uint
 
         out[i].position = luz_mat4_transform(view_projection,
                                              (luz_vec4){world.x, world.y, world.z, 1.0f});
+        out[i].outcode = luz_clip_outcode(out[i].position);
         float *varying = out[i].varyings;
         varying[LUZ_VARYING_POSITION + 0] = world.x;
         varying[LUZ_VARYING_POSITION + 1] = world.y;
