@@ -580,6 +580,83 @@ static void test_big_mesh_draws_its_triangles_in_order(void **state)
     free(big);
 }
 
+/* ---- draws out of sight ---------------------------------------------------------------- */
+
+/* 400 quads, each a draw of its own, scattered around the edges of the
+ * view volume (the 90-degree camera's sides, behind it, across the near
+ * plane at 0.1 and the far plane at 100, in the guard band): the
+ * renderer drops a draw whose bounding box is wholly outside a clip plane
+ * without looking at its triangles. Whatever it drops must draw nothing:
+ * each quad alone, dropped or not, is drawn again with culling out of
+ * reach (its box made huge by a far-off fifth vertex no triangle uses),
+ * and the two images must be the same; a dropped quad's image is all
+ * background. Some quads must be dropped, and the dropped ones' triangles
+ * still count as submitted. */
+static void test_draws_out_of_sight_are_dropped_and_only_those(void **state)
+{
+    (void)state;
+    uint32_t random = 777;
+    int dropped = 0, kept = 0;
+    for (int q = 0; q < 400; q++) {
+        float p[3], size;
+        for (int k = 0; k < 3; k++) {
+            random = random * 1664525u + 1013904223u;
+            p[k] = (float)((random >> 8) / 16777216.0);
+        }
+        random = random * 1664525u + 1013904223u;
+        size = 0.05f + 2.0f * (float)((random >> 8) / 16777216.0);
+        /* Depth from 0.01 behind the camera to 150 in front: some across
+         * the near or far plane; x and y within +-6 depths, beyond the
+         * guard band's 4. */
+        const float depth = q % 4 == 0 ? -0.3f + 0.6f * p[2] : 150.0f * p[2] * p[2];
+        const float x = (p[0] * 12.0f - 6.0f) * fabsf(depth), y = (p[1] * 12.0f - 6.0f) * fabsf(depth);
+        const luz_vec3 n = {0.0f, 0.0f, 1.0f};
+        luz_vertex vertices[5] = {
+            {{x, y, -depth}, n, {0, 0}},
+            {{x + size, y, -depth}, n, {1, 0}},
+            {{x + size, y + size, -depth - size}, n, {1, 1}},
+            {{x, y + size, -depth - size}, n, {0, 1}},
+            {{0.0f, 0.0f, -5.0f}, n, {0, 0}},   /* inside the view: the box with it is seen */
+        };
+        const uint32_t indices[6] = {0, 1, 2, 0, 2, 3};
+        luz_framebuffer *images[2];
+        luz_frame_stats stats[2];
+        for (int variant = 0; variant < 2; variant++) {
+            luz_error error = {{0}};
+            luz_mesh *mesh = luz_mesh_create(
+                &(luz_mesh_desc){.vertices = vertices, .vertex_count = variant ? 5 : 4,
+                                 .indices = indices, .index_count = 6},
+                &error);
+            assert_non_null(mesh);
+            luz_frame frame = camera_frame();
+            luz_draw draw = {.mesh = mesh, .model = luz_mat4_identity()};
+            draw.material.colour = (luz_vec3){1.0f, 1.0f, 1.0f};
+            draw.material.shading = LUZ_SHADING_UNLIT;
+            assert_int_equal(luz_frame_add_draw(&frame, &draw, &error), 0);
+            luz_render_options options = {.stats = &stats[variant]};
+            images[variant] = render_frame(&frame, &options, 1);
+            assert_int_equal(stats[variant].triangles_submitted, 2);
+            luz_frame_free(&frame);
+            luz_mesh_destroy(mesh);
+        }
+        assert_int_equal(stats[1].draws_culled, 0);
+        if (memcmp(images[0]->colour, images[1]->colour, (size_t)SIZE * SIZE * 4) != 0)
+            fail_msg("quad %d (%g, %g, %g, size %g): %s, and drawn differently", q, x, y,
+                     -depth, size, stats[0].draws_culled ? "dropped" : "kept");
+        if (stats[0].draws_culled) {
+            dropped++;
+            for (int i = 0; i < SIZE * SIZE; i++) assert_int_equal(images[0]->visibility[i], 0);
+        } else {
+            kept++;
+        }
+        luz_framebuffer_destroy(images[0]);
+        luz_framebuffer_destroy(images[1]);
+    }
+    print_message("%d quads dropped whole, %d kept\n", dropped, kept);
+    assert_true(dropped > 100);
+    assert_true(kept > 50);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -593,6 +670,7 @@ int main(void)
         cmocka_unit_test(test_textures_and_framebuffers_say_why),
         cmocka_unit_test(test_bad_frames_are_refused_with_a_reason),
         cmocka_unit_test(test_big_mesh_draws_its_triangles_in_order),
+        cmocka_unit_test(test_draws_out_of_sight_are_dropped_and_only_those),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

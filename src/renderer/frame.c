@@ -230,6 +230,7 @@ static void collect_stats(const luz_renderer *renderer, const frame_job *job,
     stats->triangles_submitted = job->geometry.triangles_submitted;
     stats->triangles_clipped = job->geometry.triangles_clipped;
     stats->triangles_culled = job->geometry.triangles_culled;
+    stats->draws_culled = job->geometry.draws_culled;
     stats->triangles_rasterised = job->geometry.triangle_total;
     for (int b = 0; b < job->geometry.band_count; b++) {
         stats->fragments_tested += renderer->bands[b].fragments_tested;

@@ -12,9 +12,12 @@
  * the draws look like, so that one mesh of a million triangles keeps every
  * thread as busy as a hundred thousand cubes do:
  *
- *   plan         (one thread) small draws go whole into batches, several to
- *                a batch; a big draw is cut into ranges of triangles, and
- *                its vertices get a place in the frame's vertex arena
+ *   plan         (one thread) a draw whose bounding box lies wholly outside
+ *                one clip plane is dropped (clipping would reject each of
+ *                its triangles); small draws go whole into batches,
+ *                several to a batch; a big draw is cut into ranges of
+ *                triangles, and its vertices get a place in the frame's
+ *                vertex arena
  *   vertex pass  (parallel) the big draws' vertices, in ranges
  *   batches      (parallel) each small draw's vertex stage (into the
  *                thread's scratch), then clipping and setup of the batch's
@@ -27,6 +30,7 @@
  * and each band's list, follow the submission order whatever the batches
  * and the threads, so the image does not depend on them (frame.c).
  */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -78,6 +82,9 @@ struct luz_geometry {
     luz_clip_vertex *arena;        /* the big draws' vertices */
     size_t arena_capacity;
     vertex_scratch *scratch;       /* one per thread, for small draws */
+    bool *draw_outside;            /* per draw: wholly outside the clip volume */
+    size_t draw_outside_capacity;
+    uint64_t outside_draw_triangles, outside_draws;
     size_t *band_slots;            /* batch x band: counts, then offsets */
     size_t band_slot_capacity;
     const luz_triangle **by_id;
@@ -120,6 +127,7 @@ void luz_geometry_destroy(luz_geometry *geometry)
     free(geometry->vertex_ranges);
     free(geometry->arena);
     free(geometry->scratch);
+    free(geometry->draw_outside);
     free(geometry->band_slots);
     free(geometry->by_id);
     free(geometry->band_start);
@@ -143,6 +151,50 @@ static bool reserve(void **array, size_t *capacity, size_t count, size_t size)
 }
 
 /* ---- plan ------------------------------------------------------------- */
+
+/* Element (row, column) of a column-major luz_mat4, in double. */
+static double element(const luz_mat4 *m, int row, int column)
+{
+    return (double)m->m[column * 4 + row];
+}
+
+/* Whether every point of the mesh's bounding box, through the model and
+ * view_projection matrices, is outside one of clip.c's six planes, by a
+ * margin: then so is every vertex, and clipping would reject each of the
+ * draw's triangles (all three outcodes share that plane's bit). The clip
+ * coordinates are affine in the object position, so a plane's distance
+ * is below zero over the box when it is at the eight corners; computed in
+ * double with a margin of 1e-4 of the coordinates' size, far beyond the
+ * float rounding of the vertex stage, so a draw is dropped only where the
+ * renderer would have drawn nothing of it. */
+static bool outside_the_clip_volume(const luz_draw *draw, const luz_mat4 *view_projection)
+{
+    const luz_bounds bounds = draw->mesh->bounds;
+    unsigned all_outside = 0x3f;
+    for (int corner = 0; corner < 8 && all_outside; corner++) {
+        const double p[4] = {corner & 1 ? bounds.max.x : bounds.min.x,
+                             corner & 2 ? bounds.max.y : bounds.min.y,
+                             corner & 4 ? bounds.max.z : bounds.min.z, 1.0};
+        double world[4], clip[4];
+        for (int r = 0; r < 4; r++) {
+            world[r] = 0.0;
+            for (int c = 0; c < 4; c++) world[r] += element(&draw->model, r, c) * p[c];
+        }
+        for (int r = 0; r < 4; r++) {
+            clip[r] = 0.0;
+            for (int c = 0; c < 4; c++) clip[r] += element(view_projection, r, c) * world[c];
+        }
+        const double x = clip[0], y = clip[1], z = clip[2], w = clip[3];
+        const double g = LUZ_CLIP_GUARD_BAND;
+        const double margin = 1e-4 * (fabs(x) + fabs(y) + fabs(z) + fabs(w) * g);
+        const double distance[6] = {w + z, w - z, g * w + x, g * w - x, g * w + y, g * w - y};
+        unsigned outside = 0;
+        for (int plane = 0; plane < 6; plane++)
+            if (distance[plane] < -margin) outside |= 1u << plane;
+        all_outside &= outside;
+    }
+    return all_outside != 0;
+}
 
 static uint32_t triangles_of(const luz_draw *draw)
 {
@@ -176,14 +228,28 @@ static vertex_range *add_vertex_range(luz_geometry *geometry)
     return &geometry->vertex_ranges[geometry->vertex_range_count++];
 }
 
-static int plan(luz_geometry *geometry, const luz_frame *frame, luz_error *error)
+static int plan(luz_geometry *geometry, const luz_frame *frame,
+                const luz_mat4 *view_projection, luz_error *error)
 {
     geometry->batch_count = 0;
     geometry->vertex_range_count = 0;
 
+    /* Draws out of sight first, so that the arena holds only the rest. */
     size_t arena_vertices = 0;
-    for (int d = 0; d < frame->draw_count; d++)
-        if (is_big(&frame->draws[d])) arena_vertices += frame->draws[d].mesh->vertex_count;
+    geometry->outside_draw_triangles = geometry->outside_draws = 0;
+    if (!reserve((void **)&geometry->draw_outside, &geometry->draw_outside_capacity,
+                 (size_t)frame->draw_count, sizeof *geometry->draw_outside))
+        goto out_of_memory;
+    for (int d = 0; d < frame->draw_count; d++) {
+        const luz_draw *draw = &frame->draws[d];
+        geometry->draw_outside[d] = outside_the_clip_volume(draw, view_projection);
+        if (geometry->draw_outside[d]) {
+            geometry->outside_draw_triangles += triangles_of(draw);
+            geometry->outside_draws++;
+        }
+        else if (is_big(draw))
+            arena_vertices += draw->mesh->vertex_count;
+    }
     if (!reserve((void **)&geometry->arena, &geometry->arena_capacity, arena_vertices,
                  sizeof *geometry->arena))
         return luz_error_set(error, "out of memory for the frame's %zu vertices",
@@ -194,6 +260,7 @@ static int plan(luz_geometry *geometry, const luz_frame *frame, luz_error *error
     size_t open_cost = 0;
     for (int d = 0; d < frame->draw_count; d++) {
         const luz_draw *draw = &frame->draws[d];
+        if (geometry->draw_outside[d]) continue;
         if (!is_big(draw)) {
             if (!open) {
                 open = add_batch(geometry);
@@ -202,7 +269,7 @@ static int plan(luz_geometry *geometry, const luz_frame *frame, luz_error *error
                 open->draw_first = (uint32_t)d;
                 open_cost = 0;
             }
-            open->draw_end = (uint32_t)d + 1;
+            open->draw_end = (uint32_t)d + 1;   /* draws out of sight in it are skipped */
             /* A draw costs its triangles, and a little even with none. */
             open_cost += triangles_of(draw) + 1;
             if (open_cost >= SMALL_DRAWS_BATCH) open = NULL;
@@ -338,6 +405,7 @@ static void batch_job(void *context, int batch_index, int worker_index)
     } else {
         vertex_scratch *scratch = &geometry->scratch[worker_index];
         for (uint32_t d = batch->draw_first; d < batch->draw_end && !batch->out_of_memory; d++) {
+            if (geometry->draw_outside[d]) continue;
             const luz_draw *draw = &job->frame->draws[d];
             const uint32_t vertex_count = draw->mesh->vertex_count;
             if (vertex_count > scratch->capacity) {
@@ -451,7 +519,7 @@ int luz_geometry_run(luz_geometry *geometry, luz_thread_pool *pool, const luz_fr
     };
     memset(out, 0, sizeof *out);
 
-    if (plan(geometry, frame, error) != 0) return -1;
+    if (plan(geometry, frame, &uniforms->view_projection, error) != 0) return -1;
     if (job.band_count > geometry->band_capacity) {
         size_t *start = realloc(geometry->band_start,
                                 ((size_t)job.band_count + 1) * sizeof *start);
@@ -469,6 +537,10 @@ int luz_geometry_run(luz_geometry *geometry, luz_thread_pool *pool, const luz_fr
     if (number(geometry, &job, triangle_limit, error) != 0) return -1;
     luz_thread_pool_run(pool, geometry->batch_count, bin_job, &job);
 
+    /* A draw out of sight was submitted; its triangles went nowhere, as
+     * they would have at the clipper. */
+    out->triangles_submitted = geometry->outside_draw_triangles;
+    out->draws_culled = geometry->outside_draws;
     for (int k = 0; k < geometry->batch_count; k++) {
         out->triangles_submitted += geometry->batches[k].submitted;
         out->triangles_clipped += geometry->batches[k].clipped;

@@ -333,6 +333,7 @@ typedef struct luz_geometry_result {
                                            band_start[b + 1]), in id order */
     const uint32_t *band_ids;
     uint64_t triangles_submitted, triangles_clipped, triangles_culled;
+    uint64_t draws_culled;              /* wholly outside the clip volume */
 } luz_geometry_result;
 
 /* Vertex stage, clipping, setup, numbering and binning to bands of
