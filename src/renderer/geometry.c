@@ -12,9 +12,10 @@
  * the draws look like, so that one mesh of a million triangles keeps every
  * thread as busy as a hundred thousand cubes do:
  *
- *   plan         (one thread) a draw whose bounding box lies wholly outside
+ *   cull         (parallel) a draw whose bounding box lies wholly outside
  *                one clip plane is dropped (clipping would reject each of
- *                its triangles); small draws go whole into batches,
+ *                its triangles)
+ *   plan         (one thread) small draws go whole into batches,
  *                several to a batch; a big draw is cut into ranges of
  *                triangles, and its vertices get a place in the frame's
  *                vertex arena
@@ -169,23 +170,37 @@ static double element(const luz_mat4 *m, int row, int column)
  * renderer would have drawn nothing of it. */
 static bool outside_the_clip_volume(const luz_draw *draw, const luz_mat4 *view_projection)
 {
+    /* M = view_projection * model, then the box as its centre and half
+     * extents: corner = centre +- half.x +- half.y +- half.z, each through
+     * M as four columns. */
+    double m[4][4];
+    for (int r = 0; r < 4; r++)
+        for (int c = 0; c < 4; c++) {
+            m[r][c] = 0.0;
+            for (int k = 0; k < 4; k++)
+                m[r][c] += element(view_projection, r, k) * element(&draw->model, k, c);
+        }
     const luz_bounds bounds = draw->mesh->bounds;
+    const double centre[3] = {0.5 * ((double)bounds.min.x + bounds.max.x),
+                              0.5 * ((double)bounds.min.y + bounds.max.y),
+                              0.5 * ((double)bounds.min.z + bounds.max.z)};
+    const double half[3] = {0.5 * ((double)bounds.max.x - bounds.min.x),
+                            0.5 * ((double)bounds.max.y - bounds.min.y),
+                            0.5 * ((double)bounds.max.z - bounds.min.z)};
+    double clip_centre[4], axis[3][4];
+    for (int r = 0; r < 4; r++) {
+        clip_centre[r] = m[r][0] * centre[0] + m[r][1] * centre[1] + m[r][2] * centre[2] + m[r][3];
+        for (int a = 0; a < 3; a++) axis[a][r] = m[r][a] * half[a];
+    }
+    const double g = LUZ_CLIP_GUARD_BAND;
     unsigned all_outside = 0x3f;
     for (int corner = 0; corner < 8 && all_outside; corner++) {
-        const double p[4] = {corner & 1 ? bounds.max.x : bounds.min.x,
-                             corner & 2 ? bounds.max.y : bounds.min.y,
-                             corner & 4 ? bounds.max.z : bounds.min.z, 1.0};
-        double world[4], clip[4];
-        for (int r = 0; r < 4; r++) {
-            world[r] = 0.0;
-            for (int c = 0; c < 4; c++) world[r] += element(&draw->model, r, c) * p[c];
-        }
-        for (int r = 0; r < 4; r++) {
-            clip[r] = 0.0;
-            for (int c = 0; c < 4; c++) clip[r] += element(view_projection, r, c) * world[c];
-        }
+        double clip[4];
+        for (int r = 0; r < 4; r++)
+            clip[r] = clip_centre[r] + (corner & 1 ? axis[0][r] : -axis[0][r]) +
+                      (corner & 2 ? axis[1][r] : -axis[1][r]) +
+                      (corner & 4 ? axis[2][r] : -axis[2][r]);
         const double x = clip[0], y = clip[1], z = clip[2], w = clip[3];
-        const double g = LUZ_CLIP_GUARD_BAND;
         const double margin = 1e-4 * (fabs(x) + fabs(y) + fabs(z) + fabs(w) * g);
         const double distance[6] = {w + z, w - z, g * w + x, g * w - x, g * w + y, g * w - y};
         unsigned outside = 0;
@@ -195,6 +210,11 @@ static bool outside_the_clip_volume(const luz_draw *draw, const luz_mat4 *view_p
     }
     return all_outside != 0;
 }
+
+/* Draws per job of the culling pass. */
+#define CULL_BATCH 4096
+
+static void cull_job(void *context, int job_index, int worker_index);
 
 static uint32_t triangles_of(const luz_draw *draw)
 {
@@ -228,9 +248,10 @@ static vertex_range *add_vertex_range(luz_geometry *geometry)
     return &geometry->vertex_ranges[geometry->vertex_range_count++];
 }
 
-static int plan(luz_geometry *geometry, const luz_frame *frame,
-                const luz_mat4 *view_projection, luz_error *error)
+static int plan(luz_geometry *geometry, luz_thread_pool *pool, geometry_job *job,
+                luz_error *error)
 {
+    const luz_frame *frame = job->frame;
     geometry->batch_count = 0;
     geometry->vertex_range_count = 0;
 
@@ -240,9 +261,9 @@ static int plan(luz_geometry *geometry, const luz_frame *frame,
     if (!reserve((void **)&geometry->draw_outside, &geometry->draw_outside_capacity,
                  (size_t)frame->draw_count, sizeof *geometry->draw_outside))
         goto out_of_memory;
+    luz_thread_pool_run(pool, (frame->draw_count + CULL_BATCH - 1) / CULL_BATCH, cull_job, job);
     for (int d = 0; d < frame->draw_count; d++) {
         const luz_draw *draw = &frame->draws[d];
-        geometry->draw_outside[d] = outside_the_clip_volume(draw, view_projection);
         if (geometry->draw_outside[d]) {
             geometry->outside_draw_triangles += triangles_of(draw);
             geometry->outside_draws++;
@@ -307,7 +328,19 @@ out_of_memory:
     return luz_error_set(error, "out of memory for the frame's geometry batches");
 }
 
-/* ---- vertex pass ------------------------------------------------------- */
+/* ---- culling pass and vertex pass --------------------------------------- */
+
+static void cull_job(void *context, int job_index, int worker_index)
+{
+    (void)worker_index;
+    const geometry_job *job = context;
+    const int first = job_index * CULL_BATCH;
+    const int end = job->frame->draw_count - first > CULL_BATCH ? first + CULL_BATCH
+                                                                 : job->frame->draw_count;
+    for (int d = first; d < end; d++)
+        job->geometry->draw_outside[d] =
+            outside_the_clip_volume(&job->frame->draws[d], &job->uniforms->view_projection);
+}
 
 static void vertex_job(void *context, int range_index, int worker_index)
 {
@@ -519,7 +552,7 @@ int luz_geometry_run(luz_geometry *geometry, luz_thread_pool *pool, const luz_fr
     };
     memset(out, 0, sizeof *out);
 
-    if (plan(geometry, frame, &uniforms->view_projection, error) != 0) return -1;
+    if (plan(geometry, pool, &job, error) != 0) return -1;
     if (job.band_count > geometry->band_capacity) {
         size_t *start = realloc(geometry->band_start,
                                 ((size_t)job.band_count + 1) * sizeof *start);
