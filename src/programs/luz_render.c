@@ -191,6 +191,9 @@ static int bench(render_context *context, luz_renderer *renderer, luz_error *err
     const double start = options->scene.time_seconds;
     const int threads = luz_renderer_thread_count(renderer);
     luz_bench measured = {.part_names = {"geometry_ms", "raster_ms"}};
+    /* What the scene, its textures and models hold, before any frame: the
+     * growth after the frames is what rendering keeps. */
+    const double resident_before = luz_resident_bytes();
 
     /* With threads, the same frames on the caller's thread alone first, so
      * that the line says what the threads bought. */
@@ -215,9 +218,16 @@ static int bench(render_context *context, luz_renderer *renderer, luz_error *err
         luz_bench_free(&measured);
         return -1;
     }
+    const double resident_after = luz_resident_bytes();
+    const uint64_t triangles = luz_bench_triangles(&context->frame);
     luz_bench_print_case(stdout, options, measured.frames, options->width, options->height,
-                         threads, luz_bench_triangles(&context->frame));
+                         threads, triangles);
     luz_bench_print_figures(stdout, &measured);
+    if (resident_before > 0.0) {
+        const double rendering = resident_after - resident_before;
+        printf(" rendering_mb=%.1f", rendering / 1048576.0);
+        if (triangles > 0) printf(" rendering_bytes_per_triangle=%.1f", rendering / (double)triangles);
+    }
     if (threads > 1) {
         const double median_ms = luz_median(measured.wall_ms, measured.frames);
         printf(" single_thread_median_ms=%.3f speedup=%.2f", single_thread_median,
