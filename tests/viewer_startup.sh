@@ -41,7 +41,9 @@ expect_refusal() {
 expect_refusal "unknown option '--bogus'" --bogus
 expect_refusal "--size" --size 0x5
 expect_refusal "--camera-pitch" --camera-pitch 95
-expect_refusal "--render-scale: expected a number above 0 and at most 1" --render-scale 0
+expect_refusal "--fov: expected a number in \\[1, 179\\]" --fov 1e-45
+expect_refusal "--render-scale: expected a number from 0.01 to 1" --render-scale 0
+expect_refusal "--render-scale: expected a number from 0.01 to 1" --render-scale 0.009
 expect_refusal "--render-scale" --render-scale 1.5
 expect_refusal "--render-scale" --render-scale=abc
 expect_refusal "--render-scale" --render-scale

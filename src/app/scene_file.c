@@ -45,7 +45,6 @@
 #include "io/new_file.h"
 
 #include <errno.h>
-#include <float.h>
 #include <math.h>
 #include <stdbool.h>
 #include <stdlib.h>
@@ -248,6 +247,18 @@ static char *read_word(scene_reader *reader, char *text, const char *what, char 
     return next;
 }
 
+/* Is each of the three numbers, as the float it becomes, a coordinate the
+ * lab takes (LUZ_SCENE_MAX_COORDINATE)? */
+static bool coordinates_in_range(const double numbers[3])
+{
+    for (int i = 0; i < 3; i++) {
+        const float coordinate = (float)numbers[i];
+        if (!(coordinate >= -LUZ_SCENE_MAX_COORDINATE && coordinate <= LUZ_SCENE_MAX_COORDINATE))
+            return false;
+    }
+    return true;
+}
+
 /* Three numbers up to the next field; *next is moved to it. */
 static option_parse_result read_triple(char *text, double numbers[3], char **next)
 {
@@ -316,6 +327,11 @@ static int read_object(scene_reader *reader, char *value, bool is_model, luz_err
                                  "%s:%d: cube: expected x,y,z (three numbers) then optional "
                                  "colour r,g,b and texture NAME, got '%s'",
                                  path, line, original.text);
+        if (!coordinates_in_range(numbers))
+            return luz_error_set(error,
+                                 "%s:%d: cube: expected x,y,z each in [%g, %g], got '%s'",
+                                 path, line, -(double)LUZ_SCENE_MAX_COORDINATE,
+                                 (double)LUZ_SCENE_MAX_COORDINATE, original.text);
         object.position = luz_vec3_make((float)numbers[0], (float)numbers[1], (float)numbers[2]);
     }
 
@@ -354,11 +370,12 @@ static int read_object(scene_reader *reader, char *value, bool is_model, luz_err
             texture_name = name;
         } else if (is_model && FIELD_IS("at")) {
             option_parse_result at = read_triple(rest, numbers, &fields);
-            if (has_position || at != OPTION_PARSE_OK)
+            if (has_position || at != OPTION_PARSE_OK || !coordinates_in_range(numbers))
                 return luz_error_set(error,
-                                     "%s:%d: model: expected `at x,y,z` once, three finite "
-                                     "numbers, got '%s'",
-                                     path, line, original.text);
+                                     "%s:%d: model: expected `at x,y,z` once, three numbers "
+                                     "each in [%g, %g], got '%s'",
+                                     path, line, -(double)LUZ_SCENE_MAX_COORDINATE,
+                                     (double)LUZ_SCENE_MAX_COORDINATE, original.text);
             has_position = true;
             object.position = luz_vec3_make((float)numbers[0], (float)numbers[1], (float)numbers[2]);
         } else if (is_model && FIELD_IS("scale")) {
@@ -367,17 +384,16 @@ static int read_object(scene_reader *reader, char *value, bool is_model, luz_err
             *end = '\0';
             option_parse_result scale = option_read_numbers(rest, numbers, 1, true);
             *end = saved;
-            /* above 0, and finite once it is a float */
-            const bool valid = scale == OPTION_PARSE_OK && numbers[0] > 0.0 &&
-                               numbers[0] <= FLT_MAX;
-            const float k = valid ? (float)numbers[0] : 0.0f;
-            if (has_scale || !valid || !(k > 0.0f))
+            /* judged as the float it becomes, as the options are */
+            const float k = scale == OPTION_PARSE_OK ? (float)numbers[0] : 0.0f;
+            if (has_scale || !(k >= LUZ_SCENE_MIN_SCALE && k <= LUZ_SCENE_MAX_SCALE))
                 return luz_error_set(error,
-                                     "%s:%d: model: expected `scale k` once, k a number above "
-                                     "0, got '%s'",
-                                     path, line, original.text);
+                                     "%s:%d: model: expected `scale k` once, k a number in "
+                                     "[%g, %g], got '%s'",
+                                     path, line, (double)LUZ_SCENE_MIN_SCALE,
+                                     (double)LUZ_SCENE_MAX_SCALE, original.text);
             has_scale = true;
-            object.scale = (float)numbers[0];
+            object.scale = k;
             fields = end;
         } else if (is_model && FIELD_IS("still")) {
             if (object.still)

@@ -66,7 +66,8 @@ enum {
 /* ---- the viewer's own options --------------------------------------------------------- */
 
 typedef struct viewer_settings {
-    float render_scale;   /* framebuffer pixels per window pixel, in (0, 1] */
+    float render_scale;   /* framebuffer pixels per window pixel, in
+                             [LUZ_MIN_RENDER_SCALE, 1] */
     bool print_state;
 } viewer_settings;
 
@@ -81,16 +82,20 @@ static bool names_option(const char *text, const char *name, const char **value)
     return true;
 }
 
+/* The smallest --render-scale: a 1280x720 window is then drawn from a
+ * 13x7 framebuffer, which is still a picture of the scene. */
+#define LUZ_MIN_RENDER_SCALE 0.01
+
 static int read_render_scale(const char *text, float *scale, luz_error *error)
 {
     char *end;
     errno = 0;
     double value = text && text[0] ? strtod(text, &end) : NAN;
-    if (text == NULL || text[0] == '\0' || *end != '\0' || errno != 0 || !(value > 0.0) ||
-        value > 1.0)
+    if (text == NULL || text[0] == '\0' || *end != '\0' || errno != 0 ||
+        !(value >= LUZ_MIN_RENDER_SCALE) || value > 1.0)
         return luz_error_set(error,
-                             "--render-scale: expected a number above 0 and at most 1, such as "
-                             "0.5, got '%s'",
+                             "--render-scale: expected a number from 0.01 to 1, such as 0.5, "
+                             "got '%s'",
                              text ? text : "");
     *scale = (float)value;
     return 0;
@@ -156,7 +161,7 @@ static void print_usage(FILE *out)
             "\n"
             "The viewer's own options:\n"
             "  --render-scale S               render S x the window's pixels, scaled up to fill\n"
-            "                                 it, 0 < S <= 1 (default: 1)\n"
+            "                                 it, 0.01 <= S <= 1 (default: 1)\n"
             "  --print-state                  print the view as a scene file on stdout at quit\n"
             "\n"
             "Controls (H shows them in the window):\n");
@@ -669,8 +674,11 @@ static int run(viewer *v, luz_error *error)
         if (seconds > 0.5)
             seconds = 0.5;
         luz_camera_move(&v->options->scene.camera, held_motion(v), (float)seconds);
-        if (!v->paused)
-            v->options->scene.time_seconds += seconds;
+        /* The animation stops at the options' last time (about 32 years
+         * on), so that a saved view always reads back. */
+        if (!v->paused && v->options->scene.time_seconds < LUZ_SCENE_MAX_TIME)
+            v->options->scene.time_seconds =
+                fmin(v->options->scene.time_seconds + seconds, LUZ_SCENE_MAX_TIME);
         /* The step mode's count grows with time; the frame's triangles
          * are the last frame's (the scene is frozen meanwhile). */
         v->step_limit = luz_step_advance(&v->step, seconds, v->stats.triangles_rasterised);
