@@ -611,6 +611,112 @@ static void test_huge_size_refused_at_once(void **state)
     sandbox_destroy(&box);
 }
 
+/* ---- long paths come through whole ------------------------------------------------------ */
+
+/* Makes `levels` nested directories under box->work, each named by 250
+ * copies of `letter`, and writes their relative path into out. */
+static void make_deep_directory(const sandbox *box, char letter, int levels, char *out,
+                                size_t size)
+{
+    char name[251];
+    memset(name, letter, 250);
+    name[250] = '\0';
+    out[0] = '\0';
+    for (int level = 0; level < levels; level++) {
+        size_t used = strlen(out);
+        snprintf(out + used, size - used, "%s%s", level ? "/" : "", name);
+        char absolute[4096];
+        snprintf(absolute, sizeof absolute, "%s/%s", box->work, out);
+        assert_int_equal(mkdir(absolute, 0755), 0);
+    }
+}
+
+/* Exit status 2 and one line on stderr that holds every needle whole. */
+static void assert_refused_naming(const run_result *result, const char *const *needles)
+{
+    if (result->status != 2)
+        fail_msg("exit status %d, expected 2; stderr: %.300s", result->status, result->err);
+    size_t length = strlen(result->err);
+    assert_true(length > 0 && result->err[length - 1] == '\n');
+    assert_ptr_equal(strchr(result->err, '\n'), result->err + length - 1);
+    for (int i = 0; needles[i] != NULL; i++) {
+        if (strstr(result->err, needles[i]) == NULL)
+            fail_msg("stderr (%zu bytes) lacks the whole of the %zu-byte '%.60s...'", length,
+                     strlen(needles[i]), needles[i]);
+    }
+}
+
+/* An error message names its paths whole, however long: a 1506-byte
+ * scene path, a 3000-byte model path beside it, a 1506-byte output
+ * directory. (luz_error once held 512 bytes and cut them off.) */
+static void test_long_paths_come_through_whole(void **state)
+{
+    (void)state;
+    sandbox box;
+    sandbox_create(&box);
+    char scene_directory[2048], model_directory[2048], scene[2100], model_line[2100];
+    char model[4096], output[2100];
+    make_deep_directory(&box, 's', 6, scene_directory, sizeof scene_directory);
+    assert_true(strlen(scene_directory) > 1500);
+
+    /* a bad value in a scene file deep down: FILE:LINE with the whole FILE */
+    snprintf(scene, sizeof scene, "%s/s.luz", scene_directory);
+    char scene_absolute[4096];
+    snprintf(scene_absolute, sizeof scene_absolute, "%s/%s", box.work, scene);
+    write_file(scene_absolute, "seed = 1\nfov = 0\n", 17);
+    char where[2200];
+    snprintf(where, sizeof where, "%s:2: fov", scene);
+    run_result result = run_in(&box, ARGS("--scene", scene, "--textures", "none"), NULL);
+    assert_refused_naming(&result, ARGS(where, "[1, 179]"));
+    run_result_free(&result);
+
+    /* a model that is not there, 1500 more bytes below the scene file's
+     * directory: the scene file and the model's absolute path, both whole */
+    make_deep_directory(&box, 'm', 6, model_directory, sizeof model_directory);
+    snprintf(model_line, sizeof model_line, "model = %s/nothere.obj\n", model_directory);
+    write_file(scene_absolute, model_line, strlen(model_line));
+    snprintf(where, sizeof where, "%s:1: model", scene);
+    snprintf(model, sizeof model, "%s/%s/%s/nothere.obj", box.work, scene_directory,
+             model_directory);
+    assert_true(strlen(model) > 3000);
+    result = run_in(&box, ARGS("--scene", scene, "--textures", "none"), NULL);
+    assert_refused_naming(&result, ARGS(where, model));
+    run_result_free(&result);
+
+    /* an output directory that does not exist: exit 1 (the machine's
+     * failure, docs/cli.md), the path whole */
+    snprintf(output, sizeof output, "%s/no-such-directory/out.png", scene_directory);
+    result = run_in(&box, ARGS("--size", "8x8", "--textures", "none", "-o", output), NULL);
+    assert_int_equal(result.status, 1);
+    if (strstr(result.err, output) == NULL)
+        fail_msg("stderr lacks the whole output path: %.300s", result.err);
+    run_result_free(&result);
+    sandbox_destroy(&box);
+}
+
+/* luz_error holds three PATH_MAX paths and some words whole; what does not
+ * fit ends in "...", so a cut is never silent. */
+static void test_error_message_room(void **state)
+{
+    (void)state;
+    char *path = malloc(4096);
+    assert_non_null(path);
+    memset(path, 'p', 4095);
+    path[4095] = '\0';
+    luz_error error;
+    assert_int_equal(luz_error_set(&error, "%s:12: model: %s: texture '%s': cannot open it",
+                                   path, path, path), -1);
+    /* 3 x 4095 + the words between, counted by hand: ":12: model: " is 12,
+     * ": texture '" 11, "': cannot open it" 17 */
+    assert_int_equal(strlen(error.message), 3 * 4095 + 12 + 11 + 17);
+    assert_string_equal(error.message + strlen(error.message) - 17, "': cannot open it");
+
+    luz_error_set(&error, "%s%s%s%s%s", path, path, path, path, path);
+    assert_int_equal(strlen(error.message), LUZ_ERROR_MESSAGE_SIZE - 1);
+    assert_string_equal(error.message + LUZ_ERROR_MESSAGE_SIZE - 4, "...");
+    free(path);
+}
+
 /* ---- what works ---------------------------------------------------------------------------- */
 
 static void test_help(void **state)
@@ -2487,6 +2593,8 @@ int main(void)
         cmocka_unit_test(test_scene_file_and_precedence),
         cmocka_unit_test(test_options_reach_the_image),
         cmocka_unit_test(test_huge_size_refused_at_once),
+        cmocka_unit_test(test_long_paths_come_through_whole),
+        cmocka_unit_test(test_error_message_room),
         cmocka_unit_test(test_scene_round_trip),
         cmocka_unit_test(test_scene_round_trip_every_saved_key),
         cmocka_unit_test(test_scene_text_of_the_defaults),

@@ -45,6 +45,7 @@
 #include "io/new_file.h"
 
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdbool.h>
 #include <stdlib.h>
@@ -62,6 +63,9 @@
 #define SCENE_LINE_MAX 4096
 #define SCENE_MAX_LINES (2 * LUZ_MAX_CUBES + 1000)
 #define SEEN_KEYS_MAX 64
+/* "FILE:LINE: what" for messages, whole for a scene file's path of up to
+ * PATH_MAX bytes (a longer one cannot be opened). */
+#define WHERE_SIZE (PATH_MAX + 64)
 
 typedef struct scene_reader {
     luz_options *options;
@@ -219,7 +223,7 @@ static char *find_field(char *text)
 static char *read_word(scene_reader *reader, char *text, const char *what, char **word,
                        luz_error *error)
 {
-    char where[600];
+    char where[WHERE_SIZE];
     snprintf(where, sizeof where, "%s:%d: %s", reader->path, reader->line, what);
     if (text[0] == '"') {
         char *after;
@@ -296,7 +300,7 @@ static int read_object(scene_reader *reader, char *value, bool is_model, luz_err
 
     luz_object object = {.texture = LUZ_TEXTURE_BY_INDEX, .scale = 1.0f};
     const char *texture_name = NULL;
-    char model_path[4096];
+    char model_path[PATH_MAX];
     char *fields;
     double numbers[3];
     bool has_position = false, has_scale = false;
@@ -306,13 +310,13 @@ static int read_object(scene_reader *reader, char *value, bool is_model, luz_err
             return -1;
         /* The scene file's directory: "" for the working one, "/" for a
          * file in the root. */
-        char directory[4096];
+        char directory[PATH_MAX];
         const char *slash = strrchr(path, '/');
         if (slash == path)
             snprintf(directory, sizeof directory, "/");
         else
             snprintf(directory, sizeof directory, "%.*s", slash ? (int)(slash - path) : 0, path);
-        char where[600];
+        char where[WHERE_SIZE];
         snprintf(where, sizeof where, "%s:%d: model", path, line);
         luz_error inner;
         if (luz_options_model_path(directory, file, model_path, sizeof model_path, &inner) != 0)
@@ -418,7 +422,7 @@ static int read_object(scene_reader *reader, char *value, bool is_model, luz_err
         luz_options_clear_objects(reader->options);
         reader->first_cube_line = line;
     }
-    char where[600];
+    char where[WHERE_SIZE];
     snprintf(where, sizeof where, "%s:%d: %s", path, line, kind);
     return luz_options_add_object(reader->options, &object, texture_name,
                                   is_model ? model_path : NULL, line, where, error);
@@ -485,7 +489,7 @@ static int read_line(scene_reader *reader, char *text, luz_error *error)
         reader->cubes_key_line = line;
     }
 
-    char where[600];
+    char where[WHERE_SIZE];
     snprintf(where, sizeof where, "%s:%d: %s", path, line, name);
     if (value[0] == '"') {
         char *after;

@@ -232,9 +232,11 @@ typedef struct viewer {
     int next_shot, next_scene;       /* the numbers F12 and F2 try first */
 } viewer;
 
+/* Shows message at the bottom of the window (as much of it as v->message
+ * holds) and prints it, whole, on stderr. */
 static void show_message(viewer *v, const char *message)
 {
-    snprintf(v->message, sizeof v->message, "%s", message);
+    snprintf(v->message, sizeof v->message, "%.*s", (int)sizeof v->message - 1, message);
     v->message_seconds_left = 4.0;
     luz_error_print("luz", message);
 }
@@ -276,7 +278,7 @@ static void write_state(viewer *v, FILE *out)
  * or not at all (luz_options_save_scene), never over an existing file. */
 static void save_scene(viewer *v)
 {
-    char path[64], message[sizeof v->message];
+    char path[64], message[LUZ_ERROR_MESSAGE_SIZE + 64];
     luz_error error = {{0}};
     use_window_size(v);
     int status = LUZ_FILE_EXISTS;
@@ -298,7 +300,7 @@ static void save_scene(viewer *v)
  * a PNG that never replaces an existing file. */
 static void save_screenshot(viewer *v, const luz_framebuffer *framebuffer)
 {
-    char path[64], message[sizeof v->message];
+    char path[64], message[LUZ_ERROR_MESSAGE_SIZE + 64];
     luz_error error = {{0}};
     int status = LUZ_FILE_EXISTS;
     for (int race = 0; race < MAX_NAME_RACES && status == LUZ_FILE_EXISTS; race++) {
