@@ -34,8 +34,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
+#include <sys/socket.h>
 #include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <sys/types.h>
+#include <sys/un.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
@@ -48,6 +52,7 @@
 #include "app/options.h"
 #include "app/panel.h"
 #include "io/image.h"
+#include "io/new_file.h"
 #include "io/textures.h"
 #include "lab/scene.h"
 
@@ -437,6 +442,23 @@ static const error_case error_cases[] = {
     {"output-trailing-percent", {"-o", "out%"}, NULL, NULL, {"-o", "%d"}},
     {"output-default-pattern-long-option", {"--frames", "2", "--output", "x%5x.png"}, NULL, NULL,
      {"-o", "%d"}},
+    /* what -o may replace: a regular file that is none of the run's inputs */
+    {"output-is-a-texture", {"--size", "8x8", "--textures", "tex", "-o", "tex/a.bmp"}, NULL,
+     NULL, {"-o: tex/a.bmp: is a texture this run reads", "expected an output file"}},
+    {"output-is-a-texture-by-another-name",
+     {"--size", "8x8", "--textures", "tex", "-o", "./tex/../tex/b.bmp"}, NULL, NULL,
+     {"-o: ./tex/../tex/b.bmp: is a texture this run reads (tex/b.bmp)"}},
+    {"output-is-the-scene-file", {"--scene", "s.luz", "-o", "s.luz"},
+     "size = 8x8\ntextures = none\n", NULL, {"-o: s.luz: is the scene file this run reads"}},
+    {"output-key-is-the-scene-file", {"--scene", "s.luz"},
+     "size = 8x8\ntextures = none\noutput = s.luz\n", NULL,
+     {"-o: s.luz: is the scene file this run reads"}},
+    {"output-is-a-directory", {"--size", "8x8", "--textures", "none", "-o", "tex"}, NULL, NULL,
+     {"-o: tex: is a directory", "expected a file name (such as tex/luz.png)"}},
+    {"output-is-a-directory-with-slash", {"--size", "8x8", "--textures", "none", "-o", "tex/"},
+     NULL, NULL, {"-o: tex/: is a directory", "(such as tex/luz.png)"}},
+    {"output-ends-in-slash", {"--size", "8x8", "--textures", "none", "-o", "nowhere/"}, NULL,
+     NULL, {"-o: nowhere/: ends in '/'", "(such as nowhere/luz.png)"}},
     /* a slice of a sequence (--frame-range, --shard) and its files */
     {"frame-range-reversed", {"--frames", "24", "--frame-range", "7:3"}, NULL, NULL,
      {"--frame-range", "0 <= A <= B <= 23", "'7:3'"}},
@@ -1753,6 +1775,206 @@ static void test_save_scene_never_replaces_unless_asked(void **state)
     sandbox_destroy(&box);
 }
 
+/* ---- what -o may replace ------------------------------------------------------------- */
+
+/* A thing at a path, as lstat sees it: luz-render must leave it as it was. */
+typedef struct file_identity {
+    mode_t type;
+    dev_t device;
+    ino_t inode;
+} file_identity;
+
+static file_identity identity_of(const char *path)
+{
+    struct stat status;
+    if (lstat(path, &status) != 0)
+        fail_msg("%s: %s", path, strerror(errno));
+    return (file_identity){status.st_mode & S_IFMT, status.st_dev, status.st_ino};
+}
+
+/* luz-render -o NAME, with NAME something the rename would replace: exit
+ * status 2, one line naming NAME and what it is, nothing written, NAME
+ * still the same thing. */
+static void assert_output_refused(const sandbox *box, const char *name, const char *what)
+{
+    char path[600], before[8192] = "", after[8192] = "";
+    sandbox_path(box, name, path, sizeof path);
+    const file_identity was = identity_of(path);
+    list_tree(box->work, "", before, sizeof before);
+    run_result result = run_in(box, ARGS("--size", "8x8", "--textures", "none", "-o", name), NULL);
+    char needle[700];
+    snprintf(needle, sizeof needle, "luz-render: -o: %s: is %s, not a regular file", name, what);
+    if (result.status != 2 || strncmp(result.err, needle, strlen(needle)) != 0 ||
+        strchr(result.err, '\n') != result.err + strlen(result.err) - 1)
+        fail_msg("-o %s: exit %d, stderr '%s'; expected 2 and '%s...'", name, result.status,
+                 result.err, needle);
+    const file_identity is = identity_of(path);
+    assert_int_equal(is.type, was.type);
+    assert_int_equal(is.inode, was.inode);
+    assert_int_equal(is.device, was.device);
+    list_tree(box->work, "", after, sizeof after);
+    assert_string_equal(before, after);
+    run_result_free(&result);
+}
+
+/* The issue's case: as root, -o /dev/null replaced the system's /dev/null
+ * with a PNG, since a rename replaces whatever has the name. Only a regular
+ * file is replaced now; everything else at the path is refused. (The
+ * devices are made in the sandbox, never the system's own, so that a
+ * regression cannot harm the machine that runs the test.) */
+static void test_output_replaces_only_regular_files(void **state)
+{
+    (void)state;
+    sandbox box;
+    sandbox_create(&box);
+    char path[600];
+
+    sandbox_path(&box, "fifo.png", path, sizeof path);
+    assert_int_equal(mkfifo(path, 0644), 0);
+    assert_output_refused(&box, "fifo.png", "a FIFO");
+
+    sandbox_path(&box, "socket.png", path, sizeof path);
+    int listener = socket(AF_UNIX, SOCK_STREAM, 0);
+    assert_true(listener >= 0);
+    struct sockaddr_un address = {.sun_family = AF_UNIX};
+    if (strlen(path) < sizeof address.sun_path) {   /* a socket's path is short */
+        memcpy(address.sun_path, path, strlen(path) + 1);
+        assert_int_equal(bind(listener, (struct sockaddr *)&address, sizeof address), 0);
+        assert_output_refused(&box, "socket.png", "a socket");
+    }
+    close(listener);
+
+    /* a symbolic link is replaced itself, so it is refused whatever it
+     * points to: a device (/dev/stdout is a link), or a file */
+    sandbox_path(&box, "null-link.png", path, sizeof path);
+    assert_int_equal(symlink("/dev/null", path), 0);
+    assert_output_refused(&box, "null-link.png", "a symbolic link");
+    sandbox_path(&box, "file-link.png", path, sizeof path);
+    assert_int_equal(symlink("tex/a.bmp", path), 0);
+    assert_output_refused(&box, "file-link.png", "a symbolic link");
+
+    /* a character device of the sandbox's own (1, 3 is null's number);
+     * only root may make one */
+    sandbox_path(&box, "device.png", path, sizeof path);
+    if (mknod(path, S_IFCHR | 0666, makedev(1, 3)) == 0)
+        assert_output_refused(&box, "device.png", "a character device");
+    else
+        print_message("device case skipped: mknod: %s\n", strerror(errno));
+
+    /* the check itself, on the system's devices: it writes nothing */
+    luz_error error;
+    assert_int_equal(luz_new_file_check_target("/dev/null", &error), -1);
+    assert_string_equal(error.message, "/dev/null: is a character device, not a regular file; "
+                                       "expected a new file or a regular file to replace");
+    assert_int_equal(luz_new_file_check_target("/dev/stdout", &error), -1);
+    assert_non_null(strstr(error.message, "/dev/stdout: is a symbolic link"));
+    sandbox_destroy(&box);
+}
+
+/* A sequence's every frame is checked before the first is rendered: frame
+ * 1 of tex/%d.bmp is tex/1.bmp, a texture, so nothing is written at all
+ * (not frame 0 either) and the texture stays as it was. */
+static void test_no_frame_replaces_an_input(void **state)
+{
+    (void)state;
+    sandbox box;
+    sandbox_create(&box);
+    char texture[600], frame0[600];
+    sandbox_path(&box, "tex/1.bmp", texture, sizeof texture);
+    sandbox_path(&box, "tex/0.bmp", frame0, sizeof frame0);
+    write_bmp(texture, 2, 2, 10, 20, 30);
+    size_t length_before, length_after;
+    char *bytes_before = read_file(texture, &length_before);
+    run_result result = run_in(&box, ARGS("--size", "8x8", "--textures", "tex", "--frames", "3",
+                                          "-o", "tex/%d.bmp"), NULL);
+    assert_int_equal(result.status, 2);
+    assert_string_equal(result.err, "luz-render: -o: tex/1.bmp: is a texture this run reads; "
+                                    "expected an output file that is none of its inputs\n");
+    assert_int_equal(access(frame0, F_OK), -1);
+    char *bytes_after = read_file(texture, &length_after);
+    assert_int_equal(length_after, length_before);
+    assert_memory_equal(bytes_after, bytes_before, length_before);
+    free(bytes_before);
+    free(bytes_after);
+    run_result_free(&result);
+
+    /* the same file by a hard link elsewhere: its device and inode */
+    char link_path[600];
+    sandbox_path(&box, "same.bmp", link_path, sizeof link_path);
+    assert_int_equal(link(texture, link_path), 0);
+    result = run_in(&box, ARGS("--size", "8x8", "--textures", "tex", "-o", "same.bmp"), NULL);
+    assert_int_equal(result.status, 2);
+    assert_string_equal(result.err, "luz-render: -o: same.bmp: is a texture this run reads "
+                                    "(tex/1.bmp); expected an output file that is none of its "
+                                    "inputs\n");
+    run_result_free(&result);
+    sandbox_destroy(&box);
+}
+
+/* The check is new_file's, right before the rename too: a FIFO that
+ * appears while the PNG is written is not replaced, and the temporary
+ * file is removed. */
+static void test_commit_checks_the_path_again(void **state)
+{
+    (void)state;
+    sandbox box;
+    sandbox_create(&box);
+    char path[600], before[8192] = "", after[8192] = "";
+    sandbox_path(&box, "late.png", path, sizeof path);
+    list_tree(box.work, "", before, sizeof before);
+    luz_new_file file;
+    luz_error error;
+    assert_int_equal(luz_new_file_open(&file, path, &error), 0);
+    fputs("not yet a PNG", file.stream);
+    assert_int_equal(mkfifo(path, 0644), 0);
+    assert_int_equal(luz_new_file_commit(&file, true, &error), -1);
+    assert_non_null(strstr(error.message, "late.png: is a FIFO, not a regular file"));
+    assert_int_equal(identity_of(path).type, S_IFIFO);
+    list_tree(box.work, "", after, sizeof after);
+    assert_new_files(before, after, ARGS("late.png"));   /* the FIFO, and no temporary */
+    sandbox_destroy(&box);
+}
+
+/* A file-size limit (ulimit -f) made the write die of SIGXFSZ and leave
+ * NAME.tmp-XXXXXX behind. Now the write fails with EFBIG: -1, one message,
+ * no file, and the signal is not delivered once the mask is restored. In
+ * a child, whose limit the test can lower: the defaults' scene text is
+ * about 400 bytes, the limit 100. This is the viewer's F2 path. */
+static void test_save_scene_past_the_file_size_limit(void **state)
+{
+    (void)state;
+    sandbox box;
+    sandbox_create(&box);
+    char path[600], before[8192] = "", after[8192] = "";
+    sandbox_path(&box, "view.luz", path, sizeof path);
+    list_tree(box.work, "", before, sizeof before);
+    fflush(NULL);
+    pid_t child = fork();
+    assert_true(child >= 0);
+    if (child == 0) {
+        luz_options options;
+        luz_options_init(&options);
+        struct rlimit limit = {100, 100};
+        luz_error error = {{0}};
+        int status = setrlimit(RLIMIT_FSIZE, &limit) == 0
+                         ? luz_options_save_scene(&options, path, false, &error)
+                         : 9;
+        /* 0: the expected failure and message; else what went wrong */
+        bool expected = status == -1 && strstr(error.message, "view.luz: cannot write (File "
+                                                             "too large)") != NULL;
+        _exit(expected ? 0 : status == 0 ? 3 : 4);
+    }
+    int status;
+    while (waitpid(child, &status, 0) < 0)
+        assert_int_equal(errno, EINTR);
+    if (!WIFEXITED(status))
+        fail_msg("the child died of signal %d", WTERMSIG(status));
+    assert_int_equal(WEXITSTATUS(status), 0);
+    list_tree(box.work, "", after, sizeof after);
+    assert_string_equal(before, after);
+    sandbox_destroy(&box);
+}
+
 static void test_parse_precedence_and_forms(void **state)
 {
     (void)state;
@@ -2602,6 +2824,10 @@ int main(void)
         cmocka_unit_test(test_scene_quoted_round_trip),
         cmocka_unit_test(test_scene_quoted_values_read),
         cmocka_unit_test(test_save_scene_never_replaces_unless_asked),
+        cmocka_unit_test(test_output_replaces_only_regular_files),
+        cmocka_unit_test(test_no_frame_replaces_an_input),
+        cmocka_unit_test(test_commit_checks_the_path_again),
+        cmocka_unit_test(test_save_scene_past_the_file_size_limit),
         cmocka_unit_test(test_parse_precedence_and_forms),
         cmocka_unit_test(test_output_pattern),
         cmocka_unit_test(test_default_textures_directory),

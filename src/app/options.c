@@ -180,7 +180,8 @@ static const option_spec option_table[] = {
     {.name = "output", .kind = OPTION_PATH, .offset = FIELD(output_path), .in_scene_file = true,
      .syntax = "FILE.png",
 .summary = "output PNG; with --frames a pattern such as out_%04d.png; - writes the PNGs "
-                "to standard output, one after another",
+                "to standard output, one after another; replaces only a regular file, and "
+                "none the run reads",
      .default_text = "luz.png; luz_%04d.png for frames"},
     {.name = "frames", .kind = OPTION_INTEGER, .offset = FIELD(frame_count), .min = 1,
      .max = LUZ_MAX_FRAMES, .in_scene_file = true, .syntax = "N",
@@ -871,6 +872,7 @@ void luz_options_free(luz_options *options)
     free(options->textures_directory);
     free(options->output_path);
     free(options->scene_path);
+    luz_input_files_free(&options->inputs);
     options->textures_directory = NULL;
     options->output_path = NULL;
     options->scene_path = NULL;

@@ -512,6 +512,8 @@ int luz_options_read_scene_file(luz_options *options, const char *path, luz_erro
         return luz_error_set(error, "%s: out of memory", path);
     free(options->scene_path);
     options->scene_path = path_copy;
+    if (luz_input_files_add(&options->inputs, path, "the scene file", error) != 0)
+        return -1;
 
     FILE *file = fopen(path, "r");
     if (file == NULL)
