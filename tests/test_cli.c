@@ -519,8 +519,12 @@ static const error_case error_cases[] = {
     /* a device would feed the reader forever; a huge line must not grow it */
     {"scene-is-a-device", {"--scene", "/dev/zero"}, NULL, NULL,
      {"/dev/zero", "not a regular file"}},
-    {"scene-line-too-long", {"--scene", "s.luz"}, "time = 1\n" TEN(TEN(TEN("########"))), NULL,
-     {"s.luz:2", "longer than"}},
+    /* 16384 characters, and 20000 */
+    {"scene-line-too-long", {"--scene", "s.luz"}, "time = 1\n" TEN(TEN(TEN("####################"))),
+     NULL, {"s.luz:2", "longer than 16384"}},
+    {"scene-texture-name-too-long", {"--scene", "s.luz"},
+     "cube = 0, 0, 0 texture " TEN(TEN("abc")) TEN("abcdefgh") "aaaaaa.png\n", NULL,
+     {"s.luz:1", "at most 255 bytes"}},
     {"scene-syntax", {"--scene", "s.luz"}, "size = 16x9\nthis is not an option\n", NULL,
      {"s.luz:2", "name = value"}},
     {"scene-empty-name", {"--scene", "s.luz"}, "= 5\n", NULL, {"s.luz:1", "name = value"}},
@@ -616,6 +620,41 @@ static void test_refused(void **state)
 
     run_result_free(&result);
     sandbox_destroy(&box);
+}
+
+/* A NUL byte anywhere in a scene file is refused at its line. fgets took
+ * a NUL for the end of its string, so a NUL in a last line without a
+ * newline, or a file of one NUL byte, passed unseen. */
+static void test_scene_nul_bytes(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *text;
+        size_t length;
+        const char *where;
+    } cases[] = {
+        {"seed = 1\nfov = 4\0", 17, "s.luz:2: "},            /* the last line, no newline */
+        {"\0", 1, "s.luz:1: "},                               /* one NUL byte */
+        {"seed = 1\0 2\nfov = 30\n", 21, "s.luz:1: "},       /* within a line */
+        {"\ntextures = \"a\0b\"\n", 18, "s.luz:2: "},       /* within quotes */
+        {"# c\n\n# x\0", 9, "s.luz:3: "},                    /* after a comment */
+        {"seed = 1\n\0\n", 11, "s.luz:2: "},                 /* a line of one NUL */
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        sandbox box;
+        sandbox_create(&box);
+        char path[600], expected[100];
+        sandbox_path(&box, "s.luz", path, sizeof path);
+        write_file(path, cases[c].text, cases[c].length);
+        run_result result = run_in(&box, ARGS("--scene", "s.luz", "--textures", "none"), NULL);
+        snprintf(expected, sizeof expected, "luz-render: %sexpected text, found a NUL byte\n",
+                 cases[c].where);
+        if (result.status != 2 || strcmp(result.err, expected) != 0)
+            fail_msg("case %zu: exit %d, stderr '%s'; expected 2 and '%s'", c, result.status,
+                     result.err, expected);
+        run_result_free(&result);
+        sandbox_destroy(&box);
+    }
 }
 
 /* 100000x100000 would be 130 GB: the refusal must come from the check, at
@@ -2815,6 +2854,7 @@ int main(void)
         cmocka_unit_test(test_scene_file_and_precedence),
         cmocka_unit_test(test_options_reach_the_image),
         cmocka_unit_test(test_huge_size_refused_at_once),
+        cmocka_unit_test(test_scene_nul_bytes),
         cmocka_unit_test(test_long_paths_come_through_whole),
         cmocka_unit_test(test_error_message_room),
         cmocka_unit_test(test_scene_round_trip),

@@ -114,13 +114,13 @@ static const option_spec option_table[] = {
     {.name = "fov", .kind = OPTION_FLOAT, .offset = FIELD(scene.camera.fov_degrees), .min = 1,
      .max = 179, .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "D",
      .summary = "vertical field of view in degrees, 1 to 179"},
-    {.name = "ambient", .kind = OPTION_LIGHT, .offset = FIELD(scene.lights.ambient),
+    {.name = "ambient", .kind = OPTION_LIGHT, .min = 0, .max = 1, .offset = FIELD(scene.lights.ambient),
      .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "r,g,b,a",
      .summary = "ambient light: colour and strength, each from 0 to 1"},
-    {.name = "diffuse", .kind = OPTION_LIGHT, .offset = FIELD(scene.lights.diffuse),
+    {.name = "diffuse", .kind = OPTION_LIGHT, .min = 0, .max = 1, .offset = FIELD(scene.lights.diffuse),
      .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "r,g,b,a",
      .summary = "diffuse headlight at the camera"},
-    {.name = "specular", .kind = OPTION_LIGHT, .offset = FIELD(scene.lights.specular),
+    {.name = "specular", .kind = OPTION_LIGHT, .min = 0, .max = 1, .offset = FIELD(scene.lights.specular),
      .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "r,g,b,a",
      .summary = "specular headlight at the camera"},
     /* pow(cos a, S) is 1/2 at a = sqrt(2 ln 2 / S) radians: beyond 100000
@@ -128,10 +128,10 @@ static const option_spec option_table[] = {
     {.name = "shininess", .kind = OPTION_FLOAT, .offset = FIELD(scene.lights.shininess), .min = 0,
      .max = 100000, .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "S",
      .summary = "specular exponent, 0 to 100000"},
-    {.name = "point", .kind = OPTION_LIGHT, .offset = FIELD(scene.lights.point),
+    {.name = "point", .kind = OPTION_LIGHT, .min = 0, .max = 1, .offset = FIELD(scene.lights.point),
      .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "r,g,b,a",
      .summary = "point light orbiting the origin (drawn as a small cube)"},
-    {.name = "spot", .kind = OPTION_LIGHT, .offset = FIELD(scene.lights.spot),
+    {.name = "spot", .kind = OPTION_LIGHT, .min = 0, .max = 1, .offset = FIELD(scene.lights.spot),
      .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "r,g,b,a",
      .summary = "spot light riding on the camera"},
     {.name = "spot-inner", .kind = OPTION_FLOAT, .offset = FIELD(scene.lights.spot_inner_degrees),
@@ -145,7 +145,7 @@ static const option_spec option_table[] = {
     {.name = "spot-reach", .kind = OPTION_FLOAT, .offset = FIELD(scene.lights.spot_reach),
      .min = 0.1, .max = 10000, .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "R",
      .summary = "distance at which the spot fades out, 0.1 to 10000"},
-    {.name = "directional", .kind = OPTION_LIGHT, .offset = FIELD(scene.lights.directional),
+    {.name = "directional", .kind = OPTION_LIGHT, .min = 0, .max = 1, .offset = FIELD(scene.lights.directional),
      .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "r,g,b,a",
      .summary = "directional light (the sun)"},
     /* not saved: its effect is already in the strengths it set to 0 */
@@ -248,7 +248,9 @@ static luz_option_info option_info(const option_spec *spec)
     return (luz_option_info){.name = spec->name,
                              .syntax = spec->syntax,
                              .is_flag = spec->kind == OPTION_FLAG,
-                             .saving = spec->saving};
+                             .saving = spec->saving,
+                             .min = spec->min,
+                             .max = spec->max};
 }
 
 bool luz_options_row(size_t index, luz_option_info *info)
@@ -315,7 +317,7 @@ static bool read_integer(const char *text, long long min, long long max, long lo
  * that float. */
 static bool in_range(const option_spec *spec, double value)
 {
-    if (spec->kind == OPTION_FLOAT || spec->kind == OPTION_VEC3)
+    if (spec->kind == OPTION_FLOAT || spec->kind == OPTION_VEC3 || spec->kind == OPTION_LIGHT)
         value = (float)value;   /* option_read_numbers kept it within a float's range */
     return value >= spec->min && value <= spec->max;
 }
@@ -425,11 +427,8 @@ static int set_vector(luz_options *options, const option_spec *spec, const char 
     double numbers[4];
     bool light = spec->kind == OPTION_LIGHT;
     char expected[96];
-    if (light)
-        snprintf(expected, sizeof expected, "r,g,b,a (four numbers, each in [0, 1])");
-    else
-        snprintf(expected, sizeof expected, "x,y,z (three numbers, each in [%.10g, %.10g])",
-                 spec->min, spec->max);
+    snprintf(expected, sizeof expected, "%s (%s numbers, each in [%.10g, %.10g])",
+             light ? "r,g,b,a" : "x,y,z", light ? "four" : "three", spec->min, spec->max);
     switch (option_read_numbers(value, numbers, light ? 4 : 3, true)) {
     case OPTION_PARSE_MALFORMED:
         return luz_error_set(error, "%s: expected %s, got '%s'", where, expected,
@@ -440,23 +439,17 @@ static int set_vector(luz_options *options, const option_spec *spec, const char 
     case OPTION_PARSE_OK:
         break;
     }
-    luz_vec3 vector = luz_vec3_make((float)numbers[0], (float)numbers[1], (float)numbers[2]);
-    if (!light) {
-        for (int i = 0; i < 3; i++) {
-            if (!in_range(spec, numbers[i]))
-                return luz_error_set(error, "%s: expected %s, got '%s'", where, expected,
-                                     option_quote(value).text);
-        }
-        *(luz_vec3 *)option_field(options, spec) = vector;
-        return 0;
-    }
-    for (int i = 0; i < 4; i++) {
-        if (!(numbers[i] >= 0.0 && numbers[i] <= 1.0))
+    for (int i = 0; i < (light ? 4 : 3); i++) {
+        if (!in_range(spec, numbers[i]))
             return luz_error_set(error, "%s: expected %s, got '%s'", where, expected,
                                  option_quote(value).text);
     }
-    *(luz_light *)option_field(options, spec) =
-        (luz_light){.colour = vector, .strength = (float)numbers[3]};
+    luz_vec3 vector = luz_vec3_make((float)numbers[0], (float)numbers[1], (float)numbers[2]);
+    if (light)
+        *(luz_light *)option_field(options, spec) =
+            (luz_light){.colour = vector, .strength = (float)numbers[3]};
+    else
+        *(luz_vec3 *)option_field(options, spec) = vector;
     return 0;
 }
 
@@ -600,6 +593,11 @@ static int set_shard(luz_options *options, const option_spec *spec, const char *
 static int set_path(luz_options *options, const option_spec *spec, const char *value,
                     const char *where, luz_error *error)
 {
+    /* A longer path cannot be opened (ENAMETOOLONG), and this bound is
+     * what keeps a saved scene file's lines within the reader's. */
+    if (strlen(value) > PATH_MAX - 1)
+        return luz_error_set(error, "%s: expected a path of at most %d bytes, got %zu bytes",
+                             where, PATH_MAX - 1, strlen(value));
     char *copy = strdup(value);
     if (copy == NULL)
         return luz_error_set(error, "%s: out of memory", where);

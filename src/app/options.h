@@ -138,6 +138,9 @@ typedef struct luz_option_info {
                                   NULL for a flag */
     bool is_flag;              /* takes no value: help, version, reference */
     luz_option_saving saving;
+    double min, max;           /* a number's range, ends included (each
+                                  number of x,y,z or r,g,b,a); +-INFINITY:
+                                  any finite value; 0, 0 for the rest */
 } luz_option_info;
 
 /* Row `index` of the option table, in --help's order, into *info. Returns

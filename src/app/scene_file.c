@@ -57,15 +57,21 @@
 
 /* Longer than any key, so that a key that does not fit is not a key. */
 #define KEY_MAX 24
-/* Bounds on what a scene file may hold: a line fits a cube with its colour
- * and a long texture name many times over, and the lines are enough for
- * LUZ_MAX_CUBES cube lines with comments between them. */
-#define SCENE_LINE_MAX 4096
+/* Bounds on what a scene file may hold. A line holds the longest that
+ * luz_options_write_scene writes, with room to spare: a model line whose
+ * PATH_MAX - 1 bytes of path each need an escape (2 x 4095 + 2 quotes),
+ * with `at` and `colour` (2 x 3 numbers of at most 15 characters, commas
+ * and blanks), a `scale`, a texture NAME of NAME_MAX bytes likewise
+ * escaped (2 x 255 + 2) and `still`: under 9000 characters. The lines are
+ * enough for LUZ_MAX_CUBES cube lines with comments between them. */
+#define SCENE_LINE_MAX 16384
 #define SCENE_MAX_LINES (2 * LUZ_MAX_CUBES + 1000)
 #define SEEN_KEYS_MAX 64
 /* "FILE:LINE: what" for messages, whole for a scene file's path of up to
  * PATH_MAX bytes (a longer one cannot be opened). */
 #define WHERE_SIZE (PATH_MAX + 64)
+/* A texture NAME is a file name of the textures directory. */
+#define TEXTURE_NAME_MAX NAME_MAX
 
 typedef struct scene_reader {
     luz_options *options;
@@ -371,6 +377,11 @@ static int read_object(scene_reader *reader, char *value, bool is_model, luz_err
                                      path, line, kind, original.text);
             if ((fields = read_word(reader, rest, what, &name, error)) == NULL)
                 return -1;
+            if (strlen(name) > TEXTURE_NAME_MAX)
+                return luz_error_set(error,
+                                     "%s:%d: %s: expected texture NAME, a file name of at most "
+                                     "%d bytes, got '%s'",
+                                     path, line, kind, TEXTURE_NAME_MAX, option_quote(name).text);
             texture_name = name;
         } else if (is_model && FIELD_IS("at")) {
             option_parse_result at = read_triple(rest, numbers, &fields);
@@ -505,6 +516,34 @@ static int read_line(scene_reader *reader, char *text, luz_error *error)
     return luz_options_set_value(reader->options, name, value, where, error);
 }
 
+typedef enum scene_line {
+    LINE_TEXT,       /* a line, without its '\n', in the buffer */
+    LINE_NONE,       /* the end of the file (or a read error: ferror says) */
+    LINE_TOO_LONG,   /* longer than the buffer holds */
+    LINE_WITH_NUL,   /* a NUL byte in it, anywhere */
+} scene_line;
+
+/* Reads the next line of file into text (size - 1 characters at most, then
+ * a NUL), byte by byte: fgets cannot tell a NUL byte in the file from its
+ * own end of string, so a NUL in the last line, or a file of one NUL
+ * byte, went unseen. A last line without a '\n' is a line. */
+static scene_line next_line(FILE *file, char *text, size_t size)
+{
+    size_t length = 0;
+    bool nul = false;
+    int c;
+    while ((c = getc_unlocked(file)) != EOF && c != '\n') {
+        if (length + 1 == size)
+            return LINE_TOO_LONG;
+        nul = nul || c == '\0';
+        text[length++] = (char)c;
+    }
+    text[length] = '\0';
+    if (c == EOF && length == 0)
+        return LINE_NONE;
+    return nul ? LINE_WITH_NUL : LINE_TEXT;
+}
+
 int luz_options_read_scene_file(luz_options *options, const char *path, luz_error *error)
 {
     char *path_copy = strdup(path);
@@ -529,16 +568,16 @@ int luz_options_read_scene_file(luz_options *options, const char *path, luz_erro
     /* Lines are read into a fixed buffer, so no input can make the reader
      * allocate without bound; a line that does not fit is an error. */
     scene_reader reader = {.options = options, .path = options->scene_path};
-    char text[SCENE_LINE_MAX + 2];
+    char text[SCENE_LINE_MAX + 1];
     int status = 0;
-    while (status == 0 && fgets(text, sizeof text, file) != NULL) {
+    scene_line got;
+    flockfile(file);   /* next_line's getc_unlocked */
+    while (status == 0 && (got = next_line(file, text, sizeof text)) != LINE_NONE) {
         reader.line++;
-        size_t length = strlen(text);
-        bool line_ended = length > 0 && text[length - 1] == '\n';
-        if (!line_ended && length + 1 == sizeof text)
+        if (got == LINE_TOO_LONG)
             status = luz_error_set(error, "%s:%d: line longer than %d characters", path,
                                    reader.line, SCENE_LINE_MAX);
-        else if (!line_ended && !feof(file))
+        else if (got == LINE_WITH_NUL)
             status = luz_error_set(error, "%s:%d: expected text, found a NUL byte", path,
                                    reader.line);
         else if (reader.line > SCENE_MAX_LINES)
@@ -547,7 +586,8 @@ int luz_options_read_scene_file(luz_options *options, const char *path, luz_erro
         else
             status = read_line(&reader, text, error);
     }
-    /* fgets's NULL means the end or an error (a directory gives EISDIR). */
+    funlockfile(file);
+    /* The end, or an error (a directory gives EISDIR). */
     if (status == 0 && ferror(file))
         status = luz_error_set(error, "%s: cannot read the scene file (%s)", path,
                                strerror(errno));
