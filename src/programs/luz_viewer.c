@@ -32,11 +32,13 @@
  * available, with one line on stderr; 1 if rendering fails (out of memory).
  */
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <SDL.h>
@@ -755,16 +757,38 @@ static int run_bench(viewer *v, luz_error *error)
  * the plain copy. LUZ_PRESENT=sdl asks for SDL's way on X11 too, and the
  * environment (SDL_RENDER_DRIVER, SDL_FRAMEBUFFER_ACCELERATION) still
  * overrides SDL's choice of renderer. */
+/* Whether WAYLAND_DISPLAY names a socket that is there, where libwayland
+ * looks for it: the name itself when absolute, else in $XDG_RUNTIME_DIR.
+ * Without one, asking libwayland for a display only adds its own complaint
+ * on stderr ("XDG_RUNTIME_DIR is invalid or not set") to luz's one line. */
+static bool wayland_socket_exists(void)
+{
+    const char *name = getenv("WAYLAND_DISPLAY");
+    if (name == NULL || name[0] == '\0')
+        return false;
+    char path[PATH_MAX];
+    const char *runtime = getenv("XDG_RUNTIME_DIR");
+    int written;
+    if (name[0] == '/')
+        written = snprintf(path, sizeof path, "%s", name);
+    else if (runtime != NULL && runtime[0] != '\0')
+        written = snprintf(path, sizeof path, "%s/%s", runtime, name);
+    else
+        return false;
+    struct stat status;
+    return written > 0 && (size_t)written < sizeof path && stat(path, &status) == 0 &&
+           S_ISSOCK(status.st_mode);
+}
+
 static int open_window(viewer *v, luz_error *error)
 {
     SDL_SetHint(SDL_HINT_RENDER_VSYNC, "0");          /* as fast as it renders */
     SDL_SetHint(SDL_HINT_RENDER_SCALE_QUALITY, "nearest");   /* luz's own pixels */
     SDL_SetHint(SDL_HINT_VIDEO_MINIMIZE_ON_FOCUS_LOSS, "0");
-    /* Without a Wayland display, asking libwayland for one only prints
-     * its own complaint on stderr: try X11 alone, unless the user chose. */
+    /* Without a Wayland socket to reach, try X11 alone, unless the user
+     * chose a driver. */
     const char *asked = getenv("SDL_VIDEODRIVER");
-    const char *wayland = getenv("WAYLAND_DISPLAY");
-    if ((asked == NULL || asked[0] == '\0') && (wayland == NULL || wayland[0] == '\0'))
+    if ((asked == NULL || asked[0] == '\0') && !wayland_socket_exists())
         SDL_SetHint(SDL_HINT_VIDEODRIVER, "x11");
     if (SDL_Init(SDL_INIT_VIDEO) != 0)
         return luz_error_set(error,
