@@ -306,7 +306,9 @@ done:
     luz_model_set_free(&models);
     luz_texture_set_free(&textures);
     luz_options_free(&options);
-    if (fflush(stdout) != 0 && status == EXIT_OK) {
+    /* ferror too: a write that failed earlier (--print-state past
+     * ulimit -f) leaves nothing for this flush to fail on */
+    if ((fflush(stdout) != 0 || ferror(stdout)) && status == EXIT_OK) {
         luz_error_print("luz-render", "cannot write to standard output");
         status = EXIT_RUNTIME;
     }

@@ -273,7 +273,14 @@ static void use_window_size(viewer *v)
 static void write_state(viewer *v, FILE *out)
 {
     use_window_size(v);
+    /* Standard output may be a file under ulimit -f: the write then fails
+     * (main reports it when it flushes) rather than kill the viewer with
+     * SIGXFSZ. */
+    luz_held_signals held;
+    luz_hold_write_signals(&held, false);
     luz_options_write_scene(v->options, out);
+    fflush(out);
+    luz_release_write_signals(&held);
 }
 
 /* F2: the view as a scene file, written beside the screenshots, complete
@@ -921,7 +928,9 @@ done:
     luz_texture_set_free(&textures);
     luz_options_free(&options);
     free(scene_argv);
-    if (fflush(stdout) != 0 && status == EXIT_OK) {
+    /* ferror too: a write that failed earlier (--print-state past
+     * ulimit -f) leaves nothing for this flush to fail on */
+    if ((fflush(stdout) != 0 || ferror(stdout)) && status == EXIT_OK) {
         luz_error_print("luz", "cannot write to standard output");
         status = EXIT_RUNTIME;
     }
