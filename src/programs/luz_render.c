@@ -276,8 +276,13 @@ int main(int argc, char **argv)
          * one line and status 1, rather than death by SIGPIPE. */
         signal(SIGPIPE, SIG_IGN);
     }
+    /* The outputs are checked once every input is known: none may replace
+     * a texture, a model or the scene file, nor anything but a regular
+     * file; and all before the first frame, so that a refused name leaves
+     * no part of a sequence behind. */
     if (luz_options_load_textures(&options, &textures, &error) != 0 ||
-        luz_options_load_models(&options, &models, &error) != 0) {
+        luz_options_load_models(&options, &models, &error) != 0 ||
+        luz_options_check_outputs(&options, &error) != 0) {
         status = EXIT_USAGE;
         goto done;
     }
@@ -311,7 +316,9 @@ done:
     luz_model_set_free(&models);
     luz_texture_set_free(&textures);
     luz_options_free(&options);
-    if (fflush(stdout) != 0 && status == EXIT_OK) {
+    /* ferror too: a write that failed earlier (--print-state past
+     * ulimit -f) leaves nothing for this flush to fail on */
+    if ((fflush(stdout) != 0 || ferror(stdout)) && status == EXIT_OK) {
         luz_error_print("luz-render", "cannot write to standard output");
         status = EXIT_RUNTIME;
     }
