@@ -4,7 +4,6 @@
 #include <stdbool.h>
 #include <stdint.h>
 #include <stdlib.h>
-#include <unistd.h>
 #include <time.h>
 
 #include "app/bench.h"
@@ -36,17 +35,6 @@ double luz_wall_ms(void)
 double luz_cpu_ms(void)
 {
     return milliseconds_of(CLOCK_PROCESS_CPUTIME_ID);
-}
-
-double luz_resident_bytes(void)
-{
-    FILE *statm = fopen("/proc/self/statm", "r");
-    if (statm == NULL) return 0.0;
-    unsigned long long pages_total = 0, pages_resident = 0;
-    int fields = fscanf(statm, "%llu %llu", &pages_total, &pages_resident);
-    fclose(statm);
-    long page = sysconf(_SC_PAGESIZE);
-    return fields == 2 && page > 0 ? (double)pages_resident * (double)page : 0.0;
 }
 
 uint64_t luz_bench_triangles(const luz_frame *frame)

@@ -20,9 +20,6 @@
  * its threads. Their differences time a frame. */
 double luz_wall_ms(void);
 double luz_cpu_ms(void);
-/* This process's resident memory in bytes (Linux's /proc/self/statm), or 0
- * where that cannot be read. */
-double luz_resident_bytes(void);
 
 /* The median of count values (count > 0); sorts them, so values[0] is then
  * the minimum. */

@@ -182,6 +182,7 @@ static int bench_frame(void *context, double time_seconds, double parts[LUZ_BENC
         return -1;
     parts[0] = stats.geometry_ms;
     parts[1] = stats.raster_ms;
+    parts[2] = (double)stats.memory_bytes / 1048576.0;
     return 0;
 }
 
@@ -190,10 +191,7 @@ static int bench(render_context *context, luz_renderer *renderer, luz_error *err
     const luz_options *options = context->options;
     const double start = options->scene.time_seconds;
     const int threads = luz_renderer_thread_count(renderer);
-    luz_bench measured = {.part_names = {"geometry_ms", "raster_ms"}};
-    /* What the scene, its textures and models hold, before any frame: the
-     * growth after the frames is what rendering keeps. */
-    const double resident_before = luz_resident_bytes();
+    luz_bench measured = {.part_names = {"geometry_ms", "raster_ms", "renderer_mb"}};
 
     /* With threads, the same frames on the caller's thread alone first, so
      * that the line says what the threads bought. */
@@ -218,16 +216,13 @@ static int bench(render_context *context, luz_renderer *renderer, luz_error *err
         luz_bench_free(&measured);
         return -1;
     }
-    const double resident_after = luz_resident_bytes();
     const uint64_t triangles = luz_bench_triangles(&context->frame);
     luz_bench_print_case(stdout, options, measured.frames, options->width, options->height,
                          threads, triangles);
     luz_bench_print_figures(stdout, &measured);
-    if (resident_before > 0.0) {
-        const double rendering = resident_after - resident_before;
-        printf(" rendering_mb=%.1f", rendering / 1048576.0);
-        if (triangles > 0) printf(" rendering_bytes_per_triangle=%.1f", rendering / (double)triangles);
-    }
+    if (triangles > 0)
+        printf(" renderer_bytes_per_triangle=%.1f",
+               luz_median(measured.parts[2], measured.frames) * 1048576.0 / (double)triangles);
     if (threads > 1) {
         const double median_ms = luz_median(measured.wall_ms, measured.frames);
         printf(" single_thread_median_ms=%.3f speedup=%.2f", single_thread_median,
