@@ -142,9 +142,10 @@ bool luz_options_row(size_t index, luz_option_info *info);
 bool luz_options_find(const char *name, size_t length, luz_option_info *info);
 
 /* Writes the current value of option `name` in the text form that
- * luz_options_set() reads back exactly (floats with %.9g, doubles with
- * %.17g). Returns 0, or -1 for a flag, an unknown name, a value left at
- * "unset" (textures, output, only, bench) or a buffer too small. */
+ * luz_options_set() reads back exactly: each number the shortest decimal
+ * that reads back to the same bits (option_text.h). Returns 0, or -1 for
+ * a flag, an unknown name, a value left at "unset" (textures, output,
+ * only, bench) or a buffer too small. */
 int luz_options_format(const luz_options *options, const char *name,
                        char *buffer, size_t size);
 
