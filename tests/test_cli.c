@@ -350,6 +350,12 @@ static const error_case error_cases[] = {
     {"camera-yaw-beyond-float", {"--camera-yaw", "1e39"}, NULL, NULL,
      {"--camera-yaw", "finite"}},
     {"camera-yaw-nan", {"--camera-yaw", "NaN"}, NULL, NULL, {"--camera-yaw", "finite"}},
+    /* just past FLT_MAX's rounding range (FLT_MAX's own 3.4028235e38 reads) */
+    {"camera-yaw-rounds-to-infinity", {"--camera-yaw", "3.40282357e38"}, NULL, NULL,
+     {"--camera-yaw", "finite"}},
+    {"paused-not-yes-no", {"--paused", "true"}, NULL, NULL, {"--paused", "yes or no"}},
+    {"scene-paused-not-yes-no", {"--scene", "s.luz"}, "paused = 1\n", NULL,
+     {"s.luz:1: paused", "yes or no"}},
     {"camera-pitch-above", {"--camera-pitch", "90"}, NULL, NULL,
      {"--camera-pitch", "[-89, 89]"}},
     {"camera-pitch-below", {"--camera-pitch=-89.5"}, NULL, NULL,
@@ -1197,6 +1203,7 @@ static void set_every_option_by_hand(luz_options *options)
     options->scene.filter = LUZ_FILTER_NEAREST;
     options->scene.view = LUZ_VIEW_DEPTH;
     options->scene.interpolation = LUZ_INTERPOLATION_AFFINE;
+    options->paused = true;
     options->textures_directory = strdup("hand/textures");
     assert_non_null(options->textures_directory);
     /* and what a scene file does not keep (docs/cli.md, Writing scene
@@ -1215,7 +1222,7 @@ static void set_every_option_by_hand(luz_options *options)
 
 /* The text of set_every_option_by_hand's options, written out by hand from
  * docs/cli.md's format: the keys in the order saved files have always had,
- * view and interp last as the settings written only when changed. */
+ * view, interp and paused last as the settings written only when changed. */
 static const char every_option_text[] =
     "# luz scene: render it with luz-render --scene FILE (see docs/cli.md)\n"
     "size = 640x360\n"
@@ -1239,7 +1246,8 @@ static const char every_option_text[] =
     "filter = nearest\n"
     "textures = hand/textures\n"
     "view = depth\n"
-    "interp = affine\n";
+    "interp = affine\n"
+    "paused = yes\n";
 
 static void assert_light_is(const luz_light *light, float r, float g, float b, float strength)
 {
@@ -1296,6 +1304,7 @@ static void test_scene_round_trip_every_saved_key(void **state)
     assert_int_equal(copy.scene.filter, LUZ_FILTER_NEAREST);
     assert_int_equal(copy.scene.view, LUZ_VIEW_DEPTH);
     assert_int_equal(copy.scene.interpolation, LUZ_INTERPOLATION_AFFINE);
+    assert_true(copy.paused);
     assert_string_equal(copy.textures_directory, "hand/textures");
     /* what is not written comes back as the defaults */
     assert_int_equal(copy.only_terms, 0);

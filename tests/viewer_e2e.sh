@@ -20,7 +20,9 @@
 #    with no window manager to make the window fullscreen, says so and
 #    leaves the window's size alone.
 # 5. Esc quits with status 0; --print-state's scene file says where the
-#    camera went and that the spot is off, and luz-render renders it.
+#    camera went, that the spot is off and that the animation is paused,
+#    and luz-render renders it. luz re-opened on it stays paused: its time
+#    does not move.
 # 6. The same check as in 1 with frames shown through SDL (LUZ_PRESENT=sdl),
 #    the way luz shows them where it cannot use X11 shared memory.
 # 7. With a window manager (openbox, if installed): F11 makes the window
@@ -211,6 +213,24 @@ grep -q '^size = 400x300$' state.luz || fail "the state's size is not the window
 # The state is a scene file that luz-render reads.
 "$luz_render" --scene state.luz --size 64x36 -o from-state.png 2>"$work/render.err" ||
     fail "luz-render cannot render the printed state: $(cat "$work/render.err"): $(cat state.luz)"
+
+# The pause (T, pressed in 1) is part of the state, and a view saved while
+# paused opens paused: a second luz on the state, left running for a
+# second, prints the same time.
+grep -q '^paused = yes$' state.luz || fail "the state does not say paused: $(cat state.luz)"
+saved_time=$(sed -n 's/^time = //p' state.luz)
+rm -f "$work/stderr"
+"$luz" --scene state.luz --print-state >"$work/reopened.luz" 2>"$work/stderr" &
+luz_pid=$!
+wait_for_window "luz (--scene state.luz)"
+sleep 1
+xdotool key Escape
+wait "$luz_pid" || fail "luz (--scene state.luz) exited with status $? after Esc"
+luz_pid=""
+reopened_time=$(sed -n 's/^time = //p' "$work/reopened.luz")
+[ -n "$saved_time" ] && [ "$reopened_time" = "$saved_time" ] ||
+    fail "the paused view re-opened at time $saved_time moved on to $reopened_time"
+grep -q '^paused = yes$' "$work/reopened.luz" || fail "the re-opened view is not paused"
 
 # 6. Shown through SDL: the window shows the screenshot's pixels too.
 rm -f "$work/stderr"

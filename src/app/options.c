@@ -59,6 +59,7 @@ typedef enum option_kind {
     OPTION_FILTER,    /* nearest | bilinear | trilinear */
     OPTION_VIEW,      /* color | depth | normals | ... (luz/view.h) */
     OPTION_INTERP,    /* perspective | affine */
+    OPTION_YES_NO,    /* yes | no, a bool */
     OPTION_ONLY,      /* a comma-separated list of light terms */
     OPTION_PATH,      /* a string the options own */
     OPTION_FRAME_RANGE, /* A:B, A: or :B, frame numbers from 0 */
@@ -161,6 +162,13 @@ static const option_spec option_table[] = {
      .syntax = "perspective|affine",
      .summary = "interpolation of texture coordinates and the other varyings: "
                 "perspective-correct, or affine in screen space (textures swim)"},
+    /* The viewer's pause (T), saved when on, so that a view saved while
+     * paused opens paused. luz-render's pictures are stills at `time`
+     * anyway, and its --frames animate whatever this says. */
+    {.name = "paused", .kind = OPTION_YES_NO, .offset = FIELD(paused),
+     .in_scene_file = true, .saving = LUZ_OPTION_SAVED_IF_CHANGED, .syntax = "yes|no",
+     .summary = "the viewer starts with the animation paused (its T key); luz-render "
+                "ignores it: its images are at --time, and --frames animate"},
     /* saved once set (luz_options_format has nothing to write before) */
     {.name = "textures", .kind = OPTION_PATH, .offset = FIELD(textures_directory),
      .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "DIR|none",
@@ -470,6 +478,18 @@ static int set_interpolation(luz_options *options, const char *value, const char
                          option_quote(value).text);
 }
 
+static int set_yes_no(luz_options *options, const option_spec *spec, const char *value,
+                      const char *where, luz_error *error)
+{
+    bool *field = option_field(options, spec);
+    if (strcmp(value, "yes") == 0 || strcmp(value, "no") == 0) {
+        *field = value[0] == 'y';
+        return 0;
+    }
+    return luz_error_set(error, "%s: expected yes or no, got '%s'", where,
+                         option_quote(value).text);
+}
+
 static int set_filter(luz_options *options, const char *value, const char *where,
                       luz_error *error)
 {
@@ -635,6 +655,8 @@ int luz_options_set_value(luz_options *options, const char *name, const char *va
         return set_view(options, value, where, error);
     case OPTION_INTERP:
         return set_interpolation(options, value, where, error);
+    case OPTION_YES_NO:
+        return set_yes_no(options, spec, value, where, error);
     case OPTION_ONLY:
         return set_only(options, value, where, error);
     case OPTION_PATH:
@@ -732,6 +754,9 @@ int luz_options_format(const luz_options *options, const char *name, char *buffe
     case OPTION_INTERP:
         written = snprintf(buffer, size, "%s",
                            luz_interpolation_name(options->scene.interpolation));
+        break;
+    case OPTION_YES_NO:
+        written = snprintf(buffer, size, "%s", *(const bool *)field ? "yes" : "no");
         break;
     case OPTION_ONLY: {
         if (options->only_terms == 0)

@@ -77,6 +77,7 @@ typedef struct luz_options {
     unsigned only_terms;        /* --only: bit (1u << luz_term) per light term
                                    kept; 0 keeps them all */
     bool reference;             /* --reference: the plain scalar fragment stage */
+    bool paused;                /* --paused yes: the viewer starts paused (T) */
     bool help;
     bool version;
     luz_object *objects;        /* the user's own cubes and models (owned), as

@@ -253,17 +253,20 @@ static void free_file_name(const char *prefix, const char *suffix, int *number, 
  * as fast as luz looks cannot hold the viewer. */
 #define MAX_NAME_RACES 100
 
-/* A saved scene is rendered by luz-render at the window's size. */
-static void use_window_size(viewer *v)
+/* What a saved scene keeps of the viewer itself: the window's size, at
+ * which luz-render renders it, and the pause, which the viewer opens it
+ * with (the user's pause: the step mode's own freeze is not saved). */
+static void use_viewer_state(viewer *v)
 {
     v->options->width = v->window_width;
     v->options->height = v->window_height;
+    v->options->paused = v->step.on ? v->paused_before_step : v->paused;
 }
 
 /* --print-state: the scene as luz-render should render it. */
 static void write_state(viewer *v, FILE *out)
 {
-    use_window_size(v);
+    use_viewer_state(v);
     luz_options_write_scene(v->options, out);
 }
 
@@ -273,7 +276,7 @@ static void save_scene(viewer *v)
 {
     char path[64], message[sizeof v->message];
     luz_error error = {{0}};
-    use_window_size(v);
+    use_viewer_state(v);
     int status = LUZ_FILE_EXISTS;
     for (int race = 0; race < MAX_NAME_RACES && status == LUZ_FILE_EXISTS; race++) {
         free_file_name("luz-scene", "luz", &v->next_scene, path, sizeof path);
@@ -845,6 +848,7 @@ int main(int argc, char **argv)
 
     status = EXIT_RUNTIME;
     v.start_camera = options.scene.camera;
+    v.paused = options.paused;   /* a view saved while paused opens paused */
     luz_panel_init(&v.panel);
     const luz_renderer_desc desc = luz_options_renderer_desc(&options);
     v.renderer = luz_renderer_create(&desc, &error);
