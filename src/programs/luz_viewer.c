@@ -374,6 +374,7 @@ static void handle_key(viewer *v, const SDL_KeyboardEvent *key)
     case SDLK_ESCAPE: v->running = false; break;
     case SDLK_TAB: set_panel_open(v, !v->panel_open); break;
     case SDLK_c: luz_camera_reset(&scene->camera, &v->start_camera); break;
+    case SDLK_r: luz_lights_reset(&scene->lights, &v->switches); break;
     case SDLK_F5: scene->seed = luz_seed_next(scene->seed, (uint32_t)SDL_GetPerformanceCounter()); break;
     case SDLK_f: scene->filter = luz_filter_next(scene->filter); break;
     case SDLK_v: scene->view = luz_view_next(scene->view, shift); break;
