@@ -132,11 +132,18 @@ void luz_layer_begin(luz_layer *layer, int width, int height)
     layer->rect_count = 0;
     layer->finished = false;
     layer->out_of_memory = false;
+    layer->cut_rects = 0;
 }
 
 void luz_overlay_fill(luz_layer *layer, luz_rect rect, luz_rgba colour)
 {
-    if (colour.a == 0 || !clip_rect(&rect, layer->width, 0, layer->height))
+    if (colour.a == 0 || rect.width <= 0 || rect.height <= 0)
+        return;
+    const luz_rect asked = rect;
+    const bool inside = clip_rect(&rect, layer->width, 0, layer->height);
+    if (!inside || rect.width != asked.width || rect.height != asked.height)
+        layer->cut_rects++;
+    if (!inside)
         return;
     if (layer->rect_count == layer->rect_capacity) {
         size_t capacity = layer->rect_capacity ? 2 * layer->rect_capacity : 1024;
@@ -291,4 +298,32 @@ int luz_overlay_text(luz_layer *layer, int x, int y, int scale, const char *text
         pen += (stb_easy_font_charinfo[glyph[0] - 32].advance & 15) * scale;
     }
     return pen - x;
+}
+
+/* ---- marking a pixel ---------------------------------------------------------------- */
+
+/* A square frame `thickness` wide whose outer edge is `half` pixels from
+ * pixel (x, y) on every side. */
+static void frame_around(luz_layer *layer, int x, int y, int half, int thickness,
+                         luz_rgba colour)
+{
+    const int side = 2 * half + 1;
+    luz_overlay_fill(layer, (luz_rect){x - half, y - half, side, thickness}, colour);
+    luz_overlay_fill(layer, (luz_rect){x - half, y + half + 1 - thickness, side, thickness},
+                     colour);
+    luz_overlay_fill(layer, (luz_rect){x - half, y - half, thickness, side}, colour);
+    luz_overlay_fill(layer, (luz_rect){x + half + 1 - thickness, y - half, thickness, side},
+                     colour);
+}
+
+void luz_overlay_mark(luz_layer *layer, int x, int y, int scale)
+{
+    if (scale < 1)
+        scale = 1;
+    /* From the outside in: black, white twice as wide, black; inside the
+     * ring the pixel and 3 x scale pixels around it are left as drawn. */
+    const luz_rgba black = {0, 0, 0, 255}, white = {255, 255, 255, 255};
+    frame_around(layer, x, y, 8 * scale, scale, black);
+    frame_around(layer, x, y, 7 * scale, 2 * scale, white);
+    frame_around(layer, x, y, 5 * scale, scale, black);
 }
