@@ -354,6 +354,15 @@ static const error_case error_cases[] = {
     {"camera-yaw-rounds-to-infinity", {"--camera-yaw", "3.40282357e38"}, NULL, NULL,
      {"--camera-yaw", "finite"}},
     {"paused-not-yes-no", {"--paused", "true"}, NULL, NULL, {"--paused", "yes or no"}},
+    {"mark-odd", {"--mark", "10,20,30"}, NULL, NULL, {"--mark", "X,Y"}},
+    {"mark-negative", {"--mark", "-1,5"}, NULL, NULL, {"--mark", "X,Y"}},
+    {"mark-junk", {"--mark", "10;20"}, NULL, NULL, {"--mark", "X,Y"}},
+    {"mark-outside", {"--size", "64x36", "--mark", "10,36"}, NULL, NULL,
+     {"--mark", "inside the 64x36 image"}},
+    {"mark-too-many", {"--mark", "1,1,2,2,3,3,4,4,5,5,6,6,7,7,8,8,9,9"}, NULL, NULL,
+     {"--mark", "at most 8"}},
+    {"legend-with-value", {"--legend=yes"}, NULL, NULL, {"--legend", "no value"}},
+    {"scene-mark", {"--scene", "s.luz"}, "mark = 1,1\n", NULL, {"s.luz:1", "mark"}},
     {"scene-paused-not-yes-no", {"--scene", "s.luz"}, "paused = 1\n", NULL,
      {"s.luz:1: paused", "yes or no"}},
     {"camera-pitch-above", {"--camera-pitch", "90"}, NULL, NULL,
@@ -982,6 +991,100 @@ static void test_options_reach_the_image(void **state)
         other += lit[i] != 0 && lit[i] != 26;
     assert_true(other > 0);
     stbi_image_free(lit);
+    sandbox_destroy(&box);
+}
+
+/* Renders args into NAME.png in the box and loads it as RGB. */
+static unsigned char *render_and_load(const sandbox *box, const char *const *arguments,
+                                      const char *name, int width, int height)
+{
+    run_result result = run_in(box, arguments, NULL);
+    assert_success(&result);
+    run_result_free(&result);
+    char path[600];
+    int w, h, channels;
+    sandbox_path(box, name, path, sizeof path);
+    unsigned char *image = stbi_load(path, &w, &h, &channels, 3);
+    assert_non_null(image);
+    assert_int_equal(w, width);
+    assert_int_equal(h, height);
+    return image;
+}
+
+static bool same_pixel(const unsigned char *a, const unsigned char *b, int width, int x, int y)
+{
+    return memcmp(a + 3 * ((size_t)y * width + x), b + 3 * ((size_t)y * width + x), 3) == 0;
+}
+
+static void assert_rgb(const unsigned char *image, int width, int x, int y, int r, int g, int b)
+{
+    const unsigned char *p = image + 3 * ((size_t)y * width + x);
+    if (p[0] != r || p[1] != g || p[2] != b)
+        fail_msg("pixel (%d, %d) is (%d, %d, %d), expected (%d, %d, %d)", x, y, p[0], p[1],
+                 p[2], r, g, b);
+}
+
+/* --mark rings a pixel and leaves it and the pixels around it as rendered:
+ * along the marked row, the ring is black 8 pixels out, white 7 and 6, and
+ * black 5 (at an image under 1000 wide); 4 pixels out and nearer nothing
+ * changes. --legend draws the view's key bottom left and nothing else;
+ * with the colour view it draws nothing at all. */
+static void test_mark_and_legend(void **state)
+{
+    (void)state;
+    sandbox box;
+    sandbox_create(&box);
+    enum { W = 160, H = 90, X = 80, Y = 50 };
+    unsigned char *plain = render_and_load(
+        &box, ARGS("--size", "160x90", "--textures", "none", "-o", "plain.png"), "plain.png", W, H);
+    unsigned char *marked = render_and_load(
+        &box, ARGS("--size", "160x90", "--textures", "none", "--mark", "80,50", "-o", "marked.png"),
+        "marked.png", W, H);
+    for (int dy = -4; dy <= 4; dy++)
+        for (int dx = -4; dx <= 4; dx++)
+            if (!same_pixel(plain, marked, W, X + dx, Y + dy))
+                fail_msg("--mark changed pixel (%d, %d), inside its ring", X + dx, Y + dy);
+    for (int side = -1; side <= 1; side += 2) {
+        assert_rgb(marked, W, X + side * 8, Y, 0, 0, 0);
+        assert_rgb(marked, W, X + side * 7, Y, 255, 255, 255);
+        assert_rgb(marked, W, X + side * 6, Y, 255, 255, 255);
+        assert_rgb(marked, W, X + side * 5, Y, 0, 0, 0);
+        assert_rgb(marked, W, X, Y + side * 8, 0, 0, 0);
+    }
+    /* far from the ring and its ticks: untouched */
+    assert_true(same_pixel(plain, marked, W, 10, 10));
+    assert_true(same_pixel(plain, marked, W, 150, 80));
+
+    /* The legend: only in the bottom-left corner, only for a view. */
+    enum { LW = 320, LH = 180 };
+    unsigned char *mip = render_and_load(
+        &box, ARGS("--size", "320x180", "--textures", "none", "--view", "mip", "-o", "mip.png"),
+        "mip.png", LW, LH);
+    unsigned char *keyed = render_and_load(
+        &box,
+        ARGS("--size", "320x180", "--textures", "none", "--view", "mip", "--legend", "-o",
+             "keyed.png"),
+        "keyed.png", LW, LH);
+    int changed_bottom = 0;
+    for (int y = 0; y < LH; y++) {
+        for (int x = 0; x < LW; x++) {
+            bool same = same_pixel(mip, keyed, LW, x, y);
+            if ((y < LH / 2 || x > LW - 6) && !same)
+                fail_msg("--legend changed pixel (%d, %d), outside the bottom left", x, y);
+            changed_bottom += !same;
+        }
+    }
+    assert_true(changed_bottom > 2000);
+    unsigned char *colour_keyed = render_and_load(
+        &box, ARGS("--size", "160x90", "--textures", "none", "--legend", "-o", "colour.png"),
+        "colour.png", W, H);
+    assert_memory_equal(colour_keyed, plain, (size_t)W * H * 3);
+
+    stbi_image_free(plain);
+    stbi_image_free(marked);
+    stbi_image_free(mip);
+    stbi_image_free(keyed);
+    stbi_image_free(colour_keyed);
     sandbox_destroy(&box);
 }
 
@@ -2467,6 +2570,7 @@ int main(void)
         cmocka_unit_test(test_bench),
         cmocka_unit_test(test_scene_file_and_precedence),
         cmocka_unit_test(test_options_reach_the_image),
+        cmocka_unit_test(test_mark_and_legend),
         cmocka_unit_test(test_huge_size_refused_at_once),
         cmocka_unit_test(test_scene_round_trip),
         cmocka_unit_test(test_scene_round_trip_every_saved_key),

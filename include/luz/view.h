@@ -79,7 +79,7 @@ LUZ_API luz_vec3 luz_view_thread_colour(int worker);
  * the rasteriser's coverage test) is drawn in that colour times
  * LUZ_VIEW_TRIANGLE_EDGE_SHADE: its edges, in its own hue. */
 LUZ_API luz_vec3 luz_view_triangle_colour(uint32_t id);
-#define LUZ_VIEW_TRIANGLE_EDGE_SHADE 0.45f
+#define LUZ_VIEW_TRIANGLE_EDGE_SHADE 0.55f
 
 /* Depth: the brightness in [0, 1] shown for window depth `depth` under
  * `projection` (a perspective matrix, as luz_mat4_perspective builds):

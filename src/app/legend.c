@@ -194,3 +194,16 @@ luz_rect luz_legend_draw(luz_layer *layer, const luz_legend *legend, int x, int 
     const int rows_bottom = legend->entry_count > 0 ? pen_y + line : pen_y;
     return (luz_rect){x, y, width, rows_bottom - y};
 }
+
+void luz_legend_draw_in_corner(luz_layer *layer, const luz_legend *legend)
+{
+    /* Text at twice the size in a large image, as the viewer's HUD. */
+    const int scale = (layer->width >= 1000 && layer->height >= 560) ? 2 : 1;
+    const int margin = 6 * scale, pad = 5 * scale;
+    const int room = layer->width - 2 * margin - 2 * pad;
+    const luz_rect size = luz_legend_draw(NULL, legend, 0, 0, room, scale);
+    const luz_rect box = {margin, layer->height - margin - size.height - 2 * pad,
+                          size.width + 2 * pad, size.height + 2 * pad};
+    luz_overlay_fill(layer, box, (luz_rgba){12, 12, 16, 200});
+    luz_legend_draw(layer, legend, box.x + pad, box.y + pad, room, scale);
+}

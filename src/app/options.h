@@ -51,6 +51,9 @@ typedef struct luz_object_source {
  * a benchmark takes, and no sequence needs more. */
 #define LUZ_MAX_FRAMES 1000000
 
+/* The most pixels --mark rings in one image. */
+#define LUZ_MAX_MARKS 8
+
 /* --frame-range's B when the range runs to the last frame (A: or no range). */
 #define LUZ_FRAME_RANGE_OPEN (-1)
 
@@ -78,6 +81,9 @@ typedef struct luz_options {
                                    kept; 0 keeps them all */
     bool reference;             /* --reference: the plain scalar fragment stage */
     bool paused;                /* --paused yes: the viewer starts paused (T) */
+    bool legend;                /* --legend: the view's legend in the image */
+    int mark_count;             /* --mark: pixels ringed in the image */
+    int marks[LUZ_MAX_MARKS][2];    /* x, y of each */
     bool help;
     bool version;
     luz_object *objects;        /* the user's own cubes and models (owned), as

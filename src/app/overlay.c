@@ -326,4 +326,22 @@ void luz_overlay_mark(luz_layer *layer, int x, int y, int scale)
     frame_around(layer, x, y, 8 * scale, scale, black);
     frame_around(layer, x, y, 7 * scale, 2 * scale, white);
     frame_around(layer, x, y, 5 * scale, scale, black);
+    /* Four ticks pointing in from the sides, so that the ring is found in
+     * a busy picture shown small: white, edged in black. */
+    const int ring = 8 * scale, length = 8 * scale, half = 2 * scale;
+    const luz_rect ticks[4] = {
+        {x - ring - length, y - half, length, 2 * half + 1},   /* left */
+        {x + ring + 1, y - half, length, 2 * half + 1},        /* right */
+        {x - half, y - ring - length, 2 * half + 1, length},   /* top */
+        {x - half, y + ring + 1, 2 * half + 1, length},        /* bottom */
+    };
+    for (int i = 0; i < 4; i++) {
+        luz_rect t = ticks[i];
+        luz_overlay_fill(layer, t, black);
+        luz_overlay_fill(layer, (luz_rect){t.x + (t.width > t.height ? 0 : scale),
+                                           t.y + (t.width > t.height ? scale : 0),
+                                           t.width > t.height ? t.width : t.width - 2 * scale,
+                                           t.width > t.height ? t.height - 2 * scale : t.height},
+                         white);
+    }
 }

@@ -225,6 +225,9 @@ luz_legend luz_legend_of(luz_view view, int thread_count);
  * measures. */
 luz_rect luz_legend_draw(luz_layer *layer, const luz_legend *legend, int x, int y,
                          int max_width, int scale);
+/* The legend in a box in the layer's bottom-left corner, as wide as the
+ * layer allows (luz-render --legend). */
+void luz_legend_draw_in_corner(luz_layer *layer, const luz_legend *legend);
 
 /* ---- HUD and help ------------------------------------------------------------ */
 

@@ -108,7 +108,8 @@ static int split_arguments(int argc, char **argv, viewer_settings *settings, cha
                            int *scene_argc, luz_error *error)
 {
     static const char *const batch_only[] = {"-o", "--output", "--frames", "--frame-range",
-                                             "--shard", "--skip-existing"};
+                                             "--shard", "--skip-existing", "--legend",
+                                             "--mark"};
     int count = 0;
     scene_argv[count++] = argv[0];
     for (int i = 1; i < argc; i++) {
@@ -129,7 +130,7 @@ static int split_arguments(int argc, char **argv, viewer_settings *settings, cha
         for (size_t k = 0; k < sizeof batch_only / sizeof batch_only[0]; k++) {
             if (names_option(argv[i], batch_only[k], &value))
                 return luz_error_set(error,
-                                     "%s: the viewer writes no frames; this is a luz-render "
+                                     "%s: the viewer writes no images; this is a luz-render "
                                      "option",
                                      batch_only[k]);
         }
@@ -152,8 +153,9 @@ static void print_usage(FILE *out)
             "Fly through the luz lighting lab (rotating textured cubes lit by six lights, as\n"
             "SCENE.md describes) in a window, rendered in real time on the CPU.\n"
             "\n"
-            "The scene options are luz-render's (-o, --frames, --frame-range, --shard and\n"
-            "--skip-existing are luz-render's alone; the viewer refuses them; --bench N\n"
+            "The scene options are luz-render's (-o, --frames, --frame-range, --shard,\n"
+            "--skip-existing, --legend and --mark are luz-render's alone; the viewer\n"
+            "refuses them, and shows the view's legend in its HUD; --bench N\n"
             "shows its N frames in the window and prints the same line, window included,\n"
             "then quits):\n");
     luz_options_print_help(out);
