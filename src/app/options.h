@@ -11,7 +11,8 @@
  *
  * Four files stand behind this header, each calling only those listed
  * before it: options.c (the option table), scene_file.c (scene files),
- * command_line.c (argv) and option_textures.c (the textures named).
+ * command_line.c (argv) and option_textures.c (the textures named); all
+ * read and write numbers with option_text.h's helpers (option_text.c).
  *
  * Every error is one line naming the flag (or file:line) and what was
  * expected, e.g. "--size: expected WIDTHxHEIGHT such as 1280x720, got '0x5'".
