@@ -364,6 +364,21 @@ static const error_case error_cases[] = {
     {"camera-yaw-beyond-float", {"--camera-yaw", "1e39"}, NULL, NULL,
      {"--camera-yaw", "finite"}},
     {"camera-yaw-nan", {"--camera-yaw", "NaN"}, NULL, NULL, {"--camera-yaw", "finite"}},
+    /* just past FLT_MAX's rounding range (FLT_MAX's own 3.4028235e38 reads) */
+    {"camera-yaw-rounds-to-infinity", {"--camera-yaw", "3.40282357e38"}, NULL, NULL,
+     {"--camera-yaw", "finite"}},
+    {"paused-not-yes-no", {"--paused", "true"}, NULL, NULL, {"--paused", "yes or no"}},
+    {"mark-odd", {"--mark", "10,20,30"}, NULL, NULL, {"--mark", "X,Y"}},
+    {"mark-negative", {"--mark", "-1,5"}, NULL, NULL, {"--mark", "X,Y"}},
+    {"mark-junk", {"--mark", "10;20"}, NULL, NULL, {"--mark", "X,Y"}},
+    {"mark-outside", {"--size", "64x36", "--mark", "10,36"}, NULL, NULL,
+     {"--mark", "inside the 64x36 image"}},
+    {"mark-too-many", {"--mark", "1,1,2,2,3,3,4,4,5,5,6,6,7,7,8,8,9,9"}, NULL, NULL,
+     {"--mark", "at most 8"}},
+    {"legend-with-value", {"--legend=yes"}, NULL, NULL, {"--legend", "no value"}},
+    {"scene-mark", {"--scene", "s.luz"}, "mark = 1,1\n", NULL, {"s.luz:1", "mark"}},
+    {"scene-paused-not-yes-no", {"--scene", "s.luz"}, "paused = 1\n", NULL,
+     {"s.luz:1: paused", "yes or no"}},
     {"camera-pitch-above", {"--camera-pitch", "90"}, NULL, NULL,
      {"--camera-pitch", "[-89, 89]"}},
     {"camera-pitch-below", {"--camera-pitch=-89.5"}, NULL, NULL,
@@ -1174,6 +1189,100 @@ static void test_options_reach_the_image(void **state)
     sandbox_destroy(&box);
 }
 
+/* Renders args into NAME.png in the box and loads it as RGB. */
+static unsigned char *render_and_load(const sandbox *box, const char *const *arguments,
+                                      const char *name, int width, int height)
+{
+    run_result result = run_in(box, arguments, NULL);
+    assert_success(&result);
+    run_result_free(&result);
+    char path[600];
+    int w, h, channels;
+    sandbox_path(box, name, path, sizeof path);
+    unsigned char *image = stbi_load(path, &w, &h, &channels, 3);
+    assert_non_null(image);
+    assert_int_equal(w, width);
+    assert_int_equal(h, height);
+    return image;
+}
+
+static bool same_pixel(const unsigned char *a, const unsigned char *b, int width, int x, int y)
+{
+    return memcmp(a + 3 * ((size_t)y * width + x), b + 3 * ((size_t)y * width + x), 3) == 0;
+}
+
+static void assert_rgb(const unsigned char *image, int width, int x, int y, int r, int g, int b)
+{
+    const unsigned char *p = image + 3 * ((size_t)y * width + x);
+    if (p[0] != r || p[1] != g || p[2] != b)
+        fail_msg("pixel (%d, %d) is (%d, %d, %d), expected (%d, %d, %d)", x, y, p[0], p[1],
+                 p[2], r, g, b);
+}
+
+/* --mark rings a pixel and leaves it and the pixels around it as rendered:
+ * along the marked row, the ring is black 8 pixels out, white 7 and 6, and
+ * black 5 (at an image under 1000 wide); 4 pixels out and nearer nothing
+ * changes. --legend draws the view's key bottom left and nothing else;
+ * with the colour view it draws nothing at all. */
+static void test_mark_and_legend(void **state)
+{
+    (void)state;
+    sandbox box;
+    sandbox_create(&box);
+    enum { W = 160, H = 90, X = 80, Y = 50 };
+    unsigned char *plain = render_and_load(
+        &box, ARGS("--size", "160x90", "--textures", "none", "-o", "plain.png"), "plain.png", W, H);
+    unsigned char *marked = render_and_load(
+        &box, ARGS("--size", "160x90", "--textures", "none", "--mark", "80,50", "-o", "marked.png"),
+        "marked.png", W, H);
+    for (int dy = -4; dy <= 4; dy++)
+        for (int dx = -4; dx <= 4; dx++)
+            if (!same_pixel(plain, marked, W, X + dx, Y + dy))
+                fail_msg("--mark changed pixel (%d, %d), inside its ring", X + dx, Y + dy);
+    for (int side = -1; side <= 1; side += 2) {
+        assert_rgb(marked, W, X + side * 8, Y, 0, 0, 0);
+        assert_rgb(marked, W, X + side * 7, Y, 255, 255, 255);
+        assert_rgb(marked, W, X + side * 6, Y, 255, 255, 255);
+        assert_rgb(marked, W, X + side * 5, Y, 0, 0, 0);
+        assert_rgb(marked, W, X, Y + side * 8, 0, 0, 0);
+    }
+    /* far from the ring and its ticks: untouched */
+    assert_true(same_pixel(plain, marked, W, 10, 10));
+    assert_true(same_pixel(plain, marked, W, 150, 80));
+
+    /* The legend: only in the bottom-left corner, only for a view. */
+    enum { LW = 320, LH = 180 };
+    unsigned char *mip = render_and_load(
+        &box, ARGS("--size", "320x180", "--textures", "none", "--view", "mip", "-o", "mip.png"),
+        "mip.png", LW, LH);
+    unsigned char *keyed = render_and_load(
+        &box,
+        ARGS("--size", "320x180", "--textures", "none", "--view", "mip", "--legend", "-o",
+             "keyed.png"),
+        "keyed.png", LW, LH);
+    int changed_bottom = 0;
+    for (int y = 0; y < LH; y++) {
+        for (int x = 0; x < LW; x++) {
+            bool same = same_pixel(mip, keyed, LW, x, y);
+            if ((y < LH / 2 || x > LW - 6) && !same)
+                fail_msg("--legend changed pixel (%d, %d), outside the bottom left", x, y);
+            changed_bottom += !same;
+        }
+    }
+    assert_true(changed_bottom > 2000);
+    unsigned char *colour_keyed = render_and_load(
+        &box, ARGS("--size", "160x90", "--textures", "none", "--legend", "-o", "colour.png"),
+        "colour.png", W, H);
+    assert_memory_equal(colour_keyed, plain, (size_t)W * H * 3);
+
+    stbi_image_free(plain);
+    stbi_image_free(marked);
+    stbi_image_free(mip);
+    stbi_image_free(keyed);
+    stbi_image_free(colour_keyed);
+    sandbox_destroy(&box);
+}
+
 /* ---- the option functions, in process ------------------------------------------------------- */
 
 static void assert_float_same(float a, float b)
@@ -1392,6 +1501,7 @@ static void set_every_option_by_hand(luz_options *options)
     options->scene.filter = LUZ_FILTER_NEAREST;
     options->scene.view = LUZ_VIEW_DEPTH;
     options->scene.interpolation = LUZ_INTERPOLATION_AFFINE;
+    options->paused = true;
     options->textures_directory = strdup("hand/textures");
     assert_non_null(options->textures_directory);
     /* and what a scene file does not keep (docs/cli.md, Writing scene
@@ -1410,7 +1520,7 @@ static void set_every_option_by_hand(luz_options *options)
 
 /* The text of set_every_option_by_hand's options, written out by hand from
  * docs/cli.md's format: the keys in the order saved files have always had,
- * view and interp last as the settings written only when changed. */
+ * view, interp and paused last as the settings written only when changed. */
 static const char every_option_text[] =
     "# luz scene: render it with luz-render --scene FILE (see docs/cli.md)\n"
     "size = 640x360\n"
@@ -1434,7 +1544,8 @@ static const char every_option_text[] =
     "filter = nearest\n"
     "textures = hand/textures\n"
     "view = depth\n"
-    "interp = affine\n";
+    "interp = affine\n"
+    "paused = yes\n";
 
 static void assert_light_is(const luz_light *light, float r, float g, float b, float strength)
 {
@@ -1491,6 +1602,7 @@ static void test_scene_round_trip_every_saved_key(void **state)
     assert_int_equal(copy.scene.filter, LUZ_FILTER_NEAREST);
     assert_int_equal(copy.scene.view, LUZ_VIEW_DEPTH);
     assert_int_equal(copy.scene.interpolation, LUZ_INTERPOLATION_AFFINE);
+    assert_true(copy.paused);
     assert_string_equal(copy.textures_directory, "hand/textures");
     /* what is not written comes back as the defaults */
     assert_int_equal(copy.only_terms, 0);
@@ -2853,6 +2965,7 @@ int main(void)
         cmocka_unit_test(test_bench),
         cmocka_unit_test(test_scene_file_and_precedence),
         cmocka_unit_test(test_options_reach_the_image),
+        cmocka_unit_test(test_mark_and_legend),
         cmocka_unit_test(test_huge_size_refused_at_once),
         cmocka_unit_test(test_scene_nul_bytes),
         cmocka_unit_test(test_long_paths_come_through_whole),

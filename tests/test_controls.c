@@ -14,6 +14,7 @@
 #include <cmocka.h>
 
 #include <math.h>
+#include <string.h>
 
 #include "app/controls.h"
 #include "lab/scene.h"
@@ -363,6 +364,48 @@ static void test_toggle_a_light_that_started_off(void **state)
     assert_near(lights.point.strength, 0.7f, 0.0f);
 }
 
+/* R: SCENE.md's lights table, typed in again here (not read from
+ * luz_scene_defaults), whatever the lights were; the switches forget. */
+static void test_reset_lights_to_scene_defaults(void **state)
+{
+    (void)state;
+    luz_lights lights;
+    memset(&lights, 0, sizeof lights);
+    lights.ambient = (luz_light){{0.1f, 0.2f, 0.3f}, 0.9f};
+    lights.spot = (luz_light){{0.0f, 0.0f, 1.0f}, 0.0f};
+    lights.shininess = 3.0f;
+    lights.spot_inner_degrees = 40.0f;
+    lights.spot_outer_degrees = 41.0f;
+    lights.spot_reach = 2.0f;
+    lights.point_position = (luz_vec3){3.0f, 0.5f, 0.0f};
+    luz_light_switches switches = {{0}};
+    switches.restore[LUZ_TERM_SPOT] = 0.25f;   /* switched off at 0.25 */
+
+    luz_lights_reset(&lights, &switches);
+    const luz_light *expected[LUZ_TERM_COUNT] = {&lights.ambient, &lights.diffuse,
+                                                 &lights.specular, &lights.point,
+                                                 &lights.spot, &lights.directional};
+    const float strengths[LUZ_TERM_COUNT] = {0.2f, 0.6f, 0.5f, 0.7f, 1.0f, 0.4f};
+    for (int term = 0; term < LUZ_TERM_COUNT; term++) {
+        assert_near(expected[term]->colour.x, 1.0f, 0.0f);
+        assert_near(expected[term]->colour.y, 1.0f, 0.0f);
+        assert_near(expected[term]->colour.z, 1.0f, 0.0f);
+        assert_near(expected[term]->strength, strengths[term], 0.0f);
+        assert_near(switches.restore[term], 0.0f, 0.0f);
+    }
+    assert_near(lights.shininess, 32.0f, 0.0f);
+    assert_near(lights.spot_inner_degrees, 12.5f, 0.0f);
+    assert_near(lights.spot_outer_degrees, 17.5f, 0.0f);
+    assert_near(lights.spot_reach, 10.0f, 0.0f);
+    /* the orbit's position is the frame's, left as it was */
+    assert_near(lights.point_position.x, 3.0f, 0.0f);
+    /* Switching the spot off and on now gives SCENE.md's 1, not the 0.25
+     * the switch had kept. */
+    luz_light_toggle(&lights, &switches, LUZ_TERM_SPOT);
+    luz_light_toggle(&lights, &switches, LUZ_TERM_SPOT);
+    assert_near(lights.spot.strength, 1.0f, 0.0f);
+}
+
 /* ---- the rest -------------------------------------------------------------------------------------- */
 
 static void test_filter_cycles(void **state)
@@ -466,6 +509,7 @@ int main(void)
         cmocka_unit_test(test_cone_setters_clamp),
         cmocka_unit_test(test_toggle_keeps_the_strength),
         cmocka_unit_test(test_toggle_a_light_that_started_off),
+        cmocka_unit_test(test_reset_lights_to_scene_defaults),
         cmocka_unit_test(test_filter_cycles),
         cmocka_unit_test(test_seed_next),
         cmocka_unit_test(test_view_and_interpolation_keys_cycle),

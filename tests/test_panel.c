@@ -596,7 +596,8 @@ static void test_hud_and_help_draw_within_the_framebuffer(void **state)
         luz_hud_draw(&layer, &hud);
         scene.view = LUZ_VIEW_COLOR;
         luz_hud_draw_message(&layer, "wrote luz-shot-0001.png");
-        luz_help_draw(&layer);
+        luz_help_layout help = luz_help_layout_for(sizes[i][0], sizes[i][1]);
+        luz_help_draw(&layer, &help, 0);
         luz_panel_layout layout = luz_panel_layout_for(sizes[i][0], sizes[i][1]);
         luz_panel panel;
         luz_panel_init(&panel);
@@ -608,6 +609,202 @@ static void test_hud_and_help_draw_within_the_framebuffer(void **state)
         fill_into(framebuffer, &layer);
         luz_framebuffer_destroy(framebuffer);
     }
+}
+
+/* ---- the HUD's timings -------------------------------------------------------------------------- */
+
+static void test_hud_timing_averages_the_same_frames(void **state)
+{
+    (void)state;
+    luz_hud_timing timing = {0};
+    /* The first frame has no time yet: not counted. */
+    assert_false(luz_hud_timing_add(&timing, 0.0, 9.0, 9.0));
+    /* Four frames of 0.1, 0.1, 0.1, 0.15 s: the window closes at 0.45?
+     * No: at the frame that brings it to 0.5 s or more, the fifth. */
+    const double seconds[5] = {0.1, 0.1, 0.1, 0.15, 0.2};
+    const double geometry[5] = {0.5, 0.25, 0.25, 0.5, 0.5};
+    const double raster[5] = {80.0, 85.0, 90.0, 95.0, 150.0};
+    for (int i = 0; i < 4; i++) {
+        assert_false(luz_hud_timing_add(&timing, seconds[i], geometry[i], raster[i]));
+        assert_true(timing.frame_ms == 0.0);   /* nothing shown before a window closes */
+    }
+    assert_true(luz_hud_timing_add(&timing, seconds[4], geometry[4], raster[4]));
+    /* 5 frames in 0.65 s: 130 ms a frame, 7.69 fps; raster (80 + 85 + 90
+     * + 95 + 150) / 5 = 100 ms, geometry 2 / 5 = 0.4 ms. */
+    assert_near((float)timing.frame_ms, 130.0f, 1e-4f);
+    assert_near((float)timing.frames_per_second, 5.0f / 0.65f, 1e-4f);
+    assert_near((float)timing.raster_ms, 100.0f, 1e-4f);
+    assert_near((float)timing.geometry_ms, 0.4f, 1e-6f);
+    /* The next window starts empty: one frame of 0.6 s closes it alone,
+     * and the averages are that frame's. */
+    assert_true(luz_hud_timing_add(&timing, 0.6, 1.0, 7.0));
+    assert_near((float)timing.frame_ms, 600.0f, 1e-4f);
+    assert_near((float)timing.raster_ms, 7.0f, 1e-6f);
+    assert_near((float)timing.geometry_ms, 1.0f, 1e-6f);
+}
+
+/* ---- the HUD, the legends and the help laid out for the window ---------------------------------- */
+
+/* The sizes a user meets: the default window, half of it (and
+ * --render-scale 0.5 of the default), the smallest window the viewer
+ * opens, and a large screen. */
+static const int layout_sizes[][2] = {{1280, 720}, {640, 360}, {480, 270}, {1920, 1080}};
+#define LAYOUT_SIZE_COUNT (sizeof layout_sizes / sizeof layout_sizes[0])
+
+static luz_rect bounds_of(const luz_layer *layer, size_t first)
+{
+    luz_rect bounds = layer->rects[first].rect;
+    for (size_t r = first + 1; r < layer->rect_count; r++) {
+        luz_rect rect = layer->rects[r].rect;
+        int x1 = bounds.x + bounds.width, y1 = bounds.y + bounds.height;
+        if (rect.x < bounds.x) bounds.x = rect.x;
+        if (rect.y < bounds.y) bounds.y = rect.y;
+        if (rect.x + rect.width > x1) x1 = rect.x + rect.width;
+        if (rect.y + rect.height > y1) y1 = rect.y + rect.height;
+        bounds.width = x1 - bounds.x;
+        bounds.height = y1 - bounds.y;
+    }
+    return bounds;
+}
+
+static void test_hud_fits_the_window_and_stays_left_of_the_panel(void **state)
+{
+    (void)state;
+    luz_scene scene = luz_scene_defaults();
+    scene.camera.position = (luz_vec3){-12.345f, 100.25f, -3.5f};
+    scene.camera.yaw_degrees = -123.4f;
+    scene.camera.pitch_degrees = -45.6f;
+    scene.time_seconds = 1234.5;
+    scene.seed = 4294967295u;
+    for (size_t i = 0; i < LAYOUT_SIZE_COUNT; i++) {
+        const int width = layout_sizes[i][0], height = layout_sizes[i][1];
+        const luz_panel_layout panel = luz_panel_layout_for(width, height);
+        for (int view = 0; view < LUZ_VIEW_COUNT; view++) {
+            for (int open = 0; open <= 1; open++) {
+                scene.view = (luz_view)view;
+                luz_hud hud = {.frames_per_second = 1234.5, .frame_ms = 123.4,
+                               .geometry_ms = 12.34, .raster_ms = 123.4,
+                               .window_width = width * 2, .window_height = height * 2,
+                               .render_scale = 0.5f, .threads = 16, .panel_open = open,
+                               .step_shown = 123456, .step_total = 1234567,
+                               .triangles = 12345678, .scene = &scene,
+                               .max_width = open ? panel.box.x : 0};
+                luz_layer layer = {0};
+                luz_layer_begin(&layer, width, height);
+                luz_hud_draw(&layer, &hud);
+                /* Nothing cut off at the window's edges... */
+                if (layer.cut_rects != 0)
+                    fail_msg("%dx%d, view %s, panel %s: %zu rectangles of the HUD cut off",
+                             width, height, luz_view_name((luz_view)view),
+                             open ? "open" : "closed", layer.cut_rects);
+                /* ...nor under the panel. */
+                luz_rect bounds = bounds_of(&layer, 0);
+                if (open && bounds.x + bounds.width > panel.box.x)
+                    fail_msg("%dx%d, view %s: the HUD reaches x = %d, the panel starts at %d",
+                             width, height, luz_view_name((luz_view)view),
+                             bounds.x + bounds.width, panel.box.x);
+                luz_layer_free(&layer);
+            }
+        }
+    }
+}
+
+static void test_legends_have_every_entry(void **state)
+{
+    (void)state;
+    /* mip: levels 0 to 8, 9 and up, and untextured, in the view's colours */
+    luz_legend legend = luz_legend_of(LUZ_VIEW_MIP, 2);
+    assert_int_equal(legend.entry_count, 11);
+    for (int level = 0; level <= 9; level++) {
+        luz_vec3 expected = luz_view_mip_colour(level);
+        assert_near(legend.entries[level].colour.x, expected.x, 0.0f);
+        assert_near(legend.entries[level].colour.y, expected.y, 0.0f);
+        assert_near(legend.entries[level].colour.z, expected.z, 0.0f);
+    }
+    assert_string_equal(legend.entries[6].label, "6");
+    assert_string_equal(legend.entries[8].label, "8");
+    assert_near(legend.entries[10].colour.x, LUZ_VIEW_MIP_UNTEXTURED.x, 0.0f);
+    /* overdraw: 0 to 7, and 8 or more */
+    legend = luz_legend_of(LUZ_VIEW_OVERDRAW, 2);
+    assert_int_equal(legend.entry_count, 9);
+    assert_string_equal(legend.entries[8].label, "8+");
+    assert_near(legend.entries[8].colour.x, luz_view_overdraw_colour(100).x, 0.0f);
+    /* bands: one per thread */
+    assert_int_equal(luz_legend_of(LUZ_VIEW_BANDS, 3).entry_count, 3);
+    assert_int_equal(luz_legend_of(LUZ_VIEW_BANDS, 1).entry_count, 1);
+    legend = luz_legend_of(LUZ_VIEW_BANDS, 3);
+    assert_near(legend.entries[2].colour.y, luz_view_thread_colour(2).y, 0.0f);
+    /* depth: the greys the view draws at those distances, for SCENE.md's
+     * projection; window depth from the distance by the matrix's z row */
+    legend = luz_legend_of(LUZ_VIEW_DEPTH, 2);
+    assert_int_equal(legend.entry_count, 4);
+    luz_mat4 projection = luz_mat4_perspective(luz_radians(45.0f), 16.0f / 9.0f, 0.1f, 100.0f);
+    const double distances[4] = {0.1, 1.0, 10.0, 100.0};
+    for (int i = 0; i < 4; i++) {
+        double z_ndc = -projection.m[10] + projection.m[14] / distances[i];
+        float depth = (float)((z_ndc + 1.0) / 2.0);
+        float grey = luz_view_depth_brightness(depth, &projection);
+        assert_near(legend.entries[i].colour.x, grey, 2e-3f);
+    }
+    /* triangles: flat and edge shades */
+    legend = luz_legend_of(LUZ_VIEW_TRIANGLES, 2);
+    assert_near(legend.entries[0].colour.x, luz_view_triangle_colour(1).x, 0.0f);
+    assert_near(legend.entries[3].colour.x,
+                luz_view_triangle_colour(1).x * LUZ_VIEW_TRIANGLE_EDGE_SHADE, 1e-6f);
+    /* every view has a title; every entry a label */
+    for (int view = 0; view < LUZ_VIEW_COUNT; view++) {
+        legend = luz_legend_of((luz_view)view, 4);
+        assert_non_null(legend.title);
+        for (int e = 0; e < legend.entry_count; e++)
+            assert_true(strlen(legend.entries[e].label) > 0);
+    }
+
+    /* Drawn, the entries wrap to the width given: nothing past it but the
+     * title (which the HUD measures with the rest). */
+    legend = luz_legend_of(LUZ_VIEW_MIP, 2);
+    luz_layer layer = {0};
+    luz_layer_begin(&layer, 1000, 1000);
+    luz_rect drawn = luz_legend_draw(&layer, &legend, 10, 20, 150, 1);
+    luz_rect measured = luz_legend_draw(NULL, &legend, 10, 20, 150, 1);
+    assert_memory_equal(&drawn, &measured, sizeof drawn);
+    luz_rect bounds = bounds_of(&layer, 0);
+    assert_true(rect_inside(bounds, drawn));
+    assert_true(drawn.height > 3 * 12);   /* the title and at least three rows */
+    luz_layer_free(&layer);
+}
+
+static void test_help_fits_every_window(void **state)
+{
+    (void)state;
+    for (size_t i = 0; i < LAYOUT_SIZE_COUNT + 2; i++) {
+        /* and two below the viewer's smallest window, where it scrolls */
+        const int width = i < LAYOUT_SIZE_COUNT ? layout_sizes[i][0] : i == LAYOUT_SIZE_COUNT ? 480 : 400;
+        const int height = i < LAYOUT_SIZE_COUNT ? layout_sizes[i][1] : i == LAYOUT_SIZE_COUNT ? 200 : 240;
+        luz_help_layout help = luz_help_layout_for(width, height);
+        /* From 640x360 up, every control at once. */
+        if (width >= 640 && height >= 360 && help.first_max != 0)
+            fail_msg("%dx%d: the help scrolls", width, height);
+        assert_int_equal(help.rows_shown * help.columns >= help.rows - help.first_max, 1);
+        assert_true(help.rows_shown >= 1);
+        /* Every scroll position draws inside the window and the box. */
+        for (int first = 0; first <= help.first_max; first++) {
+            luz_layer layer = {0};
+            luz_layer_begin(&layer, width, height);
+            luz_help_draw(&layer, &help, first);
+            if (layer.cut_rects != 0)
+                fail_msg("%dx%d, first row %d: %zu rectangles of the help cut off", width,
+                         height, first, layer.cut_rects);
+            if (!rect_inside(bounds_of(&layer, 0), help.box))
+                fail_msg("%dx%d: the help's text leaves its box", width, height);
+            luz_layer_free(&layer);
+        }
+        /* Scrolling is clamped to the rows there are. */
+        assert_int_equal(luz_help_scroll(&help, 0, -5), 0);
+        assert_int_equal(luz_help_scroll(&help, 0, 1000), help.first_max);
+    }
+    /* The default window gets text twice the size the smallest gets. */
+    assert_int_equal(luz_help_layout_for(1280, 720).scale, 2);
+    assert_int_equal(luz_help_layout_for(480, 270).scale, 1);
 }
 
 int main(void)
@@ -630,6 +827,10 @@ int main(void)
         cmocka_unit_test(test_text),
         cmocka_unit_test(test_panel_draws_inside_its_box),
         cmocka_unit_test(test_hud_and_help_draw_within_the_framebuffer),
+        cmocka_unit_test(test_hud_timing_averages_the_same_frames),
+        cmocka_unit_test(test_hud_fits_the_window_and_stays_left_of_the_panel),
+        cmocka_unit_test(test_legends_have_every_entry),
+        cmocka_unit_test(test_help_fits_every_window),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -51,6 +51,7 @@ typedef enum key_type {
     KEY_VIEW,
     KEY_INTERP,
     KEY_PATH,
+    KEY_BOOL,
 } key_type;
 
 typedef struct key_field {
@@ -86,6 +87,7 @@ static const key_field key_fields[] = {
     {"view", KEY_VIEW, AT(scene.view)},
     {"interp", KEY_INTERP, AT(scene.interpolation)},
     {"textures", KEY_PATH, AT(textures_directory)},
+    {"paused", KEY_BOOL, AT(paused)},
 };
 
 #define KEY_COUNT (sizeof key_fields / sizeof key_fields[0])
@@ -199,6 +201,9 @@ static void assert_same_key(const luz_options *set, const luz_options *back,
         break;
     case KEY_INTERP:
         assert_int_equal(back->scene.interpolation, set->scene.interpolation);
+        break;
+    case KEY_BOOL:
+        assert_int_equal(*(const bool *)b, *(const bool *)a);
         break;
     case KEY_PATH: {
         const char *expected = *(char *const *)a, *actual = *(char *const *)b;
@@ -457,6 +462,7 @@ static void test_counts_sizes_and_names(void **state)
         options.scene.view = (luz_view)view;
         options.scene.filter = filters[view % 3];
         options.scene.interpolation = modes[view % 2];
+        options.paused = view % 2 == 1;   /* both values of the one yes/no key */
         assert_round_trip(&options);
         luz_options_free(&options);
     }

@@ -441,13 +441,20 @@ static void test_overdraw_counts_depth_tests(void **state)
     luz_mesh_destroy(c.mesh);
 }
 
+static luz_vec3 edge_shade(uint32_t id)
+{
+    return luz_vec3_scale(luz_view_triangle_colour(id), LUZ_VIEW_TRIANGLE_EDGE_SHADE);
+}
+
 static void test_triangles_view_colours_and_edges(void **state)
 {
     (void)state;
     /* A screen-filling quad: triangle 1 is (bottom left, bottom right, top
      * right), the lower right half, triangle 2 the upper left. Their shared
      * edge runs from the bottom left corner to the top right one, through
-     * the centres of the pixels with x + y = SIZE - 1. */
+     * the centres of the pixels with x + y = SIZE - 1. By the top-left
+     * rule those go to triangle 1, for which the shared edge is a left
+     * edge (it is triangle 2's right edge). */
     enum { SIZE = 24 };
     quad q;
     make_screen_quad(&q, -1.0f, 1.0f, -1.0f, 1.0f, 2.0f, 1.0f, 1.0f);
@@ -455,23 +462,65 @@ static void test_triangles_view_colours_and_edges(void **state)
     luz_render_options render = quad_frame(&frame, LUZ_VIEW_TRIANGLES, LUZ_INTERPOLATION_PERSPECTIVE);
     add_quad(&frame, &q, NULL);
     luz_framebuffer *framebuffer = draw_frame(&frame, &render, SIZE, SIZE, 2, false);
-    const luz_vec3 black = {0.0f, 0.0f, 0.0f};
-    for (int i = 0; i < SIZE; i++) assert_pixel_near(framebuffer, i, SIZE - 1 - i, black, 0);
-    assert_pixel_near(framebuffer, 0, 10, black, 0);   /* 0.5 px from the left edge */
-    assert_pixel_near(framebuffer, SIZE - 4, SIZE - 4, luz_view_triangle_colour(1), 0);
-    assert_pixel_near(framebuffer, 3, 3, luz_view_triangle_colour(2), 0);
+    /* Every pixel shows its owner: triangle 1 on and below the diagonal,
+     * 2 above it; darker on either side of the shared edge (each pixel
+     * whose neighbour across it is the other triangle's), flat elsewhere,
+     * the image's border included (no neighbour there). So the edge is
+     * two pixels wide, one of each triangle, and no pixel is in both. */
+    for (int y = 0; y < SIZE; y++) {
+        for (int x = 0; x < SIZE; x++) {
+            const int sum = x + y;
+            luz_vec3 expected = sum == SIZE - 1   ? edge_shade(1)
+                                : sum == SIZE - 2 ? edge_shade(2)
+                                : sum >= SIZE - 1 ? luz_view_triangle_colour(1)
+                                                  : luz_view_triangle_colour(2);
+            assert_pixel_near(framebuffer, x, y, expected, 0);
+        }
+    }
     luz_vec3 one = luz_view_triangle_colour(1), two = luz_view_triangle_colour(2);
     assert_true(fabsf(one.x - two.x) + fabsf(one.y - two.y) + fabsf(one.z - two.z) > 0.3f);
+    /* and the darker shades of the two are apart as well */
+    luz_vec3 dark_one = edge_shade(1), dark_two = edge_shade(2);
+    assert_true(fabsf(dark_one.x - dark_two.x) + fabsf(dark_one.y - dark_two.y) +
+                    fabsf(dark_one.z - dark_two.z) > 0.12f);
     luz_framebuffer_destroy(framebuffer);
 
     /* The step mode's limit: only triangle 1 is drawn, the upper left half
-     * stays background. */
+     * stays background, and triangle 1's diagonal is now an edge against
+     * the background. */
     render.triangle_limit = 1;
     framebuffer = draw_frame(&frame, &render, SIZE, SIZE, 2, false);
     assert_pixel_near(framebuffer, SIZE - 4, SIZE - 4, luz_view_triangle_colour(1), 0);
+    assert_pixel_near(framebuffer, 5, SIZE - 6, edge_shade(1), 0);
     assert_pixel_near(framebuffer, 3, 3, frame.clear_colour, 0);
     luz_framebuffer_destroy(framebuffer);
     luz_frame_free(&frame);
+
+    /* A quad in front of another: the front one, NDC [-0.5, 0.5] at depth
+     * 1 (pixels 6 to 17 of 24), drawn second (triangles 3 and 4). Its
+     * outline is on its own side; the pixel just outside it belongs to the
+     * back quad, which covers it, and stays flat. */
+    quad front;
+    make_screen_quad(&front, -0.5f, 0.5f, -0.5f, 0.5f, 1.0f, 1.0f, 1.0f);
+    render = quad_frame(&frame, LUZ_VIEW_TRIANGLES, LUZ_INTERPOLATION_PERSPECTIVE);
+    add_quad(&frame, &q, NULL);
+    add_quad(&frame, &front, NULL);
+    framebuffer = draw_frame(&frame, &render, SIZE, SIZE, 1, false);
+    /* Its diagonal runs through the centres with x + y = 23 (from window
+     * (6, 18) to (18, 6)): triangle 3 on and below it, 4 above, as for the
+     * back quad. Pixel (6, 12) is in its left column (x + y = 18): an edge
+     * pixel of 4; (17, 12), in the right column, one of 3. */
+    assert_pixel_near(framebuffer, 6, 12, edge_shade(4), 0);
+    assert_pixel_near(framebuffer, 17, 12, edge_shade(3), 0);   /* right column: 3 */
+    assert_pixel_near(framebuffer, 9, 9, luz_view_triangle_colour(4), 0);
+    assert_pixel_near(framebuffer, 14, 14, luz_view_triangle_colour(3), 0);
+    /* Left of it, the back quad's triangle 2 (x + y = 17, far from its
+     * own diagonal), flat: its neighbour (6, 12) is inside triangle 2
+     * too, though the front quad won it. */
+    assert_pixel_near(framebuffer, 5, 12, luz_view_triangle_colour(2), 0);
+    luz_framebuffer_destroy(framebuffer);
+    luz_frame_free(&frame);
+    luz_mesh_destroy(front.mesh);
     luz_mesh_destroy(q.mesh);
 }
 

@@ -20,12 +20,16 @@
 #    with no window manager to make the window fullscreen, says so and
 #    leaves the window's size alone.
 # 5. Esc quits with status 0; --print-state's scene file says where the
-#    camera went and that the spot is off, and luz-render renders it.
-# 6. The same check as in 1 with frames shown through SDL (LUZ_PRESENT=sdl),
+#    camera went, that the spot is off and that the animation is paused,
+#    and luz-render renders it. luz re-opened on it stays paused: its time
+#    does not move.
+# 6. With the light panel open, a click on a light's name switches it, and
+#    a click while the help covers the panel does nothing.
+# 7. The same check as in 1 with frames shown through SDL (LUZ_PRESENT=sdl),
 #    the way luz shows them where it cannot use X11 shared memory.
 #    Then, under ulimit -f 0, F2 and --print-state fail in one line each
 #    (status 1) instead of dying of SIGXFSZ, and leave no file.
-# 7. With a window manager (openbox, if installed): F11 makes the window
+# 8. With a window manager (openbox, if installed): F11 makes the window
 #    fill the screen, and the screenshot then has the screen's size; F11
 #    again gives the window its size back.
 #
@@ -173,12 +177,12 @@ sleep 1
 xdotool keyup w
 
 # 4. A resize, then a screenshot of the new size.
-xdotool windowsize --sync "$window" 400 300 || fail "cannot resize the window"
+xdotool windowsize --sync "$window" 560 300 || fail "cannot resize the window"
 sleep 0.5
 xdotool key F12
 wait_for_shot luz-shot-0003.png
 size=$(identify -format '%wx%h' luz-shot-0003.png)
-[ "$size" = 400x300 ] || fail "screenshot after the resize is $size, the window 400x300"
+[ "$size" = 560x300 ] || fail "screenshot after the resize is $size, the window 560x300"
 # No window manager runs on this X server: F11 refuses, in one line.
 xdotool key F11
 i=0
@@ -208,13 +212,56 @@ camera=$(sed -n 's/^camera-pos = //p' state.luz)
 echo "$camera" | awk -F', *' '{ exit !($3 < 1.5 && $1 > -0.1 && $1 < 0.1 && $2 == 0) }' ||
     fail "camera at $camera after W for a second; expected about 0, 0, 0.5"
 grep -q '^spot = 1, 1, 1, 0$' state.luz || fail "the spot is not off in the state: $(grep '^spot =' state.luz)"
-grep -q '^size = 400x300$' state.luz || fail "the state's size is not the window's: $(grep '^size =' state.luz)"
+grep -q '^size = 560x300$' state.luz || fail "the state's size is not the window's: $(grep '^size =' state.luz)"
 
 # The state is a scene file that luz-render reads.
 "$luz_render" --scene state.luz --size 64x36 -o from-state.png 2>"$work/render.err" ||
     fail "luz-render cannot render the printed state: $(cat "$work/render.err"): $(cat state.luz)"
 
-# 6. Shown through SDL: the window shows the screenshot's pixels too.
+# The pause (T, pressed in 1) is part of the state, and a view saved while
+# paused opens paused: a second luz on the state, left running for a
+# second, prints the same time.
+grep -q '^paused = yes$' state.luz || fail "the state does not say paused: $(cat state.luz)"
+saved_time=$(sed -n 's/^time = //p' state.luz)
+rm -f "$work/stderr"
+"$luz" --scene state.luz --print-state >"$work/reopened.luz" 2>"$work/stderr" &
+luz_pid=$!
+wait_for_window "luz (--scene state.luz)"
+sleep 1
+xdotool key Escape
+wait "$luz_pid" || fail "luz (--scene state.luz) exited with status $? after Esc"
+luz_pid=""
+reopened_time=$(sed -n 's/^time = //p' "$work/reopened.luz")
+[ -n "$saved_time" ] && [ "$reopened_time" = "$saved_time" ] ||
+    fail "the paused view re-opened at time $saved_time moved on to $reopened_time"
+grep -q '^paused = yes$' "$work/reopened.luz" || fail "the re-opened view is not paused"
+
+# 6. Clicks and the help: with the light panel open (Tab), a click on a
+#    light's name switches it, but not while the help (H) covers the panel.
+#    The names' places at 480x270 are luz_panel_layout_for's: each light's
+#    header is 200x10 at x = 269, 1 ambient at y = 21, 6 directional at
+#    y = 211; the help's box covers (6, 10) to (474, 260).
+rm -f "$work/stderr"
+"$luz" --size 480x270 --print-state >"$work/clicks.luz" 2>"$work/stderr" &
+luz_pid=$!
+wait_for_window "luz (clicks)"
+xdotool key t Tab h
+sleep 0.3
+xdotool mousemove --window "$window" 300 216 click 1
+sleep 0.3
+xdotool key h
+sleep 0.3
+xdotool mousemove --window "$window" 300 26 click 1
+sleep 0.3
+xdotool key Escape
+wait "$luz_pid" || fail "luz (clicks) exited with status $? after Esc"
+luz_pid=""
+grep -q '^ambient = 1, 1, 1, 0$' "$work/clicks.luz" ||
+    fail "a click on '1 ambient' did not switch it off: $(grep '^ambient' "$work/clicks.luz")"
+grep -q '^directional = 1, 1, 1, 0.4$' "$work/clicks.luz" ||
+    fail "a click on the help reached the panel under it: $(grep '^directional' "$work/clicks.luz")"
+
+# 7. Shown through SDL: the window shows the screenshot's pixels too.
 rm -f "$work/stderr"
 LUZ_PRESENT=sdl "$luz" --size 480x270 2>"$work/stderr" &
 luz_pid=$!
@@ -258,7 +305,7 @@ grep -q '^luz: cannot write to standard output$' "$work/stderr" ||
 [ -z "$(ls -A)" ] || fail "left behind under ulimit -f 0: $(ls -A)"
 cd "$work" || exit 1
 
-# 7. F11 under a window manager.
+# 8. F11 under a window manager.
 # Waits up to 10 s for the window to have the size $1.
 wait_for_geometry() {
     i=0

@@ -54,6 +54,8 @@ expect_refusal "--shard: .*luz-render" --shard=1/4
 expect_refusal "--skip-existing: .*luz-render" --skip-existing
 expect_refusal "--bench" --bench -1
 expect_refusal "-o: .*luz-render" -o out.png
+expect_refusal "--legend: .*luz-render" --legend
+expect_refusal "--mark: .*luz-render" --mark 10,10
 expect_refusal "missing.luz: cannot open" --scene "$work/missing.luz"
 # Textures are checked before any window opens.
 expect_refusal "--textures: .*$work/no-such-dir" --textures "$work/no-such-dir"

@@ -20,7 +20,9 @@
  *   overdraw   how many fragments were depth-tested at each pixel
  *   bands      each band of rows tinted by the thread that drew it, over
  *              the dimmed image
- *   triangles  each triangle in its own flat colour, edges in black
+ *   triangles  each triangle in its own flat colour, darker where a
+ *              neighbouring pixel lies outside it (its edges), so that
+ *              every pixel, edges too, shows which triangle owns it
  */
 #ifndef LUZ_VIEW_H
 #define LUZ_VIEW_H
@@ -42,7 +44,7 @@ typedef enum luz_view {
     LUZ_VIEW_MIP,         /* the mip level the sampler read, one colour each */
     LUZ_VIEW_OVERDRAW,    /* depth tests per pixel, as a heat map */
     LUZ_VIEW_BANDS,       /* each band tinted by the thread that drew it */
-    LUZ_VIEW_TRIANGLES,   /* each triangle in its own colour, with its edges */
+    LUZ_VIEW_TRIANGLES,   /* each triangle in its own colour, its edges darker */
     LUZ_VIEW_COUNT
 } luz_view;
 
@@ -51,7 +53,7 @@ LUZ_API const char *luz_view_name(luz_view view);          /* "color", "depth", 
 /* The view called name ("depth", ...); false if there is none. */
 LUZ_API bool luz_view_from_name(const char *name, luz_view *view);
 
-/* One line that says how to read the view's colours (the viewer's HUD). */
+/* One line that says how to read the view's colours, every colour named. */
 LUZ_API const char *luz_view_legend(luz_view view);
 
 /* Overdraw: the colour of a pixel that had `count` depth tests; 0 black,
@@ -72,8 +74,12 @@ LUZ_API luz_vec3 luz_view_thread_colour(int worker);
 #define LUZ_VIEW_BANDS_TINT 0.55f
 
 /* Triangles: the flat colour of triangle `id` (ids count from 1 in
- * submission order); consecutive ids get hues far apart. */
+ * submission order); consecutive ids get hues far apart. A pixel of the
+ * triangle one of whose four neighbours in the image lies outside it (by
+ * the rasteriser's coverage test) is drawn in that colour times
+ * LUZ_VIEW_TRIANGLE_EDGE_SHADE: its edges, in its own hue. */
 LUZ_API luz_vec3 luz_view_triangle_colour(uint32_t id);
+#define LUZ_VIEW_TRIANGLE_EDGE_SHADE 0.55f
 
 /* Depth: the brightness in [0, 1] shown for window depth `depth` under
  * `projection` (a perspective matrix, as luz_mat4_perspective builds):

@@ -111,6 +111,16 @@ void luz_light_toggle(luz_lights *lights, luz_light_switches *switches, luz_term
     }
 }
 
+void luz_lights_reset(luz_lights *lights, luz_light_switches *switches)
+{
+    luz_lights defaults = luz_scene_defaults().lights;
+    defaults.point_position = lights->point_position;
+    defaults.spot_direction = lights->spot_direction;
+    defaults.directional_direction = lights->directional_direction;
+    *lights = defaults;
+    *switches = (luz_light_switches){{0}};
+}
+
 /* ---- the rest ---------------------------------------------------------------------------- */
 
 luz_filter luz_filter_next(luz_filter filter)
@@ -173,6 +183,7 @@ const luz_control_help luz_controls_help[] = {
     {"Shift+P / Shift+M", "widen / narrow the spot's inner cone"},
     {"F5", "new cube colours"},
     {"1 - 6", "switch ambient, diffuse, specular, point, spot, directional on or off"},
+    {"R", "every light back to SCENE.md's defaults"},
     {"Tab", "switch between flying and the light panel (free cursor)"},
     {"Up / Down (panel)", "choose a slider"},
     {"Left / Right (panel)", "change it; with Shift, in fine steps"},

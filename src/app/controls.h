@@ -88,6 +88,13 @@ typedef struct luz_light_switches {
 bool luz_light_is_on(const luz_lights *lights, luz_term term);
 void luz_light_toggle(luz_lights *lights, luz_light_switches *switches, luz_term term);
 
+/* R: every light back to SCENE.md's defaults (colour, strength, the
+ * shininess, the spot's cone and reach), whatever options or a scene file
+ * started the viewer with, and the switches forget what they kept, so that
+ * a number key then switches SCENE.md's light. The lights' positions are
+ * the frame's business (their orbits) and are left alone. */
+void luz_lights_reset(luz_lights *lights, luz_light_switches *switches);
+
 /* ---- the rest ------------------------------------------------------------------- */
 
 /* nearest -> bilinear -> trilinear -> nearest. */

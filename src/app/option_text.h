@@ -2,7 +2,8 @@
  * option_text.h: the text helpers that the option files share (options.c,
  * scene_file.c, command_line.c, option_textures.c), so that all read a
  * number, print one back, and quote a user's text in a message, in exactly
- * the same way. Private to src/app; not installed.
+ * the same way. Private to src/app; not installed. The number writers are
+ * in option_text.c; the rest is inline here.
  */
 #ifndef LUZ_OPTION_TEXT_H
 #define LUZ_OPTION_TEXT_H
@@ -51,6 +52,12 @@ static inline const char *option_skip_blanks(const char *text)
     return text;
 }
 
+/* Above this magnitude a double rounds to a float's infinity: FLT_MAX plus
+ * half its last place, 2^128 - 2^103 (a tie rounds to even, and FLT_MAX's
+ * last bit is odd). FLT_MAX's own shortest text, 3.4028235e+38, lies above
+ * FLT_MAX and below this, and must read back. */
+#define OPTION_FLOAT_OVERFLOW 0x1.ffffffp+127
+
 /* Reads `count` comma-separated numbers that make up the whole of text,
  * blanks allowed around each. With single_precision the numbers must also
  * fit a float: 1e39 is finite as a double but would become infinity. */
@@ -67,7 +74,8 @@ static inline option_parse_result option_read_numbers(const char *text, double *
         values[i] = strtod(cursor, &end);
         if (end == cursor)
             return OPTION_PARSE_MALFORMED;
-        if (!isfinite(values[i]) || (single_precision && fabs(values[i]) > FLT_MAX))
+        if (!isfinite(values[i]) ||
+            (single_precision && fabs(values[i]) >= OPTION_FLOAT_OVERFLOW))
             return OPTION_PARSE_NOT_FINITE;
         cursor = option_skip_blanks(end);
         if (i + 1 < count) {
@@ -79,43 +87,17 @@ static inline option_parse_result option_read_numbers(const char *text, double *
     return *cursor == '\0' ? OPTION_PARSE_OK : OPTION_PARSE_MALFORMED;
 }
 
-/* %g with too few digits writes -90 as -9e+01: exact, but not what a person
- * writes. Exponents are kept for the very large and the very small only. */
-static inline bool option_reads_well(const char *text, double value)
-{
-    double magnitude = fabs(value);
-    return strchr(text, 'e') == NULL || magnitude < 1e-4 || magnitude >= 1e15;
-}
+/* The shortest decimal that the reader above brings back to exactly the
+ * same float (strtod, then a cast to float): "0.2" for 0.2f, "0.98999995"
+ * for the float just below 0.99f (which "0.99" would not give back), and
+ * never more significant digits than some decimal that does read back.
+ * Written as a person writes numbers, "-90" and "0.0015", with an exponent
+ * only below 1e-4 and from 1e15 on ("6.711322e-17", "3.4028235e+38").
+ * buffer holds at least OPTION_NUMBER_SIZE bytes. (option_text.c) */
+#define OPTION_NUMBER_SIZE 32
+void option_format_float(char *buffer, size_t size, float value);
 
-/* The shortest %.Ng text that the reader above, option_read_numbers,
- * takes and brings back to the same float (strtod, then a cast): "0.2"
- * rather than %.9g's "0.200000003". %.9g always round-trips a float
- * through strtof; going on to 17 digits covers the double rounding of
- * strtod-then-cast as well, since %.17g is the exact double of the float.
- * Asking the reader itself, not strtod, matters at the edge: FLT_MAX's
- * shortest text, 3.4028235e+38, is a double above FLT_MAX, which the reader
- * refuses; 3.402823466e+38 is the first it takes. */
-static inline void option_format_float(char *buffer, size_t size, float value)
-{
-    for (int precision = 1; precision <= 17; precision++) {
-        snprintf(buffer, size, "%.*g", precision, (double)value);
-        double back;
-        if (option_read_numbers(buffer, &back, 1, true) == OPTION_PARSE_OK &&
-            (float)back == value && option_reads_well(buffer, value))
-            return;
-    }
-}
-
-/* The same for a double: at most %.17g's digits. */
-static inline void option_format_double(char *buffer, size_t size, double value)
-{
-    for (int precision = 1; precision <= 17; precision++) {
-        snprintf(buffer, size, "%.*g", precision, value);
-        double back;
-        if (option_read_numbers(buffer, &back, 1, false) == OPTION_PARSE_OK && back == value &&
-            option_reads_well(buffer, value))
-            return;
-    }
-}
+/* The same for a double, read back by strtod alone (the time). */
+void option_format_double(char *buffer, size_t size, double value);
 
 #endif

@@ -58,6 +58,8 @@ typedef enum option_kind {
     OPTION_FILTER,    /* nearest | bilinear | trilinear */
     OPTION_VIEW,      /* color | depth | normals | ... (luz/view.h) */
     OPTION_INTERP,    /* perspective | affine */
+    OPTION_YES_NO,    /* yes | no, a bool */
+    OPTION_MARKS,     /* X,Y[,X,Y...]: pixels to mark in the image */
     OPTION_ONLY,      /* a comma-separated list of light terms */
     OPTION_PATH,      /* a string the options own */
     OPTION_FRAME_RANGE, /* A:B, A: or :B, frame numbers from 0 */
@@ -167,6 +169,13 @@ static const option_spec option_table[] = {
      .syntax = "perspective|affine",
      .summary = "interpolation of texture coordinates and the other varyings: "
                 "perspective-correct, or affine in screen space (textures swim)"},
+    /* The viewer's pause (T), saved when on, so that a view saved while
+     * paused opens paused. luz-render's pictures are stills at `time`
+     * anyway, and its --frames animate whatever this says. */
+    {.name = "paused", .kind = OPTION_YES_NO, .offset = FIELD(paused),
+     .in_scene_file = true, .saving = LUZ_OPTION_SAVED_IF_CHANGED, .syntax = "yes|no",
+     .summary = "the viewer starts with the animation paused (its T key); luz-render "
+                "ignores it: its images are at --time, and --frames animate"},
     /* saved once set (luz_options_format has nothing to write before) */
     {.name = "textures", .kind = OPTION_PATH, .offset = FIELD(textures_directory),
      .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "DIR|none",
@@ -210,6 +219,16 @@ static const option_spec option_table[] = {
      .max = LUZ_MAX_FRAMES, .in_scene_file = true, .syntax = "N",
      .summary = "time N frames, write no file, print one line of key=value results",
      .default_text = "off"},
+    /* What luz-render draws over the image: for the pages that explain
+     * the pipeline. A run's setting, not part of a scene. */
+    {.name = "legend", .kind = OPTION_FLAG, .offset = FIELD(legend),
+     .summary = "draw the --view's legend into the image, bottom left: a swatch for "
+                "each colour the view uses and what it means (nothing for color)",
+     .default_text = "off"},
+    {.name = "mark", .kind = OPTION_MARKS, .syntax = "X,Y[,X,Y...]",
+     .summary = "draw a ring around each of these pixels (column X, row Y from the top "
+                "left, at most 8), leaving the pixel itself as rendered",
+     .default_text = "none"},
     {.name = "reference", .kind = OPTION_FLAG, .offset = FIELD(reference),
      .summary = "shade with the plain scalar fragment stage (src/renderer/fragment.c) "
                 "instead of the SIMD one; the images agree",
@@ -479,6 +498,18 @@ static int set_interpolation(luz_options *options, const char *value, const char
                          option_quote(value).text);
 }
 
+static int set_yes_no(luz_options *options, const option_spec *spec, const char *value,
+                      const char *where, luz_error *error)
+{
+    bool *field = option_field(options, spec);
+    if (strcmp(value, "yes") == 0 || strcmp(value, "no") == 0) {
+        *field = value[0] == 'y';
+        return 0;
+    }
+    return luz_error_set(error, "%s: expected yes or no, got '%s'", where,
+                         option_quote(value).text);
+}
+
 static int set_filter(luz_options *options, const char *value, const char *where,
                       luz_error *error)
 {
@@ -590,6 +621,45 @@ static int set_shard(luz_options *options, const option_spec *spec, const char *
     return 0;
 }
 
+/* --mark X,Y[,X,Y...]: pairs of pixel coordinates. Whether they lie in
+ * the image is luz_options_finish()'s question, once --size is known. */
+static int set_marks(luz_options *options, const char *value, const char *where,
+                     luz_error *error)
+{
+    int marks[LUZ_MAX_MARKS][2];
+    int count = 0, coordinate = 0;
+    const char *cursor = value;
+    bool well_formed = true;
+    for (;;) {
+        long long number;
+        if (!read_integer_prefix(&cursor, &number) || errno == ERANGE || number < 0 ||
+            number >= LUZ_MAX_DIMENSION || count == LUZ_MAX_MARKS) {
+            well_formed = false;
+            break;
+        }
+        marks[count][coordinate] = (int)number;
+        if (coordinate == 1)
+            count++;
+        coordinate ^= 1;
+        cursor = option_skip_blanks(cursor);
+        if (*cursor == '\0')
+            break;
+        if (*cursor != ',') {
+            well_formed = false;
+            break;
+        }
+        cursor++;
+    }
+    if (!well_formed || coordinate != 0)
+        return luz_error_set(error,
+                             "%s: expected X,Y pixel pairs (at most %d, such as 700,450 or "
+                             "10,20,30,40), got '%s'",
+                             where, LUZ_MAX_MARKS, option_quote(value).text);
+    memcpy(options->marks, marks, sizeof marks);
+    options->mark_count = count;
+    return 0;
+}
+
 static int set_path(luz_options *options, const option_spec *spec, const char *value,
                     const char *where, luz_error *error)
 {
@@ -649,6 +719,10 @@ int luz_options_set_value(luz_options *options, const char *name, const char *va
         return set_view(options, value, where, error);
     case OPTION_INTERP:
         return set_interpolation(options, value, where, error);
+    case OPTION_YES_NO:
+        return set_yes_no(options, spec, value, where, error);
+    case OPTION_MARKS:
+        return set_marks(options, value, where, error);
     case OPTION_ONLY:
         return set_only(options, value, where, error);
     case OPTION_PATH:
@@ -747,6 +821,24 @@ int luz_options_format(const luz_options *options, const char *name, char *buffe
         written = snprintf(buffer, size, "%s",
                            luz_interpolation_name(options->scene.interpolation));
         break;
+    case OPTION_YES_NO:
+        written = snprintf(buffer, size, "%s", *(const bool *)field ? "yes" : "no");
+        break;
+    case OPTION_MARKS: {
+        if (options->mark_count == 0)
+            return -1;
+        written = 0;
+        buffer[0] = '\0';
+        for (int i = 0; i < options->mark_count; i++) {
+            size_t used = strlen(buffer);
+            int n = snprintf(buffer + used, size - used, "%s%d,%d", used ? "," : "",
+                             options->marks[i][0], options->marks[i][1]);
+            if (n < 0 || (size_t)n >= size - used)
+                return -1;
+            written = (int)(used + (size_t)n);
+        }
+        break;
+    }
     case OPTION_ONLY: {
         if (options->only_terms == 0)
             return -1;
@@ -998,6 +1090,16 @@ int luz_options_finish(luz_options *options, luz_error *error)
                              "got %.9g",
                              (double)lights->spot_outer_degrees,
                              (double)lights->spot_inner_degrees);
+
+    /* The marks are checked once --size is known, whatever the order. */
+    for (int i = 0; i < options->mark_count; i++) {
+        if (options->marks[i][0] >= options->width || options->marks[i][1] >= options->height)
+            return luz_error_set(error,
+                                 "--mark: expected pixels inside the %dx%d image (X below %d, "
+                                 "Y below %d), got %d,%d",
+                                 options->width, options->height, options->width,
+                                 options->height, options->marks[i][0], options->marks[i][1]);
+    }
 
     /* The range is checked once --frames is known, whatever the order. */
     const int last_frame = options->frame_count - 1;

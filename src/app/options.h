@@ -12,8 +12,9 @@
  * Five files stand behind this header, each calling only those listed
  * before it: options.c (the option table), scene_file.c (scene files),
  * command_line.c (argv), option_textures.c (the textures named) and
- * option_outputs.c (the files a run will write). option_models.c reads
- * the models named.
+ * option_outputs.c (the files a run will write); all read and write
+ * numbers with option_text.h's helpers (option_text.c). option_models.c
+ * reads the models named.
  *
  * Every error is one line naming the flag (or file:line) and what was
  * expected, e.g. "--size: expected WIDTHxHEIGHT such as 1280x720, got '0x5'".
@@ -54,6 +55,9 @@ typedef struct luz_object_source {
  * a benchmark takes, and no sequence needs more. */
 #define LUZ_MAX_FRAMES 1000000
 
+/* The most pixels --mark rings in one image. */
+#define LUZ_MAX_MARKS 8
+
 /* --frame-range's B when the range runs to the last frame (A: or no range). */
 #define LUZ_FRAME_RANGE_OPEN (-1)
 
@@ -80,6 +84,10 @@ typedef struct luz_options {
     unsigned only_terms;        /* --only: bit (1u << luz_term) per light term
                                    kept; 0 keeps them all */
     bool reference;             /* --reference: the plain scalar fragment stage */
+    bool paused;                /* --paused yes: the viewer starts paused (T) */
+    bool legend;                /* --legend: the view's legend in the image */
+    int mark_count;             /* --mark: pixels ringed in the image */
+    int marks[LUZ_MAX_MARKS][2];    /* x, y of each */
     bool help;
     bool version;
     luz_object *objects;        /* the user's own cubes and models (owned), as
@@ -152,9 +160,10 @@ bool luz_options_row(size_t index, luz_option_info *info);
 bool luz_options_find(const char *name, size_t length, luz_option_info *info);
 
 /* Writes the current value of option `name` in the text form that
- * luz_options_set() reads back exactly (floats with %.9g, doubles with
- * %.17g). Returns 0, or -1 for a flag, an unknown name, a value left at
- * "unset" (textures, output, only, bench) or a buffer too small. */
+ * luz_options_set() reads back exactly: each number the shortest decimal
+ * that reads back to the same bits (option_text.h). Returns 0, or -1 for
+ * a flag, an unknown name, a value left at "unset" (textures, output,
+ * only, bench) or a buffer too small. */
 int luz_options_format(const luz_options *options, const char *name,
                        char *buffer, size_t size);
 

@@ -132,11 +132,18 @@ void luz_layer_begin(luz_layer *layer, int width, int height)
     layer->rect_count = 0;
     layer->finished = false;
     layer->out_of_memory = false;
+    layer->cut_rects = 0;
 }
 
 void luz_overlay_fill(luz_layer *layer, luz_rect rect, luz_rgba colour)
 {
-    if (colour.a == 0 || !clip_rect(&rect, layer->width, 0, layer->height))
+    if (colour.a == 0 || rect.width <= 0 || rect.height <= 0)
+        return;
+    const luz_rect asked = rect;
+    const bool inside = clip_rect(&rect, layer->width, 0, layer->height);
+    if (!inside || rect.width != asked.width || rect.height != asked.height)
+        layer->cut_rects++;
+    if (!inside)
         return;
     if (layer->rect_count == layer->rect_capacity) {
         size_t capacity = layer->rect_capacity ? 2 * layer->rect_capacity : 1024;
@@ -291,4 +298,50 @@ int luz_overlay_text(luz_layer *layer, int x, int y, int scale, const char *text
         pen += (stb_easy_font_charinfo[glyph[0] - 32].advance & 15) * scale;
     }
     return pen - x;
+}
+
+/* ---- marking a pixel ---------------------------------------------------------------- */
+
+/* A square frame `thickness` wide whose outer edge is `half` pixels from
+ * pixel (x, y) on every side. */
+static void frame_around(luz_layer *layer, int x, int y, int half, int thickness,
+                         luz_rgba colour)
+{
+    const int side = 2 * half + 1;
+    luz_overlay_fill(layer, (luz_rect){x - half, y - half, side, thickness}, colour);
+    luz_overlay_fill(layer, (luz_rect){x - half, y + half + 1 - thickness, side, thickness},
+                     colour);
+    luz_overlay_fill(layer, (luz_rect){x - half, y - half, thickness, side}, colour);
+    luz_overlay_fill(layer, (luz_rect){x + half + 1 - thickness, y - half, thickness, side},
+                     colour);
+}
+
+void luz_overlay_mark(luz_layer *layer, int x, int y, int scale)
+{
+    if (scale < 1)
+        scale = 1;
+    /* From the outside in: black, white twice as wide, black; inside the
+     * ring the pixel and 3 x scale pixels around it are left as drawn. */
+    const luz_rgba black = {0, 0, 0, 255}, white = {255, 255, 255, 255};
+    frame_around(layer, x, y, 8 * scale, scale, black);
+    frame_around(layer, x, y, 7 * scale, 2 * scale, white);
+    frame_around(layer, x, y, 5 * scale, scale, black);
+    /* Four ticks pointing in from the sides, so that the ring is found in
+     * a busy picture shown small: white, edged in black. */
+    const int ring = 8 * scale, length = 8 * scale, half = 2 * scale;
+    const luz_rect ticks[4] = {
+        {x - ring - length, y - half, length, 2 * half + 1},   /* left */
+        {x + ring + 1, y - half, length, 2 * half + 1},        /* right */
+        {x - half, y - ring - length, 2 * half + 1, length},   /* top */
+        {x - half, y + ring + 1, 2 * half + 1, length},        /* bottom */
+    };
+    for (int i = 0; i < 4; i++) {
+        luz_rect t = ticks[i];
+        luz_overlay_fill(layer, t, black);
+        luz_overlay_fill(layer, (luz_rect){t.x + (t.width > t.height ? 0 : scale),
+                                           t.y + (t.width > t.height ? scale : 0),
+                                           t.width > t.height ? t.width : t.width - 2 * scale,
+                                           t.width > t.height ? t.height - 2 * scale : t.height},
+                         white);
+    }
 }

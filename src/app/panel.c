@@ -20,6 +20,7 @@
 #include "luz/view.h"
 
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -380,6 +381,29 @@ void luz_panel_draw(luz_layer *layer, const luz_panel_layout *layout,
         draw_slider(layer, layout, panel, lights, slider);
 }
 
+/* ---- HUD timings ------------------------------------------------------------------------------- */
+
+bool luz_hud_timing_add(luz_hud_timing *timing, double seconds, double geometry_ms,
+                        double raster_ms)
+{
+    if (!(seconds > 0.0))   /* the first frame, or one after a pause in time */
+        return false;
+    timing->window_frames++;
+    timing->window_seconds += seconds;
+    timing->window_geometry_ms += geometry_ms;
+    timing->window_raster_ms += raster_ms;
+    if (timing->window_seconds < LUZ_HUD_AVERAGE_SECONDS)
+        return false;
+    const double frames = (double)timing->window_frames;
+    timing->frames_per_second = frames / timing->window_seconds;
+    timing->frame_ms = 1000.0 * timing->window_seconds / frames;
+    timing->geometry_ms = timing->window_geometry_ms / frames;
+    timing->raster_ms = timing->window_raster_ms / frames;
+    timing->window_frames = 0;
+    timing->window_seconds = timing->window_geometry_ms = timing->window_raster_ms = 0.0;
+    return true;
+}
+
 /* ---- HUD -------------------------------------------------------------------------------------- */
 
 /* Scale 2 where the layer is big enough for it to stay a corner. */
@@ -398,29 +422,100 @@ void luz_hud_draw_message(luz_layer *layer, const char *message)
     luz_overlay_text(layer, box.x + PAD * s, box.y + PAD * s + s, s, message, accent_colour);
 }
 
+/* The HUD's text as pieces that stay whole: a line of the HUD is broken
+ * between pieces, never inside one, when the HUD's box is too narrow for
+ * it (a small window, or the panel open beside it). */
+enum { HUD_MAX_PIECES = 40, HUD_PIECE_SIZE = 96 };
+
+typedef struct hud_piece {
+    char text[HUD_PIECE_SIZE];
+    luz_rgba colour;
+    bool starts_line;   /* the first piece of one of the HUD's lines */
+    int x, y;           /* where it is drawn, relative to the text's corner */
+} hud_piece;
+
+typedef struct hud_text {
+    hud_piece pieces[HUD_MAX_PIECES];
+    int count;
+} hud_text;
+
+static void hud_add(hud_text *text, bool starts_line, luz_rgba colour, const char *format, ...)
+    __attribute__((format(printf, 4, 5)));
+
+static void hud_add(hud_text *text, bool starts_line, luz_rgba colour, const char *format, ...)
+{
+    if (text->count >= HUD_MAX_PIECES)
+        return;
+    hud_piece *piece = &text->pieces[text->count++];
+    va_list arguments;
+    va_start(arguments, format);
+    vsnprintf(piece->text, sizeof piece->text, format, arguments);
+    va_end(arguments);
+    piece->colour = colour;
+    piece->starts_line = starts_line;
+}
+
+/* Places the pieces in lines at most max_width wide; returns the width
+ * used and sets *height. Pieces of a line are two blanks apart; a piece
+ * that does not fit starts a line of its own, indented by one blank. */
+static int hud_flow(hud_text *text, int scale, int max_width, int *height)
+{
+    const int line = ROW * scale;
+    const int gap = luz_overlay_text_width("  ", scale);
+    const int indent = luz_overlay_text_width(" ", scale);
+    int x = 0, y = -line, width = 0;
+    for (int i = 0; i < text->count; i++) {
+        hud_piece *piece = &text->pieces[i];
+        int w = luz_overlay_text_width(piece->text, scale);
+        if (piece->starts_line) {
+            x = 0;
+            y += line;
+        } else if (x + gap + w > max_width) {
+            x = indent;
+            y += line;
+        } else {
+            x += gap;
+        }
+        piece->x = x;
+        piece->y = y;
+        x += w;
+        if (x > width)
+            width = x;
+    }
+    *height = y + line;
+    return width;
+}
+
 void luz_hud_draw(luz_layer *layer, const luz_hud *hud)
 {
-    enum { MAX_LINES = 12 };
     const luz_scene *scene = hud->scene;
     const luz_camera *camera = &scene->camera;
-    char lines[MAX_LINES][160];
-    snprintf(lines[0], sizeof lines[0], "%.1f fps  %.1f ms/frame", hud->frames_per_second,
-             hud->frame_ms);
-    snprintf(lines[1], sizeof lines[1], "geometry %.1f ms  raster+shade %.1f ms",
-             hud->geometry_ms, hud->raster_ms);
-    if (hud->render_scale != 1.0f)
-        snprintf(lines[2], sizeof lines[2], "%dx%d (window %dx%d at scale %g)  %d threads",
-                 layer->width, layer->height, hud->window_width, hud->window_height,
-                 (double)hud->render_scale, hud->threads);
-    else
-        snprintf(lines[2], sizeof lines[2], "%dx%d  %d threads", layer->width,
-                 layer->height, hud->threads);
-    snprintf(lines[3], sizeof lines[3], "camera %.2f, %.2f, %.2f  yaw %.1f  pitch %.1f",
-             (double)camera->position.x, (double)camera->position.y, (double)camera->position.z,
-             (double)camera->yaw_degrees, (double)camera->pitch_degrees);
-    snprintf(lines[4], sizeof lines[4], "time %.2f s%s  filter %s  seed %lu", scene->time_seconds,
-             hud->paused ? " (paused)" : "", luz_filter_name(scene->filter),
-             (unsigned long)scene->seed);
+    hud_text text;
+    text.count = 0;
+
+    /* The frame's time and the renderer's share of it, averaged over the
+     * same frames (luz_hud_timing), so that the two can be compared. */
+    hud_add(&text, true, accent_colour, "%.1f fps", hud->frames_per_second);
+    hud_add(&text, false, accent_colour, "%.1f ms/frame", hud->frame_ms);
+    hud_add(&text, true, text_colour, "geometry %.2f ms", hud->geometry_ms);
+    hud_add(&text, false, text_colour, "raster+shade %.1f ms", hud->raster_ms);
+    if (hud->render_scale != 1.0f) {
+        hud_add(&text, true, text_colour, "%dx%d", layer->width, layer->height);
+        hud_add(&text, false, text_colour, "(window %dx%d at scale %g)", hud->window_width,
+                hud->window_height, (double)hud->render_scale);
+    } else {
+        hud_add(&text, true, text_colour, "%dx%d", layer->width, layer->height);
+    }
+    hud_add(&text, false, text_colour, "%d threads", hud->threads);
+    hud_add(&text, true, text_colour, "camera %.2f, %.2f, %.2f", (double)camera->position.x,
+            (double)camera->position.y, (double)camera->position.z);
+    hud_add(&text, false, text_colour, "yaw %.1f", (double)camera->yaw_degrees);
+    hud_add(&text, false, text_colour, "pitch %.1f", (double)camera->pitch_degrees);
+    hud_add(&text, true, text_colour, "time %.2f s%s", scene->time_seconds,
+            hud->paused ? " (paused)" : "");
+    hud_add(&text, false, text_colour, "filter %s", luz_filter_name(scene->filter));
+    hud_add(&text, false, text_colour, "seed %lu", (unsigned long)scene->seed);
+
     /* What is drawn: the model's name (the first model's, with how many
      * more there are), or the cubes, and the triangles. */
     const luz_lab_model *model = NULL;
@@ -428,101 +523,293 @@ void luz_hud_draw(luz_layer *layer, const luz_hud *hud)
     for (int i = 0; scene->objects && i < scene->object_count && model == NULL; i++)
         model = scene->objects[i].model;
     if (model != NULL && objects > 1)
-        snprintf(lines[5], sizeof lines[5], "%s and %d more objects  %llu triangles",
-                 model->name, objects - 1, (unsigned long long)hud->triangles);
+        hud_add(&text, true, text_colour, "%.60s and %d more objects", model->name, objects - 1);
     else if (model != NULL)
-        snprintf(lines[5], sizeof lines[5], "%s  %llu triangles", model->name,
-                 (unsigned long long)hud->triangles);
+        hud_add(&text, true, text_colour, "%.60s", model->name);
     else
-        snprintf(lines[5], sizeof lines[5], "%d cubes  %llu triangles", objects,
-                 (unsigned long long)hud->triangles);
-    /* The teaching controls: the view (V) with its legend, the
-     * interpolation (X) and the step mode (G). */
-    int count = 6;
-    snprintf(lines[count++], sizeof lines[0], "view %s (V)  interp %s (X)",
-             luz_view_name(scene->view), luz_interpolation_name(scene->interpolation));
-    if (scene->view != LUZ_VIEW_COLOR)
-        snprintf(lines[count++], sizeof lines[0], "%s", luz_view_legend(scene->view));
+        hud_add(&text, true, text_colour, "%d cubes", objects);
+    hud_add(&text, false, text_colour, "%llu triangles", (unsigned long long)hud->triangles);
+
+    /* The teaching controls: the view (V), the interpolation (X) and the
+     * step mode (G); the view's legend goes under the text. */
+    hud_add(&text, true, text_colour, "view %s (V)", luz_view_name(scene->view));
+    hud_add(&text, false, text_colour, "interp %s (X)",
+            luz_interpolation_name(scene->interpolation));
     if (hud->step_shown > 0)
-        snprintf(lines[count++], sizeof lines[0], "step (G): %lu of %llu triangles",
-                 (unsigned long)hud->step_shown, (unsigned long long)hud->step_total);
-    const int lights_line = count;
-    snprintf(lines[count++], sizeof lines[0], "lights");
-    snprintf(lines[count++], sizeof lines[0], "H help  I HUD  Tab %s",
-             hud->panel_open ? "fly" : "panel");
-    const int line_count = count;
+        hud_add(&text, true, text_colour, "step (G): %lu of %llu triangles",
+                (unsigned long)hud->step_shown, (unsigned long long)hud->step_total);
 
-    /* The lights line is drawn word by word: the names of the lights that
-     * are on in full colour, the others dimmed. */
-    char light_names[LUZ_TERM_COUNT][24];
-    int s = hud_scale(layer);
-    int width = luz_overlay_text_width(lines[lights_line], s);
-    for (int term = 0; term < LUZ_TERM_COUNT; term++) {
-        snprintf(light_names[term], sizeof light_names[term], "  %d %s", term + 1,
-                 luz_term_name((luz_term)term));
-        width += luz_overlay_text_width(light_names[term], s);
-    }
-    for (int i = 0; i < line_count; i++) {
-        int line_width = luz_overlay_text_width(lines[i], s);
-        if (line_width > width)
-            width = line_width;
-    }
+    /* The lights, word by word: those that are on in full colour, the
+     * others dimmed. */
+    hud_add(&text, true, text_colour, "lights");
+    for (int term = 0; term < LUZ_TERM_COUNT; term++)
+        hud_add(&text, false,
+                luz_light_is_on(&scene->lights, (luz_term)term) ? accent_colour
+                                                                : dim_text_colour,
+                "%d %s", term + 1, luz_term_name((luz_term)term));
+    hud_add(&text, true, dim_text_colour, "H help");
+    hud_add(&text, false, dim_text_colour, "I HUD");
+    hud_add(&text, false, dim_text_colour, "Tab %s", hud->panel_open ? "fly" : "panel");
 
-    int line = ROW * s;
+    const int s = hud_scale(layer);
+    int room = (hud->max_width > 0 && hud->max_width < layer->width) ? hud->max_width
+                                                                      : layer->width;
+    room -= 2 * MARGIN * s + 2 * PAD * s;   /* the text's width inside the box */
+    int text_height;
+    int width = hud_flow(&text, s, room, &text_height);
+    luz_legend legend = luz_legend_of(scene->view, hud->threads);
+    const bool show_legend = scene->view != LUZ_VIEW_COLOR;
+    luz_rect legend_rect = {0, 0, 0, 0};
+    if (show_legend) {
+        legend_rect = luz_legend_draw(NULL, &legend, 0, 0, room, s);
+        if (legend_rect.width > width)
+            width = legend_rect.width;
+    }
+    const int gap = show_legend ? PAD * s : 0;
     luz_rect box = {MARGIN * s, MARGIN * s, width + 2 * PAD * s,
-                    line_count * line + 2 * PAD * s};
+                    text_height + gap + legend_rect.height + 2 * PAD * s};
     luz_overlay_fill(layer, box, box_colour);
-    int x = box.x + PAD * s, y = box.y + PAD * s + s;
-    for (int i = 0; i < line_count; i++, y += line) {
-        luz_rgba colour = i == 0                ? accent_colour
-                          : i == line_count - 1 ? dim_text_colour
-                                                : text_colour;
-        int pen = x + luz_overlay_text(layer, x, y, s, lines[i], colour);
-        if (i != lights_line)
-            continue;
-        for (int term = 0; term < LUZ_TERM_COUNT; term++)
-            pen += luz_overlay_text(layer, pen, y, s, light_names[term],
-                                    luz_light_is_on(&scene->lights, (luz_term)term)
-                                        ? accent_colour : dim_text_colour);
+    const int x = box.x + PAD * s, y = box.y + PAD * s;
+    for (int i = 0; i < text.count; i++) {
+        const hud_piece *piece = &text.pieces[i];
+        luz_overlay_text(layer, x + piece->x, y + piece->y + s, s, piece->text, piece->colour);
     }
+    if (show_legend)
+        luz_legend_draw(layer, &legend, x, y + text_height + gap, room, s);
 }
 
 /* ---- help ---------------------------------------------------------------------------------------- */
 
-void luz_help_draw(luz_layer *layer)
+enum {
+    HELP_COLUMN_GAP = 16,   /* between the keys and the action */
+    HELP_COLUMNS_GAP = 24,  /* between two columns of controls */
+    HELP_SHORT_ROW = 10,    /* the text's own height: rows touch */
+};
+
+/* The width of the keys column at scale 1. */
+static int help_keys_width(void)
 {
-    const char *title = "luz controls";
-    const char *footer = "H closes this help";
-    int keys_width = 0, actions_width = 0;
+    int width = 0;
     for (int i = 0; i < luz_controls_help_count; i++) {
-        int k = luz_overlay_text_width(luz_controls_help[i].keys, 1);
-        int a = luz_overlay_text_width(luz_controls_help[i].action, 1);
-        keys_width = k > keys_width ? k : keys_width;
-        actions_width = a > actions_width ? a : actions_width;
+        int w = luz_overlay_text_width(luz_controls_help[i].keys, 1);
+        width = w > width ? w : width;
     }
-    int column_gap = 16;
-    int rows = luz_controls_help_count + 3;   /* title, a blank row, the list, the footer */
-    int s = 1;
-    for (int candidate = 3; candidate > 1; candidate--) {
-        if ((keys_width + column_gap + actions_width + 2 * PAD) * candidate <= layer->width &&
-            (rows * ROW + 2 * PAD) * candidate <= layer->height) {
-            s = candidate;
-            break;
+    return width;
+}
+
+/* Breaks an action into lines at most `width` wide (scale 1), at blanks;
+ * calls line() for each (if not NULL) and returns how many there are. A
+ * word wider than the width gets a line of its own. */
+typedef void help_line_function(void *context, const char *text, int length);
+
+static int help_wrap(const char *action, int width, help_line_function *line, void *context)
+{
+    int lines = 0;
+    const char *start = action;
+    while (*start != '\0') {
+        const char *end = start, *cut = NULL;
+        char piece[128];
+        for (;;) {
+            const char *word_end = end;
+            while (*word_end == ' ')
+                word_end++;
+            while (*word_end != '\0' && *word_end != ' ')
+                word_end++;
+            int length = (int)(word_end - start);
+            if (length >= (int)sizeof piece)
+                break;
+            memcpy(piece, start, (size_t)length);
+            piece[length] = '\0';
+            if (cut != NULL && luz_overlay_text_width(piece, 1) > width)
+                break;
+            cut = word_end;
+            end = word_end;
+            if (*word_end == '\0')
+                break;
+        }
+        if (cut == NULL)   /* nothing fits: the whole rest */
+            cut = start + strlen(start);
+        if (line != NULL)
+            line(context, start, (int)(cut - start));
+        lines++;
+        start = cut;
+        while (*start == ' ')
+            start++;
+    }
+    return lines > 0 ? lines : 1;
+}
+
+/* Rows of controls the help has at an action width, each control on as
+ * many rows as its action wraps to. */
+static int help_rows(int action_width)
+{
+    int rows = 0;
+    for (int i = 0; i < luz_controls_help_count; i++)
+        rows += help_wrap(luz_controls_help[i].action, action_width, NULL, NULL);
+    return rows;
+}
+
+/* The control that starts column `column` of `columns`, the rows split as
+ * evenly as whole controls allow. */
+static int help_column_start(int column, int columns, int action_width, int total_rows)
+{
+    if (column == 0)
+        return 0;
+    int rows = 0;
+    for (int i = 0; i < luz_controls_help_count; i++) {
+        if (rows * columns >= total_rows * column)
+            return i;
+        rows += help_wrap(luz_controls_help[i].action, action_width, NULL, NULL);
+    }
+    return luz_controls_help_count;
+}
+
+static int help_column_rows(int first, int end, int action_width)
+{
+    int rows = 0;
+    for (int i = first; i < end; i++)
+        rows += help_wrap(luz_controls_help[i].action, action_width, NULL, NULL);
+    return rows;
+}
+
+luz_help_layout luz_help_layout_for(int width, int height)
+{
+    const int keys = help_keys_width();
+    int widest_action = 0;
+    for (int i = 0; i < luz_controls_help_count; i++) {
+        int w = luz_overlay_text_width(luz_controls_help[i].action, 1);
+        widest_action = w > widest_action ? w : widest_action;
+    }
+    /* Largest text first; at a scale, no wrapped action before any
+     * wrapped one, then one column before two, then roomy rows before
+     * short ones. The action column is no wider than its widest action. */
+    for (int scale = 3; scale >= 1; scale--) {
+        for (int wrapping = 0; wrapping <= 1; wrapping++) {
+            for (int shape = 0; shape < 4; shape++) {
+                const int columns = 1 + shape / 2, roomy = shape % 2 == 0;
+                const int row = (roomy ? ROW : HELP_SHORT_ROW) * scale;
+                int inner = width / scale - 2 * PAD - 2 * MARGIN;
+                int column_width = (inner - (columns - 1) * HELP_COLUMNS_GAP) / columns;
+                int action_width = column_width - keys - HELP_COLUMN_GAP;
+                if (action_width > widest_action)
+                    action_width = widest_action;
+                if (!wrapping && action_width < widest_action)
+                    continue;
+                /* Wrapping into a column narrower than a third of the
+                 * widest action reads badly: not at this size. */
+                if (action_width < widest_action / 3)
+                    continue;
+                int total = help_rows(action_width);
+                int tallest = 0;
+                for (int c = 0; c < columns; c++) {
+                    int first = help_column_start(c, columns, action_width, total);
+                    int end = help_column_start(c + 1, columns, action_width, total);
+                    int rows = help_column_rows(first, end, action_width);
+                    tallest = rows > tallest ? rows : tallest;
+                }
+                /* title, a blank row, the controls, the footer */
+                int box_height = (3 + tallest) * row + 2 * PAD * scale;
+                if (box_height + 2 * MARGIN * scale > height)
+                    continue;
+                int box_width = (columns * (keys + HELP_COLUMN_GAP + action_width) +
+                                 (columns - 1) * HELP_COLUMNS_GAP + 2 * PAD) *
+                                scale;
+                return (luz_help_layout){
+                    .scale = scale, .row = row, .columns = columns,
+                    .action_width = action_width, .rows = total, .rows_shown = tallest,
+                    .first_max = 0,
+                    .box = {(width - box_width) / 2, (height - box_height) / 2, box_width,
+                            box_height},
+                };
+            }
+        }
+    }
+    /* Too small for every control at once: one column at scale 1, short
+     * rows, as many as fit, and the rest scrolled to. */
+    const int row = HELP_SHORT_ROW;
+    int action_width = width - 2 * PAD - 2 * MARGIN - keys - HELP_COLUMN_GAP;
+    if (action_width > widest_action)
+        action_width = widest_action;
+    if (action_width < 1)
+        action_width = 1;
+    int total = help_rows(action_width);
+    int shown = (height - 2 * MARGIN - 2 * PAD) / row - 3;
+    if (shown < 1)
+        shown = 1;
+    if (shown > total)
+        shown = total;
+    int box_width = keys + HELP_COLUMN_GAP + action_width + 2 * PAD;
+    int box_height = (3 + shown) * row + 2 * PAD;
+    return (luz_help_layout){
+        .scale = 1, .row = row, .columns = 1, .action_width = action_width, .rows = total,
+        .rows_shown = shown, .first_max = total - shown,
+        .box = {(width - box_width) / 2, (height - box_height) / 2, box_width, box_height},
+    };
+}
+
+int luz_help_scroll(const luz_help_layout *layout, int first, int rows)
+{
+    long long next = (long long)first + rows;
+    if (next > layout->first_max)
+        next = layout->first_max;
+    if (next < 0)
+        next = 0;
+    return (int)next;
+}
+
+/* Drawing one control's action lines: where they go. */
+typedef struct help_pen {
+    luz_layer *layer;
+    int x, y, scale, row;
+    int row_index;           /* of the whole help's rows, counted from 0 */
+    int first, end;          /* the rows shown (scrolled) */
+} help_pen;
+
+static void help_draw_line(void *context, const char *text, int length)
+{
+    help_pen *pen = context;
+    if (pen->row_index >= pen->first && pen->row_index < pen->end) {
+        char line[128];
+        snprintf(line, sizeof line, "%.*s", length, text);
+        luz_overlay_text(pen->layer, pen->x, pen->y, pen->scale, line, text_colour);
+        pen->y += pen->row;
+    }
+    pen->row_index++;
+}
+
+void luz_help_draw(luz_layer *layer, const luz_help_layout *layout, int first)
+{
+    const int s = layout->scale, row = layout->row;
+    const int keys = help_keys_width();
+    first = luz_help_scroll(layout, first, 0);
+    const luz_rect box = layout->box;
+    luz_overlay_fill(layer, box, (luz_rgba){12, 12, 16, 240});
+    const int x = box.x + PAD * s, top = box.y + PAD * s + s;
+    luz_overlay_text(layer, x, top, s, "luz controls", accent_colour);
+
+    const int column_step = (keys + HELP_COLUMN_GAP + layout->action_width + HELP_COLUMNS_GAP) * s;
+    for (int c = 0; c < layout->columns; c++) {
+        int begin = help_column_start(c, layout->columns, layout->action_width, layout->rows);
+        int end = help_column_start(c + 1, layout->columns, layout->action_width, layout->rows);
+        help_pen pen = {
+            .layer = layer, .x = x + c * column_step + (keys + HELP_COLUMN_GAP) * s,
+            .y = top + 2 * row, .scale = s, .row = row, .row_index = 0,
+            .first = layout->columns == 1 ? first : 0,
+            .end = layout->columns == 1 ? first + layout->rows_shown : INT32_MAX,
+        };
+        for (int i = begin; i < end; i++) {
+            if (pen.row_index >= pen.first && pen.row_index < pen.end)
+                luz_overlay_text(layer, x + c * column_step, pen.y, s,
+                                 luz_controls_help[i].keys, accent_colour);
+            help_wrap(luz_controls_help[i].action, layout->action_width, help_draw_line, &pen);
         }
     }
 
-    int width = (keys_width + column_gap + actions_width + 2 * PAD) * s;
-    int height = (rows * ROW + 2 * PAD) * s;
-    luz_rect box = {(layer->width - width) / 2, (layer->height - height) / 2, width,
-                    height};
-    luz_overlay_fill(layer, box, (luz_rgba){12, 12, 16, 240});
-    int x = box.x + PAD * s, y = box.y + PAD * s + s, line = ROW * s;
-    luz_overlay_text(layer, x, y, s, title, accent_colour);
-    y += 2 * line;
-    for (int i = 0; i < luz_controls_help_count; i++, y += line) {
-        luz_overlay_text(layer, x, y, s, luz_controls_help[i].keys, accent_colour);
-        luz_overlay_text(layer, x + (keys_width + column_gap) * s, y, s,
-                         luz_controls_help[i].action, text_colour);
-    }
-    luz_overlay_text(layer, x, y, s, footer, dim_text_colour);
+    char footer[96];
+    if (layout->first_max > 0)
+        snprintf(footer, sizeof footer, "rows %d-%d of %d: Up / Down or the wheel scroll; H closes",
+                 first + 1, first + layout->rows_shown, layout->rows);
+    else
+        snprintf(footer, sizeof footer, "H closes this help");
+    luz_overlay_text(layer, x, top + (2 + layout->rows_shown) * row, s, footer, dim_text_colour);
 }

@@ -21,6 +21,7 @@
 #include <stdint.h>
 
 #include "app/controls.h"
+#include "luz/view.h"
 #include "luz/framebuffer.h"
 #include "lab/scene.h"
 
@@ -76,6 +77,9 @@ typedef struct luz_layer {
     size_t bucket_start_capacity, bucket_rects_capacity;
     bool finished;
     bool out_of_memory;        /* a rectangle could not be recorded */
+    size_t cut_rects;          /* rectangles recorded that reached past the
+                                  layer's edges, cut (or left out): what a
+                                  small window would hide */
 } luz_layer;
 
 #define LUZ_LAYER_BUCKET_ROWS 16
@@ -191,12 +195,70 @@ float luz_panel_track_value(const luz_panel_layout *layout, int slider, int x);
 void luz_panel_draw(luz_layer *layer, const luz_panel_layout *layout,
                     const luz_panel *panel, const luz_lights *lights);
 
+/* ---- view legends (legend.c) ---------------------------------------------------- */
+
+/* The key to a view's colours: a title and swatches, each a colour of
+ * luz/view.h's palettes with what it means. The viewer's HUD shows it
+ * under its text; luz-render --legend draws it into the PNG. */
+#define LUZ_LEGEND_MAX_ENTRIES 16
+#define LUZ_LEGEND_LABEL_SIZE 24
+
+typedef struct luz_legend_entry {
+    luz_vec3 colour;
+    char label[LUZ_LEGEND_LABEL_SIZE];
+} luz_legend_entry;
+
+typedef struct luz_legend {
+    const char *title;
+    int entry_count;
+    luz_legend_entry entries[LUZ_LEGEND_MAX_ENTRIES];
+} luz_legend;
+
+/* Every entry of the view's key; the bands view has one per thread of
+ * thread_count (at most LUZ_LEGEND_MAX_ENTRIES). The colour view has a
+ * title and no entries. */
+luz_legend luz_legend_of(luz_view view, int thread_count);
+
+/* Draws the legend with its top-left corner at (x, y), the title on the
+ * first line and the swatches in as many rows as max_width needs, at text
+ * scale `scale`, and returns the rectangle it covers. A NULL layer only
+ * measures. */
+luz_rect luz_legend_draw(luz_layer *layer, const luz_legend *legend, int x, int y,
+                         int max_width, int scale);
+/* The legend in a box in the layer's bottom-left corner, as wide as the
+ * layer allows (luz-render --legend). */
+void luz_legend_draw_in_corner(luz_layer *layer, const luz_legend *legend);
+
 /* ---- HUD and help ------------------------------------------------------------ */
 
-typedef struct luz_hud {
+/* The HUD's timings. Frames are counted into a window until it spans
+ * LUZ_HUD_AVERAGE_SECONDS; then the window's averages are what the HUD
+ * shows until the next window closes. The frame time and the renderer's
+ * share of it are averaged over the same frames, so that they compare. */
+#define LUZ_HUD_AVERAGE_SECONDS 0.5
+
+typedef struct luz_hud_timing {
+    /* the window being counted */
+    int window_frames;
+    double window_seconds, window_geometry_ms, window_raster_ms;
+    /* the last closed window's averages; zero before the first closes */
     double frames_per_second;
-    double frame_ms;          /* wall time between frames */
-    double geometry_ms;       /* luz_frame_stats of the last frame */
+    double frame_ms;        /* wall time from one frame's start to the next's */
+    double geometry_ms;     /* luz_frame_stats: vertex, clipping, setup */
+    double raster_ms;       /* raster, depth, shading, the 2D layer */
+} luz_hud_timing;
+
+/* One more frame: `seconds` from the start of the frame before it to its
+ * own, of which the renderer spent geometry_ms and raster_ms. A frame of
+ * no time (the first) is not counted. Returns true when a window closed
+ * and the averages changed. */
+bool luz_hud_timing_add(luz_hud_timing *timing, double seconds, double geometry_ms,
+                        double raster_ms);
+
+typedef struct luz_hud {
+    double frames_per_second;  /* a luz_hud_timing's averages, all four */
+    double frame_ms;
+    double geometry_ms;
     double raster_ms;
     int window_width, window_height;
     float render_scale;
@@ -207,14 +269,42 @@ typedef struct luz_hud {
     uint64_t step_total;      /* and the frame's triangles */
     uint64_t triangles;       /* the last frame's, submitted */
     const luz_scene *scene;   /* its view and interpolation are shown too, with
-                                 the view's legend (luz_view_legend) */
+                                 the view's legend (luz_legend_of) */
+    int max_width;            /* the HUD stays within [0, max_width) (the
+                                 viewer keeps it left of the open panel);
+                                 0: the layer's width */
 } luz_hud;
 
-/* The HUD in the top-left corner. */
+/* The HUD in the top-left corner: its lines broken between their parts
+ * where the width asks for it, and the view's legend under them. */
 void luz_hud_draw(luz_layer *layer, const luz_hud *hud);
 /* A one-line message at the bottom left ("wrote luz-shot-0001.png"). */
 void luz_hud_draw_message(luz_layer *layer, const char *message);
-/* Every control (luz_controls_help), in a box over the scene. */
-void luz_help_draw(luz_layer *layer);
+
+/* The help: every control (luz_controls_help) in a box in the middle of a
+ * width x height framebuffer. The largest text that fits, in one column
+ * or two, long actions wrapped; where even the smallest does not fit (a
+ * framebuffer under about 480x330), one column that scrolls: rows_shown
+ * rows at a time, from a first row between 0 and first_max. */
+typedef struct luz_help_layout {
+    int scale;          /* text scale */
+    int row;            /* row height in pixels */
+    int columns;        /* 1 or 2 */
+    int action_width;   /* the actions' column, at scale 1: they wrap to it */
+    int rows;           /* rows of controls in all, wrapped lines included */
+    int rows_shown;     /* rows in the tallest column, or shown at once */
+    int first_max;      /* 0 when everything is shown */
+    luz_rect box;
+} luz_help_layout;
+
+luz_help_layout luz_help_layout_for(int width, int height);
+/* The first row shown after scrolling by `rows` (negative: up), clamped. */
+int luz_help_scroll(const luz_help_layout *layout, int first, int rows);
+void luz_help_draw(luz_layer *layer, const luz_help_layout *layout, int first);
+
+/* A ring around pixel (x, y) that leaves the pixel and its neighbours
+ * uncovered: white with a black rim, seen on any colour. scale 1 or more
+ * makes it bigger, for large images. (overlay.c) */
+void luz_overlay_mark(luz_layer *layer, int x, int y, int scale);
 
 #endif

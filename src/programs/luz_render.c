@@ -80,7 +80,41 @@ typedef struct render_context {
     const luz_lab *lab;
     luz_framebuffer *framebuffer;
     luz_frame frame;
+    luz_layer layer;       /* --legend and --mark, drawn over every frame */
+    bool has_layer;
 } render_context;
+
+/* The renderer's hook: the legend's and the marks' share of a band. */
+static void fill_layer_rows(void *layer, luz_framebuffer *framebuffer, int first_row,
+                            int end_row)
+{
+    luz_layer_draw_rows(layer, framebuffer, first_row, end_row);
+}
+
+/* Records what --legend and --mark draw over the image; they are the same
+ * for every frame. */
+static int record_layer(render_context *context, int thread_count, luz_error *error)
+{
+    const luz_options *options = context->options;
+    const bool legend = options->legend && options->scene.view != LUZ_VIEW_COLOR;
+    context->has_layer = legend || options->mark_count > 0;
+    if (!context->has_layer)
+        return 0;
+    luz_layer *layer = &context->layer;
+    luz_layer_begin(layer, options->width, options->height);
+    if (legend) {
+        const luz_legend key = luz_legend_of(options->scene.view, thread_count);
+        luz_legend_draw_in_corner(layer, &key);
+    }
+    /* Rings twice the size in a large image, where a picture is shown
+     * scaled down. */
+    const int scale = options->width >= 1000 ? 2 : 1;
+    for (int i = 0; i < options->mark_count; i++)
+        luz_overlay_mark(layer, options->marks[i][0], options->marks[i][1], scale);
+    if (luz_layer_finish(layer) != 0)
+        return luz_error_set(error, "out of memory for the legend and marks");
+    return 0;
+}
 
 /* Draws the scene at the given time into the context's framebuffer. */
 static int render_at(render_context *context, luz_renderer *renderer, double time_seconds,
@@ -94,6 +128,10 @@ static int render_at(render_context *context, luz_renderer *renderer, double tim
         return -1;
     luz_render_options render = luz_scene_render_options(&scene);
     render.stats = stats;
+    /* The legend and marks, filled band by band over the finished rows. */
+    const luz_band_hook fill_layer = {fill_layer_rows, &context->layer};
+    if (context->has_layer)
+        render.hook = &fill_layer;
     return luz_renderer_draw(renderer, &context->frame, context->framebuffer, &render, error);
 }
 
@@ -294,6 +332,8 @@ int main(int argc, char **argv)
     context.framebuffer = luz_framebuffer_create(options.width, options.height, &error);
     if (context.framebuffer == NULL)
         goto done;
+    if (record_layer(&context, luz_renderer_thread_count(renderer), &error) != 0)
+        goto done;
     if ((options.bench_frames > 0 ? bench(&context, renderer, &error)
                                   : render_files(&context, renderer, &error)) != 0)
         goto done;
@@ -303,6 +343,7 @@ done:
     if (status != EXIT_OK)
         luz_error_print("luz-render", error.message[0] ? error.message : "failed");
     luz_frame_free(&context.frame);
+    luz_layer_free(&context.layer);
     if (context.framebuffer != NULL)
         luz_framebuffer_destroy(context.framebuffer);
     if (renderer != NULL)

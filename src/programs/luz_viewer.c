@@ -59,6 +59,11 @@
 #error "src/meson.build passes LUZ_VERSION"
 #endif
 
+/* The smallest window (README, Viewer): every part of the HUD, the light
+ * panel and the help fits in it, the help by scrolling. */
+#define LUZ_VIEWER_MIN_WIDTH 480
+#define LUZ_VIEWER_MIN_HEIGHT 270
+
 enum {
     EXIT_OK = 0,
     EXIT_RUNTIME = 1,   /* rendering failed */
@@ -110,7 +115,8 @@ static int split_arguments(int argc, char **argv, viewer_settings *settings, cha
                            int *scene_argc, luz_error *error)
 {
     static const char *const batch_only[] = {"-o", "--output", "--frames", "--frame-range",
-                                             "--shard", "--skip-existing"};
+                                             "--shard", "--skip-existing", "--legend",
+                                             "--mark"};
     int count = 0;
     scene_argv[count++] = argv[0];
     for (int i = 1; i < argc; i++) {
@@ -131,7 +137,7 @@ static int split_arguments(int argc, char **argv, viewer_settings *settings, cha
         for (size_t k = 0; k < sizeof batch_only / sizeof batch_only[0]; k++) {
             if (names_option(argv[i], batch_only[k], &value))
                 return luz_error_set(error,
-                                     "%s: the viewer writes no frames; this is a luz-render "
+                                     "%s: the viewer writes no images; this is a luz-render "
                                      "option",
                                      batch_only[k]);
         }
@@ -154,8 +160,9 @@ static void print_usage(FILE *out)
             "Fly through the luz lighting lab (rotating textured cubes lit by six lights, as\n"
             "SCENE.md describes) in a window, rendered in real time on the CPU.\n"
             "\n"
-            "The scene options are luz-render's (-o, --frames, --frame-range, --shard and\n"
-            "--skip-existing are luz-render's alone; the viewer refuses them; --bench N\n"
+            "The scene options are luz-render's (-o, --frames, --frame-range, --shard,\n"
+            "--skip-existing, --legend and --mark are luz-render's alone; the viewer\n"
+            "refuses them, and shows the view's legend in its HUD; --bench N\n"
             "shows its N frames in the window and prints the same line, window included,\n"
             "then quits):\n");
     luz_options_print_help(out);
@@ -174,12 +181,16 @@ static void print_usage(FILE *out)
             "F2 and F12 write into the current directory. Without a display, render the\n"
             "same scenes to PNG files with luz-render.\n"
             "\n"
+            "The window is at least %dx%d pixels: a smaller --size opens it at that size,\n"
+            "and the HUD, the light panel and the help fit in it (the help scrolls).\n"
+            "\n"
             "On X11 at render scale 1, frames are drawn straight into the window's\n"
             "shared memory. LUZ_PRESENT=sdl shows them through SDL instead;\n"
             "LUZ_PRESENT=x11 prints why shared memory cannot be used, if it cannot.\n"
             "\n"
             "Exit status: 0 when the window is closed, 2 for a bad option, scene file or\n"
-            "textures directory or when no display is available, 1 if rendering failed.\n");
+            "textures directory or when no display is available, 1 if rendering failed.\n",
+            LUZ_VIEWER_MIN_WIDTH, LUZ_VIEWER_MIN_HEIGHT);
 }
 
 /* ---- the viewer --------------------------------------------------------------------------- */
@@ -198,6 +209,8 @@ typedef struct viewer {
     bool paused;
     bool hud_visible;
     bool help_visible;
+    luz_help_layout help_layout;     /* for the framebuffer's size */
+    int help_first;                  /* the first row shown, when it scrolls */
     bool screenshot_requested;
     luz_step_mode step;              /* G: the frame triangle by triangle */
     bool paused_before_step;         /* the step mode freezes the animation */
@@ -222,11 +235,9 @@ typedef struct viewer {
     luz_frame_stats stats;
     luz_layer layer;                 /* the HUD, panel, help and message */
 
-    /* frames per second, measured over half a second */
+    /* the HUD's frame rate and timings, averaged over half a second */
     Uint64 last_counter;
-    double fps_seconds;
-    int fps_frames;
-    double frames_per_second, frame_ms;
+    luz_hud_timing timing;
     double present_ms;               /* showing the last frame */
 
     char message[640];               /* shown at the bottom for a few seconds */
@@ -262,17 +273,20 @@ static void free_file_name(const char *prefix, const char *suffix, int *number, 
  * as fast as luz looks cannot hold the viewer. */
 #define MAX_NAME_RACES 100
 
-/* A saved scene is rendered by luz-render at the window's size. */
-static void use_window_size(viewer *v)
+/* What a saved scene keeps of the viewer itself: the window's size, at
+ * which luz-render renders it, and the pause, which the viewer opens it
+ * with (the user's pause: the step mode's own freeze is not saved). */
+static void use_viewer_state(viewer *v)
 {
     v->options->width = v->window_width;
     v->options->height = v->window_height;
+    v->options->paused = v->step.on ? v->paused_before_step : v->paused;
 }
 
 /* --print-state: the scene as luz-render should render it. */
 static void write_state(viewer *v, FILE *out)
 {
-    use_window_size(v);
+    use_viewer_state(v);
     /* Standard output may be a file under ulimit -f: the write then fails
      * (main reports it when it flushes) rather than kill the viewer with
      * SIGXFSZ. */
@@ -289,7 +303,7 @@ static void save_scene(viewer *v)
 {
     char path[64], message[LUZ_ERROR_MESSAGE_SIZE + 64];
     luz_error error = {{0}};
-    use_window_size(v);
+    use_viewer_state(v);
     int status = LUZ_FILE_EXISTS;
     for (int race = 0; race < MAX_NAME_RACES && status == LUZ_FILE_EXISTS; race++) {
         free_file_name("luz-scene", "luz", &v->next_scene, path, sizeof path);
@@ -347,6 +361,13 @@ static void to_framebuffer(const viewer *v, int x, int y, int *fx, int *fy)
 
 /* ---- input ----------------------------------------------------------------------------------- */
 
+/* Whether the help is open and too long for the window: then the arrow
+ * keys and the wheel scroll it. */
+static bool help_scrolls(const viewer *v)
+{
+    return v->help_visible && v->help_layout.first_max > 0;
+}
+
 static void handle_key(viewer *v, const SDL_KeyboardEvent *key)
 {
     luz_scene *scene = &v->options->scene;
@@ -365,7 +386,11 @@ static void handle_key(viewer *v, const SDL_KeyboardEvent *key)
     case SDLK_DOWN:
     case SDLK_LEFT:
     case SDLK_RIGHT:
-        if (v->panel_open) {
+        if (help_scrolls(v)) {
+            if (code == SDLK_UP || code == SDLK_DOWN)
+                v->help_first = luz_help_scroll(&v->help_layout, v->help_first,
+                                                code == SDLK_UP ? -1 : 1);
+        } else if (v->panel_open) {
             luz_panel_key panel_key = code == SDLK_UP     ? LUZ_PANEL_UP
                                       : code == SDLK_DOWN ? LUZ_PANEL_DOWN
                                       : code == SDLK_LEFT ? LUZ_PANEL_LEFT
@@ -387,6 +412,7 @@ static void handle_key(viewer *v, const SDL_KeyboardEvent *key)
     case SDLK_ESCAPE: v->running = false; break;
     case SDLK_TAB: set_panel_open(v, !v->panel_open); break;
     case SDLK_c: luz_camera_reset(&scene->camera, &v->start_camera); break;
+    case SDLK_r: luz_lights_reset(&scene->lights, &v->switches); break;
     case SDLK_F5: scene->seed = luz_seed_next(scene->seed, (uint32_t)SDL_GetPerformanceCounter()); break;
     case SDLK_f: scene->filter = luz_filter_next(scene->filter); break;
     case SDLK_v: scene->view = luz_view_next(scene->view, shift); break;
@@ -405,7 +431,12 @@ static void handle_key(viewer *v, const SDL_KeyboardEvent *key)
         break;
     case SDLK_t: v->paused = !v->paused; break;
     case SDLK_i: v->hud_visible = !v->hud_visible; break;
-    case SDLK_h: v->help_visible = !v->help_visible; break;
+    case SDLK_h:
+        v->help_visible = !v->help_visible;
+        v->help_first = 0;
+        /* The panel is hidden under the help: let go of its slider. */
+        luz_panel_mouse_release(&v->panel);
+        break;
     case SDLK_F2: save_scene(v); break;
     case SDLK_F12: v->screenshot_requested = true; break;
     case SDLK_F11: {
@@ -444,10 +475,17 @@ static void handle_event(viewer *v, const SDL_Event *event)
         }
         break;
     case SDL_MOUSEBUTTONDOWN:
-        if (v->panel_open && event->button.button == SDL_BUTTON_LEFT) {
+        /* The help covers the panel (which is not drawn meanwhile): a
+         * click on the help must not reach a slider hidden under it. */
+        if (v->panel_open && !v->help_visible && event->button.button == SDL_BUTTON_LEFT) {
             to_framebuffer(v, event->button.x, event->button.y, &x, &y);
             luz_panel_mouse_press(&v->panel, &v->layout, lights, &v->switches, x, y);
         }
+        break;
+    case SDL_MOUSEWHEEL:
+        if (help_scrolls(v))
+            v->help_first = luz_help_scroll(&v->help_layout, v->help_first,
+                                            event->wheel.y > 0 ? -3 : 3);
         break;
     case SDL_MOUSEBUTTONUP:
         if (event->button.button == SDL_BUTTON_LEFT)
@@ -460,12 +498,13 @@ static void handle_event(viewer *v, const SDL_Event *event)
 
 /* The motion keys held now. Letters are read by what they type (W and Z,
  * A and Q are both there for QWERTY and AZERTY, as in the report), arrows
- * by where they are; the arrows belong to the panel while it is open. */
+ * by where they are; the arrows belong to the panel while it is open, and
+ * to the help while it is open and scrolls. */
 static luz_motion held_motion(const viewer *v)
 {
     const Uint8 *keys = SDL_GetKeyboardState(NULL);
 #define HELD(keycode) (keys[SDL_GetScancodeFromKey(keycode)] != 0)
-    bool arrows = !v->panel_open;
+    bool arrows = !v->panel_open && !help_scrolls(v);
     bool space = HELD(SDLK_SPACE);
     bool shift = (SDL_GetModState() & KMOD_SHIFT) != 0;
     luz_motion motion = {
@@ -482,7 +521,8 @@ static luz_motion held_motion(const viewer *v)
 
 /* ---- one frame --------------------------------------------------------------------------------- */
 
-/* Seconds since the last call; the first call gives 0. */
+/* Seconds since the last call; the first call gives 0. Feeds the HUD's
+ * averages. */
 static double tick(viewer *v)
 {
     Uint64 now = SDL_GetPerformanceCounter();
@@ -490,14 +530,9 @@ static double tick(viewer *v)
                                            (double)SDL_GetPerformanceFrequency()
                                      : 0.0;
     v->last_counter = now;
-    v->fps_seconds += seconds;
-    v->fps_frames++;
-    if (v->fps_seconds >= 0.5) {
-        v->frames_per_second = v->fps_frames / v->fps_seconds;
-        v->frame_ms = 1000.0 * v->fps_seconds / v->fps_frames;
-        v->fps_seconds = 0.0;
-        v->fps_frames = 0;
-    }
+    /* The seconds since the last tick are the last frame's, and so are
+     * the renderer's timings in v->stats: counted together. */
+    luz_hud_timing_add(&v->timing, seconds, v->stats.geometry_ms, v->stats.raster_ms);
     return seconds;
 }
 
@@ -536,6 +571,8 @@ static int fit_framebuffer(viewer *v, luz_error *error)
     if (luz_framebuffer_resize(v->framebuffer, width, height, error) != 0)
         return -1;
     v->layout = luz_panel_layout_for(width, height);
+    v->help_layout = luz_help_layout_for(width, height);
+    v->help_first = luz_help_scroll(&v->help_layout, v->help_first, 0);
 #ifdef LUZ_VIEWER_X11
     if (v->x11 != NULL) {
         if (x11_presenter_resize(v->x11, width, height, error) != 0)
@@ -560,23 +597,22 @@ static int fit_framebuffer(viewer *v, luz_error *error)
 }
 
 /* Records the 2D layer over the scene: the help alone when it is open,
- * else the HUD and the panel as they are switched, the panel on top (in a
- * small window the HUD reaches under it, and the panel is what the mouse
- * is using); a message on top of anything. It is recorded before the
+ * else the HUD and the panel as they are switched, the HUD kept left of
+ * the panel; a message on top of anything. It is recorded before the
  * frame is drawn, so the HUD shows the last frame's timings. */
 static int record_overlays(viewer *v, luz_error *error)
 {
     luz_layer *layer = &v->layer;
     luz_layer_begin(layer, v->framebuffer->width, v->framebuffer->height);
     if (v->help_visible) {
-        luz_help_draw(layer);
+        luz_help_draw(layer, &v->help_layout, v->help_first);
     } else {
         if (v->hud_visible) {
             luz_hud hud = {
-                .frames_per_second = v->frames_per_second,
-                .frame_ms = v->frame_ms,
-                .geometry_ms = v->stats.geometry_ms,
-                .raster_ms = v->stats.raster_ms,
+                .frames_per_second = v->timing.frames_per_second,
+                .frame_ms = v->timing.frame_ms,
+                .geometry_ms = v->timing.geometry_ms,
+                .raster_ms = v->timing.raster_ms,
                 .window_width = v->window_width,
                 .window_height = v->window_height,
                 .render_scale = v->settings.render_scale,
@@ -587,6 +623,8 @@ static int record_overlays(viewer *v, luz_error *error)
                 .step_total = v->stats.triangles_rasterised,
                 .triangles = v->stats.triangles_submitted,
                 .scene = &v->options->scene,
+                /* left of the open panel, with a margin's gap */
+                .max_width = v->panel_open ? v->layout.box.x : 0,
             };
             luz_hud_draw(layer, &hud);
         }
@@ -821,6 +859,9 @@ static int open_window(viewer *v, luz_error *error)
     if (v->window == NULL)
         return luz_error_set(error, "cannot open a %dx%d window: %s", v->options->width,
                              v->options->height, SDL_GetError());
+    /* The HUD, the panel and the help are laid out for any window from
+     * this size up; SDL makes a smaller --size this size. */
+    SDL_SetWindowMinimumSize(v->window, LUZ_VIEWER_MIN_WIDTH, LUZ_VIEWER_MIN_HEIGHT);
 #ifdef LUZ_VIEWER_X11
     const char *wanted = getenv("LUZ_PRESENT");
     if (v->settings.render_scale == 1.0f && !(wanted != NULL && strcmp(wanted, "sdl") == 0)) {
@@ -886,6 +927,7 @@ int main(int argc, char **argv)
 
     status = EXIT_RUNTIME;
     v.start_camera = options.scene.camera;
+    v.paused = options.paused;   /* a view saved while paused opens paused */
     luz_panel_init(&v.panel);
     const luz_renderer_desc desc = luz_options_renderer_desc(&options);
     v.renderer = luz_renderer_create(&desc, &error);

@@ -3,16 +3,23 @@
  * between them. Private to the library (and its tests).
  *
  *   luz_draw (mesh + model + material)                   luz/frame.h
- *     -> vertex.c    luz_clip_vertex per mesh vertex     clip space + varyings
- *     -> clip.c      luz_clip_polygon per triangle       inside the clip volume
- *     -> setup.c     luz_triangle per fan triangle       fixed-point edges, planes
- *     -> raster.c    depth + visibility per pixel        who is nearest
+ *     -> vertex.c    luz_vertex_stage: a luz_clip_vertex per mesh vertex
+ *                                                        clip space + varyings
+ *     -> clip.c      luz_clip_triangle: a luz_clip_polygon per triangle that
+ *                    crosses a plane (the others pass)   inside the clip volume
+ *     -> setup.c     luz_setup_triangle: a luz_triangle per fan triangle
+ *                                                        fixed-point edges, planes
+ *     -> raster.c    luz_raster_triangle: depth + visibility per pixel
+ *                                                        who is nearest
  *     -> fragment.c  colour per visible pixel            interpolate, sample, shade
- *                      (texture.c samples, shade.c lights)
+ *                      (texture.c samples; the six light terms are the
+ *                      inline functions of luz/shade.h)
  *     or view.c      a picture of a stage (--view)       depth, normals, uv, ...
  *
- * frame.c runs them in that order, and bands.c spreads the work over
- * threads. Each stage is a function of its inputs: no globals.
+ * frame.c runs them in that order: geometry_of_draw the first three,
+ * bin_triangles lists each band's triangles, band_job the rest for a band
+ * of rows; bands.c spreads the work over threads. Each stage is a function
+ * of its inputs: no globals.
  */
 #ifndef LUZ_PIPELINE_H
 #define LUZ_PIPELINE_H

@@ -26,9 +26,16 @@
  *   overdraw   the count raster.c kept (luz_raster_triangle_counting)
  *   bands      the shaded image (fragment.c), dimmed, under the tint of the
  *              thread that drew this band, background included
- *   triangles  each winning triangle's colour, and black within
- *              TRIANGLE_EDGE_PIXELS of any of its edges, measured with the
- *              same fixed-point edge functions the rasteriser tests
+ *   triangles  each winning triangle's colour, darkened (times
+ *              LUZ_VIEW_TRIANGLE_EDGE_SHADE) where a neighbouring pixel's
+ *              centre is outside that triangle: the pixels along an edge,
+ *              each still in its own triangle's hue, so that which of two
+ *              triangles owns each pixel of their shared edge can be read
+ *              off the picture (the fill rule gives it to one of them).
+ *              Coverage is the rasteriser's own test (the fixed-point edge
+ *              functions with the top-left rule folded in), evaluated at
+ *              the neighbour's centre; it reads no other row, so a band
+ *              needs nothing from the bands around it.
  *
  * depth and overdraw colour the background by their palettes (it has a
  * depth, the far plane, and a count, 0); the others give it the clear
@@ -45,9 +52,6 @@
 #include "renderer/pipeline.h"
 #include "luz/texture.h"
 #include "luz/view.h"
-
-/* How close to an edge, in pixels, a pixel centre is drawn as edge. */
-#define TRIANGLE_EDGE_PIXELS 0.75
 
 /* ---- palettes (luz/view.h) ---------------------------------------------- */
 
@@ -70,11 +74,18 @@ const char *luz_view_legend(luz_view view)
     case LUZ_VIEW_NORMALS: return "normals: (N + 1) / 2; +x red, +y green, +z blue";
     case LUZ_VIEW_UV: return "uv: red = fract(u), green = fract(v)";
     case LUZ_VIEW_MIP:
-        return "mip: level 0 red, 1 orange, 2 yellow, 3 green, 4 cyan, 5 blue, 6 violet...";
+        return "mip: level 0 red, 1 orange, 2 yellow, 3 green, 4 cyan, 5 blue, 6 violet, "
+               "7 magenta, 8 white, 9 and up grey, untextured dark grey; blended by "
+               "fract(lambda)";
     case LUZ_VIEW_OVERDRAW:
-        return "overdraw: depth tests, 1 dark blue, 2 blue, 3 cyan, 4 green, 5 yellow... 8+ white";
-    case LUZ_VIEW_BANDS: return "bands: tint = thread; 0 orange, 1 blue, 2 green, 3 magenta";
-    case LUZ_VIEW_TRIANGLES: return "triangles: one colour per triangle, edges black";
+        return "overdraw: depth tests per pixel, 0 black, 1 dark blue, 2 blue, 3 cyan, "
+               "4 green, 5 yellow, 6 orange, 7 red, 8 or more white";
+    case LUZ_VIEW_BANDS:
+        return "bands: tint = thread; 0 orange, 1 blue, 2 green, 3 magenta, others hues "
+               "around the circle";
+    case LUZ_VIEW_TRIANGLES:
+        return "triangles: one colour per triangle (ids 1, 2, ... in draw order), darker "
+               "where a neighbouring pixel is another triangle's";
     case LUZ_VIEW_COUNT: break;
     }
     return "";
@@ -168,24 +179,30 @@ static luz_vec3 mip_colour(const luz_texture *texture, luz_filter filter,
                levels.blend);
 }
 
-/* Distance in pixels from pixel (x, y)'s centre to the nearest of the
- * triangle's three edges (lines through them). */
-static double edge_distance(const luz_triangle *triangle, int x, int y)
+/* Whether the triangle covers pixel (x, y)'s centre: the rasteriser's
+ * test, E >= 0 for the three edge functions, in the same exact integers
+ * (raster.c computes the same values a row at a time). */
+static bool covers(const luz_triangle *triangle, int x, int y)
 {
     const int64_t sample_x = (int64_t)x * LUZ_SUBPIXEL_ONE + LUZ_SUBPIXEL_ONE / 2;
     const int64_t sample_y = (int64_t)y * LUZ_SUBPIXEL_ONE + LUZ_SUBPIXEL_ONE / 2;
-    double nearest = INFINITY;
     for (int k = 0; k < 3; k++) {
         const luz_edge *edge = &triangle->edges[k];
-        /* E is the doubled area of the sample with the edge, in sub-pixel
-         * units squared; over the edge's length it is a distance. */
-        double e = (double)(edge->a * sample_x + edge->b * sample_y + edge->c);
-        double length = sqrt((double)edge->a * (double)edge->a +
-                             (double)edge->b * (double)edge->b);
-        double distance = fabs(e) / (length * LUZ_SUBPIXEL_ONE);
-        if (distance < nearest) nearest = distance;
+        if (edge->a * sample_x + edge->b * sample_y + edge->c < 0) return false;
     }
-    return nearest;
+    return true;
+}
+
+/* A pixel of the triangle is on its edge when one of its four neighbours
+ * in the image lies outside it: that neighbour belongs to another
+ * triangle, or to none. (A neighbour inside the triangle that a nearer
+ * triangle won is marked on the nearer one's side, whose edge it is.) */
+static bool on_edge(const luz_triangle *triangle, int x, int y, int width, int height)
+{
+    return (x > 0 && !covers(triangle, x - 1, y)) ||
+           (x + 1 < width && !covers(triangle, x + 1, y)) ||
+           (y > 0 && !covers(triangle, x, y - 1)) ||
+           (y + 1 < height && !covers(triangle, x, y + 1));
 }
 
 /* Mixes the tint into the rows fragment.c has just shaded, reading each
@@ -271,9 +288,9 @@ uint64_t luz_view_shade_rows(const luz_uniforms *uniforms, const luz_draw *draws
                 colour = mip_colour(material->texture, material->filter, &fragment);
                 break;
             case LUZ_VIEW_TRIANGLES:
-                colour = edge_distance(triangle, x, y) < TRIANGLE_EDGE_PIXELS
-                             ? (luz_vec3){0.0f, 0.0f, 0.0f}
-                             : luz_view_triangle_colour(id);
+                colour = luz_view_triangle_colour(id);
+                if (on_edge(triangle, x, y, width, framebuffer->height))
+                    colour = luz_vec3_scale(colour, LUZ_VIEW_TRIANGLE_EDGE_SHADE);
                 break;
             default:
                 break;
