@@ -20,22 +20,13 @@
  * arithmetic is the same exact integers as testing each pixel, so the fill
  * rule (folded into the edges by setup.c) holds to the last pixel, and
  * the result does not depend on where a band starts.
+ *
+ * The per-pixel arithmetic (a row's span, the depth at a pixel centre) is
+ * in pipeline.h, luz_raster_row_span and luz_raster_depth, shared with the
+ * pixel probe (probe.c) so that its account of a pixel's depth tests is
+ * this file's arithmetic. Inlined, it compiles to the same loop.
  */
 #include "renderer/pipeline.h"
-
-/* Narrows [*first, *last] to the x where edge E(x) = e + s x >= 0. */
-static void clip_span_to_edge(int64_t e, int64_t s, int64_t *first, int64_t *last)
-{
-    if (s > 0) {
-        int64_t bound = luz_ceil_divide(-e, s);
-        if (bound > *first) *first = bound;
-    } else if (s < 0) {
-        int64_t bound = luz_floor_divide(e, -s);
-        if (bound < *last) *last = bound;
-    } else if (e < 0) {
-        *last = *first - 1;                        /* empty */
-    }
-}
 
 /* The rasteriser itself. overdraw, when not NULL, counts the depth tests of
  * every pixel (the overdraw view). The two public functions below call it
@@ -52,25 +43,16 @@ static inline __attribute__((always_inline)) uint64_t raster_triangle(const luz_
     uint64_t tests = 0;
 
     for (int y = y_begin; y < y_end; y++) {
-        const int64_t sample_y = (int64_t)y * LUZ_SUBPIXEL_ONE + LUZ_SUBPIXEL_ONE / 2;
-        int64_t first = triangle->min_x, last = triangle->max_x;
-        for (int k = 0; k < 3; k++) {
-            const luz_edge *edge = &triangle->edges[k];
-            /* E at the centre of pixel 0 of this row, and its step per pixel. */
-            int64_t e = edge->a * (LUZ_SUBPIXEL_ONE / 2) + edge->b * sample_y + edge->c;
-            clip_span_to_edge(e, edge->a * LUZ_SUBPIXEL_ONE, &first, &last);
-        }
+        int64_t first, last;
+        luz_raster_row_span(triangle, y, &first, &last);
         if (first > last) continue;
 
-        /* Depth is affine in window coordinates: one multiply-add a pixel
-         * from the row's value, each pixel computed directly so that its
-         * value never depends on where the span began. */
-        const float row_depth =
-            depth.value + depth.dy * ((float)y + 0.5f - triangle->reference_y);
+        /* Depth is affine in window coordinates (luz_raster_depth). */
+        const float row_depth = luz_raster_row_depth(depth, triangle->reference_y, y);
         float *depth_row = framebuffer->depth + (size_t)y * width;
         uint32_t *visibility_row = framebuffer->visibility + (size_t)y * width;
         for (int x = (int)first; x <= (int)last; x++) {
-            float z = row_depth + depth.dx * ((float)x + 0.5f - triangle->reference_x);
+            float z = luz_raster_depth(depth, triangle->reference_x, row_depth, x);
             if (z < depth_row[x]) {    /* GL_LESS */
                 depth_row[x] = z;
                 visibility_row[x] = triangle_id;

@@ -168,9 +168,7 @@ static luz_vec3 mip_colour(const luz_texture *texture, luz_filter filter,
                levels.blend);
 }
 
-/* Distance in pixels from pixel (x, y)'s centre to the nearest of the
- * triangle's three edges (lines through them). */
-static double edge_distance(const luz_triangle *triangle, int x, int y)
+double luz_view_edge_distance(const luz_triangle *triangle, int x, int y)
 {
     const int64_t sample_x = (int64_t)x * LUZ_SUBPIXEL_ONE + LUZ_SUBPIXEL_ONE / 2;
     const int64_t sample_y = (int64_t)y * LUZ_SUBPIXEL_ONE + LUZ_SUBPIXEL_ONE / 2;
@@ -188,24 +186,69 @@ static double edge_distance(const luz_triangle *triangle, int x, int y)
     return nearest;
 }
 
+luz_vec3 luz_view_bands_colour(const uint8_t rgb[3], int worker_index)
+{
+    const luz_vec3 tint = luz_view_thread_colour(worker_index);
+    return (luz_vec3){
+        (1.0f - LUZ_VIEW_BANDS_TINT) * (rgb[0] / 255.0f) + LUZ_VIEW_BANDS_TINT * tint.x,
+        (1.0f - LUZ_VIEW_BANDS_TINT) * (rgb[1] / 255.0f) + LUZ_VIEW_BANDS_TINT * tint.y,
+        (1.0f - LUZ_VIEW_BANDS_TINT) * (rgb[2] / 255.0f) + LUZ_VIEW_BANDS_TINT * tint.z,
+    };
+}
+
 /* Mixes the tint into the rows fragment.c has just shaded, reading each
  * channel back from the byte the channel order put it in. */
 static void tint_rows_by_thread(luz_framebuffer *framebuffer, int first_row, int end_row,
                                 int worker_index)
 {
-    const luz_vec3 tint = luz_view_thread_colour(worker_index);
     const luz_pixel_layout layout = luz_pixel_layout_of(framebuffer->channel_order);
     const size_t begin = (size_t)first_row * framebuffer->width;
     const size_t end = (size_t)end_row * framebuffer->width;
-    const float shown[3] = {tint.x, tint.y, tint.z};
-    const int offset[3] = {layout.red, 1, layout.blue};
     for (size_t i = begin; i < end; i++) {
         uint8_t *pixel = framebuffer->colour + i * 4;
-        for (int c = 0; c < 3; c++) {
-            uint8_t *byte = pixel + offset[c];
-            *byte = luz_colour_to_byte((1.0f - LUZ_VIEW_BANDS_TINT) * (*byte / 255.0f) +
-                                       LUZ_VIEW_BANDS_TINT * shown[c]);
-        }
+        const uint8_t rgb[3] = {pixel[layout.red], pixel[1], pixel[layout.blue]};
+        luz_pixel_write(pixel, layout, luz_view_bands_colour(rgb, worker_index));
+    }
+}
+
+luz_vec3 luz_view_pixel(const luz_uniforms *uniforms, const luz_draw *draws,
+                        const luz_triangle *const *by_id, const luz_framebuffer *framebuffer,
+                        int x, int y, const uint32_t *overdraw)
+{
+    const luz_view view = uniforms->show;
+    const size_t index = (size_t)y * framebuffer->width + x;
+    const uint32_t id = framebuffer->visibility[index];
+    /* Two views colour the background by their palettes: it has a depth
+     * (the far plane) and a count of depth tests (0). The others give it
+     * the clear colour, below. */
+    if (view == LUZ_VIEW_DEPTH) {
+        float grey = luz_view_depth_brightness(framebuffer->depth[index], &uniforms->projection);
+        return (luz_vec3){grey, grey, grey};
+    }
+    if (view == LUZ_VIEW_OVERDRAW)
+        return luz_view_overdraw_colour(overdraw ? overdraw[index] : 0);
+    if (id == 0) return uniforms->clear_colour;
+
+    const luz_triangle *triangle = by_id[id];
+    const luz_material *material = &draws[triangle->draw_index].material;
+    luz_fragment fragment;
+    if (view != LUZ_VIEW_TRIANGLES) luz_fragment_interpolate(triangle, x, y, &fragment);
+    switch (view) {
+    case LUZ_VIEW_NORMALS: {
+        luz_vec3 n = luz_vec3_normalize(fragment.normal);
+        return (luz_vec3){n.x * 0.5f + 0.5f, n.y * 0.5f + 0.5f, n.z * 0.5f + 0.5f};
+    }
+    case LUZ_VIEW_UV:
+        return (luz_vec3){luz_texture_repeat(fragment.uv.x), luz_texture_repeat(fragment.uv.y),
+                          0.0f};
+    case LUZ_VIEW_MIP:
+        return mip_colour(material->texture, material->filter, &fragment);
+    case LUZ_VIEW_TRIANGLES:
+        return luz_view_edge_distance(triangle, x, y) < TRIANGLE_EDGE_PIXELS
+                   ? (luz_vec3){0.0f, 0.0f, 0.0f}
+                   : luz_view_triangle_colour(id);
+    default:
+        return (luz_vec3){0.0f, 0.0f, 0.0f};
     }
 }
 
@@ -214,8 +257,7 @@ uint64_t luz_view_shade_rows(const luz_uniforms *uniforms, const luz_draw *draws
                              int first_row, int end_row, const uint32_t *overdraw,
                              int worker_index)
 {
-    const luz_view view = uniforms->show;
-    if (view == LUZ_VIEW_BANDS) {
+    if (uniforms->show == LUZ_VIEW_BANDS) {
         uint64_t shaded = luz_fragment_shade_rows(uniforms, draws, by_id, framebuffer,
                                                   first_row, end_row);
         tint_rows_by_thread(framebuffer, first_row, end_row, worker_index);
@@ -229,57 +271,9 @@ uint64_t luz_view_shade_rows(const luz_uniforms *uniforms, const luz_draw *draws
         const size_t row = (size_t)y * width;
         uint8_t *colour_row = framebuffer->colour + row * 4;
         for (int x = 0; x < width; x++) {
-            const uint32_t id = framebuffer->visibility[row + x];
-            uint8_t *pixel = colour_row + (size_t)x * 4;
-            /* Two views colour the background by their palettes: it has a
-             * depth (the far plane) and a count of depth tests (0). The
-             * others give it the clear colour, below. */
-            if (view == LUZ_VIEW_DEPTH) {
-                float grey = luz_view_depth_brightness(framebuffer->depth[row + x],
-                                                       &uniforms->projection);
-                luz_pixel_write(pixel, layout, (luz_vec3){grey, grey, grey});
-                shaded += id != 0;
-                continue;
-            }
-            if (view == LUZ_VIEW_OVERDRAW) {
-                luz_pixel_write(pixel, layout,
-                                luz_view_overdraw_colour(overdraw ? overdraw[row + x] : 0));
-                shaded += id != 0;
-                continue;
-            }
-            if (id == 0) {
-                luz_pixel_write(pixel, layout, uniforms->clear_colour);
-                continue;
-            }
-
-            const luz_triangle *triangle = by_id[id];
-            const luz_material *material = &draws[triangle->draw_index].material;
-            luz_fragment fragment;
-            if (view != LUZ_VIEW_TRIANGLES) luz_fragment_interpolate(triangle, x, y, &fragment);
-            luz_vec3 colour = {0.0f, 0.0f, 0.0f};
-            switch (view) {
-            case LUZ_VIEW_NORMALS: {
-                luz_vec3 n = luz_vec3_normalize(fragment.normal);
-                colour = (luz_vec3){n.x * 0.5f + 0.5f, n.y * 0.5f + 0.5f, n.z * 0.5f + 0.5f};
-                break;
-            }
-            case LUZ_VIEW_UV:
-                colour = (luz_vec3){luz_texture_repeat(fragment.uv.x),
-                                    luz_texture_repeat(fragment.uv.y), 0.0f};
-                break;
-            case LUZ_VIEW_MIP:
-                colour = mip_colour(material->texture, material->filter, &fragment);
-                break;
-            case LUZ_VIEW_TRIANGLES:
-                colour = edge_distance(triangle, x, y) < TRIANGLE_EDGE_PIXELS
-                             ? (luz_vec3){0.0f, 0.0f, 0.0f}
-                             : luz_view_triangle_colour(id);
-                break;
-            default:
-                break;
-            }
-            luz_pixel_write(pixel, layout, colour);
-            shaded++;
+            luz_pixel_write(colour_row + (size_t)x * 4, layout,
+                            luz_view_pixel(uniforms, draws, by_id, framebuffer, x, y, overdraw));
+            shaded += framebuffer->visibility[row + x] != 0;
         }
     }
     return shaded;
