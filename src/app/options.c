@@ -208,9 +208,10 @@ static const option_spec option_table[] = {
      .default_text = "off"},
     /* A question about one run, not part of a scene. */
     {.name = "probe", .kind = OPTION_PROBE, .syntax = "X,Y",
-     .summary = "explain pixel X,Y (row 0 on top): print its depth tests, the winning "
-                "triangle, its varyings, texel and six light terms, and its bytes, one "
-                "key=value a line on stdout; writes a PNG only with -o (README, luz-render)",
+     .summary = "explain pixel X,Y (row 0 on top): its depth tests, the winning triangle, "
+                "its varyings, texel, six light terms and bytes; luz-render prints them on "
+                "stdout, one key=value a line, and writes a PNG only with -o; the viewer "
+                "opens its probe panel on the pixel",
      .default_text = "off"},
     {.name = "model", .kind = OPTION_MODEL, .syntax = "FILE",
      .summary = "draw this model (OBJ, glTF, PLY, STL, FBX, ... read with assimp) instead of "
