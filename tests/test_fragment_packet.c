@@ -513,6 +513,112 @@ static void every_byte_written_in_either_order(void **state)
     luz_frame_free(&frame);
 }
 
+
+/* ---- pixel-sized triangles: packets of many triangles ------------------ */
+
+/* A wavy grid of 240 x 135 quads (64,800 triangles) filling a 321 x 181
+ * image, one triangle to about a pixel, in two draws (a vertical split, so
+ * some packets hold triangles of both), textured with each filter: most
+ * packets hold three triangles or more, which the fast path shades in one
+ * pass per draw with each lane's own triangle's planes. The contract is
+ * the one assert_agreement checks, against the reference, for every
+ * variant. */
+static void pixel_sized_triangles(void **state)
+{
+    (void)state;
+    enum { SMALL_WIDTH = 321, SMALL_HEIGHT = 181, COLUMNS = 240, ROWS = 135 };
+    luz_scene scene = luz_scene_defaults();
+    scene.time_seconds = 3.0;
+    luz_frame frame = {0};
+    assert_int_equal(luz_scene_build_frame(test_lab(), &scene, textures.textures, textures.count,
+                                           (float)SMALL_WIDTH / (float)SMALL_HEIGHT, &frame, NULL),
+                     0);
+    frame.draw_count = 0;   /* keep the camera and the lights, draw the grid */
+
+    /* The camera sits at (0, 0, 3) looking down -z with a 45-degree field
+     * of view: at z = 0 the image spans 2 tan(22.5 deg) 3 = 2.49 high. */
+    const float half_height = 1.25f, half_width = half_height * SMALL_WIDTH / SMALL_HEIGHT;
+    luz_vertex *vertices = calloc((size_t)(COLUMNS + 1) * (ROWS + 1), sizeof *vertices);
+    uint32_t *indices = calloc((size_t)COLUMNS * ROWS * 6, sizeof *indices);
+    assert_non_null(vertices);
+    assert_non_null(indices);
+    for (int row = 0; row <= ROWS; row++)
+        for (int column = 0; column <= COLUMNS; column++) {
+            const float u = (float)column / COLUMNS, v = (float)row / ROWS;
+            const float wave = 0.3f * sinf(9.0f * u) * cosf(7.0f * v);
+            vertices[row * (COLUMNS + 1) + column] = (luz_vertex){
+                {(2.0f * u - 1.0f) * half_width, (1.0f - 2.0f * v) * half_height, wave},
+                {sinf(9.0f * u), cosf(7.0f * v), 1.0f},
+                {4.0f * u, 3.0f * v},
+            };
+        }
+    luz_mesh *halves[2];
+    for (int half = 0; half < 2; half++) {
+        size_t count = 0;
+        for (int row = 0; row < ROWS; row++)
+            for (int column = half * COLUMNS / 2; column < (half + 1) * COLUMNS / 2; column++) {
+                const uint32_t a = (uint32_t)(row * (COLUMNS + 1) + column), b = a + 1,
+                               c = a + COLUMNS + 1, d = c + 1;
+                const uint32_t quad[6] = {a, c, d, a, d, b};   /* counter-clockwise */
+                memcpy(&indices[count], quad, sizeof quad);
+                count += 6;
+            }
+        luz_error error = {{0}};
+        halves[half] = luz_mesh_create(
+            &(luz_mesh_desc){.vertices = vertices, .vertex_count = (COLUMNS + 1) * (ROWS + 1),
+                             .indices = indices, .index_count = (uint32_t)count},
+            &error);
+        assert_non_null(halves[half]);
+        luz_draw draw = {.mesh = halves[half], .model = luz_mat4_identity()};
+        draw.material.colour = half ? (luz_vec3){0.9f, 0.6f, 0.3f} : (luz_vec3){0.4f, 0.8f, 1.0f};
+        draw.material.texture = textures.textures[half];
+        assert_int_equal(luz_frame_add_draw(&frame, &draw, &error), 0);
+    }
+    free(vertices);
+    free(indices);
+
+    for (size_t f = 0; f < FILTER_COUNT; f++) {
+        for (int d = 0; d < frame.draw_count; d++) frame.draws[d].material.filter = filters[f];
+        luz_framebuffer *expected =
+            render_over(&frame, SMALL_WIDTH, SMALL_HEIGHT, reference_stage, 0, LUZ_CHANNELS_RGBA);
+        /* Packets of 4 pixels (the narrowest variant) with three triangles
+         * or more: what the per-lane planes are for. */
+        size_t packets = 0, mixed = 0;
+        for (int y = 0; y < SMALL_HEIGHT; y++)
+            for (int x = 0; x + 4 <= SMALL_WIDTH; x += 4) {
+                const uint32_t *ids = expected->visibility + (size_t)y * SMALL_WIDTH + x;
+                int distinct = 0;
+                for (int i = 0; i < 4; i++) {
+                    bool seen = false;
+                    for (int j = 0; j < i; j++) seen = seen || ids[j] == ids[i];
+                    distinct += !seen && ids[i] != 0;
+                }
+                packets++;
+                mixed += distinct >= 3;
+            }
+        assert_true(mixed * 4 > packets);
+        for (size_t v = 0; v < VARIANT_COUNT; v++) {
+            if (!luz_packet_isa_supported(variants[v])) continue;
+            luz_framebuffer *got = render_over(&frame, SMALL_WIDTH, SMALL_HEIGHT,
+                                               (stage){false, variants[v]}, 0, LUZ_CHANNELS_RGBA);
+            agreement a = compare(expected, got);
+            print_message("grid %-9s %-8s identical: %zu/%zu shaded (%.4f%%); max difference "
+                          "%d; %zu of %zu 4-pixel packets hold 3+ triangles\n",
+                          luz_filter_name(filters[f]), variant_names[v], a.shaded_identical,
+                          a.shaded_pixels, percent(a.shaded_identical, a.shaded_pixels),
+                          a.max_difference, mixed, packets);
+            assert_true(a.shaded_pixels * 10 > (size_t)SMALL_WIDTH * SMALL_HEIGHT * 9);
+            assert_true(a.max_difference <= 1);
+            assert_true(a.shaded_identical * 1000 >= a.shaded_pixels * 999);
+            luz_framebuffer_destroy(got);
+        }
+        luz_framebuffer_destroy(expected);
+    }
+    luz_frame_free(&frame);
+    luz_mesh_destroy(halves[0]);
+    luz_mesh_destroy(halves[1]);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -524,6 +630,7 @@ int main(void)
         cmocka_unit_test(same_bytes_for_any_thread_count_and_variant),
         cmocka_unit_test(ambient_only_is_exact),
         cmocka_unit_test(every_byte_written_in_either_order),
+        cmocka_unit_test(pixel_sized_triangles),
     };
     return cmocka_run_group_tests(tests, load_textures, free_textures);
 }

@@ -417,6 +417,246 @@ static void test_bad_frames_are_refused_with_a_reason(void **state)
     luz_renderer_destroy(renderer);
 }
 
+
+/* ---- big meshes: batches --------------------------------------------------------------- */
+
+/* 10,000 small coplanar triangles, all at depth 2: with the LESS depth test
+ * the first triangle (in submission order) that covers a pixel centre
+ * keeps it. Triangle k's three uvs all point at texel k mod 251 of a
+ * texture whose texels all differ, so a pixel says which triangle won.
+ * The renderer cuts a mesh this big into batches over its threads; the
+ * expected winner is worked out here, pixel by pixel, by testing the
+ * triangles in order in double precision. */
+enum { BIG_TRIANGLES = 10000, TEXELS = 251 };
+
+typedef struct big_mesh {
+    luz_vertex vertices[3 * BIG_TRIANGLES];
+    double ndc[BIG_TRIANGLES][3][2];
+    uint8_t texels[TEXELS * 4];
+} big_mesh;
+
+static void make_big_mesh(big_mesh *big)
+{
+    uint32_t random = 12345;
+    for (int t = 0; t < TEXELS; t++) {
+        big->texels[4 * t + 0] = (uint8_t)t;
+        big->texels[4 * t + 1] = (uint8_t)(255 - t);
+        big->texels[4 * t + 2] = (uint8_t)(t * 7);
+        big->texels[4 * t + 3] = 255;
+    }
+    for (int k = 0; k < BIG_TRIANGLES; k++) {
+        double x[3], y[3];
+        double cx, cy;
+        random = random * 1664525u + 1013904223u;
+        cx = (random >> 8) / 16777216.0 * 2.0 - 1.0;
+        random = random * 1664525u + 1013904223u;
+        cy = (random >> 8) / 16777216.0 * 2.0 - 1.0;
+        for (int v = 0; v < 3; v++) {
+            random = random * 1664525u + 1013904223u;
+            x[v] = cx + ((random >> 8) / 16777216.0 - 0.5) * 0.4;
+            random = random * 1664525u + 1013904223u;
+            y[v] = cy + ((random >> 8) / 16777216.0 - 0.5) * 0.4;
+        }
+        /* Counter-clockwise in NDC: a front face. */
+        if ((x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]) < 0.0) {
+            double swap_x = x[1], swap_y = y[1];
+            x[1] = x[2], y[1] = y[2];
+            x[2] = swap_x, y[2] = swap_y;
+        }
+        const luz_vec2 uv = {((float)(k % TEXELS) + 0.5f) / TEXELS, 0.5f};
+        for (int v = 0; v < 3; v++) {
+            /* Stored as the float the vertex holds, so that both sides see
+             * the same triangle. */
+            const float d = 2.0f;
+            big->vertices[3 * k + v] = (luz_vertex){{(float)x[v] * d, (float)y[v] * d, -d},
+                                                    {0.0f, 0.0f, 1.0f}, uv};
+            big->ndc[k][v][0] = big->vertices[3 * k + v].position.x / 2.0;
+            big->ndc[k][v][1] = big->vertices[3 * k + v].position.y / 2.0;
+        }
+    }
+}
+
+/* The winner at pixel (px, py) among triangles [0, count): its index, -1
+ * for none, or -2 when a pixel centre lies so near an edge of a triangle
+ * tested before the winner that the fill rule, not geometry, decides. */
+static int expected_winner(const big_mesh *big, int count, int px, int py)
+{
+    const double x = (px + 0.5) / (SIZE / 2.0) - 1.0, y = 1.0 - (py + 0.5) / (SIZE / 2.0);
+    for (int k = 0; k < count; k++) {
+        bool inside = true, near_or_inside = true;
+        for (int e = 0; e < 3; e++) {
+            const double *a = big->ndc[k][e], *b = big->ndc[k][(e + 1) % 3];
+            /* The distance from the edge's line, positive inside. */
+            const double distance = ((b[0] - a[0]) * (y - a[1]) - (b[1] - a[1]) * (x - a[0])) /
+                                    hypot(b[0] - a[0], b[1] - a[1]);
+            if (distance < 1e-3) inside = false;
+            if (distance < -1e-3) near_or_inside = false;
+        }
+        if (near_or_inside && !inside) return -2;
+        if (inside) return k;
+    }
+    return -1;
+}
+
+static luz_framebuffer *draw_big(const big_mesh *big, luz_texture *texture, int draw_size,
+                                 uint32_t triangle_limit, int threads)
+{
+    luz_frame frame = camera_frame();
+    luz_error error = {{0}};
+    enum { MAX_DRAWS = BIG_TRIANGLES };
+    static luz_mesh *meshes[MAX_DRAWS];
+    int mesh_count = 0;
+    for (int first = 0; first < BIG_TRIANGLES; first += draw_size) {
+        int count = BIG_TRIANGLES - first < draw_size ? BIG_TRIANGLES - first : draw_size;
+        luz_mesh *mesh = luz_mesh_create(
+            &(luz_mesh_desc){.vertices = &big->vertices[3 * first],
+                             .vertex_count = (uint32_t)(3 * count)},
+            &error);
+        assert_non_null(mesh);
+        meshes[mesh_count++] = mesh;
+        luz_draw draw = {.mesh = mesh, .model = luz_mat4_identity()};
+        draw.material.colour = (luz_vec3){1.0f, 1.0f, 1.0f};
+        draw.material.texture = texture;
+        draw.material.filter = LUZ_FILTER_NEAREST;
+        assert_int_equal(luz_frame_add_draw(&frame, &draw, &error), 0);
+    }
+    luz_frame_stats stats = {0};
+    luz_render_options options = {.triangle_limit = triangle_limit, .stats = &stats};
+    luz_framebuffer *framebuffer = render_frame(&frame, &options, threads);
+    assert_int_equal(stats.triangles_submitted, BIG_TRIANGLES);
+    luz_frame_free(&frame);
+    for (int m = 0; m < mesh_count; m++) luz_mesh_destroy(meshes[m]);
+    return framebuffer;
+}
+
+static void assert_winners(const big_mesh *big, const luz_framebuffer *framebuffer, int count)
+{
+    int checked = 0;
+    for (int py = 0; py < SIZE; py++)
+        for (int px = 0; px < SIZE; px++) {
+            int winner = expected_winner(big, count, px, py);
+            if (winner == -2) continue;
+            const uint8_t *rgba = pixel(framebuffer, px, py);
+            if (winner == -1) {
+                assert_pixel(framebuffer, px, py, 0, 0, 0);
+            } else {
+                const uint8_t *texel = &big->texels[4 * (winner % TEXELS)];
+                if (memcmp(rgba, texel, 3) != 0)
+                    fail_msg("pixel %d,%d: %d %d %d, expected triangle %d's %d %d %d", px, py,
+                             rgba[0], rgba[1], rgba[2], winner, texel[0], texel[1], texel[2]);
+            }
+            checked++;
+        }
+    assert_true(checked > SIZE * SIZE * 9 / 10);
+}
+
+/* One draw of 10,000 triangles (cut into batches over the threads) and the
+ * same triangles as 40 draws of 250 (drawn whole, several to a batch): each
+ * pixel is its first triangle's, for 1, 2 and 3 threads; and with
+ * triangle_limit only the first 5,000 triangles take part. */
+static void test_big_mesh_draws_its_triangles_in_order(void **state)
+{
+    (void)state;
+    big_mesh *big = malloc(sizeof *big);
+    assert_non_null(big);
+    make_big_mesh(big);
+    luz_error error = {{0}};
+    luz_texture *texture = luz_texture_create(TEXELS, 1, big->texels, &error);
+    assert_non_null(texture);
+
+    const int draw_sizes[2] = {BIG_TRIANGLES, 250};
+    for (int s = 0; s < 2; s++)
+        for (int threads = 1; threads <= 3; threads++) {
+            luz_framebuffer *framebuffer = draw_big(big, texture, draw_sizes[s], 0, threads);
+            assert_winners(big, framebuffer, BIG_TRIANGLES);
+            luz_framebuffer_destroy(framebuffer);
+        }
+    for (int threads = 1; threads <= 2; threads++) {
+        luz_framebuffer *framebuffer = draw_big(big, texture, BIG_TRIANGLES, 5000, threads);
+        assert_winners(big, framebuffer, 5000);
+        luz_framebuffer_destroy(framebuffer);
+    }
+    luz_texture_destroy(texture);
+    free(big);
+}
+
+/* ---- draws out of sight ---------------------------------------------------------------- */
+
+/* 400 quads, each a draw of its own, scattered around the edges of the
+ * view volume (the 90-degree camera's sides, behind it, across the near
+ * plane at 0.1 and the far plane at 100, in the guard band): the
+ * renderer drops a draw whose bounding box is wholly outside a clip plane
+ * without looking at its triangles. Whatever it drops must draw nothing:
+ * each quad alone, dropped or not, is drawn again with culling out of
+ * reach (its box made huge by a far-off fifth vertex no triangle uses),
+ * and the two images must be the same; a dropped quad's image is all
+ * background. Some quads must be dropped, and the dropped ones' triangles
+ * still count as submitted. */
+static void test_draws_out_of_sight_are_dropped_and_only_those(void **state)
+{
+    (void)state;
+    uint32_t random = 777;
+    int dropped = 0, kept = 0;
+    for (int q = 0; q < 400; q++) {
+        float p[3], size;
+        for (int k = 0; k < 3; k++) {
+            random = random * 1664525u + 1013904223u;
+            p[k] = (float)((random >> 8) / 16777216.0);
+        }
+        random = random * 1664525u + 1013904223u;
+        size = 0.05f + 2.0f * (float)((random >> 8) / 16777216.0);
+        /* Depth from 0.01 behind the camera to 150 in front: some across
+         * the near or far plane; x and y within +-6 depths, beyond the
+         * guard band's 4. */
+        const float depth = q % 4 == 0 ? -0.3f + 0.6f * p[2] : 150.0f * p[2] * p[2];
+        const float x = (p[0] * 12.0f - 6.0f) * fabsf(depth), y = (p[1] * 12.0f - 6.0f) * fabsf(depth);
+        const luz_vec3 n = {0.0f, 0.0f, 1.0f};
+        luz_vertex vertices[5] = {
+            {{x, y, -depth}, n, {0, 0}},
+            {{x + size, y, -depth}, n, {1, 0}},
+            {{x + size, y + size, -depth - size}, n, {1, 1}},
+            {{x, y + size, -depth - size}, n, {0, 1}},
+            {{0.0f, 0.0f, -5.0f}, n, {0, 0}},   /* inside the view: the box with it is seen */
+        };
+        const uint32_t indices[6] = {0, 1, 2, 0, 2, 3};
+        luz_framebuffer *images[2];
+        luz_frame_stats stats[2];
+        for (int variant = 0; variant < 2; variant++) {
+            luz_error error = {{0}};
+            luz_mesh *mesh = luz_mesh_create(
+                &(luz_mesh_desc){.vertices = vertices, .vertex_count = variant ? 5 : 4,
+                                 .indices = indices, .index_count = 6},
+                &error);
+            assert_non_null(mesh);
+            luz_frame frame = camera_frame();
+            luz_draw draw = {.mesh = mesh, .model = luz_mat4_identity()};
+            draw.material.colour = (luz_vec3){1.0f, 1.0f, 1.0f};
+            draw.material.shading = LUZ_SHADING_UNLIT;
+            assert_int_equal(luz_frame_add_draw(&frame, &draw, &error), 0);
+            luz_render_options options = {.stats = &stats[variant]};
+            images[variant] = render_frame(&frame, &options, 1);
+            assert_int_equal(stats[variant].triangles_submitted, 2);
+            luz_frame_free(&frame);
+            luz_mesh_destroy(mesh);
+        }
+        assert_int_equal(stats[1].draws_culled, 0);
+        if (memcmp(images[0]->colour, images[1]->colour, (size_t)SIZE * SIZE * 4) != 0)
+            fail_msg("quad %d (%g, %g, %g, size %g): %s, and drawn differently", q, x, y,
+                     -depth, size, stats[0].draws_culled ? "dropped" : "kept");
+        if (stats[0].draws_culled) {
+            dropped++;
+            for (int i = 0; i < SIZE * SIZE; i++) assert_int_equal(images[0]->visibility[i], 0);
+        } else {
+            kept++;
+        }
+        luz_framebuffer_destroy(images[0]);
+        luz_framebuffer_destroy(images[1]);
+    }
+    print_message("%d quads dropped whole, %d kept\n", dropped, kept);
+    assert_true(dropped > 100);
+    assert_true(kept > 50);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -429,6 +669,8 @@ int main(void)
         cmocka_unit_test(test_zero_desc_is_one_thread_per_cpu),
         cmocka_unit_test(test_textures_and_framebuffers_say_why),
         cmocka_unit_test(test_bad_frames_are_refused_with_a_reason),
+        cmocka_unit_test(test_big_mesh_draws_its_triangles_in_order),
+        cmocka_unit_test(test_draws_out_of_sight_are_dropped_and_only_those),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -65,6 +65,9 @@ typedef struct luz_frame_stats {
             double raster_ms;          /* raster, depth, shade, colour (wall clock) */
             double total_ms;
     uint64_t triangles_submitted;
+    uint64_t draws_culled;        /* draws whose bounding box lay wholly outside
+                                     the clip volume: their triangles (counted
+                                     as submitted) were never looked at */
     uint64_t triangles_clipped;   /* triangles that crossed a clip plane */
     uint64_t triangles_culled;    /* back faces and zero-area triangles */
     uint64_t triangles_rasterised;

@@ -65,6 +65,7 @@ static luz_clip_vertex crossing(const luz_clip_vertex *inside, float inside_dist
     for (int i = 0; i < LUZ_VARYING_COUNT; i++)
         result.varyings[i] =
             inside->varyings[i] + t * (outside->varyings[i] - inside->varyings[i]);
+    result.outcode = luz_clip_outcode(result.position);
     return result;
 }
 

@@ -564,9 +564,84 @@ INLINE vvec3 sample_trilinear(const luz_texture *texture, vfloat u, vfloat v,
 
 /* ---- a packet ---------------------------------------------------------- */
 
-INLINE vfloat plane_at(luz_plane plane, vfloat dx, float dy)
+/* A plane per lane: each lane's own triangle's, so that one pass shades
+ * a packet whose pixels belong to different triangles of one draw. */
+typedef struct vplane {
+    vfloat value, dx, dy;
+} vplane;
+
+INLINE vfloat plane_at(vplane plane, vfloat dx, vfloat dy)
 {
     return plane.value + plane.dx * dx + plane.dy * dy;
+}
+
+/* What shading reads of the lanes' triangles: each pixel centre's offset
+ * from its triangle's reference point, and the 1/w and varying planes. */
+typedef struct lane_triangles {
+    vfloat dx, dy;
+    vplane inverse_w;
+    vplane varyings[LUZ_VARYING_COUNT];
+} lane_triangles;
+
+INLINE vplane splat_plane(luz_plane plane)
+{
+    return (vplane){splat(plane.value), splat(plane.dx), splat(plane.dy)};
+}
+
+/* Every lane the same triangle's. */
+INLINE void one_triangle(lane_triangles *out, const luz_triangle *triangle, vfloat centre_x,
+                         float centre_y)
+{
+    out->dx = centre_x - triangle->reference_x;
+    out->dy = splat(centre_y - triangle->reference_y);
+    out->inverse_w = splat_plane(triangle->inverse_w);
+    for (int k = 0; k < LUZ_VARYING_COUNT; k++)
+        out->varyings[k] = splat_plane(triangle->varyings[k]);
+}
+
+/* Each lane of `lanes` its own triangle's (by_id[ids[i]]), the other lanes
+ * fallback's, which they never use. The same numbers as one_triangle
+ * gives each lane, so the same arithmetic gives the same bits. */
+INLINE void gather_triangles(lane_triangles *out, const luz_triangle *const *by_id, vuint ids,
+                             unsigned lanes, const luz_triangle *fallback, vfloat centre_x,
+                             float centre_y)
+{
+    enum { PLANES = 1 + LUZ_VARYING_COUNT };
+    float reference_x[LANES], reference_y[LANES];
+    float value[PLANES][LANES], gradient_x[PLANES][LANES], gradient_y[PLANES][LANES];
+    for (int i = 0; i < LANES; i++) {
+        const luz_triangle *triangle = (lanes >> i & 1u) ? by_id[ids[i]] : fallback;
+        reference_x[i] = triangle->reference_x;
+        reference_y[i] = triangle->reference_y;
+        value[0][i] = triangle->inverse_w.value;
+        gradient_x[0][i] = triangle->inverse_w.dx;
+        gradient_y[0][i] = triangle->inverse_w.dy;
+        for (int k = 0; k < LUZ_VARYING_COUNT; k++) {
+            value[1 + k][i] = triangle->varyings[k].value;
+            gradient_x[1 + k][i] = triangle->varyings[k].dx;
+            gradient_y[1 + k][i] = triangle->varyings[k].dy;
+        }
+    }
+    vfloat load;
+    memcpy(&load, reference_x, sizeof load);
+    out->dx = centre_x - load;
+    memcpy(&load, reference_y, sizeof load);
+    out->dy = centre_y - load;
+    for (int p = 0; p < PLANES; p++) {
+        vplane *plane = p == 0 ? &out->inverse_w : &out->varyings[p - 1];
+        memcpy(&plane->value, value[p], sizeof plane->value);
+        memcpy(&plane->dx, gradient_x[p], sizeof plane->dx);
+        memcpy(&plane->dy, gradient_y[p], sizeof plane->dy);
+    }
+}
+
+/* The lanes whose bits are set, as a mask. */
+INLINE vint lanes_of_bits(unsigned bits)
+{
+    vint bit;
+    for (int i = 0; i < LANES; i++)
+        bit[i] = (int32_t)(1u << i);
+    return (splat_int((int32_t)bits) & bit) != 0;
 }
 
 /* SCENE.md's colour output, luz_colour_to_byte per lane. */
@@ -590,12 +665,13 @@ INLINE vuint pack_pixels(vvec3 colour, const packet_uniforms *u)
 
 /* The texel T of the lanes, as luz_texture_sample with fragment.c's level
  * of detail. */
-INLINE vvec3 sample_texture(const luz_material *material, const luz_triangle *triangle,
-                            vfloat dx, float dy, vfloat w, vint mine)
+INLINE vvec3 sample_texture(const luz_material *material, const lane_triangles *triangles,
+                            vfloat w, vint mine)
 {
     const luz_texture *texture = material->texture;
-    const luz_plane u_plane = triangle->varyings[LUZ_VARYING_UV + 0];
-    const luz_plane v_plane = triangle->varyings[LUZ_VARYING_UV + 1];
+    const vfloat dx = triangles->dx, dy = triangles->dy;
+    const vplane u_plane = triangles->varyings[LUZ_VARYING_UV + 0];
+    const vplane v_plane = triangles->varyings[LUZ_VARYING_UV + 1];
     const vfloat tu = plane_at(u_plane, dx, dy) * w;
     const vfloat tv = plane_at(v_plane, dx, dy) * w;
     if (material->filter == LUZ_FILTER_NEAREST)
@@ -605,7 +681,7 @@ INLINE vvec3 sample_texture(const luz_material *material, const luz_triangle *tr
         return sample_bilinear(texture, &level, tu, tv);
     }
     /* du/dx = (d(u/w)/dx - u d(1/w)/dx) / (1/w), and so on. */
-    const luz_plane inverse_w = triangle->inverse_w;
+    const vplane inverse_w = triangles->inverse_w;
     const vfloat du_dx = (u_plane.dx - tu * inverse_w.dx) * w;
     const vfloat dv_dx = (v_plane.dx - tv * inverse_w.dx) * w;
     const vfloat du_dy = (u_plane.dy - tu * inverse_w.dy) * w;
@@ -614,15 +690,13 @@ INLINE vvec3 sample_texture(const luz_material *material, const luz_triangle *tr
     return sample_trilinear(texture, tu, tv, lambda, mine);
 }
 
-/* The packet's pixels shaded as the triangle's, as fragment.c shades one
- * pixel: interpolate, sample, light, as the triangle's material says.
- * centre_x holds the lanes' pixel centres x + 0.5; `mine` marks the lanes
- * that are the triangle's. */
-INLINE vuint shade_triangle(const packet_uniforms *u, const luz_draw *draws,
-                            const luz_triangle *triangle, vfloat centre_x, float centre_y,
-                            vint mine)
+/* The packet's pixels shaded as their triangles', as fragment.c shades one
+ * pixel: interpolate, sample, light, as the draw's material says (every
+ * lane of `mine` belongs to a triangle of that draw; the planes of
+ * `triangles` are each lane's own). */
+INLINE vuint shade_lanes(const packet_uniforms *u, const luz_material *material,
+                         const lane_triangles *triangles, vint mine)
 {
-    const luz_material *material = &draws[triangle->draw_index].material;
     const luz_vec3 object_colour = material->colour;
     if (material->shading == LUZ_SHADING_UNLIT)
         return pack_pixels((vvec3){splat(object_colour.x), splat(object_colour.y),
@@ -630,11 +704,10 @@ INLINE vuint shade_triangle(const packet_uniforms *u, const luz_draw *draws,
                            u);
 
     /* luz_fragment_interpolate: a = (a/w)(x, y) / (1/w)(x, y). */
-    const vfloat dx = centre_x - triangle->reference_x;
-    const float dy = centre_y - triangle->reference_y;
-    const vfloat w = 1.0f / plane_at(triangle->inverse_w, dx, dy);
+    const vfloat dx = triangles->dx, dy = triangles->dy;
+    const vfloat w = 1.0f / plane_at(triangles->inverse_w, dx, dy);
 
-    const luz_plane *varying = triangle->varyings;
+    const vplane *varying = triangles->varyings;
     const vvec3 position = {
         plane_at(varying[LUZ_VARYING_POSITION + 0], dx, dy) * w,
         plane_at(varying[LUZ_VARYING_POSITION + 1], dx, dy) * w,
@@ -649,7 +722,7 @@ INLINE vuint shade_triangle(const packet_uniforms *u, const luz_draw *draws,
     /* The texel; with no texture T = 1, and c * 1 = c, so it is skipped. */
     const bool textured = material->texture != NULL;
     vvec3 texel = {0};
-    if (textured) texel = sample_texture(material, triangle, dx, dy, w, mine);
+    if (textured) texel = sample_texture(material, triangles, w, mine);
 
     /* colour = light * C * T */
     vvec3 colour = {light.x * object_colour.x, light.y * object_colour.y,
@@ -700,12 +773,36 @@ uint64_t VARIANT_ROWS(const luz_uniforms *uniforms, const luz_draw *draws,
                 shaded += (uint64_t)__builtin_popcount(covered);
                 /* Pixel centres as fragment.c computes them: (float)x + 0.5. */
                 const vfloat centre_x = (lane_x + (float)x) + 0.5f;
+                /* One pass per draw in the packet: its lanes shaded with
+                 * their own triangles' planes. A lone triangle (or two,
+                 * as on a quad's diagonal) takes each its own pass with
+                 * its planes broadcast, cheaper than gathering them. */
                 for (unsigned pending = covered; pending != 0;) {
-                    const uint32_t id = ids[__builtin_ctz(pending)];
-                    const vint mine = (vint)(ids == id);
-                    pending &= ~lane_bits(mine);
-                    const vuint shade = shade_triangle(&u, draws, by_id[id], centre_x,
-                                                       centre_y, mine);
+                    const luz_triangle *first = by_id[ids[__builtin_ctz(pending)]];
+                    unsigned mine_bits = lane_bits((vint)(ids == ids[__builtin_ctz(pending)]));
+                    unsigned others = pending & ~mine_bits;   /* not yet the draw's */
+                    unsigned same_draw = mine_bits;
+                    for (unsigned rest = others; rest != 0; rest &= rest - 1) {
+                        const int i = __builtin_ctz(rest);
+                        if (by_id[ids[i]]->draw_index == first->draw_index)
+                            same_draw |= 1u << i;
+                    }
+                    const unsigned second = same_draw & ~mine_bits;
+                    const bool two_or_fewer =
+                        second == 0 ||
+                        (second & ~lane_bits((vint)(ids == ids[__builtin_ctz(second)]))) == 0;
+                    lane_triangles triangles;
+                    if (two_or_fewer) {
+                        one_triangle(&triangles, first, centre_x, centre_y);
+                    } else {
+                        gather_triangles(&triangles, by_id, ids, same_draw, first, centre_x,
+                                         centre_y);
+                        mine_bits = same_draw;
+                    }
+                    pending &= ~mine_bits;
+                    const vint mine = lanes_of_bits(mine_bits);
+                    const vuint shade = shade_lanes(&u, &draws[first->draw_index].material,
+                                                    &triangles, mine);
                     pixels = (vuint)select_int(mine, (vint)shade, (vint)pixels);
                 }
             }

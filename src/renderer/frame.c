@@ -6,14 +6,14 @@
  *   0. Uniforms: what every stage reads that is the same for the whole
  *      frame (matrices, the eye, the lights, the spot's cone), once.
  *
- *   1. Geometry, per draw (draws are split into chunks, one job each):
+ *   1. Geometry (geometry.c), in batches of a few thousand triangles over
+ *      all the draws, one job each:
  *        vertex stage    every vertex to clip space, with its varyings
  *        clipping        each triangle against the near, far and guard planes
  *        setup           each clipped triangle to edges and planes; back
  *                        faces culled
- *      Chunks keep the submission order, and triangles get ids 1, 2, ... in
- *      that order. Each triangle is then binned to the bands of rows its
- *      bounding box touches, still in id order.
+ *      Triangles get ids 1, 2, ... in submission order, and each is binned
+ *      to the bands of rows its bounding box touches, still in id order.
  *
  *   2. Bands, per band of rows (one job each):
  *        clear           the band's depth and visibility
@@ -46,23 +46,6 @@
  * band's depth and visibility rows in cache, large enough that a triangle
  * rarely spans many bands. */
 #define BAND_HEIGHT 16
-#define CHUNKS_PER_THREAD 4
-/* A cube's geometry takes about 2 microseconds, less than waking a thread:
- * chunks of fewer draws than this would cost more than they save, so the
- * default scene's 11 draws run as one chunk on the caller's thread. */
-#define MIN_DRAWS_PER_CHUNK 16
-
-/* The set-up triangles of one chunk of draws. */
-typedef struct triangle_list {
-    luz_triangle *triangles;
-    size_t count;
-    size_t capacity;
-    luz_clip_vertex *vertices;      /* vertex-stage output, reused per draw */
-    uint32_t vertex_capacity;
-    bool out_of_memory;
-    luz_interpolation interpolation;   /* the frame's, for setup */
-    uint64_t submitted, clipped, culled;
-} triangle_list;
 
 typedef struct band_counters {
     uint64_t fragments_tested;
@@ -71,16 +54,9 @@ typedef struct band_counters {
 
 struct luz_renderer {
     luz_thread_pool *pool;
-    triangle_list *chunks;
-    int chunk_capacity;
-    const luz_triangle **by_id;     /* by_id[id] for id = 1 .. triangle_count */
-    size_t by_id_capacity;
+    luz_geometry *geometry;         /* phase 1's buffers */
     band_counters *bands;
     int band_capacity;
-    size_t *band_start;             /* band b's ids: band_ids[band_start[b] ..
-                                       band_start[b + 1]) */
-    uint32_t *band_ids;
-    size_t band_ids_capacity;
     bool reference;                 /* fragment.c's shading, not the packets */
     luz_packet_rows_function *packet_rows;   /* the SIMD variant this CPU
                                                 runs, chosen at creation */
@@ -90,17 +66,13 @@ struct luz_renderer {
 };
 
 /* What the jobs of one frame share; read-only for the jobs except their
- * own chunk or band slot. */
+ * own band slot. */
 typedef struct frame_job {
     luz_renderer *renderer;
     const luz_frame *frame;
     luz_framebuffer *framebuffer;
     luz_uniforms uniforms;
-    int chunk_count;
-    int draws_per_chunk;
-    size_t triangle_count;
-    int band_count;
-    uint32_t triangle_limit;        /* 0, or rasterise only the first N */
+    luz_geometry_result geometry;   /* phase 1's triangles, binned */
     uint32_t *overdraw;             /* NULL unless the overdraw view */
     const luz_band_hook *hook;      /* NULL, or called after each band */
     luz_pixel_probe *probe;         /* NULL, or the pixel to explain */
@@ -113,93 +85,6 @@ static double now_ms(void)
     return t.tv_sec * 1e3 + t.tv_nsec / 1e6;
 }
 
-/* ---- phase 1: geometry ------------------------------------------------- */
-
-static bool reserve_triangles(triangle_list *list, size_t extra)
-{
-    if (list->count + extra <= list->capacity) return true;
-    size_t capacity = list->capacity ? list->capacity : 256;
-    while (capacity < list->count + extra) capacity *= 2;
-    luz_triangle *triangles = realloc(list->triangles, capacity * sizeof *triangles);
-    if (!triangles) return false;
-    list->triangles = triangles;
-    list->capacity = capacity;
-    return true;
-}
-
-static void set_up(triangle_list *list, const luz_clip_vertex *a, const luz_clip_vertex *b,
-                   const luz_clip_vertex *c, const luz_framebuffer *framebuffer,
-                   uint32_t draw_index)
-{
-    luz_triangle *out = &list->triangles[list->count];
-    luz_setup_result result = luz_setup_triangle(a, b, c, framebuffer->width,
-                                                 framebuffer->height, draw_index,
-                                                 list->interpolation, out);
-    if (result == LUZ_SETUP_VISIBLE) list->count++;
-    else if (result == LUZ_SETUP_CULLED) list->culled++;
-}
-
-static void geometry_of_draw(triangle_list *list, const luz_draw *draw, uint32_t draw_index,
-                             const luz_mat4 view_projection, const luz_framebuffer *framebuffer)
-{
-    const luz_mesh *mesh = draw->mesh;
-    if (mesh->vertex_count > list->vertex_capacity) {
-        luz_clip_vertex *vertices =
-            realloc(list->vertices, (size_t)mesh->vertex_count * sizeof *vertices);
-        if (!vertices) {
-            list->out_of_memory = true;
-            return;
-        }
-        list->vertices = vertices;
-        list->vertex_capacity = mesh->vertex_count;
-    }
-
-    /* Vertex stage. */
-    luz_vertex_stage(draw, view_projection, list->vertices);
-
-    for (uint32_t i = 0; i + 2 < mesh->index_count; i += 3) {
-        const luz_clip_vertex *a = &list->vertices[mesh->indices[i]];
-        const luz_clip_vertex *b = &list->vertices[mesh->indices[i + 1]];
-        const luz_clip_vertex *c = &list->vertices[mesh->indices[i + 2]];
-        list->submitted++;
-        /* A fan of a clipped triangle has at most this many triangles. */
-        if (!reserve_triangles(list, LUZ_CLIP_MAX_VERTICES - 2)) {
-            list->out_of_memory = true;
-            return;
-        }
-
-        /* Clipping: trivially accept, trivially reject, or cut. */
-        unsigned code_a = luz_clip_outcode(a->position);
-        unsigned code_b = luz_clip_outcode(b->position);
-        unsigned code_c = luz_clip_outcode(c->position);
-        if ((code_a | code_b | code_c) == 0) {
-            set_up(list, a, b, c, framebuffer, draw_index);
-            continue;
-        }
-        if (code_a & code_b & code_c) continue;   /* all outside one plane */
-        list->clipped++;
-        luz_clip_polygon polygon;
-        int count = luz_clip_triangle(a, b, c, &polygon);
-        /* Setup, for each triangle of the polygon's fan. */
-        for (int k = 1; k + 1 < count; k++)
-            set_up(list, &polygon.vertices[0], &polygon.vertices[k], &polygon.vertices[k + 1],
-                   framebuffer, draw_index);
-    }
-}
-
-static void geometry_job(void *context, int chunk_index, int worker_index)
-{
-    (void)worker_index;
-    frame_job *job = context;
-    triangle_list *list = &job->renderer->chunks[chunk_index];
-    int first = chunk_index * job->draws_per_chunk;
-    int end = first + job->draws_per_chunk;
-    if (end > job->frame->draw_count) end = job->frame->draw_count;
-    for (int d = first; d < end && !list->out_of_memory; d++)
-        geometry_of_draw(list, &job->frame->draws[d], (uint32_t)d,
-                         job->uniforms.view_projection, job->framebuffer);
-}
-
 /* ---- phase 2: bands ---------------------------------------------------- */
 
 static void band_job(void *context, int band_index, int worker_index)
@@ -207,7 +92,7 @@ static void band_job(void *context, int band_index, int worker_index)
     frame_job *job = context;
     luz_framebuffer *framebuffer = job->framebuffer;
     const luz_renderer *renderer = job->renderer;
-    const luz_triangle **by_id = renderer->by_id;
+    const luz_triangle *const *by_id = job->geometry.by_id;
     int first_row = band_index * BAND_HEIGHT;
     int end_row = first_row + BAND_HEIGHT;
     if (end_row > framebuffer->height) end_row = framebuffer->height;
@@ -226,9 +111,9 @@ static void band_job(void *context, int band_index, int worker_index)
 
     /* Raster and depth test, the band's triangles in submission order. */
     uint64_t tested = 0;
-    for (size_t k = renderer->band_start[band_index]; k < renderer->band_start[band_index + 1];
-         k++) {
-        const uint32_t id = renderer->band_ids[k];
+    const size_t *band_start = job->geometry.band_start;
+    for (size_t k = band_start[band_index]; k < band_start[band_index + 1]; k++) {
+        const uint32_t id = job->geometry.band_ids[k];
         const luz_triangle *triangle = by_id[id];
         if (overdraw)
             tested += luz_raster_triangle_counting(triangle, id, framebuffer, first_row,
@@ -294,10 +179,9 @@ luz_renderer *luz_renderer_create(const luz_renderer_desc *desc, luz_error *erro
     }
     renderer->reference = desc->reference;
     renderer->packet_rows = luz_packet_rows_for(LUZ_PACKET_ISA_BEST);
-    renderer->chunk_capacity = threads * CHUNKS_PER_THREAD;
-    renderer->chunks = calloc((size_t)renderer->chunk_capacity, sizeof *renderer->chunks);
+    renderer->geometry = luz_geometry_create(threads);
     renderer->pool = luz_thread_pool_create(threads);
-    if (!renderer->chunks || !renderer->pool) {
+    if (!renderer->geometry || !renderer->pool) {
         luz_error_set(error, "cannot start %d rendering threads", threads);
         luz_renderer_destroy(renderer);
         return NULL;
@@ -309,15 +193,8 @@ void luz_renderer_destroy(luz_renderer *renderer)
 {
     if (!renderer) return;
     luz_thread_pool_destroy(renderer->pool);
-    for (int i = 0; renderer->chunks && i < renderer->chunk_capacity; i++) {
-        free(renderer->chunks[i].triangles);
-        free(renderer->chunks[i].vertices);
-    }
-    free(renderer->chunks);
-    free(renderer->by_id);
+    luz_geometry_destroy(renderer->geometry);
     free(renderer->bands);
-    free(renderer->band_start);
-    free(renderer->band_ids);
     free(renderer->overdraw);
     free(renderer);
 }
@@ -332,97 +209,14 @@ int luz_renderer_thread_count(const luz_renderer *renderer)
     return luz_thread_pool_thread_count(renderer->pool);
 }
 
-/* Splits the frame's draws into chunks of consecutive draws, one
- * geometry job each, and empties the chunks' triangle lists. */
-static void split_into_chunks(luz_renderer *renderer, frame_job *job)
+/* One counter pair per band. */
+static int prepare_bands(luz_renderer *renderer, int band_count, luz_error *error)
 {
-    const luz_frame *frame = job->frame;
-    job->chunk_count = (frame->draw_count + MIN_DRAWS_PER_CHUNK - 1) / MIN_DRAWS_PER_CHUNK;
-    if (job->chunk_count > renderer->chunk_capacity) job->chunk_count = renderer->chunk_capacity;
-    if (job->chunk_count < 1) job->chunk_count = 1;
-    job->draws_per_chunk = (frame->draw_count + job->chunk_count - 1) / job->chunk_count;
-    if (job->draws_per_chunk < 1) job->draws_per_chunk = 1;
-    for (int c = 0; c < job->chunk_count; c++) {
-        triangle_list *list = &renderer->chunks[c];
-        list->count = 0;
-        list->out_of_memory = false;
-        list->submitted = list->clipped = list->culled = 0;
-        list->interpolation = job->uniforms.interpolation;
-    }
-}
-
-/* Gives the set-up triangles ids 1, 2, ... in submission order (chunk by
- * chunk), through renderer->by_id. */
-static int number_triangles(luz_renderer *renderer, frame_job *job, size_t *total,
-                            luz_error *error)
-{
-    *total = 0;
-    for (int c = 0; c < job->chunk_count; c++) {
-        if (renderer->chunks[c].out_of_memory)
-            return luz_error_set(error, "out of memory for the frame's triangles");
-        *total += renderer->chunks[c].count;
-    }
-    if (*total >= UINT32_MAX)
-        return luz_error_set(error, "%zu triangles: more than a frame supports", *total);
-    if (*total + 1 > renderer->by_id_capacity) {
-        const luz_triangle **by_id = realloc(renderer->by_id, (*total + 1) * sizeof *by_id);
-        if (!by_id) return luz_error_set(error, "out of memory for the frame's triangles");
-        renderer->by_id = by_id;
-        renderer->by_id_capacity = *total + 1;
-    }
-    size_t id = 1;
-    for (int c = 0; c < job->chunk_count; c++)
-        for (size_t k = 0; k < renderer->chunks[c].count; k++)
-            renderer->by_id[id++] = &renderer->chunks[c].triangles[k];
-
-    job->triangle_count = *total;
-    /* The viewer's step mode rasterises only the first triangles. */
-    const uint32_t limit = job->triangle_limit;
-    if (limit != 0 && limit < *total) job->triangle_count = limit;
-    return 0;
-}
-
-/* Bins triangles 1 .. job->triangle_count to the bands their bounding
- * boxes touch, so that a band visits only its own triangles. Counting
- * first, then filling in id order, keeps each band's list in submission
- * order. */
-static int bin_triangles(luz_renderer *renderer, frame_job *job, luz_error *error)
-{
-    const int band_count = job->band_count;
-    if (band_count > renderer->band_capacity) {
-        band_counters *bands = realloc(renderer->bands, (size_t)band_count * sizeof *bands);
-        size_t *band_start = realloc(renderer->band_start,
-                                     ((size_t)band_count + 1) * sizeof *band_start);
-        if (bands) renderer->bands = bands;
-        if (band_start) renderer->band_start = band_start;
-        if (!bands || !band_start)
-            return luz_error_set(error, "out of memory for the frame's bands");
-        renderer->band_capacity = band_count;
-    }
-
-    size_t *start = renderer->band_start;
-    memset(start, 0, ((size_t)band_count + 1) * sizeof *start);
-    for (size_t id = 1; id <= job->triangle_count; id++) {
-        const luz_triangle *triangle = renderer->by_id[id];
-        for (int b = triangle->min_y / BAND_HEIGHT; b <= triangle->max_y / BAND_HEIGHT; b++)
-            start[b + 1]++;
-    }
-    for (int b = 0; b < band_count; b++) start[b + 1] += start[b];
-
-    if (start[band_count] > renderer->band_ids_capacity) {
-        uint32_t *ids = realloc(renderer->band_ids, start[band_count] * sizeof *ids);
-        if (!ids) return luz_error_set(error, "out of memory for the frame's bands");
-        renderer->band_ids = ids;
-        renderer->band_ids_capacity = start[band_count];
-    }
-    /* Fill, moving each band's start forward, then move the starts back. */
-    for (size_t id = 1; id <= job->triangle_count; id++) {
-        const luz_triangle *triangle = renderer->by_id[id];
-        for (int b = triangle->min_y / BAND_HEIGHT; b <= triangle->max_y / BAND_HEIGHT; b++)
-            renderer->band_ids[start[b]++] = (uint32_t)id;
-    }
-    for (int b = band_count; b > 0; b--) start[b] = start[b - 1];
-    start[0] = 0;
+    if (band_count <= renderer->band_capacity) return 0;
+    band_counters *bands = realloc(renderer->bands, (size_t)band_count * sizeof *bands);
+    if (!bands) return luz_error_set(error, "out of memory for the frame's bands");
+    renderer->bands = bands;
+    renderer->band_capacity = band_count;
     return 0;
 }
 
@@ -442,15 +236,14 @@ static int prepare_overdraw(luz_renderer *renderer, frame_job *job, luz_error *e
 }
 
 static void collect_stats(const luz_renderer *renderer, const frame_job *job,
-                          size_t triangle_total, luz_frame_stats *stats)
+                          luz_frame_stats *stats)
 {
-    for (int c = 0; c < job->chunk_count; c++) {
-        stats->triangles_submitted += renderer->chunks[c].submitted;
-        stats->triangles_clipped += renderer->chunks[c].clipped;
-        stats->triangles_culled += renderer->chunks[c].culled;
-    }
-    stats->triangles_rasterised = triangle_total;
-    for (int b = 0; b < job->band_count; b++) {
+    stats->triangles_submitted = job->geometry.triangles_submitted;
+    stats->triangles_clipped = job->geometry.triangles_clipped;
+    stats->triangles_culled = job->geometry.triangles_culled;
+    stats->draws_culled = job->geometry.draws_culled;
+    stats->triangles_rasterised = job->geometry.triangle_total;
+    for (int b = 0; b < job->geometry.band_count; b++) {
         stats->fragments_tested += renderer->bands[b].fragments_tested;
         stats->fragments_shaded += renderer->bands[b].fragments_shaded;
     }
@@ -503,32 +296,30 @@ int luz_renderer_draw(luz_renderer *renderer, const luz_frame *frame,
         .framebuffer = framebuffer,
         .hook = options->hook,
         .probe = options->probe,
-        .triangle_limit = options->triangle_limit,
-        .band_count = (framebuffer->height + BAND_HEIGHT - 1) / BAND_HEIGHT,
     };
 
     /* Uniforms, once for the frame. */
     job.uniforms = luz_uniforms_of(frame, options);
 
-    /* Phase 1: geometry (vertex stage, clipping, setup), in chunks of
-     * consecutive draws; then number the triangles and bin them to bands. */
-    split_into_chunks(renderer, &job);
-    luz_thread_pool_run(renderer->pool, job.chunk_count, geometry_job, &job);
-    size_t triangle_total;
-    if (number_triangles(renderer, &job, &triangle_total, error) != 0) return -1;
-    if (bin_triangles(renderer, &job, error) != 0) return -1;
+    /* Phase 1: geometry (vertex stage, clipping, setup) in batches over the
+     * threads; the triangles numbered and binned to bands. */
+    if (luz_geometry_run(renderer->geometry, renderer->pool, frame, &job.uniforms, framebuffer,
+                         BAND_HEIGHT, options->triangle_limit, &job.geometry, error) != 0)
+        return -1;
     const double geometry_end = now_ms();
 
     /* Phase 2: bands of rows (clear, raster and depth test, fragments,
      * the caller's hook). */
+    if (prepare_bands(renderer, job.geometry.band_count, error) != 0) return -1;
     if (prepare_overdraw(renderer, &job, error) != 0) return -1;
     if (job.probe) luz_probe_begin(job.probe, framebuffer, options->view);
-    luz_thread_pool_run(renderer->pool, job.band_count, band_job, &job);
+    luz_thread_pool_run(renderer->pool, job.geometry.band_count, band_job, &job);
 
     /* The probed pixel's story (luz/probe.h), from what the bands left. */
     if (job.probe)
-        luz_probe_explain(job.probe, &job.uniforms, frame->draws, renderer->by_id,
-                          job.triangle_count, framebuffer, job.overdraw, !renderer->reference);
+        luz_probe_explain(job.probe, &job.uniforms, frame->draws, job.geometry.by_id,
+                          job.geometry.triangle_count, framebuffer, job.overdraw,
+                          !renderer->reference);
     const double end = now_ms();
 
     luz_frame_stats *stats = options->stats;
@@ -537,7 +328,7 @@ int luz_renderer_draw(luz_renderer *renderer, const luz_frame *frame,
         stats->geometry_ms = geometry_end - start;
         stats->raster_ms = end - geometry_end;
         stats->total_ms = end - start;
-        collect_stats(renderer, &job, triangle_total, stats);
+        collect_stats(renderer, &job, stats);
     }
     return 0;
 }

@@ -71,11 +71,18 @@ enum {
 typedef struct luz_clip_vertex {
     luz_vec4 position;                       /* clip space */
     float varyings[LUZ_VARYING_COUNT];
+    unsigned outcode;                        /* luz_clip_outcode(position), once
+                                                per vertex, not per triangle */
 } luz_clip_vertex;
 
 /* Transforms every vertex of draw->mesh: out[i] gets clip-space position
- * view_projection * model * p and world-space varyings. */
+ * view_projection * model * p, its outcode and world-space varyings. */
 void luz_vertex_stage(const luz_draw *draw, luz_mat4 view_projection, luz_clip_vertex *out);
+/* The same for vertices [first, end) only: out[i] for i in that range (out
+ * is still the place of vertex 0), so that ranges of one big mesh can run
+ * on different threads. */
+void luz_vertex_stage_range(const luz_draw *draw, luz_mat4 view_projection, uint32_t first,
+                            uint32_t end, luz_clip_vertex *out);
 
 /* ---- clipping ---------------------------------------------------------- */
 
@@ -180,19 +187,42 @@ static inline void luz_raster_narrow_span(int64_t e, int64_t s, int64_t *first, 
     }
 }
 
+/* Bounding boxes at most this wide test pixels rather than divide. */
+#define LUZ_RASTER_SMALL_SPAN 8
+
+static inline bool luz_raster_is_small(const luz_triangle *triangle)
+{
+    return triangle->max_x - triangle->min_x < LUZ_RASTER_SMALL_SPAN;
+}
+
 /* The pixels of row y whose centres the triangle covers, [*first, *last]
- * (empty when *first > *last), for a row y within [min_y, max_y]. */
-static inline void luz_raster_row_span(const luz_triangle *triangle, int y, int64_t *first,
-                                       int64_t *last)
+ * (empty when *first > *last), for a row y within [min_y, max_y]; small is
+ * luz_raster_is_small(triangle), worked out once per triangle. */
+static inline void luz_raster_row_span(const luz_triangle *triangle, int y, bool small,
+                                       int64_t *first, int64_t *last)
 {
     const int64_t sample_y = (int64_t)y * LUZ_SUBPIXEL_ONE + LUZ_SUBPIXEL_ONE / 2;
     *first = triangle->min_x;
     *last = triangle->max_x;
+    int64_t e[3], step[3];
     for (int k = 0; k < 3; k++) {
         const luz_edge *edge = &triangle->edges[k];
         /* E at the centre of pixel 0 of this row, and its step per pixel. */
-        int64_t e = edge->a * (LUZ_SUBPIXEL_ONE / 2) + edge->b * sample_y + edge->c;
-        luz_raster_narrow_span(e, edge->a * LUZ_SUBPIXEL_ONE, first, last);
+        e[k] = edge->a * (LUZ_SUBPIXEL_ONE / 2) + edge->b * sample_y + edge->c;
+        step[k] = edge->a * LUZ_SUBPIXEL_ONE;
+    }
+    if (small) {
+        int64_t covered_first = *last + 1, covered_last = *first - 1;
+        for (int64_t x = *first; x <= *last; x++) {
+            if (e[0] + step[0] * x >= 0 && e[1] + step[1] * x >= 0 && e[2] + step[2] * x >= 0) {
+                if (covered_first > x) covered_first = x;
+                covered_last = x;
+            }
+        }
+        *first = covered_first;
+        *last = covered_last;
+    } else {
+        for (int k = 0; k < 3; k++) luz_raster_narrow_span(e[k], step[k], first, last);
     }
 }
 
@@ -418,5 +448,36 @@ int luz_thread_pool_thread_count(const luz_thread_pool *pool);
 /* Runs the jobs and returns when all are done. */
 void luz_thread_pool_run(luz_thread_pool *pool, int job_count, luz_job_function *job,
                          void *context);
+
+/* ---- phase 1: geometry (geometry.c) -------------------------------------- */
+
+/* The buffers phase 1 keeps from frame to frame (the renderer owns one). */
+typedef struct luz_geometry luz_geometry;
+
+luz_geometry *luz_geometry_create(int thread_count);
+void luz_geometry_destroy(luz_geometry *geometry);
+
+/* What phase 1 hands to phase 2; the arrays belong to the luz_geometry and
+ * last until its next run. */
+typedef struct luz_geometry_result {
+    const luz_triangle *const *by_id;   /* by_id[id], id = 1 .. triangle_total */
+    size_t triangle_total;              /* triangles set up */
+    size_t triangle_count;              /* of which ids 1 .. count are binned */
+    int band_count;
+    const size_t *band_start;           /* band b's ids: band_ids[band_start[b] ..
+                                           band_start[b + 1]), in id order */
+    const uint32_t *band_ids;
+    uint64_t triangles_submitted, triangles_clipped, triangles_culled;
+    uint64_t draws_culled;              /* wholly outside the clip volume */
+} luz_geometry_result;
+
+/* Vertex stage, clipping, setup, numbering and binning to bands of
+ * band_height rows, over the pool's threads; only the first triangle_limit
+ * triangles are binned (0: all). Returns 0, or -1 with the reason (out of
+ * memory, too many triangles). */
+int luz_geometry_run(luz_geometry *geometry, luz_thread_pool *pool, const luz_frame *frame,
+                     const luz_uniforms *uniforms, const luz_framebuffer *framebuffer,
+                     int band_height, uint32_t triangle_limit, luz_geometry_result *out,
+                     luz_error *error);
 
 #endif

@@ -23,7 +23,7 @@
  *   primitive    Ids follow submission order, so the winner is the k-th
  *                visible set-up triangle of its draw. The draw's triangles
  *                go through the vertex stage, the clipper and setup again
- *                (as frame.c's geometry_of_draw sends them) until the k-th
+ *                (as geometry.c's triangles_of_draw sends them) until the k-th
  *                comes up, and it is checked against the pipeline's own
  *                triangle, field by field.
  *   barycentric  The same clipping and setup with the three vertices'
@@ -85,7 +85,7 @@ static bool covers(const luz_triangle *triangle, int x, int y, float *depth)
         x > triangle->max_x)
         return false;
     int64_t first, last;
-    luz_raster_row_span(triangle, y, &first, &last);
+    luz_raster_row_span(triangle, y, luz_raster_is_small(triangle), &first, &last);
     if (x < first || x > last) return false;
     const float row_depth = luz_raster_row_depth(triangle->depth, triangle->reference_y, y);
     *depth = luz_raster_depth(triangle->depth, triangle->reference_x, row_depth, x);
@@ -160,8 +160,8 @@ static void barycentric_corners(const luz_clip_vertex *const corners[3], luz_cli
 
 /* Finds the mesh triangle that became the winner: the `rank`-th visible
  * set-up triangle of its draw (from 0), by sending the draw's triangles
- * through the vertex stage, clipping and setup as frame.c's
- * geometry_of_draw does. Fills primitive, vertices, the pieces and the
+ * through the vertex stage, clipping and setup as geometry.c's
+ * triangles_of_draw does. Fills primitive, vertices, the pieces and the
  * barycentric coordinates; leaves primitive at -1 if memory runs out or
  * (never expected) no triangle matches the pipeline's. */
 static void find_primitive(luz_pixel_probe *probe, const luz_uniforms *uniforms,
@@ -181,9 +181,8 @@ static void find_primitive(luz_pixel_probe *probe, const luz_uniforms *uniforms,
         const luz_clip_vertex *corners[3] = {&vertices[mesh->indices[i]],
                                              &vertices[mesh->indices[i + 1]],
                                              &vertices[mesh->indices[i + 2]]};
-        const unsigned codes[3] = {luz_clip_outcode(corners[0]->position),
-                                   luz_clip_outcode(corners[1]->position),
-                                   luz_clip_outcode(corners[2]->position)};
+        const unsigned codes[3] = {corners[0]->outcode, corners[1]->outcode,
+                                   corners[2]->outcode};
         if (codes[0] & codes[1] & codes[2]) continue;   /* all outside one plane */
 
         luz_clip_polygon polygon;

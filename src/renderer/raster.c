@@ -21,10 +21,18 @@
  * rule (folded into the edges by setup.c) holds to the last pixel, and
  * the result does not depend on where a band starts.
  *
- * The per-pixel arithmetic (a row's span, the depth at a pixel centre) is
- * in pipeline.h, luz_raster_row_span and luz_raster_depth, shared with the
- * pixel probe (probe.c) so that its account of a pixel's depth tests is
- * this file's arithmetic. Inlined, it compiles to the same loop.
+ * Small triangles: a 64-bit division costs some 40 cycles, three a row,
+ * more than testing a few pixels. When the bounding box is at most
+ * LUZ_RASTER_SMALL_SPAN pixels wide, each pixel of the row is tested
+ * instead (E >= 0 for the three edges, a multiply-add each); a triangle is
+ * convex, so the pixels that pass are one span, the same span the
+ * divisions give.
+ *
+ * The per-pixel arithmetic (a row's span, either way, and the depth at a
+ * pixel centre) is in pipeline.h, luz_raster_row_span and
+ * luz_raster_depth, shared with the pixel probe (probe.c) so that its
+ * account of a pixel's depth tests is this file's arithmetic. Inlined, it
+ * compiles to the same loop.
  */
 #include "renderer/pipeline.h"
 
@@ -40,11 +48,12 @@ static inline __attribute__((always_inline)) uint64_t raster_triangle(const luz_
     int y_end = triangle->max_y + 1 < end_row ? triangle->max_y + 1 : end_row;
     const luz_plane depth = triangle->depth;
     const int width = framebuffer->width;
+    const bool small = luz_raster_is_small(triangle);
     uint64_t tests = 0;
 
     for (int y = y_begin; y < y_end; y++) {
         int64_t first, last;
-        luz_raster_row_span(triangle, y, &first, &last);
+        luz_raster_row_span(triangle, y, small, &first, &last);
         if (first > last) continue;
 
         /* Depth is affine in window coordinates (luz_raster_depth). */

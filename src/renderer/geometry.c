@@ -1,0 +1,589 @@
+/*
+ * geometry.c: phase 1 of a frame, geometry, spread over the threads.
+ *
+ * In:  the frame's draws (meshes and model matrices), its uniforms, the
+ *      framebuffer's size and the height of phase 2's bands.
+ * Out: every visible triangle set up (setup.c's luz_triangle), numbered
+ *      1, 2, ... in submission order (draw by draw, triangle by triangle,
+ *      fan triangle by fan triangle), and binned: for each band of rows,
+ *      the ids of the triangles whose bounding box touches it, in id order.
+ *
+ * The work is cut into batches of about BATCH_TRIANGLES triangles whatever
+ * the draws look like, so that one mesh of a million triangles keeps every
+ * thread as busy as a hundred thousand cubes do:
+ *
+ *   cull         (parallel) a draw whose bounding box lies wholly outside
+ *                one clip plane is dropped (clipping would reject each of
+ *                its triangles)
+ *   plan         (one thread) small draws go whole into batches,
+ *                several to a batch; a big draw is cut into ranges of
+ *                triangles, and its vertices get a place in the frame's
+ *                vertex arena
+ *   vertex pass  (parallel) the big draws' vertices, in ranges
+ *   batches      (parallel) each small draw's vertex stage (into the
+ *                thread's scratch), then clipping and setup of the batch's
+ *                triangles; the batch counts its triangles per band
+ *   number       (one thread) prefix sums: each batch's first id, and
+ *                each batch's place in each band's list (a counting sort)
+ *   bin          (parallel) each batch writes its ids into the bands' lists
+ *
+ * The serial steps are O(draws + batches x bands), not O(triangles). Ids,
+ * and each band's list, follow the submission order whatever the batches
+ * and the threads, so the image does not depend on them (frame.c).
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "renderer/pipeline.h"
+
+/* Triangles per batch of a big draw: enough work (about 0.2 ms) to be
+ * worth a job, few enough that a million triangles make hundreds of
+ * batches to balance over the threads. */
+#define BATCH_TRIANGLES 2048
+/* Small draws join a batch until it holds this many triangles: a batch of
+ * about 40 cubes, whose vertex stage runs in the batch too (roughly 2
+ * microseconds a cube), so that a hundred cubes still make three jobs. */
+#define SMALL_DRAWS_BATCH 512
+/* Vertices per job of the vertex pass. */
+#define VERTEX_BATCH 8192
+
+typedef struct geometry_batch {
+    /* What the batch covers: whole draws [draw_first, draw_end), or
+     * triangles [triangle_first, triangle_end) of the big draw draw_first,
+     * whose clip-space vertices the vertex pass leaves at vertices. */
+    uint32_t draw_first, draw_end;
+    uint32_t triangle_first, triangle_end;
+    bool whole_draws;
+    const luz_clip_vertex *vertices;
+    /* What it made, reused from frame to frame. */
+    luz_triangle *triangles;
+    size_t count, capacity;
+    size_t first_id;
+    uint64_t submitted, clipped, culled;
+    bool out_of_memory;
+} geometry_batch;
+
+typedef struct vertex_range {
+    uint32_t draw, first, end;
+    luz_clip_vertex *out;          /* the draw's vertex 0 in the arena */
+} vertex_range;
+
+typedef struct vertex_scratch {
+    luz_clip_vertex *vertices;
+    uint32_t capacity;
+} vertex_scratch;
+
+struct luz_geometry {
+    int thread_count;
+    geometry_batch *batches;
+    int batch_count, batch_capacity;
+    vertex_range *vertex_ranges;
+    size_t vertex_range_count, vertex_range_capacity;
+    luz_clip_vertex *arena;        /* the big draws' vertices */
+    size_t arena_capacity;
+    vertex_scratch *scratch;       /* one per thread, for small draws */
+    bool *draw_outside;            /* per draw: wholly outside the clip volume */
+    size_t draw_outside_capacity;
+    uint64_t outside_draw_triangles, outside_draws;
+    size_t *band_slots;            /* batch x band: counts, then offsets */
+    size_t band_slot_capacity;
+    const luz_triangle **by_id;
+    size_t by_id_capacity;
+    size_t *band_start;
+    int band_capacity;
+    uint32_t *band_ids;
+    size_t band_id_capacity;
+};
+
+/* What the jobs of one frame's geometry share. */
+typedef struct geometry_job {
+    luz_geometry *geometry;
+    const luz_frame *frame;
+    const luz_uniforms *uniforms;
+    int width, height;
+    int band_height, band_count;
+    size_t binned;                 /* ids 1 .. binned go to the bands */
+} geometry_job;
+
+luz_geometry *luz_geometry_create(int thread_count)
+{
+    luz_geometry *geometry = calloc(1, sizeof *geometry);
+    if (!geometry) return NULL;
+    geometry->thread_count = thread_count;
+    geometry->scratch = calloc((size_t)thread_count, sizeof *geometry->scratch);
+    if (!geometry->scratch) {
+        free(geometry);
+        return NULL;
+    }
+    return geometry;
+}
+
+void luz_geometry_destroy(luz_geometry *geometry)
+{
+    if (!geometry) return;
+    for (int i = 0; i < geometry->batch_capacity; i++) free(geometry->batches[i].triangles);
+    for (int i = 0; i < geometry->thread_count; i++) free(geometry->scratch[i].vertices);
+    free(geometry->batches);
+    free(geometry->vertex_ranges);
+    free(geometry->arena);
+    free(geometry->scratch);
+    free(geometry->draw_outside);
+    free(geometry->band_slots);
+    free(geometry->by_id);
+    free(geometry->band_start);
+    free(geometry->band_ids);
+    free(geometry);
+}
+
+/* Grows *array to hold count elements of size bytes (kept from frame to
+ * frame, so after the first frames this does nothing). */
+static bool reserve(void **array, size_t *capacity, size_t count, size_t size)
+{
+    if (count <= *capacity) return true;
+    size_t grown = *capacity ? *capacity : 64;
+    while (grown < count) grown *= 2;
+    if (grown > SIZE_MAX / size) return false;
+    void *bigger = realloc(*array, grown * size);
+    if (!bigger) return false;
+    *array = bigger;
+    *capacity = grown;
+    return true;
+}
+
+/* ---- plan ------------------------------------------------------------- */
+
+/* Element (row, column) of a column-major luz_mat4, in double. */
+static double element(const luz_mat4 *m, int row, int column)
+{
+    return (double)m->m[column * 4 + row];
+}
+
+/* Whether every point of the mesh's bounding box, through the model and
+ * view_projection matrices, is outside one of clip.c's six planes, by a
+ * margin: then so is every vertex, and clipping would reject each of the
+ * draw's triangles (all three outcodes share that plane's bit). The clip
+ * coordinates are affine in the object position, so a plane's distance
+ * is below zero over the box when it is at the eight corners; computed in
+ * double with a margin of 1e-4 of the coordinates' size, far beyond the
+ * float rounding of the vertex stage, so a draw is dropped only where the
+ * renderer would have drawn nothing of it. */
+static bool outside_the_clip_volume(const luz_draw *draw, const luz_mat4 *view_projection)
+{
+    /* M = view_projection * model, then the box as its centre and half
+     * extents: corner = centre +- half.x +- half.y +- half.z, each through
+     * M as four columns. */
+    double m[4][4];
+    for (int r = 0; r < 4; r++)
+        for (int c = 0; c < 4; c++) {
+            m[r][c] = 0.0;
+            for (int k = 0; k < 4; k++)
+                m[r][c] += element(view_projection, r, k) * element(&draw->model, k, c);
+        }
+    const luz_bounds bounds = draw->mesh->bounds;
+    const double centre[3] = {0.5 * ((double)bounds.min.x + bounds.max.x),
+                              0.5 * ((double)bounds.min.y + bounds.max.y),
+                              0.5 * ((double)bounds.min.z + bounds.max.z)};
+    const double half[3] = {0.5 * ((double)bounds.max.x - bounds.min.x),
+                            0.5 * ((double)bounds.max.y - bounds.min.y),
+                            0.5 * ((double)bounds.max.z - bounds.min.z)};
+    double clip_centre[4], axis[3][4];
+    for (int r = 0; r < 4; r++) {
+        clip_centre[r] = m[r][0] * centre[0] + m[r][1] * centre[1] + m[r][2] * centre[2] + m[r][3];
+        for (int a = 0; a < 3; a++) axis[a][r] = m[r][a] * half[a];
+    }
+    const double g = LUZ_CLIP_GUARD_BAND;
+    unsigned all_outside = 0x3f;
+    for (int corner = 0; corner < 8 && all_outside; corner++) {
+        double clip[4];
+        for (int r = 0; r < 4; r++)
+            clip[r] = clip_centre[r] + (corner & 1 ? axis[0][r] : -axis[0][r]) +
+                      (corner & 2 ? axis[1][r] : -axis[1][r]) +
+                      (corner & 4 ? axis[2][r] : -axis[2][r]);
+        const double x = clip[0], y = clip[1], z = clip[2], w = clip[3];
+        const double margin = 1e-4 * (fabs(x) + fabs(y) + fabs(z) + fabs(w) * g);
+        const double distance[6] = {w + z, w - z, g * w + x, g * w - x, g * w + y, g * w - y};
+        unsigned outside = 0;
+        for (int plane = 0; plane < 6; plane++)
+            if (distance[plane] < -margin) outside |= 1u << plane;
+        all_outside &= outside;
+    }
+    return all_outside != 0;
+}
+
+/* Draws per job of the culling pass. */
+#define CULL_BATCH 4096
+
+static void cull_job(void *context, int job_index, int worker_index);
+
+static uint32_t triangles_of(const luz_draw *draw)
+{
+    return draw->mesh->index_count / 3;
+}
+
+static bool is_big(const luz_draw *draw)
+{
+    return triangles_of(draw) > BATCH_TRIANGLES;
+}
+
+static geometry_batch *add_batch(luz_geometry *geometry)
+{
+    if (geometry->batch_count == geometry->batch_capacity) {
+        int capacity = geometry->batch_capacity ? geometry->batch_capacity * 2 : 16;
+        geometry_batch *batches = realloc(geometry->batches, (size_t)capacity * sizeof *batches);
+        if (!batches) return NULL;
+        memset(batches + geometry->batch_capacity, 0,
+               (size_t)(capacity - geometry->batch_capacity) * sizeof *batches);
+        geometry->batches = batches;
+        geometry->batch_capacity = capacity;
+    }
+    return &geometry->batches[geometry->batch_count++];
+}
+
+static vertex_range *add_vertex_range(luz_geometry *geometry)
+{
+    if (!reserve((void **)&geometry->vertex_ranges, &geometry->vertex_range_capacity,
+                 geometry->vertex_range_count + 1, sizeof *geometry->vertex_ranges))
+        return NULL;
+    return &geometry->vertex_ranges[geometry->vertex_range_count++];
+}
+
+static int plan(luz_geometry *geometry, luz_thread_pool *pool, geometry_job *job,
+                luz_error *error)
+{
+    const luz_frame *frame = job->frame;
+    geometry->batch_count = 0;
+    geometry->vertex_range_count = 0;
+
+    /* Draws out of sight first, so that the arena holds only the rest. */
+    size_t arena_vertices = 0;
+    geometry->outside_draw_triangles = geometry->outside_draws = 0;
+    if (!reserve((void **)&geometry->draw_outside, &geometry->draw_outside_capacity,
+                 (size_t)frame->draw_count, sizeof *geometry->draw_outside))
+        goto out_of_memory;
+    luz_thread_pool_run(pool, (frame->draw_count + CULL_BATCH - 1) / CULL_BATCH, cull_job, job);
+    for (int d = 0; d < frame->draw_count; d++) {
+        const luz_draw *draw = &frame->draws[d];
+        if (geometry->draw_outside[d]) {
+            geometry->outside_draw_triangles += triangles_of(draw);
+            geometry->outside_draws++;
+        }
+        else if (is_big(draw))
+            arena_vertices += draw->mesh->vertex_count;
+    }
+    if (!reserve((void **)&geometry->arena, &geometry->arena_capacity, arena_vertices,
+                 sizeof *geometry->arena))
+        return luz_error_set(error, "out of memory for the frame's %zu vertices",
+                             arena_vertices);
+
+    size_t arena_used = 0;
+    geometry_batch *open = NULL;   /* the batch small draws are joining */
+    size_t open_cost = 0;
+    for (int d = 0; d < frame->draw_count; d++) {
+        const luz_draw *draw = &frame->draws[d];
+        if (geometry->draw_outside[d]) continue;
+        if (!is_big(draw)) {
+            if (!open) {
+                open = add_batch(geometry);
+                if (!open) goto out_of_memory;
+                open->whole_draws = true;
+                open->draw_first = (uint32_t)d;
+                open_cost = 0;
+            }
+            open->draw_end = (uint32_t)d + 1;   /* draws out of sight in it are skipped */
+            /* A draw costs its triangles, and a little even with none. */
+            open_cost += triangles_of(draw) + 1;
+            if (open_cost >= SMALL_DRAWS_BATCH) open = NULL;
+            continue;
+        }
+        open = NULL;
+        luz_clip_vertex *vertices = geometry->arena + arena_used;
+        const uint32_t vertex_count = draw->mesh->vertex_count;
+        arena_used += vertex_count;
+        for (uint32_t first = 0; first < vertex_count; first += VERTEX_BATCH) {
+            vertex_range *range = add_vertex_range(geometry);
+            if (!range) goto out_of_memory;
+            range->draw = (uint32_t)d;
+            range->first = first;
+            range->end = vertex_count - first > VERTEX_BATCH ? first + VERTEX_BATCH
+                                                             : vertex_count;
+            range->out = vertices;
+        }
+        const uint32_t triangle_count = triangles_of(draw);
+        for (uint32_t first = 0; first < triangle_count; first += BATCH_TRIANGLES) {
+            geometry_batch *batch = add_batch(geometry);
+            if (!batch) goto out_of_memory;
+            batch->whole_draws = false;
+            batch->draw_first = (uint32_t)d;
+            batch->draw_end = (uint32_t)d + 1;
+            batch->triangle_first = first;
+            batch->triangle_end = triangle_count - first > BATCH_TRIANGLES
+                                      ? first + BATCH_TRIANGLES : triangle_count;
+            batch->vertices = vertices;
+        }
+    }
+    return 0;
+
+out_of_memory:
+    return luz_error_set(error, "out of memory for the frame's geometry batches");
+}
+
+/* ---- culling pass and vertex pass --------------------------------------- */
+
+static void cull_job(void *context, int job_index, int worker_index)
+{
+    (void)worker_index;
+    const geometry_job *job = context;
+    const int first = job_index * CULL_BATCH;
+    const int end = job->frame->draw_count - first > CULL_BATCH ? first + CULL_BATCH
+                                                                 : job->frame->draw_count;
+    for (int d = first; d < end; d++)
+        job->geometry->draw_outside[d] =
+            outside_the_clip_volume(&job->frame->draws[d], &job->uniforms->view_projection);
+}
+
+static void vertex_job(void *context, int range_index, int worker_index)
+{
+    (void)worker_index;
+    const geometry_job *job = context;
+    const vertex_range *range = &job->geometry->vertex_ranges[range_index];
+    luz_vertex_stage_range(&job->frame->draws[range->draw], job->uniforms->view_projection,
+                           range->first, range->end, range->out);
+}
+
+/* ---- batches: clipping and setup --------------------------------------- */
+
+static bool reserve_triangles(geometry_batch *batch, size_t extra)
+{
+    if (batch->count + extra <= batch->capacity) return true;
+    size_t capacity = batch->capacity ? batch->capacity : 256;
+    while (capacity < batch->count + extra) capacity *= 2;
+    luz_triangle *triangles = realloc(batch->triangles, capacity * sizeof *triangles);
+    if (!triangles) return false;
+    batch->triangles = triangles;
+    batch->capacity = capacity;
+    return true;
+}
+
+static void set_up(geometry_batch *batch, const geometry_job *job, const luz_clip_vertex *a,
+                   const luz_clip_vertex *b, const luz_clip_vertex *c, uint32_t draw_index)
+{
+    luz_triangle *out = &batch->triangles[batch->count];
+    luz_setup_result result = luz_setup_triangle(a, b, c, job->width, job->height, draw_index,
+                                                 job->uniforms->interpolation, out);
+    if (result == LUZ_SETUP_VISIBLE) batch->count++;
+    else if (result == LUZ_SETUP_CULLED) batch->culled++;
+}
+
+/* Clips and sets up triangles [first, end) of draw draw_index, whose
+ * clip-space vertices are at vertices. */
+static void triangles_of_draw(geometry_batch *batch, const geometry_job *job,
+                              uint32_t draw_index, const luz_clip_vertex *vertices,
+                              uint32_t first, uint32_t end)
+{
+    const uint32_t *indices = job->frame->draws[draw_index].mesh->indices;
+    for (uint32_t t = first; t < end; t++) {
+        const luz_clip_vertex *a = &vertices[indices[3 * (size_t)t]];
+        const luz_clip_vertex *b = &vertices[indices[3 * (size_t)t + 1]];
+        const luz_clip_vertex *c = &vertices[indices[3 * (size_t)t + 2]];
+        batch->submitted++;
+        /* A fan of a clipped triangle has at most this many triangles. */
+        if (!reserve_triangles(batch, LUZ_CLIP_MAX_VERTICES - 2)) {
+            batch->out_of_memory = true;
+            return;
+        }
+
+        /* Clipping: trivially accept, trivially reject, or cut (the vertex
+         * stage worked out each vertex's outcode). */
+        const unsigned code_a = a->outcode, code_b = b->outcode, code_c = c->outcode;
+        if ((code_a | code_b | code_c) == 0) {
+            set_up(batch, job, a, b, c, draw_index);
+            continue;
+        }
+        if (code_a & code_b & code_c) continue;   /* all outside one plane */
+        batch->clipped++;
+        luz_clip_polygon polygon;
+        int count = luz_clip_triangle(a, b, c, &polygon);
+        /* Setup, for each triangle of the polygon's fan. */
+        for (int k = 1; k + 1 < count; k++)
+            set_up(batch, job, &polygon.vertices[0], &polygon.vertices[k],
+                   &polygon.vertices[k + 1], draw_index);
+    }
+}
+
+/* Counts the first count triangles of a batch per band, into its row. */
+static void count_per_band(const geometry_batch *batch, size_t count, int band_height,
+                           size_t *row, int band_count)
+{
+    memset(row, 0, (size_t)band_count * sizeof *row);
+    for (size_t i = 0; i < count; i++) {
+        const luz_triangle *triangle = &batch->triangles[i];
+        for (int b = triangle->min_y / band_height; b <= triangle->max_y / band_height; b++)
+            row[b]++;
+    }
+}
+
+static void batch_job(void *context, int batch_index, int worker_index)
+{
+    const geometry_job *job = context;
+    luz_geometry *geometry = job->geometry;
+    geometry_batch *batch = &geometry->batches[batch_index];
+    batch->count = 0;
+    batch->submitted = batch->clipped = batch->culled = 0;
+    batch->out_of_memory = false;
+
+    if (!batch->whole_draws) {
+        triangles_of_draw(batch, job, batch->draw_first, batch->vertices,
+                          batch->triangle_first, batch->triangle_end);
+    } else {
+        vertex_scratch *scratch = &geometry->scratch[worker_index];
+        for (uint32_t d = batch->draw_first; d < batch->draw_end && !batch->out_of_memory; d++) {
+            if (geometry->draw_outside[d]) continue;
+            const luz_draw *draw = &job->frame->draws[d];
+            const uint32_t vertex_count = draw->mesh->vertex_count;
+            if (vertex_count > scratch->capacity) {
+                luz_clip_vertex *vertices =
+                    realloc(scratch->vertices, (size_t)vertex_count * sizeof *vertices);
+                if (!vertices) {
+                    batch->out_of_memory = true;
+                    break;
+                }
+                scratch->vertices = vertices;
+                scratch->capacity = vertex_count;
+            }
+            /* Vertex stage, for a draw too small to be worth its own pass. */
+            luz_vertex_stage(draw, job->uniforms->view_projection, scratch->vertices);
+            triangles_of_draw(batch, job, d, scratch->vertices, 0, triangles_of(draw));
+        }
+    }
+    if (!batch->out_of_memory)
+        count_per_band(batch, batch->count, job->band_height,
+                       geometry->band_slots + (size_t)batch_index * job->band_count,
+                       job->band_count);
+}
+
+/* ---- number ------------------------------------------------------------ */
+
+/* Gives each batch its first id and each (batch, band) its offset in the
+ * band's list; sizes by_id and the lists. Only ids 1 .. limit are binned
+ * (0: all of them). */
+static int number(luz_geometry *geometry, geometry_job *job, size_t limit, luz_error *error)
+{
+    size_t total = 0;
+    for (int k = 0; k < geometry->batch_count; k++) {
+        geometry_batch *batch = &geometry->batches[k];
+        if (batch->out_of_memory)
+            return luz_error_set(error, "out of memory for the frame's triangles");
+        batch->first_id = total + 1;
+        total += batch->count;
+    }
+    if (total >= UINT32_MAX)
+        return luz_error_set(error, "%zu triangles: more than a frame supports", total);
+    if (!reserve((void **)&geometry->by_id, &geometry->by_id_capacity, total + 1,
+                 sizeof *geometry->by_id))
+        return luz_error_set(error, "out of memory for the frame's triangles");
+
+    /* The viewer's step mode rasterises only the first triangles: the
+     * batches past the limit are counted again, up to it. */
+    job->binned = (limit != 0 && limit < total) ? limit : total;
+    const int band_count = job->band_count;
+    for (int k = 0; k < geometry->batch_count; k++) {
+        const geometry_batch *batch = &geometry->batches[k];
+        if (batch->first_id + batch->count - 1 <= job->binned) continue;
+        size_t kept = batch->first_id > job->binned ? 0 : job->binned - batch->first_id + 1;
+        count_per_band(batch, kept, job->band_height,
+                       geometry->band_slots + (size_t)k * band_count, band_count);
+    }
+
+    /* Counting sort: band b's list holds batch 0's ids, then batch 1's, ... */
+    size_t *start = geometry->band_start;
+    size_t offset = 0;
+    for (int b = 0; b < band_count; b++) {
+        start[b] = offset;
+        for (int k = 0; k < geometry->batch_count; k++) {
+            size_t *slot = &geometry->band_slots[(size_t)k * band_count + b];
+            size_t count = *slot;
+            *slot = offset;
+            offset += count;
+        }
+    }
+    start[band_count] = offset;
+    if (!reserve((void **)&geometry->band_ids, &geometry->band_id_capacity, offset,
+                 sizeof *geometry->band_ids))
+        return luz_error_set(error, "out of memory for the frame's bands");
+    return 0;
+}
+
+/* ---- bin --------------------------------------------------------------- */
+
+static void bin_job(void *context, int batch_index, int worker_index)
+{
+    (void)worker_index;
+    const geometry_job *job = context;
+    luz_geometry *geometry = job->geometry;
+    const geometry_batch *batch = &geometry->batches[batch_index];
+    size_t *slot = geometry->band_slots + (size_t)batch_index * job->band_count;
+    const int band_height = job->band_height;
+    for (size_t i = 0; i < batch->count; i++) {
+        const size_t id = batch->first_id + i;
+        const luz_triangle *triangle = &batch->triangles[i];
+        geometry->by_id[id] = triangle;
+        if (id > job->binned) continue;
+        for (int b = triangle->min_y / band_height; b <= triangle->max_y / band_height; b++)
+            geometry->band_ids[slot[b]++] = (uint32_t)id;
+    }
+}
+
+/* ---- phase 1 ----------------------------------------------------------- */
+
+int luz_geometry_run(luz_geometry *geometry, luz_thread_pool *pool, const luz_frame *frame,
+                     const luz_uniforms *uniforms, const luz_framebuffer *framebuffer,
+                     int band_height, uint32_t triangle_limit, luz_geometry_result *out,
+                     luz_error *error)
+{
+    geometry_job job = {
+        .geometry = geometry,
+        .frame = frame,
+        .uniforms = uniforms,
+        .width = framebuffer->width,
+        .height = framebuffer->height,
+        .band_height = band_height,
+        .band_count = (framebuffer->height + band_height - 1) / band_height,
+    };
+    memset(out, 0, sizeof *out);
+
+    if (plan(geometry, pool, &job, error) != 0) return -1;
+    if (job.band_count > geometry->band_capacity) {
+        size_t *start = realloc(geometry->band_start,
+                                ((size_t)job.band_count + 1) * sizeof *start);
+        if (!start) return luz_error_set(error, "out of memory for the frame's bands");
+        geometry->band_start = start;
+        geometry->band_capacity = job.band_count;
+    }
+    if (!reserve((void **)&geometry->band_slots, &geometry->band_slot_capacity,
+                 (size_t)geometry->batch_count * (size_t)job.band_count,
+                 sizeof *geometry->band_slots))
+        return luz_error_set(error, "out of memory for the frame's bands");
+
+    luz_thread_pool_run(pool, (int)geometry->vertex_range_count, vertex_job, &job);
+    luz_thread_pool_run(pool, geometry->batch_count, batch_job, &job);
+    if (number(geometry, &job, triangle_limit, error) != 0) return -1;
+    luz_thread_pool_run(pool, geometry->batch_count, bin_job, &job);
+
+    /* A draw out of sight was submitted; its triangles went nowhere, as
+     * they would have at the clipper. */
+    out->triangles_submitted = geometry->outside_draw_triangles;
+    out->draws_culled = geometry->outside_draws;
+    for (int k = 0; k < geometry->batch_count; k++) {
+        out->triangles_submitted += geometry->batches[k].submitted;
+        out->triangles_clipped += geometry->batches[k].clipped;
+        out->triangles_culled += geometry->batches[k].culled;
+        out->triangle_total += geometry->batches[k].count;
+    }
+    out->triangle_count = job.binned;
+    out->by_id = geometry->by_id;
+    out->band_count = job.band_count;
+    out->band_start = geometry->band_start;
+    out->band_ids = geometry->band_ids;
+    return 0;
+}
