@@ -146,7 +146,8 @@ static dvec3 normal_transform(const luz_mat4 *m, luz_vec3 n)
     double det = a[0][0] * cof[0][0] + a[0][1] * cof[0][1] + a[0][2] * cof[0][2];
     const double v[3] = {n.x, n.y, n.z};
     double out[3];
-    for (int r = 0; r < 3; r++) out[r] = (cof[r][0] * v[0] + cof[r][1] * v[1] + cof[r][2] * v[2]) / det;
+    for (int r = 0; r < 3; r++)
+        out[r] = (cof[r][0] * v[0] + cof[r][1] * v[1] + cof[r][2] * v[2]) / det;
     return (dvec3){out[0], out[1], out[2]};
 }
 
@@ -368,8 +369,8 @@ static void check_geometry(const luz_frame *frame, const probe_case *c,
     uv_at(&corners, b, &u, &v);
     assert_near(probe->uv.x, u, 2e-4 * (1.0 + fabs(u)));
     assert_near(probe->uv.y, v, 2e-4 * (1.0 + fabs(v)));
-    dvec3 normal = normalize(add(scale(corners.normal[0], b.x),
-                                 add(scale(corners.normal[1], b.y), scale(corners.normal[2], b.z))));
+    const dvec3 n0 = scale(corners.normal[0], b.x), n1 = scale(corners.normal[1], b.y);
+    dvec3 normal = normalize(add(n0, add(n1, scale(corners.normal[2], b.z))));
     assert_near(length(d3(probe->normal)), 1.0, 1e-5);
     assert_near(probe->normal.x, normal.x, 2e-4);
     assert_near(probe->normal.y, normal.y, 2e-4);
@@ -866,7 +867,8 @@ static luz_mesh *sphere_mesh(double radius, double ring_radius, int rings, int s
             dvec3 n, p;
             if (ring_radius > 0) {
                 n = (dvec3){cos(theta) * cos(phi), sin(theta), cos(theta) * sin(phi)};
-                p = add((dvec3){ring_radius * cos(phi), 0, ring_radius * sin(phi)}, scale(n, radius));
+                p = add((dvec3){ring_radius * cos(phi), 0, ring_radius * sin(phi)},
+                        scale(n, radius));
             } else {
                 n = (dvec3){sin(theta) * cos(phi), cos(theta), sin(theta) * sin(phi)};
                 p = scale(n, radius);
@@ -995,8 +997,8 @@ static void outside_the_image(void **state)
 static void paint_red(void *context, luz_framebuffer *framebuffer, int first_row, int end_row)
 {
     (void)context;
-    for (size_t i = (size_t)first_row * framebuffer->width; i < (size_t)end_row * framebuffer->width;
-         i++)
+    const size_t width = (size_t)framebuffer->width;
+    for (size_t i = (size_t)first_row * width; i < (size_t)end_row * width; i++)
         memcpy(framebuffer->colour + i * 4, (uint8_t[4]){255, 0, 0, 255}, 4);
 }
 
@@ -1059,7 +1061,8 @@ static void only_the_triangles_drawn(void **state)
 static const char *value_of(const char *text, const char *key, char *buffer, size_t size)
 {
     size_t length = strlen(key);
-    for (const char *line = text; line && *line; line = strchr(line, '\n') ? strchr(line, '\n') + 1 : NULL) {
+    for (const char *line = text; line && *line;
+         line = strchr(line, '\n') ? strchr(line, '\n') + 1 : NULL) {
         if (strncmp(line, key, length) == 0 && line[length] == '=') {
             const char *end = strchr(line, '\n');
             size_t n = end ? (size_t)(end - line - length - 1) : strlen(line + length + 1);

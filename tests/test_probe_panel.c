@@ -234,7 +234,8 @@ static void test_background_and_a_view(void **state)
     probe->shown = (luz_vec3){0, 0, 0};
     const luz_scene scene = luz_scene_defaults();
     const luz_probe_names names = {.scene = &scene};
-    const luz_probe_panel_layout layout = luz_probe_panel_layout_for(640, 360, probe, &names, false);
+    const luz_probe_panel_layout layout =
+        luz_probe_panel_layout_for(640, 360, probe, &names, false);
     /* no bars, no texel; what the view shows, and the bytes */
     for (int term = 0; term < LUZ_TERM_COUNT; term++) {
         assert_int_equal(layout.term_bar[term].width, 0);

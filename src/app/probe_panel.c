@@ -198,7 +198,8 @@ static void panel_rows_of(panel_rows *rows, const luz_pixel_probe *probe,
         add_text(rows, text_colour, "%s  triangle %lu", a, (unsigned long)probe->triangle);
         if (probe->primitive >= 0) {
             if (probe->clipped_pieces > 0)
-                add_text(rows, text_colour, "mesh triangle %d (%lu %lu %lu), clipped: piece %d of %d",
+                add_text(rows, text_colour,
+                         "mesh triangle %d (%lu %lu %lu), clipped: piece %d of %d",
                          probe->primitive, (unsigned long)probe->vertices[0],
                          (unsigned long)probe->vertices[1], (unsigned long)probe->vertices[2],
                          probe->piece, probe->clipped_pieces);
@@ -226,8 +227,9 @@ static void panel_rows_of(panel_rows *rows, const luz_pixel_probe *probe,
             if (probe->texture == NULL)
                 add_text(rows, text_colour, "texture none: T = 1");
             else
-                add_text(rows, text_colour, "texture %s  %s  rho %.3f  lod %.3f  levels %d,%d (%.2f)",
-                         texture, luz_filter_name(probe->filter), (double)probe->rho,
+                add_text(rows, text_colour,
+                         "texture %s  %s  rho %.3f  lod %.3f  levels %d,%d (%.2f)", texture,
+                         luz_filter_name(probe->filter), (double)probe->rho,
                          (double)probe->lambda, probe->levels.lower, probe->levels.upper,
                          (double)probe->levels.blend);
             panel_row *row = add_row(rows, ROW_SWATCHES, text_colour);

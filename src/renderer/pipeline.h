@@ -171,10 +171,14 @@ luz_setup_result luz_setup_triangle(const luz_clip_vertex *v0, const luz_clip_ve
 /* The per-pixel arithmetic of the raster stage, shared by raster.c's loops
  * and the pixel probe (probe.c), so that the probe's account of which
  * triangles covered a pixel, at what depth, is the rasteriser's own
- * operations and not a second copy of them. raster.c explains the maths. */
+ * operations and not a second copy of them. raster.c explains the maths.
+ * Always inlined: they are the raster loop's body (GCC 12 leaves the span
+ * out of line otherwise, and the raster stage then runs 4% more
+ * instructions). */
+#define LUZ_RASTER_INLINE static inline __attribute__((always_inline))
 
 /* Narrows [*first, *last] to the x where edge E(x) = e + s x >= 0. */
-static inline void luz_raster_narrow_span(int64_t e, int64_t s, int64_t *first, int64_t *last)
+LUZ_RASTER_INLINE void luz_raster_narrow_span(int64_t e, int64_t s, int64_t *first, int64_t *last)
 {
     if (s > 0) {
         int64_t bound = luz_ceil_divide(-e, s);
@@ -190,7 +194,7 @@ static inline void luz_raster_narrow_span(int64_t e, int64_t s, int64_t *first, 
 /* Bounding boxes at most this wide test pixels rather than divide. */
 #define LUZ_RASTER_SMALL_SPAN 8
 
-static inline bool luz_raster_is_small(const luz_triangle *triangle)
+LUZ_RASTER_INLINE bool luz_raster_is_small(const luz_triangle *triangle)
 {
     return triangle->max_x - triangle->min_x < LUZ_RASTER_SMALL_SPAN;
 }
@@ -198,7 +202,7 @@ static inline bool luz_raster_is_small(const luz_triangle *triangle)
 /* The pixels of row y whose centres the triangle covers, [*first, *last]
  * (empty when *first > *last), for a row y within [min_y, max_y]; small is
  * luz_raster_is_small(triangle), worked out once per triangle. */
-static inline void luz_raster_row_span(const luz_triangle *triangle, int y, bool small,
+LUZ_RASTER_INLINE void luz_raster_row_span(const luz_triangle *triangle, int y, bool small,
                                        int64_t *first, int64_t *last)
 {
     const int64_t sample_y = (int64_t)y * LUZ_SUBPIXEL_ONE + LUZ_SUBPIXEL_ONE / 2;
@@ -227,7 +231,7 @@ static inline void luz_raster_row_span(const luz_triangle *triangle, int y, bool
 }
 
 /* Window depth at the centres of row y, at x = reference_x... */
-static inline float luz_raster_row_depth(luz_plane depth, float reference_y, int y)
+LUZ_RASTER_INLINE float luz_raster_row_depth(luz_plane depth, float reference_y, int y)
 {
     return depth.value + depth.dy * ((float)y + 0.5f - reference_y);
 }
@@ -235,7 +239,7 @@ static inline float luz_raster_row_depth(luz_plane depth, float reference_y, int
 /* ... and at the centre of pixel x of that row: one multiply-add a pixel
  * from the row's value, each pixel computed directly so that its value
  * never depends on where a span began. */
-static inline float luz_raster_depth(luz_plane depth, float reference_x, float row_depth, int x)
+LUZ_RASTER_INLINE float luz_raster_depth(luz_plane depth, float reference_x, float row_depth, int x)
 {
     return row_depth + depth.dx * ((float)x + 0.5f - reference_x);
 }
