@@ -806,6 +806,34 @@ static void test_probe(void **state)
     sandbox_destroy(&box);
 }
 
+/* docs/cli.md shows what `luz-render --probe 700,450` prints: it must be
+ * what it prints (the default scene, the source tree's textures, which a
+ * luz-render of the build tree reads). */
+static void test_probe_example_in_the_docs(void **state)
+{
+    (void)state;
+    const char *doc_path = getenv("LUZ_CLI_DOC");
+    if (doc_path == NULL) fail_msg("LUZ_CLI_DOC is not set (tests/meson.build sets it)");
+    char *doc = read_file(doc_path, NULL);
+    assert_non_null(doc);
+    const char *command = "$ luz-render --probe 700,450\n";
+    const char *start = strstr(doc, command);
+    if (start == NULL) fail_msg("%s has no '%s'", doc_path, command);
+    start += strlen(command);
+    const char *end = strstr(start, "```");
+    assert_non_null(end);
+    sandbox box;
+    sandbox_create(&box);
+    run_result result = run_in(&box, ARGS("--probe", "700,450"), NULL);
+    assert_success(&result);
+    if (strlen(result.out) != (size_t)(end - start) ||
+        memcmp(result.out, start, (size_t)(end - start)) != 0)
+        fail_msg("docs/cli.md's example differs from the output:\n%s", result.out);
+    run_result_free(&result);
+    sandbox_destroy(&box);
+    free(doc);
+}
+
 static bool file_exists(const sandbox *box, const char *name)
 {
     char path[600];
@@ -2570,6 +2598,7 @@ int main(void)
         cmocka_unit_test(test_version),
         cmocka_unit_test(test_tiny_render),
         cmocka_unit_test(test_probe),
+        cmocka_unit_test(test_probe_example_in_the_docs),
         cmocka_unit_test(test_equals_form_and_default_output),
         cmocka_unit_test(test_textures_directory),
         cmocka_unit_test(test_frame_sequence),
