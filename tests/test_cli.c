@@ -34,8 +34,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
+#include <sys/socket.h>
 #include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <sys/types.h>
+#include <sys/un.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
@@ -48,6 +52,7 @@
 #include "app/options.h"
 #include "app/panel.h"
 #include "io/image.h"
+#include "io/new_file.h"
 #include "io/textures.h"
 #include "lab/scene.h"
 
@@ -339,6 +344,11 @@ static const error_case error_cases[] = {
     {"time-nan", {"--time", "nan"}, NULL, NULL, {"--time", "finite"}},
     {"time-inf", {"--time=-inf"}, NULL, NULL, {"--time", "finite"}},
     {"time-overflow", {"--time", "1e400"}, NULL, NULL, {"--time", "finite"}},
+    /* finite, but cube i's angle (i + 1) / 3 * 50 t overflows at 1e302 */
+    {"time-beyond-range", {"--time", "1.7e308"}, NULL, NULL,
+     {"--time", "[-1000000000, 1000000000]"}},
+    {"time-just-beyond-range", {"--time=-1000000000.5"}, NULL, NULL,
+     {"--time", "[-1000000000, 1000000000]", "'-1000000000.5'"}},
     {"seed-trailing-junk", {"--seed", "12abc"}, NULL, NULL, {"--seed", "integer"}},
     {"seed-negative", {"--seed", "-1"}, NULL, NULL, {"--seed", "0 to 4294967295"}},
     {"seed-too-large", {"--seed", "4294967296"}, NULL, NULL, {"--seed", "0 to 4294967295"}},
@@ -347,6 +357,10 @@ static const error_case error_cases[] = {
     {"camera-pos-four", {"--camera-pos", "1,2,3,4"}, NULL, NULL, {"--camera-pos", "x,y,z"}},
     {"camera-pos-empty-field", {"--camera-pos", "1,,3"}, NULL, NULL, {"--camera-pos", "x,y,z"}},
     {"camera-pos-inf", {"--camera-pos", "0,0,-inf"}, NULL, NULL, {"--camera-pos", "finite"}},
+    {"camera-pos-beyond-range", {"--camera-pos", "0,3e38,0"}, NULL, NULL,
+     {"--camera-pos", "each in [-10000, 10000]"}},
+    {"camera-pos-just-beyond-range", {"--camera-pos", "-10000.01,0,0"}, NULL, NULL,
+     {"--camera-pos", "each in [-10000, 10000]"}},
     {"camera-yaw-beyond-float", {"--camera-yaw", "1e39"}, NULL, NULL,
      {"--camera-yaw", "finite"}},
     {"camera-yaw-nan", {"--camera-yaw", "NaN"}, NULL, NULL, {"--camera-yaw", "finite"}},
@@ -354,13 +368,24 @@ static const error_case error_cases[] = {
      {"--camera-pitch", "[-89, 89]"}},
     {"camera-pitch-below", {"--camera-pitch=-89.5"}, NULL, NULL,
      {"--camera-pitch", "[-89, 89]"}},
-    {"fov-zero", {"--fov", "0"}, NULL, NULL, {"--fov", "(0, 180)"}},
-    {"fov-180", {"--fov", "180"}, NULL, NULL, {"--fov", "(0, 180)"}},
-    {"fov-negative", {"--fov", "-5"}, NULL, NULL, {"--fov", "(0, 180)"}},
+    {"fov-zero", {"--fov", "0"}, NULL, NULL, {"--fov", "[1, 179]"}},
+    {"fov-180", {"--fov", "180"}, NULL, NULL, {"--fov", "[1, 179]"}},
+    {"fov-negative", {"--fov", "-5"}, NULL, NULL, {"--fov", "[1, 179]"}},
+    /* the issue's case: a blank image after dividing by tan(fov / 2) = 0 */
+    {"fov-denormal", {"--fov", "1e-45"}, NULL, NULL, {"--fov", "[1, 179]", "'1e-45'"}},
+    {"fov-below-one", {"--fov", "0.999"}, NULL, NULL, {"--fov", "[1, 179]"}},
+    {"fov-above-179", {"--fov", "179.001"}, NULL, NULL, {"--fov", "[1, 179]"}},
     {"fov-inf", {"--fov=inf"}, NULL, NULL, {"--fov", "finite"}},
-    {"shininess-negative", {"--shininess", "-1"}, NULL, NULL, {"--shininess", "at least 0"}},
-    {"spot-reach-zero", {"--spot-reach", "0"}, NULL, NULL, {"--spot-reach", "above 0"}},
-    {"spot-reach-negative", {"--spot-reach", "-2"}, NULL, NULL, {"--spot-reach", "above 0"}},
+    {"shininess-negative", {"--shininess", "-1"}, NULL, NULL, {"--shininess", "[0, 100000]"}},
+    {"shininess-beyond-range", {"--shininess", "3e38"}, NULL, NULL,
+     {"--shininess", "[0, 100000]"}},
+    {"spot-reach-zero", {"--spot-reach", "0"}, NULL, NULL, {"--spot-reach", "[0.1, 10000]"}},
+    {"spot-reach-negative", {"--spot-reach", "-2"}, NULL, NULL,
+     {"--spot-reach", "[0.1, 10000]"}},
+    {"spot-reach-denormal", {"--spot-reach", "1e-45"}, NULL, NULL,
+     {"--spot-reach", "[0.1, 10000]"}},
+    {"spot-reach-beyond-range", {"--spot-reach", "10001"}, NULL, NULL,
+     {"--spot-reach", "[0.1, 10000]"}},
     {"spot-inner-negative", {"--spot-inner", "-1"}, NULL, NULL, {"--spot-inner", "[0, 89]"}},
     {"spot-outer-above", {"--spot-outer", "90"}, NULL, NULL, {"--spot-outer", "[0, 89]"}},
     {"spot-inner-wider-than-default-outer", {"--spot-inner", "20"}, NULL, NULL,
@@ -394,8 +419,12 @@ static const error_case error_cases[] = {
     {"cubes-fraction", {"--cubes", "2.5"}, NULL, NULL, {"--cubes", "integer"}},
     {"threads-negative", {"--threads", "-1"}, NULL, NULL, {"--threads", "from 0 to 256"}},
     {"threads-above", {"--threads", "257"}, NULL, NULL, {"--threads", "from 0 to 256"}},
-    {"fps-zero", {"--fps", "0"}, NULL, NULL, {"--fps", "above 0"}},
-    {"fps-negative", {"--fps", "-30"}, NULL, NULL, {"--fps", "above 0"}},
+    {"fps-zero", {"--fps", "0"}, NULL, NULL, {"--fps", "[0.001, 1000000]"}},
+    {"fps-negative", {"--fps", "-30"}, NULL, NULL, {"--fps", "[0.001, 1000000]"}},
+    /* frame 1's time would be 1e300 seconds on */
+    {"fps-tiny", {"--frames", "2", "--fps", "1e-300", "-o", "f%d.png"}, NULL, NULL,
+     {"--fps", "[0.001, 1000000]"}},
+    {"fps-beyond-range", {"--fps", "1e7"}, NULL, NULL, {"--fps", "[0.001, 1000000]"}},
     {"frames-zero", {"--frames", "0"}, NULL, NULL, {"--frames", "from 1"}},
     {"frames-negative", {"--frames", "-2"}, NULL, NULL, {"--frames", "from 1"}},
     {"bench-zero", {"--bench", "0"}, NULL, NULL, {"--bench", "from 1"}},
@@ -413,6 +442,23 @@ static const error_case error_cases[] = {
     {"output-trailing-percent", {"-o", "out%"}, NULL, NULL, {"-o", "%d"}},
     {"output-default-pattern-long-option", {"--frames", "2", "--output", "x%5x.png"}, NULL, NULL,
      {"-o", "%d"}},
+    /* what -o may replace: a regular file that is none of the run's inputs */
+    {"output-is-a-texture", {"--size", "8x8", "--textures", "tex", "-o", "tex/a.bmp"}, NULL,
+     NULL, {"-o: tex/a.bmp: is a texture this run reads", "expected an output file"}},
+    {"output-is-a-texture-by-another-name",
+     {"--size", "8x8", "--textures", "tex", "-o", "./tex/../tex/b.bmp"}, NULL, NULL,
+     {"-o: ./tex/../tex/b.bmp: is a texture this run reads (tex/b.bmp)"}},
+    {"output-is-the-scene-file", {"--scene", "s.luz", "-o", "s.luz"},
+     "size = 8x8\ntextures = none\n", NULL, {"-o: s.luz: is the scene file this run reads"}},
+    {"output-key-is-the-scene-file", {"--scene", "s.luz"},
+     "size = 8x8\ntextures = none\noutput = s.luz\n", NULL,
+     {"-o: s.luz: is the scene file this run reads"}},
+    {"output-is-a-directory", {"--size", "8x8", "--textures", "none", "-o", "tex"}, NULL, NULL,
+     {"-o: tex: is a directory", "expected a file name (such as tex/luz.png)"}},
+    {"output-is-a-directory-with-slash", {"--size", "8x8", "--textures", "none", "-o", "tex/"},
+     NULL, NULL, {"-o: tex/: is a directory", "(such as tex/luz.png)"}},
+    {"output-ends-in-slash", {"--size", "8x8", "--textures", "none", "-o", "nowhere/"}, NULL,
+     NULL, {"-o: nowhere/: ends in '/'", "(such as nowhere/luz.png)"}},
     /* a slice of a sequence (--frame-range, --shard) and its files */
     {"frame-range-reversed", {"--frames", "24", "--frame-range", "7:3"}, NULL, NULL,
      {"--frame-range", "0 <= A <= B <= 23", "'7:3'"}},
@@ -493,8 +539,12 @@ static const error_case error_cases[] = {
     /* a device would feed the reader forever; a huge line must not grow it */
     {"scene-is-a-device", {"--scene", "/dev/zero"}, NULL, NULL,
      {"/dev/zero", "not a regular file"}},
-    {"scene-line-too-long", {"--scene", "s.luz"}, "time = 1\n" TEN(TEN(TEN("########"))), NULL,
-     {"s.luz:2", "longer than"}},
+    /* 16384 characters, and 20000 */
+    {"scene-line-too-long", {"--scene", "s.luz"}, "time = 1\n" TEN(TEN(TEN("####################"))),
+     NULL, {"s.luz:2", "longer than 16384"}},
+    {"scene-texture-name-too-long", {"--scene", "s.luz"},
+     "cube = 0, 0, 0 texture " TEN(TEN("abc")) TEN("abcdefgh") "aaaaaa.png\n", NULL,
+     {"s.luz:1", "at most 255 bytes"}},
     {"scene-syntax", {"--scene", "s.luz"}, "size = 16x9\nthis is not an option\n", NULL,
      {"s.luz:2", "name = value"}},
     {"scene-empty-name", {"--scene", "s.luz"}, "= 5\n", NULL, {"s.luz:1", "name = value"}},
@@ -508,7 +558,7 @@ static const error_case error_cases[] = {
     {"scene-scene-key", {"--scene", "s.luz"}, "scene = other.luz\n", NULL,
      {"s.luz:1", "not allowed"}},
     {"scene-bad-value", {"--scene", "s.luz"}, "# a comment\nfov = 200  # too wide\n", NULL,
-     {"s.luz:2", "fov", "(0, 180)"}},
+     {"s.luz:2", "fov", "[1, 179]"}},
     {"scene-malformed-number", {"--scene", "s.luz"}, "seed = 12abc\n", NULL,
      {"s.luz:1", "seed", "integer"}},
     {"scene-missing-value", {"--scene", "s.luz"}, "fov =\n", NULL, {"s.luz:1", "missing"}},
@@ -528,6 +578,10 @@ static const error_case error_cases[] = {
      {"s.luz:1", "[0, 1]"}},
     {"scene-cube-infinite", {"--scene", "s.luz"}, "cube = inf, 0, 0\n", NULL,
      {"s.luz:1", "finite"}},
+    {"scene-cube-beyond-range", {"--scene", "s.luz"}, "\ncube = 0, 0, -3e38\n", NULL,
+     {"s.luz:2", "cube", "each in [-10000, 10000]"}},
+    {"scene-cube-just-beyond-range", {"--scene", "s.luz"}, "cube = 10000.001, 0, 0\n", NULL,
+     {"s.luz:1", "cube", "each in [-10000, 10000]"}},
     {"scene-cube-texture-without-name", {"--scene", "s.luz"}, "cube = 0,0,0 texture\n", NULL,
      {"s.luz:1", "texture NAME"}},
     {"scene-cubes-and-cube-lines", {"--scene", "s.luz"}, "cubes = 20\ncube = 0, 0, 0\n", NULL,
@@ -588,6 +642,41 @@ static void test_refused(void **state)
     sandbox_destroy(&box);
 }
 
+/* A NUL byte anywhere in a scene file is refused at its line. fgets took
+ * a NUL for the end of its string, so a NUL in a last line without a
+ * newline, or a file of one NUL byte, passed unseen. */
+static void test_scene_nul_bytes(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *text;
+        size_t length;
+        const char *where;
+    } cases[] = {
+        {"seed = 1\nfov = 4\0", 17, "s.luz:2: "},            /* the last line, no newline */
+        {"\0", 1, "s.luz:1: "},                               /* one NUL byte */
+        {"seed = 1\0 2\nfov = 30\n", 21, "s.luz:1: "},       /* within a line */
+        {"\ntextures = \"a\0b\"\n", 18, "s.luz:2: "},       /* within quotes */
+        {"# c\n\n# x\0", 9, "s.luz:3: "},                    /* after a comment */
+        {"seed = 1\n\0\n", 11, "s.luz:2: "},                 /* a line of one NUL */
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        sandbox box;
+        sandbox_create(&box);
+        char path[600], expected[100];
+        sandbox_path(&box, "s.luz", path, sizeof path);
+        write_file(path, cases[c].text, cases[c].length);
+        run_result result = run_in(&box, ARGS("--scene", "s.luz", "--textures", "none"), NULL);
+        snprintf(expected, sizeof expected, "luz-render: %sexpected text, found a NUL byte\n",
+                 cases[c].where);
+        if (result.status != 2 || strcmp(result.err, expected) != 0)
+            fail_msg("case %zu: exit %d, stderr '%s'; expected 2 and '%s'", c, result.status,
+                     result.err, expected);
+        run_result_free(&result);
+        sandbox_destroy(&box);
+    }
+}
+
 /* 100000x100000 would be 130 GB: the refusal must come from the check, at
  * once, not from an allocation that fails (or, worse, succeeds). */
 static void test_huge_size_refused_at_once(void **state)
@@ -601,6 +690,112 @@ static void test_huge_size_refused_at_once(void **state)
         fail_msg("took %.2f s to refuse the size", result.seconds);
     run_result_free(&result);
     sandbox_destroy(&box);
+}
+
+/* ---- long paths come through whole ------------------------------------------------------ */
+
+/* Makes `levels` nested directories under box->work, each named by 250
+ * copies of `letter`, and writes their relative path into out. */
+static void make_deep_directory(const sandbox *box, char letter, int levels, char *out,
+                                size_t size)
+{
+    char name[251];
+    memset(name, letter, 250);
+    name[250] = '\0';
+    out[0] = '\0';
+    for (int level = 0; level < levels; level++) {
+        size_t used = strlen(out);
+        snprintf(out + used, size - used, "%s%s", level ? "/" : "", name);
+        char absolute[4096];
+        snprintf(absolute, sizeof absolute, "%s/%s", box->work, out);
+        assert_int_equal(mkdir(absolute, 0755), 0);
+    }
+}
+
+/* Exit status 2 and one line on stderr that holds every needle whole. */
+static void assert_refused_naming(const run_result *result, const char *const *needles)
+{
+    if (result->status != 2)
+        fail_msg("exit status %d, expected 2; stderr: %.300s", result->status, result->err);
+    size_t length = strlen(result->err);
+    assert_true(length > 0 && result->err[length - 1] == '\n');
+    assert_ptr_equal(strchr(result->err, '\n'), result->err + length - 1);
+    for (int i = 0; needles[i] != NULL; i++) {
+        if (strstr(result->err, needles[i]) == NULL)
+            fail_msg("stderr (%zu bytes) lacks the whole of the %zu-byte '%.60s...'", length,
+                     strlen(needles[i]), needles[i]);
+    }
+}
+
+/* An error message names its paths whole, however long: a 1506-byte
+ * scene path, a 3000-byte model path beside it, a 1506-byte output
+ * directory. (luz_error once held 512 bytes and cut them off.) */
+static void test_long_paths_come_through_whole(void **state)
+{
+    (void)state;
+    sandbox box;
+    sandbox_create(&box);
+    char scene_directory[2048], model_directory[2048], scene[2100], model_line[2100];
+    char model[4096], output[2100];
+    make_deep_directory(&box, 's', 6, scene_directory, sizeof scene_directory);
+    assert_true(strlen(scene_directory) > 1500);
+
+    /* a bad value in a scene file deep down: FILE:LINE with the whole FILE */
+    snprintf(scene, sizeof scene, "%s/s.luz", scene_directory);
+    char scene_absolute[4096];
+    snprintf(scene_absolute, sizeof scene_absolute, "%s/%s", box.work, scene);
+    write_file(scene_absolute, "seed = 1\nfov = 0\n", 17);
+    char where[2200];
+    snprintf(where, sizeof where, "%s:2: fov", scene);
+    run_result result = run_in(&box, ARGS("--scene", scene, "--textures", "none"), NULL);
+    assert_refused_naming(&result, ARGS(where, "[1, 179]"));
+    run_result_free(&result);
+
+    /* a model that is not there, 1500 more bytes below the scene file's
+     * directory: the scene file and the model's absolute path, both whole */
+    make_deep_directory(&box, 'm', 6, model_directory, sizeof model_directory);
+    snprintf(model_line, sizeof model_line, "model = %s/nothere.obj\n", model_directory);
+    write_file(scene_absolute, model_line, strlen(model_line));
+    snprintf(where, sizeof where, "%s:1: model", scene);
+    snprintf(model, sizeof model, "%s/%s/%s/nothere.obj", box.work, scene_directory,
+             model_directory);
+    assert_true(strlen(model) > 3000);
+    result = run_in(&box, ARGS("--scene", scene, "--textures", "none"), NULL);
+    assert_refused_naming(&result, ARGS(where, model));
+    run_result_free(&result);
+
+    /* an output directory that does not exist: exit 1 (the machine's
+     * failure, docs/cli.md), the path whole */
+    snprintf(output, sizeof output, "%s/no-such-directory/out.png", scene_directory);
+    result = run_in(&box, ARGS("--size", "8x8", "--textures", "none", "-o", output), NULL);
+    assert_int_equal(result.status, 1);
+    if (strstr(result.err, output) == NULL)
+        fail_msg("stderr lacks the whole output path: %.300s", result.err);
+    run_result_free(&result);
+    sandbox_destroy(&box);
+}
+
+/* luz_error holds three PATH_MAX paths and some words whole; what does not
+ * fit ends in "...", so a cut is never silent. */
+static void test_error_message_room(void **state)
+{
+    (void)state;
+    char *path = malloc(4096);
+    assert_non_null(path);
+    memset(path, 'p', 4095);
+    path[4095] = '\0';
+    luz_error error;
+    assert_int_equal(luz_error_set(&error, "%s:12: model: %s: texture '%s': cannot open it",
+                                   path, path, path), -1);
+    /* 3 x 4095 + the words between, counted by hand: ":12: model: " is 12,
+     * ": texture '" 11, "': cannot open it" 17 */
+    assert_int_equal(strlen(error.message), 3 * 4095 + 12 + 11 + 17);
+    assert_string_equal(error.message + strlen(error.message) - 17, "': cannot open it");
+
+    luz_error_set(&error, "%s%s%s%s%s", path, path, path, path, path);
+    assert_int_equal(strlen(error.message), LUZ_ERROR_MESSAGE_SIZE - 1);
+    assert_string_equal(error.message + LUZ_ERROR_MESSAGE_SIZE - 4, "...");
+    free(path);
 }
 
 /* ---- what works ---------------------------------------------------------------------------- */
@@ -1766,6 +1961,206 @@ static void test_save_scene_never_replaces_unless_asked(void **state)
     sandbox_destroy(&box);
 }
 
+/* ---- what -o may replace ------------------------------------------------------------- */
+
+/* A thing at a path, as lstat sees it: luz-render must leave it as it was. */
+typedef struct file_identity {
+    mode_t type;
+    dev_t device;
+    ino_t inode;
+} file_identity;
+
+static file_identity identity_of(const char *path)
+{
+    struct stat status;
+    if (lstat(path, &status) != 0)
+        fail_msg("%s: %s", path, strerror(errno));
+    return (file_identity){status.st_mode & S_IFMT, status.st_dev, status.st_ino};
+}
+
+/* luz-render -o NAME, with NAME something the rename would replace: exit
+ * status 2, one line naming NAME and what it is, nothing written, NAME
+ * still the same thing. */
+static void assert_output_refused(const sandbox *box, const char *name, const char *what)
+{
+    char path[600], before[8192] = "", after[8192] = "";
+    sandbox_path(box, name, path, sizeof path);
+    const file_identity was = identity_of(path);
+    list_tree(box->work, "", before, sizeof before);
+    run_result result = run_in(box, ARGS("--size", "8x8", "--textures", "none", "-o", name), NULL);
+    char needle[700];
+    snprintf(needle, sizeof needle, "luz-render: -o: %s: is %s, not a regular file", name, what);
+    if (result.status != 2 || strncmp(result.err, needle, strlen(needle)) != 0 ||
+        strchr(result.err, '\n') != result.err + strlen(result.err) - 1)
+        fail_msg("-o %s: exit %d, stderr '%s'; expected 2 and '%s...'", name, result.status,
+                 result.err, needle);
+    const file_identity is = identity_of(path);
+    assert_int_equal(is.type, was.type);
+    assert_int_equal(is.inode, was.inode);
+    assert_int_equal(is.device, was.device);
+    list_tree(box->work, "", after, sizeof after);
+    assert_string_equal(before, after);
+    run_result_free(&result);
+}
+
+/* The issue's case: as root, -o /dev/null replaced the system's /dev/null
+ * with a PNG, since a rename replaces whatever has the name. Only a regular
+ * file is replaced now; everything else at the path is refused. (The
+ * devices are made in the sandbox, never the system's own, so that a
+ * regression cannot harm the machine that runs the test.) */
+static void test_output_replaces_only_regular_files(void **state)
+{
+    (void)state;
+    sandbox box;
+    sandbox_create(&box);
+    char path[600];
+
+    sandbox_path(&box, "fifo.png", path, sizeof path);
+    assert_int_equal(mkfifo(path, 0644), 0);
+    assert_output_refused(&box, "fifo.png", "a FIFO");
+
+    sandbox_path(&box, "socket.png", path, sizeof path);
+    int listener = socket(AF_UNIX, SOCK_STREAM, 0);
+    assert_true(listener >= 0);
+    struct sockaddr_un address = {.sun_family = AF_UNIX};
+    if (strlen(path) < sizeof address.sun_path) {   /* a socket's path is short */
+        memcpy(address.sun_path, path, strlen(path) + 1);
+        assert_int_equal(bind(listener, (struct sockaddr *)&address, sizeof address), 0);
+        assert_output_refused(&box, "socket.png", "a socket");
+    }
+    close(listener);
+
+    /* a symbolic link is replaced itself, so it is refused whatever it
+     * points to: a device (/dev/stdout is a link), or a file */
+    sandbox_path(&box, "null-link.png", path, sizeof path);
+    assert_int_equal(symlink("/dev/null", path), 0);
+    assert_output_refused(&box, "null-link.png", "a symbolic link");
+    sandbox_path(&box, "file-link.png", path, sizeof path);
+    assert_int_equal(symlink("tex/a.bmp", path), 0);
+    assert_output_refused(&box, "file-link.png", "a symbolic link");
+
+    /* a character device of the sandbox's own (1, 3 is null's number);
+     * only root may make one */
+    sandbox_path(&box, "device.png", path, sizeof path);
+    if (mknod(path, S_IFCHR | 0666, makedev(1, 3)) == 0)
+        assert_output_refused(&box, "device.png", "a character device");
+    else
+        print_message("device case skipped: mknod: %s\n", strerror(errno));
+
+    /* the check itself, on the system's devices: it writes nothing */
+    luz_error error;
+    assert_int_equal(luz_new_file_check_target("/dev/null", &error), -1);
+    assert_string_equal(error.message, "/dev/null: is a character device, not a regular file; "
+                                       "expected a new file or a regular file to replace");
+    assert_int_equal(luz_new_file_check_target("/dev/stdout", &error), -1);
+    assert_non_null(strstr(error.message, "/dev/stdout: is a symbolic link"));
+    sandbox_destroy(&box);
+}
+
+/* A sequence's every frame is checked before the first is rendered: frame
+ * 1 of tex/%d.bmp is tex/1.bmp, a texture, so nothing is written at all
+ * (not frame 0 either) and the texture stays as it was. */
+static void test_no_frame_replaces_an_input(void **state)
+{
+    (void)state;
+    sandbox box;
+    sandbox_create(&box);
+    char texture[600], frame0[600];
+    sandbox_path(&box, "tex/1.bmp", texture, sizeof texture);
+    sandbox_path(&box, "tex/0.bmp", frame0, sizeof frame0);
+    write_bmp(texture, 2, 2, 10, 20, 30);
+    size_t length_before, length_after;
+    char *bytes_before = read_file(texture, &length_before);
+    run_result result = run_in(&box, ARGS("--size", "8x8", "--textures", "tex", "--frames", "3",
+                                          "-o", "tex/%d.bmp"), NULL);
+    assert_int_equal(result.status, 2);
+    assert_string_equal(result.err, "luz-render: -o: tex/1.bmp: is a texture this run reads; "
+                                    "expected an output file that is none of its inputs\n");
+    assert_int_equal(access(frame0, F_OK), -1);
+    char *bytes_after = read_file(texture, &length_after);
+    assert_int_equal(length_after, length_before);
+    assert_memory_equal(bytes_after, bytes_before, length_before);
+    free(bytes_before);
+    free(bytes_after);
+    run_result_free(&result);
+
+    /* the same file by a hard link elsewhere: its device and inode */
+    char link_path[600];
+    sandbox_path(&box, "same.bmp", link_path, sizeof link_path);
+    assert_int_equal(link(texture, link_path), 0);
+    result = run_in(&box, ARGS("--size", "8x8", "--textures", "tex", "-o", "same.bmp"), NULL);
+    assert_int_equal(result.status, 2);
+    assert_string_equal(result.err, "luz-render: -o: same.bmp: is a texture this run reads "
+                                    "(tex/1.bmp); expected an output file that is none of its "
+                                    "inputs\n");
+    run_result_free(&result);
+    sandbox_destroy(&box);
+}
+
+/* The check is new_file's, right before the rename too: a FIFO that
+ * appears while the PNG is written is not replaced, and the temporary
+ * file is removed. */
+static void test_commit_checks_the_path_again(void **state)
+{
+    (void)state;
+    sandbox box;
+    sandbox_create(&box);
+    char path[600], before[8192] = "", after[8192] = "";
+    sandbox_path(&box, "late.png", path, sizeof path);
+    list_tree(box.work, "", before, sizeof before);
+    luz_new_file file;
+    luz_error error;
+    assert_int_equal(luz_new_file_open(&file, path, &error), 0);
+    fputs("not yet a PNG", file.stream);
+    assert_int_equal(mkfifo(path, 0644), 0);
+    assert_int_equal(luz_new_file_commit(&file, true, &error), -1);
+    assert_non_null(strstr(error.message, "late.png: is a FIFO, not a regular file"));
+    assert_int_equal(identity_of(path).type, S_IFIFO);
+    list_tree(box.work, "", after, sizeof after);
+    assert_new_files(before, after, ARGS("late.png"));   /* the FIFO, and no temporary */
+    sandbox_destroy(&box);
+}
+
+/* A file-size limit (ulimit -f) made the write die of SIGXFSZ and leave
+ * NAME.tmp-XXXXXX behind. Now the write fails with EFBIG: -1, one message,
+ * no file, and the signal is not delivered once the mask is restored. In
+ * a child, whose limit the test can lower: the defaults' scene text is
+ * about 400 bytes, the limit 100. This is the viewer's F2 path. */
+static void test_save_scene_past_the_file_size_limit(void **state)
+{
+    (void)state;
+    sandbox box;
+    sandbox_create(&box);
+    char path[600], before[8192] = "", after[8192] = "";
+    sandbox_path(&box, "view.luz", path, sizeof path);
+    list_tree(box.work, "", before, sizeof before);
+    fflush(NULL);
+    pid_t child = fork();
+    assert_true(child >= 0);
+    if (child == 0) {
+        luz_options options;
+        luz_options_init(&options);
+        struct rlimit limit = {100, 100};
+        luz_error error = {{0}};
+        int status = setrlimit(RLIMIT_FSIZE, &limit) == 0
+                         ? luz_options_save_scene(&options, path, false, &error)
+                         : 9;
+        /* 0: the expected failure and message; else what went wrong */
+        bool expected = status == -1 && strstr(error.message, "view.luz: cannot write (File "
+                                                             "too large)") != NULL;
+        _exit(expected ? 0 : status == 0 ? 3 : 4);
+    }
+    int status;
+    while (waitpid(child, &status, 0) < 0)
+        assert_int_equal(errno, EINTR);
+    if (!WIFEXITED(status))
+        fail_msg("the child died of signal %d", WTERMSIG(status));
+    assert_int_equal(WEXITSTATUS(status), 0);
+    list_tree(box.work, "", after, sizeof after);
+    assert_string_equal(before, after);
+    sandbox_destroy(&box);
+}
+
 static void test_parse_precedence_and_forms(void **state)
 {
     (void)state;
@@ -2608,6 +3003,9 @@ int main(void)
         cmocka_unit_test(test_scene_file_and_precedence),
         cmocka_unit_test(test_options_reach_the_image),
         cmocka_unit_test(test_huge_size_refused_at_once),
+        cmocka_unit_test(test_scene_nul_bytes),
+        cmocka_unit_test(test_long_paths_come_through_whole),
+        cmocka_unit_test(test_error_message_room),
         cmocka_unit_test(test_scene_round_trip),
         cmocka_unit_test(test_scene_round_trip_every_saved_key),
         cmocka_unit_test(test_scene_text_of_the_defaults),
@@ -2615,6 +3013,10 @@ int main(void)
         cmocka_unit_test(test_scene_quoted_round_trip),
         cmocka_unit_test(test_scene_quoted_values_read),
         cmocka_unit_test(test_save_scene_never_replaces_unless_asked),
+        cmocka_unit_test(test_output_replaces_only_regular_files),
+        cmocka_unit_test(test_no_frame_replaces_an_input),
+        cmocka_unit_test(test_commit_checks_the_path_again),
+        cmocka_unit_test(test_save_scene_past_the_file_size_limit),
         cmocka_unit_test(test_parse_precedence_and_forms),
         cmocka_unit_test(test_output_pattern),
         cmocka_unit_test(test_default_textures_directory),

@@ -93,6 +93,28 @@ static void test_motion_is_per_second(void **state)
     assert_vec3_near(many.position, one.position.x, one.position.y, one.position.z);
 }
 
+/* Flying stops at the options' range, +-10000 on each axis, so that
+ * --print-state and F2 never write a camera-pos the reader refuses; the
+ * other axes move on as usual. */
+static void test_motion_stops_at_the_range(void **state)
+{
+    (void)state;
+    luz_camera camera = start_camera();
+    camera.position = (luz_vec3){9999.0f, 0.0f, -9999.5f};
+    /* one second right: +2.5 on x, clamped to 10000; z stays */
+    luz_camera_move(&camera, (luz_motion){.right = true}, 1.0f);
+    assert_vec3_near(camera.position, 10000.0f, 0.0f, -9999.5f);
+    /* one second forward (-z): -9999.5 - 2.5 = -10002, clamped to -10000 */
+    luz_camera_move(&camera, (luz_motion){.forward = true}, 1.0f);
+    assert_vec3_near(camera.position, 10000.0f, 0.0f, -10000.0f);
+    /* 5000 seconds up would be 12500: it ends at the range too */
+    luz_camera_move(&camera, (luz_motion){.up = true}, 5000.0f);
+    assert_vec3_near(camera.position, 10000.0f, 10000.0f, -10000.0f);
+    /* and back, as far as the motion goes: 10000 - 2.5 */
+    luz_camera_move(&camera, (luz_motion){.left = true}, 1.0f);
+    assert_vec3_near(camera.position, 9997.5f, 10000.0f, -10000.0f);
+}
+
 static void test_forward_follows_the_pitch(void **state)
 {
     (void)state;
@@ -428,6 +450,7 @@ int main(void)
         cmocka_unit_test(test_opposite_keys_cancel),
         cmocka_unit_test(test_keys_add_up),
         cmocka_unit_test(test_motion_is_per_second),
+        cmocka_unit_test(test_motion_stops_at_the_range),
         cmocka_unit_test(test_forward_follows_the_pitch),
         cmocka_unit_test(test_strafe_follows_the_yaw),
         cmocka_unit_test(test_mouse_turns_a_tenth_of_a_degree_a_pixel),

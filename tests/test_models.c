@@ -1220,6 +1220,12 @@ static const refusal_case refusal_cases[] = {
      {"refusal.luz:1: model", "scale k"}},
     {"scene: scale missing", NULL, "model = models/quad.obj scale\n",
      {"refusal.luz:1: model", "scale k"}},
+    {"scene: scale below the range", NULL, "model = models/quad.obj scale 0.0009\n",
+     {"refusal.luz:1: model", "scale k", "[0.001, 10000]"}},
+    {"scene: scale above the range", NULL, "model = models/quad.obj scale 10001\n",
+     {"refusal.luz:1: model", "scale k", "[0.001, 10000]"}},
+    {"scene: at beyond the range", NULL, "model = models/quad.obj at 0, 20000, 0\n",
+     {"refusal.luz:1: model", "at x,y,z", "[-10000, 10000]"}},
     {"scene: still still", NULL, "model = models/quad.obj still still\n",
      {"refusal.luz:1: model", "still"}},
     {"scene: unknown word", NULL, "\nmodel = models/quad.obj shiny\n",
@@ -1270,6 +1276,53 @@ static void test_refusals_through_luz_render(void **state)
     char path[1024];
     work_path("refusal.luz", path, sizeof path);
     unlink(path);
+}
+
+/* -o naming a model or a texture file it read is refused (exit 2, one
+ * line saying which input it is) and the file stays as it was: the image
+ * would have replaced it. models/two.obj reads models/tex/a.png and, as
+ * .\tex\b.png, models/tex/b.png. */
+static void test_output_is_never_a_model_input(void **state)
+{
+    (void)state;
+    REQUIRE_MODELS();
+    static const struct {
+        const char *output, *expected;
+    } cases[] = {
+        {"models/two.obj", "luz-render: -o: models/two.obj: is a model this run reads (@); "
+                           "expected an output file that is none of its inputs\n"},
+        {"models/tex/a.png", "luz-render: -o: models/tex/a.png: is a texture of a model this run "
+                             "reads (@/../tex/a.png)"},
+        {"models/./tex/b.png", "luz-render: -o: models/./tex/b.png: is a texture of a model this "
+                               "run reads (@/../tex/b.png)"},
+    };
+    char model[1024], directory[1024];
+    work_path("models/two.obj", model, sizeof model);
+    work_path("models", directory, sizeof directory);
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        char path[1024], expected[4096] = "";
+        work_path(cases[c].output, path, sizeof path);
+        /* "@" is the model's absolute path; "@/.." its directory's */
+        const char *at = strchr(cases[c].expected, '@');
+        const bool directory_part = strncmp(at, "@/../", 5) == 0;
+        snprintf(expected, sizeof expected, "%.*s%s%s", (int)(at - cases[c].expected),
+                 cases[c].expected, directory_part ? directory : model,
+                 directory_part ? at + 4 : at + 1);
+        size_t length_before, length_after;
+        char *before = read_file(path, &length_before);
+        assert_non_null(before);
+        run_result result = run_render(ARGS("--model", "models/two.obj", "--size", "32x32", "-o",
+                                            cases[c].output));
+        assert_int_equal(result.status, 2);
+        if (strncmp(result.err, expected, strlen(expected)) != 0)
+            fail_msg("-o %s: stderr '%s', expected '%s'", cases[c].output, result.err, expected);
+        char *after = read_file(path, &length_after);
+        assert_int_equal(length_after, length_before);
+        assert_memory_equal(after, before, length_before);
+        free(before);
+        free(after);
+        run_result_free(&result);
+    }
 }
 
 /* A file that cannot be read. Root reads every file whatever its mode, so
@@ -1562,6 +1615,7 @@ int main(void)
         cmocka_unit_test(test_scene_round_trip),
         cmocka_unit_test(test_refusals_through_luz_render),
         cmocka_unit_test(test_unreadable_model),
+        cmocka_unit_test(test_output_is_never_a_model_input),
         cmocka_unit_test(test_views_on_a_model),
         cmocka_unit_test(test_probe_names_a_model),
         cmocka_unit_test(test_options_on_a_model),

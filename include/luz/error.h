@@ -11,8 +11,14 @@
 
 #include "luz/api.h"
 
+/* Room for a message that names three paths of up to PATH_MAX (4096) bytes
+ * each, such as a scene file, a model it places and a texture the model
+ * names, and says what is wrong: a path is never cut short. A longer
+ * message, which no path the system can open gives, ends in "...". */
+#define LUZ_ERROR_MESSAGE_SIZE (4 * 4096)
+
 typedef struct luz_error {
-    char message[512];
+    char message[LUZ_ERROR_MESSAGE_SIZE];
 } luz_error;
 
 /* printf-style; a NULL error is allowed and ignored. Returns -1 so that a

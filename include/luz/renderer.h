@@ -73,6 +73,9 @@ typedef struct luz_frame_stats {
     uint64_t triangles_rasterised;
     uint64_t fragments_tested;    /* depth tests, over all bands */
     uint64_t fragments_shaded;    /* pixels shaded (once each) */
+    uint64_t memory_bytes;        /* what the renderer holds for its frames'
+                                     work (triangles, vertices, bins), kept
+                                     from frame to frame; not the framebuffer */
 } luz_frame_stats;
 
 /* Work the caller puts on top of each band of the frame: the renderer

@@ -30,7 +30,13 @@ void luz_camera_move(luz_camera *camera, luz_motion motion, float seconds)
     if (motion.left) offset = luz_vec3_sub(offset, right);
     if (motion.up) offset = luz_vec3_add(offset, world_up);
     if (motion.down) offset = luz_vec3_sub(offset, world_up);
-    camera->position = luz_vec3_add(camera->position, luz_vec3_scale(offset, step));
+    luz_vec3 position = luz_vec3_add(camera->position, luz_vec3_scale(offset, step));
+    /* The options take no camera beyond LUZ_SCENE_MAX_COORDINATE; flying
+     * stops there too, so that a saved view always reads back. */
+    const float limit = LUZ_SCENE_MAX_COORDINATE;
+    camera->position = (luz_vec3){clamp_float(position.x, -limit, limit),
+                                  clamp_float(position.y, -limit, limit),
+                                  clamp_float(position.z, -limit, limit)};
 }
 
 void luz_camera_turn(luz_camera *camera, float dx, float dy)

@@ -41,7 +41,8 @@ typedef struct luz_motion {
  * and pressing W climbs), sideways along normalize(cross(front, world up)),
  * up and down along the world's up (0, 1, 0). Each held key contributes its
  * full speed, so a diagonal is faster than a straight line, as in the
- * report. */
+ * report. Each coordinate stays within +-LUZ_SCENE_MAX_COORDINATE, the
+ * options' range (lab/scene.h). */
 void luz_camera_move(luz_camera *camera, luz_motion motion, float seconds);
 
 /* Mouse look: yaw += dx * 0.1, pitch -= dy * 0.1 (dx, dy in pixels, y

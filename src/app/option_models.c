@@ -177,6 +177,17 @@ int luz_options_load_models(luz_options *options, luz_model_set *set, luz_error 
             return -1;
         }
         set->count++;
+        /* The model and the texture files it read are inputs that no
+         * output may replace. */
+        const luz_model *model = &set->models[set->count - 1];
+        int status = luz_input_files_add(&options->inputs, model->path, "a model", error);
+        for (int k = 0; k < model->texture_file_count && status == 0; k++)
+            status = luz_input_files_add(&options->inputs, model->texture_files[k],
+                                         "a texture of a model", error);
+        if (status != 0) {
+            luz_model_set_free(set);
+            return -1;
+        }
     }
     for (int i = 0; i < count; i++) {
         const char *path = options->object_sources[i].model_path;

@@ -87,16 +87,21 @@ static inline bool option_reads_well(const char *text, double value)
     return strchr(text, 'e') == NULL || magnitude < 1e-4 || magnitude >= 1e15;
 }
 
-/* The shortest %.Ng text that the readers above bring back to the same
- * float (strtod, then a cast): "0.2" rather than %.9g's "0.200000003". %.9g
- * always round-trips a float through strtof; going on to 17 digits covers
- * the double rounding of strtod-then-cast as well, since %.17g is the exact
- * double of the float. */
+/* The shortest %.Ng text that the reader above, option_read_numbers,
+ * takes and brings back to the same float (strtod, then a cast): "0.2"
+ * rather than %.9g's "0.200000003". %.9g always round-trips a float
+ * through strtof; going on to 17 digits covers the double rounding of
+ * strtod-then-cast as well, since %.17g is the exact double of the float.
+ * Asking the reader itself, not strtod, matters at the edge: FLT_MAX's
+ * shortest text, 3.4028235e+38, is a double above FLT_MAX, which the reader
+ * refuses; 3.402823466e+38 is the first it takes. */
 static inline void option_format_float(char *buffer, size_t size, float value)
 {
     for (int precision = 1; precision <= 17; precision++) {
         snprintf(buffer, size, "%.*g", precision, (double)value);
-        if ((float)strtod(buffer, NULL) == value && option_reads_well(buffer, value))
+        double back;
+        if (option_read_numbers(buffer, &back, 1, true) == OPTION_PARSE_OK &&
+            (float)back == value && option_reads_well(buffer, value))
             return;
     }
 }
@@ -106,7 +111,9 @@ static inline void option_format_double(char *buffer, size_t size, double value)
 {
     for (int precision = 1; precision <= 17; precision++) {
         snprintf(buffer, size, "%.*g", precision, value);
-        if (strtod(buffer, NULL) == value && option_reads_well(buffer, value))
+        double back;
+        if (option_read_numbers(buffer, &back, 1, false) == OPTION_PARSE_OK && back == value &&
+            option_reads_well(buffer, value))
             return;
     }
 }

@@ -57,6 +57,24 @@ int luz_options_resolve_textures(luz_options *options, const luz_texture_set *te
     return 0;
 }
 
+/* Records the set's files, directory/name, among the run's inputs. */
+static int add_texture_inputs(luz_options *options, const char *directory,
+                              const luz_texture_set *textures, luz_error *error)
+{
+    for (int i = 0; i < textures->count; i++) {
+        size_t length = strlen(directory) + 1 + strlen(textures->names[i]) + 1;
+        char *path = malloc(length);
+        if (path == NULL)
+            return luz_error_set(error, "%s: out of memory", directory);
+        snprintf(path, length, "%s/%s", directory, textures->names[i]);
+        int status = luz_input_files_add(&options->inputs, path, "a texture", error);
+        free(path);
+        if (status != 0)
+            return -1;
+    }
+    return 0;
+}
+
 /* Loads the textures the options name; see options.h. */
 int luz_options_load_textures(luz_options *options, luz_texture_set *textures, luz_error *error)
 {
@@ -73,6 +91,8 @@ int luz_options_load_textures(luz_options *options, luz_texture_set *textures, l
         luz_error load_error = {{0}};
         if (luz_texture_set_load(textures, directory, &load_error) != 0)
             return luz_error_set(error, "%s: %s", source, load_error.message);
+        if (add_texture_inputs(options, directory, textures, error) != 0)
+            return -1;
     }
     return luz_options_resolve_textures(options, textures, error);
 }

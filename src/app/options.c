@@ -26,7 +26,6 @@
 
 #include <ctype.h>
 #include <errno.h>
-#include <float.h>
 #include <limits.h>
 #include <math.h>
 #include <stdint.h>
@@ -72,8 +71,8 @@ typedef struct option_spec {
     const char *name;          /* the long option without its dashes */
     option_kind kind;
     size_t offset;             /* of the value in luz_options */
-    double min, max;           /* the accepted range of a number */
-    bool min_open, max_open;   /* whether the range excludes its ends */
+    double min, max;           /* the accepted range of a number, ends
+                                  included; of each number of a vector */
     bool in_scene_file;        /* may a scene file set it? */
     luz_option_saving saving;  /* does luz_options_write_scene save it, and
                                   when? (left out: never) */
@@ -89,9 +88,11 @@ static const option_spec option_table[] = {
     {.name = "size", .kind = OPTION_SIZE,
      .in_scene_file = true, .saving = LUZ_OPTION_SAVED,
      .syntax = "WxH", .summary = "image size in pixels"},
-    {.name = "time", .kind = OPTION_DOUBLE, .offset = FIELD(scene.time_seconds), UNBOUNDED,
+    {.name = "time", .kind = OPTION_DOUBLE, .offset = FIELD(scene.time_seconds),
+     .min = -LUZ_SCENE_MAX_TIME, .max = LUZ_SCENE_MAX_TIME,
      .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "T",
-     .summary = "scene time in seconds: the cubes' angles and the lights' orbits"},
+     .summary = "scene time in seconds, -1e9 to 1e9: the cubes' angles and the lights' "
+                "orbits"},
     {.name = "seed", .kind = OPTION_SEED, .min = 0, .max = UINT32_MAX,
      .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "N",
      .summary = "seed of the cube colours, 0 to 4294967295 (0 means 0x9E3779B9)"},
@@ -100,34 +101,38 @@ static const option_spec option_table[] = {
      .max = LUZ_MAX_CUBES, .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "N",
      .summary = "number of cubes, 1 to 100000, the ten repeated in tiles (SCENE.md)"},
     {.name = "camera-pos", .kind = OPTION_VEC3, .offset = FIELD(scene.camera.position),
+     .min = -LUZ_SCENE_MAX_COORDINATE, .max = LUZ_SCENE_MAX_COORDINATE,
      .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "x,y,z",
-     .summary = "camera position"},
+     .summary = "camera position, each from -10000 to 10000"},
     {.name = "camera-yaw", .kind = OPTION_FLOAT, .offset = FIELD(scene.camera.yaw_degrees),
      UNBOUNDED, .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "D",
-     .summary = "camera yaw in degrees (-90 looks down -Z)"},
+     .summary = "camera yaw in degrees, any finite number (-90 looks down -Z)"},
     {.name = "camera-pitch", .kind = OPTION_FLOAT, .offset = FIELD(scene.camera.pitch_degrees),
      .min = -89, .max = 89, .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "D",
      .summary = "camera pitch in degrees, -89 to 89"},
-    {.name = "fov", .kind = OPTION_FLOAT, .offset = FIELD(scene.camera.fov_degrees), .min = 0,
-     .max = 180, .min_open = true, .max_open = true,
-     .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "D",
-     .summary = "vertical field of view in degrees, above 0 and below 180"},
-    {.name = "ambient", .kind = OPTION_LIGHT, .offset = FIELD(scene.lights.ambient),
+    /* 0 and 180 degrees make the projection's cot(fov / 2) infinite or 0;
+     * a degree either side of them still shows the scene. */
+    {.name = "fov", .kind = OPTION_FLOAT, .offset = FIELD(scene.camera.fov_degrees), .min = 1,
+     .max = 179, .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "D",
+     .summary = "vertical field of view in degrees, 1 to 179"},
+    {.name = "ambient", .kind = OPTION_LIGHT, .min = 0, .max = 1, .offset = FIELD(scene.lights.ambient),
      .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "r,g,b,a",
      .summary = "ambient light: colour and strength, each from 0 to 1"},
-    {.name = "diffuse", .kind = OPTION_LIGHT, .offset = FIELD(scene.lights.diffuse),
+    {.name = "diffuse", .kind = OPTION_LIGHT, .min = 0, .max = 1, .offset = FIELD(scene.lights.diffuse),
      .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "r,g,b,a",
      .summary = "diffuse headlight at the camera"},
-    {.name = "specular", .kind = OPTION_LIGHT, .offset = FIELD(scene.lights.specular),
+    {.name = "specular", .kind = OPTION_LIGHT, .min = 0, .max = 1, .offset = FIELD(scene.lights.specular),
      .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "r,g,b,a",
      .summary = "specular headlight at the camera"},
+    /* pow(cos a, S) is 1/2 at a = sqrt(2 ln 2 / S) radians: beyond 100000
+     * the highlight is under a fifth of a degree wide. */
     {.name = "shininess", .kind = OPTION_FLOAT, .offset = FIELD(scene.lights.shininess), .min = 0,
-     .max = INFINITY, .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "S",
-     .summary = "specular exponent, at least 0"},
-    {.name = "point", .kind = OPTION_LIGHT, .offset = FIELD(scene.lights.point),
+     .max = 100000, .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "S",
+     .summary = "specular exponent, 0 to 100000"},
+    {.name = "point", .kind = OPTION_LIGHT, .min = 0, .max = 1, .offset = FIELD(scene.lights.point),
      .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "r,g,b,a",
      .summary = "point light orbiting the origin (drawn as a small cube)"},
-    {.name = "spot", .kind = OPTION_LIGHT, .offset = FIELD(scene.lights.spot),
+    {.name = "spot", .kind = OPTION_LIGHT, .min = 0, .max = 1, .offset = FIELD(scene.lights.spot),
      .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "r,g,b,a",
      .summary = "spot light riding on the camera"},
     {.name = "spot-inner", .kind = OPTION_FLOAT, .offset = FIELD(scene.lights.spot_inner_degrees),
@@ -136,11 +141,12 @@ static const option_spec option_table[] = {
     {.name = "spot-outer", .kind = OPTION_FLOAT, .offset = FIELD(scene.lights.spot_outer_degrees),
      .min = 0, .max = 89, .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "D",
      .summary = "spot's cut-off cone in degrees, 0 to 89"},
+    /* The near plane is 0.1 away: a shorter reach would light nothing
+     * that can be seen. */
     {.name = "spot-reach", .kind = OPTION_FLOAT, .offset = FIELD(scene.lights.spot_reach),
-     .min = 0, .max = INFINITY, .min_open = true,
-     .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "R",
-     .summary = "distance at which the spot fades out, above 0"},
-    {.name = "directional", .kind = OPTION_LIGHT, .offset = FIELD(scene.lights.directional),
+     .min = 0.1, .max = 10000, .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "R",
+     .summary = "distance at which the spot fades out, 0.1 to 10000"},
+    {.name = "directional", .kind = OPTION_LIGHT, .min = 0, .max = 1, .offset = FIELD(scene.lights.directional),
      .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "r,g,b,a",
      .summary = "directional light (the sun)"},
     /* not saved: its effect is already in the strengths it set to 0 */
@@ -175,14 +181,17 @@ static const option_spec option_table[] = {
     {.name = "output", .kind = OPTION_PATH, .offset = FIELD(output_path), .in_scene_file = true,
      .syntax = "FILE.png",
 .summary = "output PNG; with --frames a pattern such as out_%04d.png; - writes the PNGs "
-                "to standard output, one after another",
+                "to standard output, one after another; replaces only a regular file, and "
+                "none the run reads",
      .default_text = "luz.png; luz_%04d.png for frames"},
     {.name = "frames", .kind = OPTION_INTEGER, .offset = FIELD(frame_count), .min = 1,
      .max = LUZ_MAX_FRAMES, .in_scene_file = true, .syntax = "N",
      .summary = "render N frames, frame k at time T + k / fps, into the -o pattern"},
-    {.name = "fps", .kind = OPTION_DOUBLE, .offset = FIELD(frames_per_second), .min = 0,
-     .max = INFINITY, .min_open = true, .in_scene_file = true, .syntax = "F",
-     .summary = "frames per second of --frames and --bench, above 0"},
+    /* Frame k's time T + k / fps stays finite, and within 1e9 seconds of
+     * T for every k below LUZ_MAX_FRAMES. */
+    {.name = "fps", .kind = OPTION_DOUBLE, .offset = FIELD(frames_per_second), .min = 0.001,
+     .max = 1000000, .in_scene_file = true, .syntax = "F",
+     .summary = "frames per second of --frames and --bench, 0.001 to 1000000"},
     /* Which frames of the sequence this run renders, and whether it
      * renders those already written: a job's slice of the sequence, given
      * by the scheduler to each task, so not in scene files. */
@@ -247,7 +256,9 @@ static luz_option_info option_info(const option_spec *spec)
     return (luz_option_info){.name = spec->name,
                              .syntax = spec->syntax,
                              .is_flag = spec->kind == OPTION_FLAG,
-                             .saving = spec->saving};
+                             .saving = spec->saving,
+                             .min = spec->min,
+                             .max = spec->max};
 }
 
 bool luz_options_row(size_t index, luz_option_info *info)
@@ -308,25 +319,23 @@ static bool read_integer(const char *text, long long min, long long max, long lo
     return *value >= min && *value <= max;
 }
 
+/* Whether a number lies in the row's range. A float option's number is
+ * judged as the float it becomes, the value that is kept and that a saved
+ * scene file writes back: "0.001" is below the double 0.001f, yet it is
+ * that float. */
 static bool in_range(const option_spec *spec, double value)
 {
-    if (spec->min_open ? !(value > spec->min) : !(value >= spec->min))
-        return false;
-    if (spec->max_open ? !(value < spec->max) : !(value <= spec->max))
-        return false;
-    return true;
+    if (spec->kind == OPTION_FLOAT || spec->kind == OPTION_VEC3 || spec->kind == OPTION_LIGHT)
+        value = (float)value;   /* option_read_numbers kept it within a float's range */
+    return value >= spec->min && value <= spec->max;
 }
 
-/* "a number in (0, 180)", "a number of at least 0", ... for messages. */
+/* "a number in [1, 179]", or "a number" for an unbounded row, for
+ * messages. */
 static void describe_range(const option_spec *spec, char *buffer, size_t size)
 {
-    bool has_min = isfinite(spec->min), has_max = isfinite(spec->max);
-    if (has_min && has_max)
-        snprintf(buffer, size, "a number in %c%g, %g%c", spec->min_open ? '(' : '[', spec->min,
-                 spec->max, spec->max_open ? ')' : ']');
-    else if (has_min)
-        snprintf(buffer, size, spec->min_open ? "a number above %g" : "a number of at least %g",
-                 spec->min);
+    if (isfinite(spec->min) && isfinite(spec->max))
+        snprintf(buffer, size, "a number in [%.10g, %.10g]", spec->min, spec->max);
     else
         snprintf(buffer, size, "a number");
 }
@@ -425,8 +434,9 @@ static int set_vector(luz_options *options, const option_spec *spec, const char 
 {
     double numbers[4];
     bool light = spec->kind == OPTION_LIGHT;
-    const char *expected = light ? "r,g,b,a (four numbers, each in [0, 1])"
-                                 : "x,y,z (three numbers)";
+    char expected[96];
+    snprintf(expected, sizeof expected, "%s (%s numbers, each in [%.10g, %.10g])",
+             light ? "r,g,b,a" : "x,y,z", light ? "four" : "three", spec->min, spec->max);
     switch (option_read_numbers(value, numbers, light ? 4 : 3, true)) {
     case OPTION_PARSE_MALFORMED:
         return luz_error_set(error, "%s: expected %s, got '%s'", where, expected,
@@ -437,18 +447,17 @@ static int set_vector(luz_options *options, const option_spec *spec, const char 
     case OPTION_PARSE_OK:
         break;
     }
-    luz_vec3 vector = luz_vec3_make((float)numbers[0], (float)numbers[1], (float)numbers[2]);
-    if (!light) {
-        *(luz_vec3 *)option_field(options, spec) = vector;
-        return 0;
-    }
-    for (int i = 0; i < 4; i++) {
-        if (!(numbers[i] >= 0.0 && numbers[i] <= 1.0))
+    for (int i = 0; i < (light ? 4 : 3); i++) {
+        if (!in_range(spec, numbers[i]))
             return luz_error_set(error, "%s: expected %s, got '%s'", where, expected,
                                  option_quote(value).text);
     }
-    *(luz_light *)option_field(options, spec) =
-        (luz_light){.colour = vector, .strength = (float)numbers[3]};
+    luz_vec3 vector = luz_vec3_make((float)numbers[0], (float)numbers[1], (float)numbers[2]);
+    if (light)
+        *(luz_light *)option_field(options, spec) =
+            (luz_light){.colour = vector, .strength = (float)numbers[3]};
+    else
+        *(luz_vec3 *)option_field(options, spec) = vector;
     return 0;
 }
 
@@ -621,6 +630,11 @@ static int set_probe(luz_options *options, const char *value, const char *where,
 static int set_path(luz_options *options, const option_spec *spec, const char *value,
                     const char *where, luz_error *error)
 {
+    /* A longer path cannot be opened (ENAMETOOLONG), and this bound is
+     * what keeps a saved scene file's lines within the reader's. */
+    if (strlen(value) > PATH_MAX - 1)
+        return luz_error_set(error, "%s: expected a path of at most %d bytes, got %zu bytes",
+                             where, PATH_MAX - 1, strlen(value));
     char *copy = strdup(value);
     if (copy == NULL)
         return luz_error_set(error, "%s: out of memory", where);
@@ -900,6 +914,7 @@ void luz_options_free(luz_options *options)
     free(options->textures_directory);
     free(options->output_path);
     free(options->scene_path);
+    luz_input_files_free(&options->inputs);
     options->textures_directory = NULL;
     options->output_path = NULL;
     options->scene_path = NULL;

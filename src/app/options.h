@@ -9,9 +9,11 @@
  * options given on the command line override the file whatever their order.
  * docs/cli.md is the user's reference for both.
  *
- * Four files stand behind this header, each calling only those listed
+ * Five files stand behind this header, each calling only those listed
  * before it: options.c (the option table), scene_file.c (scene files),
- * command_line.c (argv) and option_textures.c (the textures named).
+ * command_line.c (argv), option_textures.c (the textures named) and
+ * option_outputs.c (the files a run will write). option_models.c reads
+ * the models named.
  *
  * Every error is one line naming the flag (or file:line) and what was
  * expected, e.g. "--size: expected WIDTHxHEIGHT such as 1280x720, got '0x5'".
@@ -31,6 +33,7 @@
 #include "luz/error.h"
 #include "luz/renderer.h"
 #include "lab/scene.h"
+#include "io/input_files.h"
 #include "io/model.h"
 #include "io/textures.h"
 
@@ -85,6 +88,10 @@ typedef struct luz_options {
                                    many as scene.object_count */
     luz_object_source *object_sources;  /* one per object (owned) */
     int object_capacity;
+    luz_input_files inputs;     /* every file read: the scene files, and once
+                                   loaded the textures, the models and the
+                                   textures they name (owned); no output may
+                                   replace one (luz_options_check_outputs) */
 } luz_options;
 
 /* ---- options.c: the option table, one option at a time ---------------------
@@ -133,6 +140,9 @@ typedef struct luz_option_info {
                                   NULL for a flag */
     bool is_flag;              /* takes no value: help, version, reference */
     luz_option_saving saving;
+    double min, max;           /* a number's range, ends included (each
+                                  number of x,y,z or r,g,b,a); +-INFINITY:
+                                  any finite value; 0, 0 for the rest */
 } luz_option_info;
 
 /* Row `index` of the option table, in --help's order, into *info. Returns
@@ -170,6 +180,18 @@ void luz_options_clear_objects(luz_options *options);
 int luz_options_add_object(luz_options *options, const luz_object *object,
                            const char *texture_name, const char *model_path, int line,
                            const char *where, luz_error *error);
+
+/* ---- option_outputs.c: the files a run will write (uses options.c) ---------- */
+
+/* Checks every file this run will write before anything is rendered:
+ * each frame that luz_options_frames_to_render gives, named by the -o
+ * pattern (none for -o - or --bench). Only a regular file may be at its
+ * path, to be replaced (luz_new_file_check_target: not a device, a FIFO, a
+ * socket, a directory or a symbolic link), and it may not be one of
+ * options->inputs, by name or by device and inode: call it once the
+ * textures and models are loaded. Returns 0, or -1 with a message that
+ * starts "-o: ". */
+int luz_options_check_outputs(const luz_options *options, luz_error *error);
 
 /* ---- models (option_models.c) ---- */
 

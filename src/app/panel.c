@@ -40,7 +40,8 @@ const luz_slider luz_panel_sliders[LUZ_PANEL_SLIDER_COUNT] = {
     COLOUR_SLIDERS(LUZ_TERM_SPOT),
     {LUZ_TERM_SPOT, LUZ_SLIDER_SPOT_INNER, "inner", 0.0f, LUZ_SPOT_ANGLE_MAX, 1.0f, 0.1f},
     {LUZ_TERM_SPOT, LUZ_SLIDER_SPOT_OUTER, "outer", 0.0f, LUZ_SPOT_ANGLE_MAX, 1.0f, 0.1f},
-    /* The reach must stay above 0 (the spot divides by it). */
+    /* The reach stays within the options' range, 0.1 to 10000 (the spot
+     * divides by it). */
     {LUZ_TERM_SPOT, LUZ_SLIDER_SPOT_REACH, "reach", 0.5f, 30.0f, 0.5f, 0.1f},
     COLOUR_SLIDERS(LUZ_TERM_DIRECTIONAL),
 };

@@ -45,7 +45,7 @@
 #include "io/new_file.h"
 
 #include <errno.h>
-#include <float.h>
+#include <limits.h>
 #include <math.h>
 #include <stdbool.h>
 #include <stdlib.h>
@@ -57,12 +57,21 @@
 
 /* Longer than any key, so that a key that does not fit is not a key. */
 #define KEY_MAX 24
-/* Bounds on what a scene file may hold: a line fits a cube with its colour
- * and a long texture name many times over, and the lines are enough for
- * LUZ_MAX_CUBES cube lines with comments between them. */
-#define SCENE_LINE_MAX 4096
+/* Bounds on what a scene file may hold. A line holds the longest that
+ * luz_options_write_scene writes, with room to spare: a model line whose
+ * PATH_MAX - 1 bytes of path each need an escape (2 x 4095 + 2 quotes),
+ * with `at` and `colour` (2 x 3 numbers of at most 15 characters, commas
+ * and blanks), a `scale`, a texture NAME of NAME_MAX bytes likewise
+ * escaped (2 x 255 + 2) and `still`: under 9000 characters. The lines are
+ * enough for LUZ_MAX_CUBES cube lines with comments between them. */
+#define SCENE_LINE_MAX 16384
 #define SCENE_MAX_LINES (2 * LUZ_MAX_CUBES + 1000)
 #define SEEN_KEYS_MAX 64
+/* "FILE:LINE: what" for messages, whole for a scene file's path of up to
+ * PATH_MAX bytes (a longer one cannot be opened). */
+#define WHERE_SIZE (PATH_MAX + 64)
+/* A texture NAME is a file name of the textures directory. */
+#define TEXTURE_NAME_MAX NAME_MAX
 
 typedef struct scene_reader {
     luz_options *options;
@@ -220,7 +229,7 @@ static char *find_field(char *text)
 static char *read_word(scene_reader *reader, char *text, const char *what, char **word,
                        luz_error *error)
 {
-    char where[600];
+    char where[WHERE_SIZE];
     snprintf(where, sizeof where, "%s:%d: %s", reader->path, reader->line, what);
     if (text[0] == '"') {
         char *after;
@@ -246,6 +255,18 @@ static char *read_word(scene_reader *reader, char *text, const char *what, char 
     *after = '\0';
     *word = text;
     return next;
+}
+
+/* Is each of the three numbers, as the float it becomes, a coordinate the
+ * lab takes (LUZ_SCENE_MAX_COORDINATE)? */
+static bool coordinates_in_range(const double numbers[3])
+{
+    for (int i = 0; i < 3; i++) {
+        const float coordinate = (float)numbers[i];
+        if (!(coordinate >= -LUZ_SCENE_MAX_COORDINATE && coordinate <= LUZ_SCENE_MAX_COORDINATE))
+            return false;
+    }
+    return true;
 }
 
 /* Three numbers up to the next field; *next is moved to it. */
@@ -285,7 +306,7 @@ static int read_object(scene_reader *reader, char *value, bool is_model, luz_err
 
     luz_object object = {.texture = LUZ_TEXTURE_BY_INDEX, .scale = 1.0f};
     const char *texture_name = NULL;
-    char model_path[4096];
+    char model_path[PATH_MAX];
     char *fields;
     double numbers[3];
     bool has_position = false, has_scale = false;
@@ -295,13 +316,13 @@ static int read_object(scene_reader *reader, char *value, bool is_model, luz_err
             return -1;
         /* The scene file's directory: "" for the working one, "/" for a
          * file in the root. */
-        char directory[4096];
+        char directory[PATH_MAX];
         const char *slash = strrchr(path, '/');
         if (slash == path)
             snprintf(directory, sizeof directory, "/");
         else
             snprintf(directory, sizeof directory, "%.*s", slash ? (int)(slash - path) : 0, path);
-        char where[600];
+        char where[WHERE_SIZE];
         snprintf(where, sizeof where, "%s:%d: model", path, line);
         luz_error inner;
         if (luz_options_model_path(directory, file, model_path, sizeof model_path, &inner) != 0)
@@ -316,6 +337,11 @@ static int read_object(scene_reader *reader, char *value, bool is_model, luz_err
                                  "%s:%d: cube: expected x,y,z (three numbers) then optional "
                                  "colour r,g,b and texture NAME, got '%s'",
                                  path, line, original.text);
+        if (!coordinates_in_range(numbers))
+            return luz_error_set(error,
+                                 "%s:%d: cube: expected x,y,z each in [%g, %g], got '%s'",
+                                 path, line, -(double)LUZ_SCENE_MAX_COORDINATE,
+                                 (double)LUZ_SCENE_MAX_COORDINATE, original.text);
         object.position = luz_vec3_make((float)numbers[0], (float)numbers[1], (float)numbers[2]);
     }
 
@@ -351,14 +377,20 @@ static int read_object(scene_reader *reader, char *value, bool is_model, luz_err
                                      path, line, kind, original.text);
             if ((fields = read_word(reader, rest, what, &name, error)) == NULL)
                 return -1;
+            if (strlen(name) > TEXTURE_NAME_MAX)
+                return luz_error_set(error,
+                                     "%s:%d: %s: expected texture NAME, a file name of at most "
+                                     "%d bytes, got '%s'",
+                                     path, line, kind, TEXTURE_NAME_MAX, option_quote(name).text);
             texture_name = name;
         } else if (is_model && FIELD_IS("at")) {
             option_parse_result at = read_triple(rest, numbers, &fields);
-            if (has_position || at != OPTION_PARSE_OK)
+            if (has_position || at != OPTION_PARSE_OK || !coordinates_in_range(numbers))
                 return luz_error_set(error,
-                                     "%s:%d: model: expected `at x,y,z` once, three finite "
-                                     "numbers, got '%s'",
-                                     path, line, original.text);
+                                     "%s:%d: model: expected `at x,y,z` once, three numbers "
+                                     "each in [%g, %g], got '%s'",
+                                     path, line, -(double)LUZ_SCENE_MAX_COORDINATE,
+                                     (double)LUZ_SCENE_MAX_COORDINATE, original.text);
             has_position = true;
             object.position = luz_vec3_make((float)numbers[0], (float)numbers[1], (float)numbers[2]);
         } else if (is_model && FIELD_IS("scale")) {
@@ -367,17 +399,16 @@ static int read_object(scene_reader *reader, char *value, bool is_model, luz_err
             *end = '\0';
             option_parse_result scale = option_read_numbers(rest, numbers, 1, true);
             *end = saved;
-            /* above 0, and finite once it is a float */
-            const bool valid = scale == OPTION_PARSE_OK && numbers[0] > 0.0 &&
-                               numbers[0] <= FLT_MAX;
-            const float k = valid ? (float)numbers[0] : 0.0f;
-            if (has_scale || !valid || !(k > 0.0f))
+            /* judged as the float it becomes, as the options are */
+            const float k = scale == OPTION_PARSE_OK ? (float)numbers[0] : 0.0f;
+            if (has_scale || !(k >= LUZ_SCENE_MIN_SCALE && k <= LUZ_SCENE_MAX_SCALE))
                 return luz_error_set(error,
-                                     "%s:%d: model: expected `scale k` once, k a number above "
-                                     "0, got '%s'",
-                                     path, line, original.text);
+                                     "%s:%d: model: expected `scale k` once, k a number in "
+                                     "[%g, %g], got '%s'",
+                                     path, line, (double)LUZ_SCENE_MIN_SCALE,
+                                     (double)LUZ_SCENE_MAX_SCALE, original.text);
             has_scale = true;
-            object.scale = (float)numbers[0];
+            object.scale = k;
             fields = end;
         } else if (is_model && FIELD_IS("still")) {
             if (object.still)
@@ -402,7 +433,7 @@ static int read_object(scene_reader *reader, char *value, bool is_model, luz_err
         luz_options_clear_objects(reader->options);
         reader->first_cube_line = line;
     }
-    char where[600];
+    char where[WHERE_SIZE];
     snprintf(where, sizeof where, "%s:%d: %s", path, line, kind);
     return luz_options_add_object(reader->options, &object, texture_name,
                                   is_model ? model_path : NULL, line, where, error);
@@ -469,7 +500,7 @@ static int read_line(scene_reader *reader, char *text, luz_error *error)
         reader->cubes_key_line = line;
     }
 
-    char where[600];
+    char where[WHERE_SIZE];
     snprintf(where, sizeof where, "%s:%d: %s", path, line, name);
     if (value[0] == '"') {
         char *after;
@@ -485,6 +516,34 @@ static int read_line(scene_reader *reader, char *text, luz_error *error)
     return luz_options_set_value(reader->options, name, value, where, error);
 }
 
+typedef enum scene_line {
+    LINE_TEXT,       /* a line, without its '\n', in the buffer */
+    LINE_NONE,       /* the end of the file (or a read error: ferror says) */
+    LINE_TOO_LONG,   /* longer than the buffer holds */
+    LINE_WITH_NUL,   /* a NUL byte in it, anywhere */
+} scene_line;
+
+/* Reads the next line of file into text (size - 1 characters at most, then
+ * a NUL), byte by byte: fgets cannot tell a NUL byte in the file from its
+ * own end of string, so a NUL in the last line, or a file of one NUL
+ * byte, went unseen. A last line without a '\n' is a line. */
+static scene_line next_line(FILE *file, char *text, size_t size)
+{
+    size_t length = 0;
+    bool nul = false;
+    int c;
+    while ((c = getc_unlocked(file)) != EOF && c != '\n') {
+        if (length + 1 == size)
+            return LINE_TOO_LONG;
+        nul = nul || c == '\0';
+        text[length++] = (char)c;
+    }
+    text[length] = '\0';
+    if (c == EOF && length == 0)
+        return LINE_NONE;
+    return nul ? LINE_WITH_NUL : LINE_TEXT;
+}
+
 int luz_options_read_scene_file(luz_options *options, const char *path, luz_error *error)
 {
     char *path_copy = strdup(path);
@@ -492,6 +551,8 @@ int luz_options_read_scene_file(luz_options *options, const char *path, luz_erro
         return luz_error_set(error, "%s: out of memory", path);
     free(options->scene_path);
     options->scene_path = path_copy;
+    if (luz_input_files_add(&options->inputs, path, "the scene file", error) != 0)
+        return -1;
 
     FILE *file = fopen(path, "r");
     if (file == NULL)
@@ -507,16 +568,16 @@ int luz_options_read_scene_file(luz_options *options, const char *path, luz_erro
     /* Lines are read into a fixed buffer, so no input can make the reader
      * allocate without bound; a line that does not fit is an error. */
     scene_reader reader = {.options = options, .path = options->scene_path};
-    char text[SCENE_LINE_MAX + 2];
+    char text[SCENE_LINE_MAX + 1];
     int status = 0;
-    while (status == 0 && fgets(text, sizeof text, file) != NULL) {
+    scene_line got;
+    flockfile(file);   /* next_line's getc_unlocked */
+    while (status == 0 && (got = next_line(file, text, sizeof text)) != LINE_NONE) {
         reader.line++;
-        size_t length = strlen(text);
-        bool line_ended = length > 0 && text[length - 1] == '\n';
-        if (!line_ended && length + 1 == sizeof text)
+        if (got == LINE_TOO_LONG)
             status = luz_error_set(error, "%s:%d: line longer than %d characters", path,
                                    reader.line, SCENE_LINE_MAX);
-        else if (!line_ended && !feof(file))
+        else if (got == LINE_WITH_NUL)
             status = luz_error_set(error, "%s:%d: expected text, found a NUL byte", path,
                                    reader.line);
         else if (reader.line > SCENE_MAX_LINES)
@@ -525,7 +586,8 @@ int luz_options_read_scene_file(luz_options *options, const char *path, luz_erro
         else
             status = read_line(&reader, text, error);
     }
-    /* fgets's NULL means the end or an error (a directory gives EISDIR). */
+    funlockfile(file);
+    /* The end, or an error (a directory gives EISDIR). */
     if (status == 0 && ferror(file))
         status = luz_error_set(error, "%s: cannot read the scene file (%s)", path,
                                strerror(errno));

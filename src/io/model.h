@@ -44,6 +44,10 @@ typedef struct luz_model {
     int part_count;
     luz_texture **textures;       /* every texture the parts use, once */
     int texture_count;
+    char **texture_files;         /* the files of those read from beside the
+                                     model (not embedded), as opened: inputs
+                                     that no output may replace */
+    int texture_file_count;
     luz_bounds bounds;            /* around every part's vertices */
     uint64_t triangle_count;
 } luz_model;

@@ -42,6 +42,8 @@ void luz_model_free(luz_model *model)
     for (int i = 0; i < model->texture_count; i++) luz_texture_destroy(model->textures[i]);
     free(model->parts);
     free(model->textures);
+    for (int i = 0; i < model->texture_file_count; i++) free(model->texture_files[i]);
+    free(model->texture_files);
     free(model->path);
     free(model->name);
     memset(model, 0, sizeof *model);
@@ -115,6 +117,22 @@ static int remember_texture(luz_model *model, texture_cache *cache, const char *
     }
     model->textures[model->texture_count++] = texture;
     cache->keys[cache->count++] = copy;
+    return 0;
+}
+
+/* A texture file read from beside the model, kept by path for luz-render's
+ * check that no output replaces an input. */
+static int remember_texture_file(luz_model *model, const char *path, luz_error *error)
+{
+    char **files = realloc(model->texture_files,
+                           (size_t)(model->texture_file_count + 1) * sizeof *files);
+    if (files) model->texture_files = files;
+    char *copy = copy_text(path);
+    if (!files || !copy) {
+        free(copy);
+        return luz_error_set(error, "%s: out of memory for its textures", model->path);
+    }
+    model->texture_files[model->texture_file_count++] = copy;
     return 0;
 }
 
@@ -210,6 +228,10 @@ static int load_texture(luz_model *model, texture_cache *cache, const struct aiS
             luz_error_set(&inner, "%s: not a regular file", path);
         else
             texture = luz_texture_load(path, &inner);
+        if (texture != NULL && remember_texture_file(model, path, &inner) != 0) {
+            luz_texture_destroy(texture);
+            texture = NULL;
+        }
     }
     if (texture == NULL)
         return luz_error_set(error, "%s: texture '%s': %s", model->path, name, inner.message);

@@ -1,14 +1,98 @@
 /*
  * new_file.c: files that appear complete or not at all (see new_file.h).
  * The PNG writer and the viewer's scene files go through here.
+ *
+ * In:  a path, then the bytes of the file, written to file.stream.
+ * Out: the complete file under path, or nothing at all (no temporary file
+ *      either), and one line saying why; whatever was at the path before
+ *      is replaced only if it was a regular file.
  */
 #include "io/new_file.h"
 
 #include <errno.h>
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
+
+/* ---- signals ------------------------------------------------------------------------ */
+
+void luz_hold_write_signals(luz_held_signals *held, bool termination)
+{
+    sigset_t signals;
+    sigemptyset(&signals);
+    sigaddset(&signals, SIGXFSZ);
+    if (termination) {
+        sigaddset(&signals, SIGINT);
+        sigaddset(&signals, SIGTERM);
+        sigaddset(&signals, SIGHUP);
+        sigaddset(&signals, SIGQUIT);
+    }
+    pthread_sigmask(SIG_BLOCK, &signals, &held->previous);
+}
+
+void luz_release_write_signals(const luz_held_signals *held)
+{
+    /* A write past the file-size limit raised SIGXFSZ at this thread (the
+     * kernel sends it to the writer) and failed with EFBIG, which the
+     * caller reports. Delivered now, the signal would kill the program
+     * before the report: take it off the pending set first, unless the
+     * caller held it already. */
+    sigset_t pending;
+    if (!sigismember(&held->previous, SIGXFSZ) && sigpending(&pending) == 0 &&
+        sigismember(&pending, SIGXFSZ)) {
+        sigset_t file_size;
+        sigemptyset(&file_size);
+        sigaddset(&file_size, SIGXFSZ);
+        const struct timespec no_wait = {0, 0};
+        while (sigtimedwait(&file_size, NULL, &no_wait) < 0 && errno == EINTR) {}
+    }
+    pthread_sigmask(SIG_SETMASK, &held->previous, NULL);
+}
+
+/* ---- what is at the path ------------------------------------------------------------- */
+
+static const char *kind_of_file(mode_t mode)
+{
+    if (S_ISDIR(mode)) return "a directory";
+    if (S_ISCHR(mode)) return "a character device";
+    if (S_ISBLK(mode)) return "a block device";
+    if (S_ISFIFO(mode)) return "a FIFO";
+    if (S_ISSOCK(mode)) return "a socket";
+    if (S_ISLNK(mode)) return "a symbolic link";
+    return "not a regular file";
+}
+
+int luz_new_file_check_target(const char *path, luz_error *error)
+{
+    size_t length = strlen(path);
+    struct stat status;
+    /* "d/" names a directory whether or not it exists; say so rather than
+     * fail on the temporary file "d/.tmp-XXXXXX" or the rename. */
+    if (length > 0 && path[length - 1] == '/') {
+        bool directory = stat(path, &status) == 0 && S_ISDIR(status.st_mode);
+        return luz_error_set(error,
+                             "%s: %s; expected a file name (such as %sluz.png)", path,
+                             directory ? "is a directory" : "ends in '/', a directory's name",
+                             path);
+    }
+    /* lstat: a symbolic link is replaced itself by the rename, not the file
+     * it points to (/dev/stdout is one, to /proc/self/fd/1). */
+    if (lstat(path, &status) != 0 || S_ISREG(status.st_mode))
+        return 0;
+    if (S_ISDIR(status.st_mode))
+        return luz_error_set(error,
+                             "%s: is a directory; expected a file name (such as %s/luz.png)",
+                             path, path);
+    return luz_error_set(error,
+                         "%s: is %s, not a regular file; expected a new file or a regular "
+                         "file to replace",
+                         path, kind_of_file(status.st_mode));
+}
+
+/* ---- writing ------------------------------------------------------------------------ */
 
 int luz_new_file_open(luz_new_file *file, const char *path, luz_error *error)
 {
@@ -20,11 +104,15 @@ int luz_new_file_open(luz_new_file *file, const char *path, luz_error *error)
     memcpy(file->temporary, path, length);
     memcpy(file->temporary + length, ".tmp-XXXXXX", sizeof ".tmp-XXXXXX");
 
+    /* Held from before the temporary file exists until it is gone or has
+     * its name, so that no signal can leave it behind. */
+    luz_hold_write_signals(&file->signals, true);
     int descriptor = mkstemp(file->temporary);
     if (descriptor < 0) {
         int saved = errno;
         free(file->temporary);
         file->temporary = NULL;
+        luz_release_write_signals(&file->signals);
         return luz_error_set(error, "%s: cannot write (%s)", path, strerror(saved));
     }
     /* mkstemp makes the file 0600; give it the mode a plain fopen would,
@@ -49,6 +137,7 @@ void luz_new_file_abandon(luz_new_file *file)
     if (file->temporary != NULL) {
         unlink(file->temporary);
         free(file->temporary);
+        luz_release_write_signals(&file->signals);
     }
     file->stream = NULL;
     file->temporary = NULL;
@@ -83,13 +172,22 @@ int luz_new_file_commit(luz_new_file *file, bool replace, luz_error *error)
         saved = errno;
     }
     file->stream = NULL;
-    int status = written ? publish(file->temporary, file->path, replace) : -1;
-    if (written && status < 0)
+    /* Checked again at the last moment: something may have appeared at
+     * the path since the caller's own check. (What appears between this
+     * check and the rename still loses to it; no system call replaces
+     * "only a regular file".) */
+    luz_error refused;
+    const bool allowed = !replace || luz_new_file_check_target(file->path, &refused) == 0;
+    int status = written && allowed ? publish(file->temporary, file->path, replace) : -1;
+    if (written && allowed && status < 0)
         saved = errno;
     if (status != 0)
         unlink(file->temporary);   /* refused or failed: nothing left behind */
     free(file->temporary);
     file->temporary = NULL;
+    luz_release_write_signals(&file->signals);
+    if (written && !allowed)
+        return luz_error_set(error, "%s", refused.message);
     if (status < 0)
         return luz_error_set(error, "%s: cannot write (%s)", file->path, strerror(saved));
     return status;

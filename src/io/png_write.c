@@ -7,7 +7,9 @@
  * atomic, so a reader, or a render that fails or is interrupted half-way,
  * never sees a partial PNG under the requested name. Termination signals
  * wait until the file is complete, so Ctrl-C does not leave the temporary
- * NAME.tmp-XXXXXX behind either (only SIGKILL can).
+ * NAME.tmp-XXXXXX behind either (only SIGKILL can), and a file-size limit
+ * makes the write fail with EFBIG rather than kill the program with
+ * SIGXFSZ (new_file.c holds both). Only a regular file is replaced.
  *
  * luz_framebuffer_write_new_png never replaces a file: the complete
  * temporary file is hard-linked to the name (link() fails if the name
@@ -18,7 +20,8 @@
  * luz_framebuffer_write_png_stream writes to a stream that is already open
  * (standard output, for a video encoder): no temporary file is possible
  * there, so a failed write is reported and the reader sees a PNG cut
- * short.
+ * short. SIGXFSZ is held there too (standard output redirected to a file
+ * under ulimit -f).
  *
  * A PNG's pixels are RGBA. A framebuffer drawn in BGRA (a window's order,
  * see luz/framebuffer.h) is converted into a temporary copy first, so the
@@ -26,8 +29,6 @@
  * complete or absent.
  */
 #include <errno.h>
-#include <pthread.h>
-#include <signal.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -38,41 +39,41 @@
 #include "io/new_file.h"
 #include "io/image.h"
 
-static void write_to_file(void *context, void *data, int size)
+/* stb_image_write's output, and the first write's failure: its errno,
+ * kept before anything else can change errno. */
+typedef struct stream_writer {
+    FILE *stream;
+    int error;   /* errno of the first failed write, 0 while all went well */
+} stream_writer;
+
+static void write_to_stream(void *context, void *data, int size)
 {
-    fwrite(data, 1, (size_t)size, context);   /* a short write sets the stream's error */
+    stream_writer *writer = context;
+    if (writer->error == 0 && fwrite(data, 1, (size_t)size, writer->stream) != (size_t)size)
+        writer->error = errno ? errno : EIO;
 }
 
-static int encode(const char *path, int width, int height, const uint8_t *rgba, bool replace,
-                  luz_error *error)
+/* Ctrl-C or a kill arriving mid-write would leave the temporary file
+ * behind: luz_new_file holds such signals while the file is written and
+ * renamed (or removed), and delivers them as soon as it is done; only
+ * SIGKILL can still cut a write short. */
+static int write_png(const char *path, int width, int height, const uint8_t *rgba,
+                     bool replace, luz_error *error)
 {
     luz_new_file file;
     if (luz_new_file_open(&file, path, error) != 0)
         return -1;
-    if (!stbi_write_png_to_func(write_to_file, file.stream, width, height, 4, rgba, width * 4)) {
+    stream_writer writer = {.stream = file.stream};
+    errno = 0;
+    if (!stbi_write_png_to_func(write_to_stream, &writer, width, height, 4, rgba, width * 4)) {
         luz_new_file_abandon(&file);
         return luz_error_set(error, "%s: cannot write (PNG encoding failed)", path);
     }
+    if (writer.error != 0) {   /* EFBIG past ulimit -f, ENOSPC, ... */
+        luz_new_file_abandon(&file);
+        return luz_error_set(error, "%s: cannot write (%s)", path, strerror(writer.error));
+    }
     return luz_new_file_commit(&file, replace, error);
-}
-
-static int write_png(const char *path, int width, int height, const uint8_t *rgba,
-                     bool replace, luz_error *error)
-{
-    /* Ctrl-C or a kill arriving mid-write would leave the temporary file
-     * behind. Such signals are held while the file is written and renamed
-     * (or removed), and delivered as soon as it is done; only SIGKILL can
-     * still cut a write short. */
-    sigset_t termination, previous;
-    sigemptyset(&termination);
-    sigaddset(&termination, SIGINT);
-    sigaddset(&termination, SIGTERM);
-    sigaddset(&termination, SIGHUP);
-    sigaddset(&termination, SIGQUIT);
-    pthread_sigmask(SIG_BLOCK, &termination, &previous);
-    int status = encode(path, width, height, rgba, replace, error);
-    pthread_sigmask(SIG_SETMASK, &previous, NULL);
-    return status;
 }
 
 int luz_png_write(const char *path, int width, int height, const uint8_t *rgba,
@@ -89,29 +90,22 @@ typedef struct png_target {
     FILE *stream;   /* NULL: a new file */
 } png_target;
 
-typedef struct stream_writer {
-    FILE *stream;
-    int error;   /* errno of the first failed write, 0 while all went well */
-} stream_writer;
-
-static void write_to_stream(void *context, void *data, int size)
-{
-    stream_writer *writer = context;
-    if (writer->error == 0 && fwrite(data, 1, (size_t)size, writer->stream) != (size_t)size)
-        writer->error = errno ? errno : EIO;
-}
-
 static int write_png_to_stream(FILE *stream, const char *name, int width, int height,
                                const uint8_t *rgba, luz_error *error)
 {
     stream_writer writer = {.stream = stream};
+    luz_held_signals held;
+    luz_hold_write_signals(&held, false);
     errno = 0;
-    if (!stbi_write_png_to_func(write_to_stream, &writer, width, height, 4, rgba, width * 4))
-        return luz_error_set(error, "%s: cannot write (PNG encoding failed)", name);
+    const bool encoded =
+        stbi_write_png_to_func(write_to_stream, &writer, width, height, 4, rgba, width * 4);
     /* flushed, so that the reader has each image whole as soon as it is
      * written, and a failure is seen at this image */
-    if (writer.error == 0 && fflush(stream) != 0)
+    if (encoded && writer.error == 0 && fflush(stream) != 0)
         writer.error = errno ? errno : EIO;
+    luz_release_write_signals(&held);
+    if (!encoded)
+        return luz_error_set(error, "%s: cannot write (PNG encoding failed)", name);
     if (writer.error != 0)
         return luz_error_set(error, "%s: cannot write (%s)", name, strerror(writer.error));
     return 0;

@@ -95,6 +95,27 @@ typedef struct luz_object {
 
 #define LUZ_MAX_CUBES 100000
 
+/* ---- the ranges a scene keeps to --------------------------------------------
+ * Within these the lab draws something meaningful; the options
+ * (src/app/options.c) refuse anything outside them, and the viewer's
+ * controls stay inside, so that a saved view always reads back. */
+
+/* |t| in seconds, about 32 years. Cube i turns (i + 1) / 3 * 50 t degrees,
+ * reduced to one turn in double precision (scene.c): up to here that angle
+ * is good to a quarter of a degree for every one of LUZ_MAX_CUBES cubes;
+ * near t = 1e302 the product overflows and nothing would be drawn. */
+#define LUZ_SCENE_MAX_TIME 1e9
+
+/* |x|, |y| and |z| of the camera's and every object's position: a hundred
+ * times the far plane's distance (100), with positions still resolved to
+ * a thousandth of a unit (a float's step near 10000 is 1/1024). */
+#define LUZ_SCENE_MAX_COORDINATE 10000.0f
+
+/* A model's scale k: it spans [-k, k], from a fiftieth of the near plane's
+ * distance to twice LUZ_SCENE_MAX_COORDINATE. */
+#define LUZ_SCENE_MIN_SCALE 0.001f
+#define LUZ_SCENE_MAX_SCALE 10000.0f
+
 typedef struct luz_scene {
     double time_seconds;
     uint32_t seed;           /* 0 means 0x9E3779B9 */

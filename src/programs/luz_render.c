@@ -204,6 +204,7 @@ static int bench_frame(void *context, double time_seconds, double parts[LUZ_BENC
         return -1;
     parts[0] = stats.geometry_ms;
     parts[1] = stats.raster_ms;
+    parts[2] = (double)stats.memory_bytes / 1048576.0;
     return 0;
 }
 
@@ -212,7 +213,7 @@ static int bench(render_context *context, luz_renderer *renderer, luz_error *err
     const luz_options *options = context->options;
     const double start = options->scene.time_seconds;
     const int threads = luz_renderer_thread_count(renderer);
-    luz_bench measured = {.part_names = {"geometry_ms", "raster_ms"}};
+    luz_bench measured = {.part_names = {"geometry_ms", "raster_ms", "renderer_mb"}};
 
     /* With threads, the same frames on the caller's thread alone first, so
      * that the line says what the threads bought. */
@@ -237,9 +238,13 @@ static int bench(render_context *context, luz_renderer *renderer, luz_error *err
         luz_bench_free(&measured);
         return -1;
     }
+    const uint64_t triangles = luz_bench_triangles(&context->frame);
     luz_bench_print_case(stdout, options, measured.frames, options->width, options->height,
-                         threads, luz_bench_triangles(&context->frame));
+                         threads, triangles);
     luz_bench_print_figures(stdout, &measured);
+    if (triangles > 0)
+        printf(" renderer_bytes_per_triangle=%.1f",
+               luz_median(measured.parts[2], measured.frames) * 1048576.0 / (double)triangles);
     if (threads > 1) {
         const double median_ms = luz_median(measured.wall_ms, measured.frames);
         printf(" single_thread_median_ms=%.3f speedup=%.2f", single_thread_median,
@@ -288,8 +293,13 @@ int main(int argc, char **argv)
          * one line and status 1, rather than death by SIGPIPE. */
         signal(SIGPIPE, SIG_IGN);
     }
+    /* The outputs are checked once every input is known: none may replace
+     * a texture, a model or the scene file, nor anything but a regular
+     * file; and all before the first frame, so that a refused name leaves
+     * no part of a sequence behind. */
     if (luz_options_load_textures(&options, &textures, &error) != 0 ||
-        luz_options_load_models(&options, &models, &error) != 0) {
+        luz_options_load_models(&options, &models, &error) != 0 ||
+        luz_options_check_outputs(&options, &error) != 0) {
         status = EXIT_USAGE;
         goto done;
     }
@@ -324,7 +334,9 @@ done:
     luz_model_set_free(&models);
     luz_texture_set_free(&textures);
     luz_options_free(&options);
-    if (fflush(stdout) != 0 && status == EXIT_OK) {
+    /* ferror too: a write that failed earlier (--print-state past
+     * ulimit -f) leaves nothing for this flush to fail on */
+    if ((fflush(stdout) != 0 || ferror(stdout)) && status == EXIT_OK) {
         luz_error_print("luz-render", "cannot write to standard output");
         status = EXIT_RUNTIME;
     }

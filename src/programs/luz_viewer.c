@@ -32,11 +32,13 @@
  * available, with one line on stderr; 1 if rendering fails (out of memory).
  */
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <SDL.h>
@@ -67,7 +69,8 @@ enum {
 /* ---- the viewer's own options --------------------------------------------------------- */
 
 typedef struct viewer_settings {
-    float render_scale;   /* framebuffer pixels per window pixel, in (0, 1] */
+    float render_scale;   /* framebuffer pixels per window pixel, in
+                             [LUZ_MIN_RENDER_SCALE, 1] */
     bool print_state;
 } viewer_settings;
 
@@ -82,16 +85,20 @@ static bool names_option(const char *text, const char *name, const char **value)
     return true;
 }
 
+/* The smallest --render-scale: a 1280x720 window is then drawn from a
+ * 13x7 framebuffer, which is still a picture of the scene. */
+#define LUZ_MIN_RENDER_SCALE 0.01
+
 static int read_render_scale(const char *text, float *scale, luz_error *error)
 {
     char *end;
     errno = 0;
     double value = text && text[0] ? strtod(text, &end) : NAN;
-    if (text == NULL || text[0] == '\0' || *end != '\0' || errno != 0 || !(value > 0.0) ||
-        value > 1.0)
+    if (text == NULL || text[0] == '\0' || *end != '\0' || errno != 0 ||
+        !(value >= LUZ_MIN_RENDER_SCALE) || value > 1.0)
         return luz_error_set(error,
-                             "--render-scale: expected a number above 0 and at most 1, such as "
-                             "0.5, got '%s'",
+                             "--render-scale: expected a number from 0.01 to 1, such as 0.5, "
+                             "got '%s'",
                              text ? text : "");
     *scale = (float)value;
     return 0;
@@ -157,7 +164,7 @@ static void print_usage(FILE *out)
             "\n"
             "The viewer's own options:\n"
             "  --render-scale S               render S x the window's pixels, scaled up to fill\n"
-            "                                 it, 0 < S <= 1 (default: 1)\n"
+            "                                 it, 0.01 <= S <= 1 (default: 1)\n"
             "  --print-state                  print the view as a scene file on stdout at quit\n"
             "\n"
             "Controls (H shows them in the window):\n");
@@ -237,9 +244,11 @@ typedef struct viewer {
     int next_shot, next_scene;       /* the numbers F12 and F2 try first */
 } viewer;
 
+/* Shows message at the bottom of the window (as much of it as v->message
+ * holds) and prints it, whole, on stderr. */
 static void show_message(viewer *v, const char *message)
 {
-    snprintf(v->message, sizeof v->message, "%s", message);
+    snprintf(v->message, sizeof v->message, "%.*s", (int)sizeof v->message - 1, message);
     v->message_seconds_left = 4.0;
     luz_error_print("luz", message);
 }
@@ -274,14 +283,21 @@ static void use_window_size(viewer *v)
 static void write_state(viewer *v, FILE *out)
 {
     use_window_size(v);
+    /* Standard output may be a file under ulimit -f: the write then fails
+     * (main reports it when it flushes) rather than kill the viewer with
+     * SIGXFSZ. */
+    luz_held_signals held;
+    luz_hold_write_signals(&held, false);
     luz_options_write_scene(v->options, out);
+    fflush(out);
+    luz_release_write_signals(&held);
 }
 
 /* F2: the view as a scene file, written beside the screenshots, complete
  * or not at all (luz_options_save_scene), never over an existing file. */
 static void save_scene(viewer *v)
 {
-    char path[64], message[sizeof v->message];
+    char path[64], message[LUZ_ERROR_MESSAGE_SIZE + 64];
     luz_error error = {{0}};
     use_window_size(v);
     int status = LUZ_FILE_EXISTS;
@@ -303,7 +319,7 @@ static void save_scene(viewer *v)
  * a PNG that never replaces an existing file. */
 static void save_screenshot(viewer *v, const luz_framebuffer *framebuffer)
 {
-    char path[64], message[sizeof v->message];
+    char path[64], message[LUZ_ERROR_MESSAGE_SIZE + 64];
     luz_error error = {{0}};
     int status = LUZ_FILE_EXISTS;
     for (int race = 0; race < MAX_NAME_RACES && status == LUZ_FILE_EXISTS; race++) {
@@ -735,8 +751,11 @@ static int run(viewer *v, luz_error *error)
         if (seconds > 0.5)
             seconds = 0.5;
         luz_camera_move(&v->options->scene.camera, held_motion(v), (float)seconds);
-        if (!v->paused)
-            v->options->scene.time_seconds += seconds;
+        /* The animation stops at the options' last time (about 32 years
+         * on), so that a saved view always reads back. */
+        if (!v->paused && v->options->scene.time_seconds < LUZ_SCENE_MAX_TIME)
+            v->options->scene.time_seconds =
+                fmin(v->options->scene.time_seconds + seconds, LUZ_SCENE_MAX_TIME);
         /* The step mode's count grows with time; the frame's triangles
          * are the last frame's (the scene is frozen meanwhile). */
         v->step_limit = luz_step_advance(&v->step, seconds, v->stats.triangles_rasterised);
@@ -811,16 +830,38 @@ static int run_bench(viewer *v, luz_error *error)
  * the plain copy. LUZ_PRESENT=sdl asks for SDL's way on X11 too, and the
  * environment (SDL_RENDER_DRIVER, SDL_FRAMEBUFFER_ACCELERATION) still
  * overrides SDL's choice of renderer. */
+/* Whether WAYLAND_DISPLAY names a socket that is there, where libwayland
+ * looks for it: the name itself when absolute, else in $XDG_RUNTIME_DIR.
+ * Without one, asking libwayland for a display only adds its own complaint
+ * on stderr ("XDG_RUNTIME_DIR is invalid or not set") to luz's one line. */
+static bool wayland_socket_exists(void)
+{
+    const char *name = getenv("WAYLAND_DISPLAY");
+    if (name == NULL || name[0] == '\0')
+        return false;
+    char path[PATH_MAX];
+    const char *runtime = getenv("XDG_RUNTIME_DIR");
+    int written;
+    if (name[0] == '/')
+        written = snprintf(path, sizeof path, "%s", name);
+    else if (runtime != NULL && runtime[0] != '\0')
+        written = snprintf(path, sizeof path, "%s/%s", runtime, name);
+    else
+        return false;
+    struct stat status;
+    return written > 0 && (size_t)written < sizeof path && stat(path, &status) == 0 &&
+           S_ISSOCK(status.st_mode);
+}
+
 static int open_window(viewer *v, luz_error *error)
 {
     SDL_SetHint(SDL_HINT_RENDER_VSYNC, "0");          /* as fast as it renders */
     SDL_SetHint(SDL_HINT_RENDER_SCALE_QUALITY, "nearest");   /* luz's own pixels */
     SDL_SetHint(SDL_HINT_VIDEO_MINIMIZE_ON_FOCUS_LOSS, "0");
-    /* Without a Wayland display, asking libwayland for one only prints
-     * its own complaint on stderr: try X11 alone, unless the user chose. */
+    /* Without a Wayland socket to reach, try X11 alone, unless the user
+     * chose a driver. */
     const char *asked = getenv("SDL_VIDEODRIVER");
-    const char *wayland = getenv("WAYLAND_DISPLAY");
-    if ((asked == NULL || asked[0] == '\0') && (wayland == NULL || wayland[0] == '\0'))
+    if ((asked == NULL || asked[0] == '\0') && !wayland_socket_exists())
         SDL_SetHint(SDL_HINT_VIDEODRIVER, "x11");
     if (SDL_Init(SDL_INIT_VIDEO) != 0)
         return luz_error_set(error,
@@ -955,7 +996,9 @@ done:
     luz_texture_set_free(&textures);
     luz_options_free(&options);
     free(scene_argv);
-    if (fflush(stdout) != 0 && status == EXIT_OK) {
+    /* ferror too: a write that failed earlier (--print-state past
+     * ulimit -f) leaves nothing for this flush to fail on */
+    if ((fflush(stdout) != 0 || ferror(stdout)) && status == EXIT_OK) {
         luz_error_print("luz", "cannot write to standard output");
         status = EXIT_RUNTIME;
     }

@@ -1,6 +1,7 @@
 /* error.c: filling a luz_error (see luz/error.h). */
 #include <stdarg.h>
 #include <stdio.h>
+#include <string.h>
 
 #include "luz/error.h"
 
@@ -9,8 +10,11 @@ int luz_error_set(luz_error *error, const char *format, ...)
     if (error) {
         va_list arguments;
         va_start(arguments, format);
-        vsnprintf(error->message, sizeof error->message, format, arguments);
+        int length = vsnprintf(error->message, sizeof error->message, format, arguments);
         va_end(arguments);
+        /* Cut short: say so, rather than end in the middle of a path. */
+        if (length >= (int)sizeof error->message)
+            memcpy(error->message + sizeof error->message - 4, "...", 4);
     }
     return -1;
 }

@@ -242,6 +242,9 @@ static void collect_stats(const luz_renderer *renderer, const frame_job *job,
     stats->triangles_clipped = job->geometry.triangles_clipped;
     stats->triangles_culled = job->geometry.triangles_culled;
     stats->draws_culled = job->geometry.draws_culled;
+    stats->memory_bytes = luz_geometry_memory(renderer->geometry) +
+                          (size_t)renderer->band_capacity * sizeof *renderer->bands +
+                          renderer->overdraw_capacity * sizeof *renderer->overdraw;
     stats->triangles_rasterised = job->geometry.triangle_total;
     for (int b = 0; b < job->geometry.band_count; b++) {
         stats->fragments_tested += renderer->bands[b].fragments_tested;

@@ -136,6 +136,25 @@ void luz_geometry_destroy(luz_geometry *geometry)
     free(geometry);
 }
 
+size_t luz_geometry_memory(const luz_geometry *geometry)
+{
+    size_t bytes = sizeof *geometry;
+    bytes += (size_t)geometry->batch_capacity * sizeof *geometry->batches;
+    for (int i = 0; i < geometry->batch_capacity; i++)
+        bytes += geometry->batches[i].capacity * sizeof(luz_triangle);
+    for (int i = 0; i < geometry->thread_count; i++)
+        bytes += geometry->scratch[i].capacity * sizeof(luz_clip_vertex);
+    bytes += (size_t)geometry->thread_count * sizeof *geometry->scratch;
+    bytes += geometry->vertex_range_capacity * sizeof *geometry->vertex_ranges;
+    bytes += geometry->arena_capacity * sizeof *geometry->arena;
+    bytes += geometry->draw_outside_capacity * sizeof *geometry->draw_outside;
+    bytes += geometry->band_slot_capacity * sizeof *geometry->band_slots;
+    bytes += geometry->by_id_capacity * sizeof *geometry->by_id;
+    bytes += ((size_t)geometry->band_capacity + 1) * sizeof *geometry->band_start;
+    bytes += geometry->band_id_capacity * sizeof *geometry->band_ids;
+    return bytes;
+}
+
 /* Grows *array to hold count elements of size bytes (kept from frame to
  * frame, so after the first frames this does nothing). */
 static bool reserve(void **array, size_t *capacity, size_t count, size_t size)

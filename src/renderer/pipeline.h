@@ -460,6 +460,8 @@ typedef struct luz_geometry luz_geometry;
 
 luz_geometry *luz_geometry_create(int thread_count);
 void luz_geometry_destroy(luz_geometry *geometry);
+/* The bytes its buffers hold. */
+size_t luz_geometry_memory(const luz_geometry *geometry);
 
 /* What phase 1 hands to phase 2; the arrays belong to the luz_geometry and
  * last until its next run. */
