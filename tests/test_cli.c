@@ -515,6 +515,26 @@ static const error_case error_cases[] = {
      {"s.luz:1", "skip-existing", "not allowed"}},
     {"scene-reference-key", {"--scene", "s.luz"}, "reference = 1\n", NULL,
      {"s.luz:1", "reference", "not allowed"}},
+    /* --probe X,Y */
+    {"probe-malformed", {"--probe", "abc"}, NULL, NULL, {"--probe", "X,Y", "'abc'"}},
+    {"probe-one-number", {"--probe", "5"}, NULL, NULL, {"--probe", "X,Y"}},
+    {"probe-three-numbers", {"--probe", "1,2,3"}, NULL, NULL, {"--probe", "X,Y"}},
+    {"probe-negative", {"--probe", "-1,5"}, NULL, NULL, {"--probe", "X,Y"}},
+    {"probe-fraction", {"--probe", "1.5,2"}, NULL, NULL, {"--probe", "X,Y"}},
+    {"probe-missing-value", {"--probe"}, NULL, NULL, {"--probe", "missing"}},
+    {"probe-right-of-the-image", {"--size", "16x9", "--probe", "16,0"}, NULL, NULL,
+     {"--probe", "16x9", "X from 0 to 15", "'16,0'"}},
+    {"probe-below-the-image", {"--probe", "0,9", "--size", "16x9"}, NULL, NULL,
+     {"--probe", "Y from 0 to 8", "'0,9'"}},
+    {"probe-with-bench", {"--probe", "1,1", "--bench", "3"}, NULL, NULL,
+     {"--probe", "one frame", "--bench"}},
+    {"probe-with-frames", {"--probe", "1,1", "--frames", "2", "-o", "f_%d.png"}, NULL, NULL,
+     {"--probe", "one frame", "--frames 2"}},
+    {"probe-with-shard", {"--probe", "1,1", "--shard", "0/2"}, NULL, NULL,
+     {"--probe", "--shard"}},
+    {"probe-with-stdout", {"--probe", "1,1", "-o", "-"}, NULL, NULL, {"--probe", "-o -"}},
+    {"scene-probe-key", {"--scene", "s.luz"}, "probe = 1,1\n", NULL,
+     {"s.luz:1", "probe", "not allowed"}},
     /* textures */
     {"textures-missing-directory", {"--size", "8x8", "--textures", "nowhere"}, NULL, NULL,
      {"--textures", "nowhere"}},
@@ -806,6 +826,7 @@ static void test_help(void **state)
         "--threads",      "--only",       "-o",            "--frames",     "--fps",
         "--bench",        "--scene",      "--help",        "--version",    "--reference",
         "--view",         "--interp",     "--frame-range", "--shard",     "--skip-existing",
+        "--probe",
     };
     /* defaults that SCENE.md and the issue fix */
     static const char *const defaults[] = {
@@ -895,6 +916,132 @@ static void test_textures_directory(void **state)
     assert_png_size(&box, "beats.png", 10, 10);
     run_result_free(&result);
     sandbox_destroy(&box);
+}
+
+/* The value of key=, on a line of its own, into buffer; NULL if none. */
+static const char *probe_value(const char *text, const char *key, char *buffer, size_t size)
+{
+    const size_t length = strlen(key);
+    for (const char *line = text; *line != '\0';) {
+        const char *end = strchr(line, '\n');
+        const size_t line_length = end ? (size_t)(end - line) : strlen(line);
+        if (line_length > length && strncmp(line, key, length) == 0 && line[length] == '=') {
+            snprintf(buffer, size, "%.*s", (int)(line_length - length - 1), line + length + 1);
+            return buffer;
+        }
+        if (end == NULL) break;
+        line = end + 1;
+    }
+    return NULL;
+}
+
+/* --probe X,Y prints the pixel's story and writes no PNG; with -o it
+ * writes the image, and bytes= is that image's pixel. The background
+ * says object=none and then only bytes=. */
+static void test_probe(void **state)
+{
+    (void)state;
+    sandbox box;
+    sandbox_create(&box);
+    char before[8192] = "", after[8192] = "";
+    list_tree(box.work, "", before, sizeof before);
+    /* the middle of 32x18 is cube 0's front face at t = 0 */
+    run_result result = run_in(&box, ARGS("--size", "32x18", "--textures", "tex", "--probe",
+                                          "16,9"), NULL);
+    assert_success(&result);
+    list_tree(box.work, "", after, sizeof after);
+    assert_string_equal(before, after);   /* no file without -o */
+    char value[256];
+    assert_string_equal(probe_value(result.out, "pixel", value, sizeof value), "16,9");
+    assert_string_equal(probe_value(result.out, "size", value, sizeof value), "32,18");
+    assert_string_equal(probe_value(result.out, "time", value, sizeof value), "0");
+    assert_string_equal(probe_value(result.out, "object", value, sizeof value), "0");
+    assert_string_equal(probe_value(result.out, "mesh", value, sizeof value), "0");
+    assert_string_equal(probe_value(result.out, "texture", value, sizeof value), "a.bmp");
+    assert_string_equal(probe_value(result.out, "N", value, sizeof value), "0,0,1");
+    assert_contains(result.out, "\ntest=1 object=0 mesh=0 triangle=");
+    assert_contains(result.out, " result=pass\n");
+    static const char *const keys[] = {"triangle", "barycentric", "w", "P", "uv", "rho",
+                                       "lod", "levels", "weight", "texel", "ambient",
+                                       "diffuse", "specular", "point", "spot", "directional",
+                                       "light", "C", "colour", "bytes"};
+    for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++)
+        if (probe_value(result.out, keys[i], value, sizeof value) == NULL)
+            fail_msg("no %s= in:\n%s", keys[i], result.out);
+    char bytes_without_png[64];
+    probe_value(result.out, "bytes", bytes_without_png, sizeof bytes_without_png);
+    run_result_free(&result);
+
+    /* With -o: the image, and the pixel the probe read is in it. */
+    const int probed[2][2] = {{16, 9}, {0, 0}};
+    for (int i = 0; i < 2; i++) {
+        char pixel[32];
+        snprintf(pixel, sizeof pixel, "%d,%d", probed[i][0], probed[i][1]);
+        result = run_in(&box, ARGS("--size", "32x18", "--textures", "tex", "--probe", pixel, "-o",
+                                   "p.png"), NULL);
+        assert_success(&result);
+        char path[600];
+        sandbox_path(&box, "p.png", path, sizeof path);
+        int width, height, channels;
+        unsigned char *image = stbi_load(path, &width, &height, &channels, 3);
+        assert_non_null(image);
+        assert_int_equal(width, 32);
+        const unsigned char *p = image + ((size_t)probed[i][1] * width + probed[i][0]) * 3;
+        char expected[64];
+        snprintf(expected, sizeof expected, "%u,%u,%u", p[0], p[1], p[2]);
+        assert_string_equal(probe_value(result.out, "bytes", value, sizeof value), expected);
+        if (i == 0) {
+            assert_string_equal(expected, bytes_without_png);
+        } else {
+            /* the clear colour, round(0.1 x 255) */
+            assert_string_equal(expected, "26,26,26");
+            assert_non_null(strstr(result.out, "\nobject=none\nbytes=26,26,26\n"));
+            const char *none = strstr(result.out, "object=none");
+            assert_string_equal(none, "object=none\nbytes=26,26,26\n");
+        }
+        stbi_image_free(image);
+        run_result_free(&result);
+    }
+
+    /* A view: what it shows, and the overdraw it counts is the history's. */
+    result = run_in(&box, ARGS("--size", "32x18", "--textures", "none", "--probe", "16,9",
+                               "--view", "overdraw"), NULL);
+    assert_success(&result);
+    assert_string_equal(probe_value(result.out, "view", value, sizeof value), "overdraw");
+    char tests[32];
+    assert_non_null(probe_value(result.out, "tests", tests, sizeof tests));
+    assert_string_equal(probe_value(result.out, "overdraw", value, sizeof value), tests);
+    assert_non_null(probe_value(result.out, "shown", value, sizeof value));
+    run_result_free(&result);
+    sandbox_destroy(&box);
+}
+
+/* docs/cli.md shows what `luz-render --probe 700,450` prints: it must be
+ * what it prints (the default scene, the source tree's textures, which a
+ * luz-render of the build tree reads). */
+static void test_probe_example_in_the_docs(void **state)
+{
+    (void)state;
+    const char *doc_path = getenv("LUZ_CLI_DOC");
+    if (doc_path == NULL) fail_msg("LUZ_CLI_DOC is not set (tests/meson.build sets it)");
+    char *doc = read_file(doc_path, NULL);
+    assert_non_null(doc);
+    const char *command = "$ luz-render --probe 700,450\n";
+    const char *start = strstr(doc, command);
+    if (start == NULL) fail_msg("%s has no '%s'", doc_path, command);
+    start += strlen(command);
+    const char *end = strstr(start, "```");
+    assert_non_null(end);
+    sandbox box;
+    sandbox_create(&box);
+    run_result result = run_in(&box, ARGS("--probe", "700,450"), NULL);
+    assert_success(&result);
+    if (strlen(result.out) != (size_t)(end - start) ||
+        memcmp(result.out, start, (size_t)(end - start)) != 0)
+        fail_msg("docs/cli.md's example differs from the output:\n%s", result.out);
+    run_result_free(&result);
+    sandbox_destroy(&box);
+    free(doc);
 }
 
 static bool file_exists(const sandbox *box, const char *name)
@@ -2957,6 +3104,8 @@ int main(void)
         cmocka_unit_test(test_help),
         cmocka_unit_test(test_version),
         cmocka_unit_test(test_tiny_render),
+        cmocka_unit_test(test_probe),
+        cmocka_unit_test(test_probe_example_in_the_docs),
         cmocka_unit_test(test_equals_form_and_default_output),
         cmocka_unit_test(test_textures_directory),
         cmocka_unit_test(test_frame_sequence),

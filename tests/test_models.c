@@ -1381,6 +1381,72 @@ static int pixels_differing(const image *a, const image *b)
     return count;
 }
 
+/* The value of key= on a line of its own. */
+static const char *probe_value(const char *text, const char *key, char *buffer, size_t size)
+{
+    const size_t length = strlen(key);
+    for (const char *line = text; *line != '\0';) {
+        const char *end = strchr(line, '\n');
+        const size_t line_length = end ? (size_t)(end - line) : strlen(line);
+        if (line_length > length && strncmp(line, key, length) == 0 && line[length] == '=') {
+            snprintf(buffer, size, "%.*s", (int)(line_length - length - 1), line + length + 1);
+            return buffer;
+        }
+        if (end == NULL) break;
+        line = end + 1;
+    }
+    return NULL;
+}
+
+/* --probe on two.obj: its quad and its triangle land, at t = 0 in a
+ * 64x36 image, on pixels (21, 23) and (42, 20) (the model scaled by 2/3
+ * about (1.5, 1, -0.5), seen from (0, 0, 3) with 45 degrees: worked out
+ * by hand). The probe names the file, each mesh and its material, and the
+ * texture as the material names it, Windows path and all; bytes= is the
+ * PNG's pixel. */
+static void test_probe_names_a_model(void **state)
+{
+    (void)state;
+    REQUIRE_MODELS();
+    static const struct {
+        const char *pixel, *mesh, *mesh_name, *material, *texture, *colour;
+    } expected[2] = {
+        {"21,23", "0", "first", "warm", "tex/a.png", "0.75,0.5,0.25"},
+        {"42,20", "1", "second", "cold", ".\\tex\\b.png", "0.125,0.25,1"},
+    };
+    for (int i = 0; i < 2; i++) {
+        run_result result = run_render(ARGS("--model", "models/two.obj", "--size", "64x36",
+                                            "--textures", "none", "--probe", expected[i].pixel,
+                                            "-o", "probe.png"));
+        if (result.status != 0 || result.err[0] != '\0')
+            fail_msg("luz-render exited %d: %s", result.status, result.err);
+        char value[256];
+        assert_string_equal(probe_value(result.out, "object", value, sizeof value), "0");
+        assert_string_equal(probe_value(result.out, "model", value, sizeof value), "two.obj");
+        assert_string_equal(probe_value(result.out, "mesh", value, sizeof value), expected[i].mesh);
+        assert_string_equal(probe_value(result.out, "mesh_name", value, sizeof value),
+                            expected[i].mesh_name);
+        assert_string_equal(probe_value(result.out, "material", value, sizeof value),
+                            expected[i].material);
+        assert_string_equal(probe_value(result.out, "texture", value, sizeof value),
+                            expected[i].texture);
+        assert_string_equal(probe_value(result.out, "C", value, sizeof value),
+                            expected[i].colour);
+        char path[1024];
+        work_path("probe.png", path, sizeof path);
+        int width, height, channels, x, y;
+        unsigned char *pixels = stbi_load(path, &width, &height, &channels, 3);
+        assert_non_null(pixels);
+        assert_int_equal(sscanf(expected[i].pixel, "%d,%d", &x, &y), 2);
+        const unsigned char *p = pixels + ((size_t)y * width + x) * 3;
+        char bytes[64];
+        snprintf(bytes, sizeof bytes, "%u,%u,%u", p[0], p[1], p[2]);
+        assert_string_equal(probe_value(result.out, "bytes", value, sizeof value), bytes);
+        stbi_image_free(pixels);
+        run_result_free(&result);
+    }
+}
+
 /* The box, turned at t = 2, and the same scene with the box out of sight
  * (behind the camera), small; the textures directory plays no part. */
 #define BOX "--model", "box/box.obj", "--size", "96x64", "--time", "2", "--textures", "none"
@@ -1551,6 +1617,7 @@ int main(void)
         cmocka_unit_test(test_unreadable_model),
         cmocka_unit_test(test_output_is_never_a_model_input),
         cmocka_unit_test(test_views_on_a_model),
+        cmocka_unit_test(test_probe_names_a_model),
         cmocka_unit_test(test_options_on_a_model),
     };
     return cmocka_run_group_tests(tests, setup_files, teardown_files);

@@ -29,6 +29,13 @@
 #    the way luz shows them where it cannot use X11 shared memory.
 #    Then, under ulimit -f 0, F2 and --print-state fail in one line each
 #    (status 1) instead of dying of SIGXFSZ, and leave no file.
+# 7b. The probe, in a window of its own (960x540, so that the probe panel at
+#    the bottom left leaves the middle in sight), paused: E and a click in
+#    the middle mark a pixel of cube 0; the window shows the marker's yellow
+#    arms 3 to 8 pixels around it, the pixel itself as before, and the
+#    panel. V shows another view and the paused panel stays as it was;
+#    Shift+E takes marker and panel away. Marked again and running (T),
+#    the panel follows the turning cube: its numbers change.
 # 8. With a window manager (openbox, if installed): F11 makes the window
 #    fill the screen, and the screenshot then has the screen's size; F11
 #    again gives the window its size back.
@@ -305,6 +312,55 @@ grep -q '^luz: cannot write to standard output$' "$work/stderr" ||
 [ -z "$(ls -A)" ] || fail "left behind under ulimit -f 0: $(ls -A)"
 cd "$work" || exit 1
 
+# 7b. The probe.
+pixel_of() {   # pixel_of IMAGE X Y: "r,g,b"
+    convert "$1" -format "%[fx:int(255*p{$2,$3}.r)],%[fx:int(255*p{$2,$3}.g)],%[fx:int(255*p{$2,$3}.b)]" info:
+}
+capture() {
+    sleep 0.5
+    import -window "$window" "$work/$1" 2>>"$work/stderr" || fail "cannot read the window back"
+}
+rm -f "$work/stderr"
+"$luz" --size 960x540 2>"$work/stderr" &
+luz_pid=$!
+wait_for_window "luz (probe)"
+panel_crop=200x100+10+420   # inside the panel, below the HUD
+scene_crop=100x100+700+300  # the scene, right of the panel
+xdotool key t e
+capture before.png
+xdotool mousemove --window "$window" 480 270 click 1
+capture probe.png
+for arm in "483 270" "488 270" "472 270" "480 275" "480 262"; do
+    set -- $arm
+    [ "$(pixel_of "$work/probe.png" "$1" "$2")" = "255,230,40" ] ||
+        fail "no probe marker at ($1, $2): $(pixel_of "$work/probe.png" "$1" "$2")"
+done
+[ "$(pixel_of "$work/probe.png" 480 270)" = "$(pixel_of "$work/before.png" 480 270)" ] ||
+    fail "the marked pixel is covered: $(pixel_of "$work/probe.png" 480 270)"
+changed=$(differing_pixels "$work/before.png" "$work/probe.png" "$panel_crop")
+[ "$changed" -gt 5000 ] || fail "E and a click changed $changed pixels at the bottom left: no probe panel"
+xdotool key v
+capture probe-v.png
+changed=$(differing_pixels "$work/probe.png" "$work/probe-v.png" "$scene_crop")
+[ "$changed" -gt 1000 ] || fail "V changed only $changed pixels of the scene"
+changed=$(differing_pixels "$work/probe.png" "$work/probe-v.png" "$panel_crop")
+[ "$changed" -eq 0 ] || fail "paused, V changed $changed pixels of the frozen probe panel"
+xdotool key shift+v shift+e
+capture unprobed.png
+[ "$(pixel_of "$work/unprobed.png" 483 270)" = "$(pixel_of "$work/before.png" 483 270)" ] ||
+    fail "Shift+E left the marker: $(pixel_of "$work/unprobed.png" 483 270)"
+changed=$(differing_pixels "$work/before.png" "$work/unprobed.png" "$panel_crop")
+[ "$changed" -eq 0 ] || fail "Shift+E left $changed pixels of the probe panel"
+xdotool mousemove --window "$window" 480 270 click 1
+xdotool key t
+capture live-1.png
+capture live-2.png
+changed=$(differing_pixels "$work/live-1.png" "$work/live-2.png" "$panel_crop")
+[ "$changed" -gt 50 ] || fail "the running probe panel changed only $changed pixels in half a second"
+xdotool key Escape
+wait "$luz_pid" || fail "luz (probe) exited with status $? after Esc"
+luz_pid=""
+
 # 8. F11 under a window manager.
 # Waits up to 10 s for the window to have the size $1.
 wait_for_geometry() {
@@ -342,4 +398,4 @@ if command -v openbox >/dev/null 2>&1; then
     fullscreen="F11 fills the $screen screen and gives 480x270 back"
 fi
 
-echo "ok: screenshots $size, spot diff $centre in the centre and 0 outside, camera $camera; $fullscreen"
+echo "ok: screenshots $size, spot diff $centre in the centre and 0 outside, camera $camera; the probe marked, frozen and followed; $fullscreen"

@@ -56,6 +56,8 @@ expect_refusal "--bench" --bench -1
 expect_refusal "-o: .*luz-render" -o out.png
 expect_refusal "--legend: .*luz-render" --legend
 expect_refusal "--mark: .*luz-render" --mark 10,10
+expect_refusal "--probe: expected a pixel of the 480x270 image" --size 480x270 --probe 480,5
+expect_refusal "--probe: expected one frame" --probe 1,1 --bench 3
 expect_refusal "missing.luz: cannot open" --scene "$work/missing.luz"
 # Textures are checked before any window opens.
 expect_refusal "--textures: .*$work/no-such-dir" --textures "$work/no-such-dir"

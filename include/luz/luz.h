@@ -9,6 +9,7 @@
  *   shade.h        the fragment shader: six light terms
  *   framebuffer.h  colour, depth and visibility buffers
  *   renderer.h     the threaded pipeline that draws a frame
+ *   probe.h        one pixel of a frame explained, test by test and term by term
  */
 #ifndef LUZ_LUZ_H
 #define LUZ_LUZ_H
@@ -21,5 +22,6 @@
 #include "luz/shade.h"
 #include "luz/framebuffer.h"
 #include "luz/renderer.h"
+#include "luz/probe.h"
 
 #endif

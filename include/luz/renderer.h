@@ -92,9 +92,12 @@ typedef struct luz_band_hook {
     void *context;
 } luz_band_hook;
 
+/* A pixel to explain (luz/probe.h). */
+typedef struct luz_pixel_probe luz_pixel_probe;
+
 /* How to draw a frame: the teaching switches, and what to report. A zero
  * struct (or NULL) draws the shaded image, perspective-correct, every
- * triangle, with no hook and no statistics. */
+ * triangle, with no hook, no statistics and no probe. */
 typedef struct luz_render_options {
     luz_view view;                     /* what the colour buffer shows
                                           (luz/view.h): LUZ_VIEW_COLOR, the
@@ -106,6 +109,8 @@ typedef struct luz_render_options {
                                           step mode) */
     const luz_band_hook *hook;         /* NULL, or called after each band */
     luz_frame_stats *stats;            /* NULL, or filled in */
+    luz_pixel_probe *probe;            /* NULL, or the pixel at probe->x,
+                                          probe->y explained (luz/probe.h) */
 } luz_render_options;
 
 /* Draws the frame into the framebuffer (cleared first: every pixel is

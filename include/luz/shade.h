@@ -151,34 +151,53 @@ typedef struct luz_shade_uniforms {
 
 LUZ_API luz_shade_uniforms luz_shade_uniforms_of(luz_vec3 eye, const luz_lights *lights);
 
-/* The sum of the six terms at world position P with normal N (normalised
- * here, as SCENE.md asks after interpolation). */
-static inline luz_vec3 luz_shade_lighting(const luz_shade_uniforms *uniforms, luz_vec3 position,
-                                          luz_vec3 normal)
+/* The six terms at world position P with normal N (normalised here, as
+ * SCENE.md asks after interpolation), each into terms[] as its function
+ * above returns it, in luz_term's order; returns their sum, added in that
+ * order. The fragment stage calls it through luz_shade_lighting; the pixel
+ * probe (luz/probe.h) keeps the terms. */
+static inline luz_vec3 luz_shade_terms(const luz_shade_uniforms *uniforms, luz_vec3 position,
+                                       luz_vec3 normal, luz_vec3 terms[LUZ_TERM_COUNT])
 {
     const luz_lights *lights = &uniforms->lights;
     const luz_vec3 n = luz_vec3_normalize(normal);
     const luz_vec3 eye = uniforms->eye;
 
-    luz_vec3 light = luz_shade_ambient(&lights->ambient);
-    light = luz_vec3_add(light, luz_shade_diffuse(n, position, eye, &lights->diffuse));
-    light = luz_vec3_add(light, luz_shade_specular(n, position, eye, &lights->specular,
-                                                   lights->shininess));
-    light = luz_vec3_add(light, luz_shade_point(n, position, lights->point_position,
-                                                &lights->point));
-    light = luz_vec3_add(light, luz_shade_spot(position, eye, lights->spot_direction,
-                                               &lights->spot, uniforms->spot_cos_inner,
-                                               uniforms->spot_cos_outer, lights->spot_reach));
-    light = luz_vec3_add(light, luz_shade_directional(n, lights->directional_direction,
-                                                      &lights->directional));
+    terms[LUZ_TERM_AMBIENT] = luz_shade_ambient(&lights->ambient);
+    terms[LUZ_TERM_DIFFUSE] = luz_shade_diffuse(n, position, eye, &lights->diffuse);
+    terms[LUZ_TERM_SPECULAR] = luz_shade_specular(n, position, eye, &lights->specular,
+                                                  lights->shininess);
+    terms[LUZ_TERM_POINT] = luz_shade_point(n, position, lights->point_position, &lights->point);
+    terms[LUZ_TERM_SPOT] = luz_shade_spot(position, eye, lights->spot_direction, &lights->spot,
+                                          uniforms->spot_cos_inner, uniforms->spot_cos_outer,
+                                          lights->spot_reach);
+    terms[LUZ_TERM_DIRECTIONAL] = luz_shade_directional(n, lights->directional_direction,
+                                                        &lights->directional);
+    luz_vec3 light = terms[LUZ_TERM_AMBIENT];
+    for (int term = LUZ_TERM_DIFFUSE; term < LUZ_TERM_COUNT; term++)
+        light = luz_vec3_add(light, terms[term]);
     return light;
+}
+
+/* The sum of the six terms at world position P with normal N. */
+static inline luz_vec3 luz_shade_lighting(const luz_shade_uniforms *uniforms, luz_vec3 position,
+                                          luz_vec3 normal)
+{
+    luz_vec3 terms[LUZ_TERM_COUNT];
+    return luz_shade_terms(uniforms, position, normal, terms);
+}
+
+/* colour = light * C * T, multiplied in that order. */
+static inline luz_vec3 luz_shade_colour(luz_vec3 light, luz_vec3 object_colour, luz_vec3 texel)
+{
+    return luz_vec3_mul(luz_vec3_mul(light, object_colour), texel);
 }
 
 static inline luz_vec3 luz_shade_fragment(const luz_shade_uniforms *uniforms, luz_vec3 position,
                                           luz_vec3 normal, luz_vec3 object_colour, luz_vec3 texel)
 {
-    luz_vec3 light = luz_shade_lighting(uniforms, position, normal);
-    return luz_vec3_mul(luz_vec3_mul(light, object_colour), texel);
+    return luz_shade_colour(luz_shade_lighting(uniforms, position, normal), object_colour,
+                            texel);
 }
 
 #endif

@@ -192,6 +192,8 @@ const luz_control_help luz_controls_help[] = {
     {"V / Shift+V", "next / previous view of the pipeline (its legend in the HUD)"},
     {"X", "interpolation: perspective-correct or affine"},
     {"G", "step mode: draw the frame triangle by triangle, slowly"},
+    {"E", "probe mode: click a pixel to see why it has its colour; T freezes the panel"},
+    {"Shift+E", "forget the probed pixel and close its panel"},
     {"T", "pause / resume the animation"},
     {"I", "HUD on / off"},
     {"H", "this help on / off"},

@@ -126,7 +126,10 @@ static int make_view(const luz_model *model, luz_lab_model *view, luz_error *err
                                         .has_colour = part->has_colour,
                                         .colour = part->colour,
                                         .has_uvs = part->has_uvs,
-                                        .texture = part->texture};
+                                        .texture = part->texture,
+                                        .mesh_name = part->mesh_name,
+                                        .material_name = part->material_name,
+                                        .texture_name = part->texture_name};
     }
     *view = (luz_lab_model){.name = model->name, .parts = parts,
                             .part_count = model->part_count, .bounds = model->bounds};

@@ -66,6 +66,7 @@ typedef enum option_kind {
     OPTION_SHARD,     /* K/M with 0 <= K < M */
     OPTION_SCENE,     /* a scene file, read at once */
     OPTION_MODEL,     /* a model file, the one object (command_line.c) */
+    OPTION_PROBE,     /* X,Y: a pixel, checked against --size at the end */
 } option_kind;
 
 typedef struct option_spec {
@@ -232,6 +233,13 @@ static const option_spec option_table[] = {
     {.name = "reference", .kind = OPTION_FLAG, .offset = FIELD(reference),
      .summary = "shade with the plain scalar fragment stage (src/renderer/fragment.c) "
                 "instead of the SIMD one; the images agree",
+     .default_text = "off"},
+    /* A question about one run, not part of a scene. */
+    {.name = "probe", .kind = OPTION_PROBE, .syntax = "X,Y",
+     .summary = "explain pixel X,Y (row 0 on top): its depth tests, the winning triangle, "
+                "its varyings, texel, six light terms and bytes; luz-render prints them on "
+                "stdout, one key=value a line, and writes a PNG only with -o; the viewer "
+                "opens its probe panel on the pixel",
      .default_text = "off"},
     {.name = "model", .kind = OPTION_MODEL, .syntax = "FILE",
      .summary = "draw this model (OBJ, glTF, PLY, STL, FBX, ... read with assimp) instead of "
@@ -660,6 +668,35 @@ static int set_marks(luz_options *options, const char *value, const char *where,
     return 0;
 }
 
+/* --probe X,Y. Whether the pixel is in the image is luz_options_finish()'s
+ * question, once --size is known. */
+static int set_probe(luz_options *options, const char *value, const char *where,
+                     luz_error *error)
+{
+    const char *comma = strchr(value, ',');
+    long long x = -1, y = -1;
+    bool well_formed = comma != NULL && read_integer(comma + 1, 0, LUZ_MAX_DIMENSION - 1, &y);
+    if (well_formed) {
+        char text[64];
+        size_t length = (size_t)(comma - value);
+        well_formed = length < sizeof text;
+        if (well_formed) {
+            memcpy(text, value, length);
+            text[length] = '\0';
+            well_formed = read_integer(text, 0, LUZ_MAX_DIMENSION - 1, &x);
+        }
+    }
+    if (!well_formed)
+        return luz_error_set(error,
+                             "%s: expected X,Y, a pixel's column and row counted from 0 at the "
+                             "top left (such as 700,450), got '%s'",
+                             where, option_quote(value).text);
+    options->probe = true;
+    options->probe_x = (int)x;
+    options->probe_y = (int)y;
+    return 0;
+}
+
 static int set_path(luz_options *options, const option_spec *spec, const char *value,
                     const char *where, luz_error *error)
 {
@@ -731,6 +768,8 @@ int luz_options_set_value(luz_options *options, const char *name, const char *va
         return set_frame_range(options, value, where, error);
     case OPTION_SHARD:
         return set_shard(options, spec, value, where, error);
+    case OPTION_PROBE:
+        return set_probe(options, value, where, error);
     case OPTION_SCENE:
     case OPTION_MODEL:
         /* Files are not this file's business: luz_options_set
@@ -876,6 +915,11 @@ int luz_options_format(const luz_options *options, const char *name, char *buffe
         if (options->shard_count == 0)
             return -1;
         written = snprintf(buffer, size, "%d/%d", options->shard_index, options->shard_count);
+        break;
+    case OPTION_PROBE:
+        if (!options->probe)
+            return -1;
+        written = snprintf(buffer, size, "%d,%d", options->probe_x, options->probe_y);
         break;
     case OPTION_FLAG:
     case OPTION_SCENE:
@@ -1114,6 +1158,31 @@ int luz_options_finish(luz_options *options, luz_error *error)
                              last_frame, options->frame_count, range);
     }
 
+    if (options->probe) {
+        if (options->probe_x >= options->width || options->probe_y >= options->height)
+            return luz_error_set(error,
+                                 "--probe: expected a pixel of the %dx%d image, X from 0 to %d "
+                                 "and Y from 0 to %d, got '%d,%d'",
+                                 options->width, options->height, options->width - 1,
+                                 options->height - 1, options->probe_x, options->probe_y);
+        if (options->bench_frames > 0)
+            return luz_error_set(error, "--probe: expected one frame to explain, but --bench "
+                                        "times %d", options->bench_frames);
+        if (options->frame_count > 1)
+            return luz_error_set(error, "--probe: expected one frame to explain (choose it "
+                                        "with --time), got --frames %d", options->frame_count);
+        if (options->shard_count > 0 || options->skip_existing ||
+            options->range_first != 0 || options->range_last != LUZ_FRAME_RANGE_OPEN)
+            return luz_error_set(error, "--probe: expected one frame to explain, without "
+                                        "--frame-range, --shard or --skip-existing, which "
+                                        "pick frames of a sequence");
+        if (luz_options_output_is_stdout(options))
+            return luz_error_set(error, "--probe: expected standard output for the probe's "
+                                        "lines, but -o - writes the PNG there");
+        /* A probe writes an image only when -o asks for one. */
+        if (options->output_path == NULL)
+            return 0;
+    }
     if (options->output_path == NULL) {
         options->output_path = strdup(options->frame_count > 1 ? "luz_%04d.png" : "luz.png");
         if (options->output_path == NULL)

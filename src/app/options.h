@@ -88,6 +88,8 @@ typedef struct luz_options {
     bool legend;                /* --legend: the view's legend in the image */
     int mark_count;             /* --mark: pixels ringed in the image */
     int marks[LUZ_MAX_MARKS][2];    /* x, y of each */
+    bool probe;                 /* --probe X,Y: explain pixel (probe_x, probe_y) */
+    int probe_x, probe_y;       /* column and row, row 0 on top */
     bool help;
     bool version;
     luz_object *objects;        /* the user's own cubes and models (owned), as
@@ -170,9 +172,11 @@ int luz_options_format(const luz_options *options, const char *name,
 /* What must wait until every option is known, called by luz_options_parse()
  * and by anyone who sets options one by one or reads a scene file directly:
  * applies --only (the strengths of the other terms become 0), checks the
- * spot's inner angle against its outer one, sets the default output path,
- * checks the -o pattern, checks --frame-range against --frames and refuses
- * --skip-existing with -o -. Returns 0, or -1 with a message. */
+ * spot's inner angle against its outer one, sets the default output path
+ * (none with --probe: a probe writes a PNG only when -o asks), checks the
+ * -o pattern, checks --frame-range against --frames, refuses
+ * --skip-existing with -o -, and checks that --probe names a pixel of the
+ * image in a run of one frame. Returns 0, or -1 with a message. */
 int luz_options_finish(luz_options *options, luz_error *error);
 
 /* Drops the custom cubes: the scene goes back to SCENE.md's tiling of

@@ -30,6 +30,11 @@ typedef struct luz_model_part {
     const luz_texture *texture;   /* the material's first diffuse texture,
                                      NULL for none (or no uvs); owned by the
                                      model */
+    /* What the file calls them (for the pixel probe); owned, NULL for
+     * none or an empty name. */
+    char *mesh_name;              /* the mesh's */
+    char *material_name;          /* its material's */
+    char *texture_name;           /* the texture's, as the material names it */
 } luz_model_part;
 
 typedef struct luz_model {

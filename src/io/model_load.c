@@ -33,7 +33,12 @@
 
 void luz_model_free(luz_model *model)
 {
-    for (int i = 0; i < model->part_count; i++) luz_mesh_destroy(model->parts[i].mesh);
+    for (int i = 0; i < model->part_count; i++) {
+        luz_mesh_destroy(model->parts[i].mesh);
+        free(model->parts[i].mesh_name);
+        free(model->parts[i].material_name);
+        free(model->parts[i].texture_name);
+    }
     for (int i = 0; i < model->texture_count; i++) luz_texture_destroy(model->textures[i]);
     free(model->parts);
     free(model->textures);
@@ -275,6 +280,23 @@ static uint32_t count_with_area(const luz_vertex *vertices, const uint32_t *indi
     return count;
 }
 
+/* A copy of a name the file gives, NULL for an empty one; false if memory
+ * ran out. */
+static bool name_part(char **out, const char *name)
+{
+    *out = NULL;
+    if (name[0] == '\0') return true;
+    *out = copy_text(name);
+    return *out != NULL;
+}
+
+static void free_part_names(luz_model_part *part)
+{
+    free(part->mesh_name);
+    free(part->material_name);
+    free(part->texture_name);
+}
+
 /* One assimp mesh's triangles as a part; *added is false for a mesh with
  * none (points or lines only), which is dropped. *with_area grows by the
  * number of its triangles that have an area. */
@@ -331,24 +353,34 @@ static int add_part(luz_model *model, texture_cache *cache, const struct aiScene
         return luz_error_set(error, "%s: mesh %u: %s", model->path, mesh_index, inner.message);
 
     luz_model_part part = {.mesh = mesh, .has_uvs = uvs != NULL};
+    bool names_fit = name_part(&part.mesh_name, source->mName.data);
     const struct aiMaterial *material =
         source->mMaterialIndex < scene->mNumMaterials ? scene->mMaterials[source->mMaterialIndex]
                                                       : NULL;
     if (material != NULL) {
         part.has_colour = material_colour(material, &part.colour);
+        struct aiString material_name;
+        if (aiGetMaterialString(material, AI_MATKEY_NAME, &material_name) == aiReturn_SUCCESS)
+            names_fit = name_part(&part.material_name, material_name.data) && names_fit;
         struct aiString texture_name;
         if (part.has_uvs && aiGetMaterialTextureCount(material, aiTextureType_DIFFUSE) > 0 &&
             aiGetMaterialTexture(material, aiTextureType_DIFFUSE, 0, &texture_name, NULL, NULL,
                                  NULL, NULL, NULL, NULL) == aiReturn_SUCCESS &&
-            texture_name.data[0] != '\0' &&
-            load_texture(model, cache, scene, texture_name.data, &part.texture, error) != 0) {
-            luz_mesh_destroy(mesh);
-            return -1;
+            texture_name.data[0] != '\0') {
+            names_fit = name_part(&part.texture_name, texture_name.data) && names_fit;
+            if (load_texture(model, cache, scene, texture_name.data, &part.texture, error) != 0) {
+                free_part_names(&part);
+                luz_mesh_destroy(mesh);
+                return -1;
+            }
         }
     }
 
-    luz_model_part *parts = realloc(model->parts, (size_t)(model->part_count + 1) * sizeof *parts);
+    luz_model_part *parts = names_fit ? realloc(model->parts,
+                                                (size_t)(model->part_count + 1) * sizeof *parts)
+                                      : NULL;
     if (!parts) {
+        free_part_names(&part);
         luz_mesh_destroy(mesh);
         return luz_error_set(error, "%s: out of memory for its meshes", model->path);
     }

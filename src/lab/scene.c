@@ -319,3 +319,28 @@ int luz_scene_build_frame(const luz_lab *lab, const luz_scene *scene,
     }
     return 0;
 }
+
+int luz_scene_object_of_draw(const luz_scene *scene, int draw_index, int *part)
+{
+    *part = 0;
+    if (draw_index < 0) return LUZ_DRAW_NONE;
+    /* One draw a cube, one a model's mesh, in the objects' order, as
+     * luz_scene_build_frame adds them. */
+    int first = 0;
+    if (scene->objects == NULL) {
+        if (draw_index < scene->cube_count) return draw_index;
+        first = scene->cube_count;
+    } else {
+        for (int i = 0; i < scene->object_count; i++) {
+            const luz_lab_model *model = scene->objects[i].model;
+            const int draws = model ? model->part_count : 1;
+            if (draw_index < first + draws) {
+                *part = draw_index - first;
+                return i;
+            }
+            first += draws;
+        }
+    }
+    if (draw_index == first && scene->lights.point.strength > 0.0f) return LUZ_DRAW_POINT_LIGHT;
+    return LUZ_DRAW_NONE;
+}

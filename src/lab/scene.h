@@ -57,6 +57,10 @@ typedef struct luz_lab_model_part {
     luz_vec3 colour;
     bool has_uvs;                  /* without, T = 1 */
     const luz_texture *texture;    /* the material's, or NULL */
+    /* What the file calls them, or NULL (the pixel probe names them). */
+    const char *mesh_name;
+    const char *material_name;
+    const char *texture_name;      /* as the material names its texture */
 } luz_lab_model_part;
 
 typedef struct luz_lab_model {
@@ -171,6 +175,15 @@ luz_render_options luz_scene_render_options(const luz_scene *scene);
 int luz_scene_build_frame(const luz_lab *lab, const luz_scene *scene,
                           luz_texture *const *textures, int texture_count, float aspect,
                           luz_frame *frame, luz_error *error);
+
+/* Which object made draw `draw_index` of the frame luz_scene_build_frame
+ * builds from the scene: returns the object's index (cube i of SCENE.md's
+ * tiling, or the scene's objects[i]) and sets *part to the model's mesh
+ * (0 for a cube). Returns LUZ_DRAW_POINT_LIGHT for the point light's
+ * marker, the draw after the objects', and LUZ_DRAW_NONE past it. */
+#define LUZ_DRAW_POINT_LIGHT (-1)
+#define LUZ_DRAW_NONE (-2)
+int luz_scene_object_of_draw(const luz_scene *scene, int draw_index, int *part);
 
 
 #endif

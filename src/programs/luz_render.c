@@ -7,6 +7,7 @@
  *   luz-render --frames 240 --shard 3/8 --skip-existing -o frames/lab_%04d.png
  *   luz-render --frames 60 -o - | ffmpeg -f image2pipe -framerate 30 -i - lab.mp4
  *   luz-render --bench 20 --threads 2
+ *   luz-render --probe 700,450                  why pixel (700, 450) has its colour
  *
  * The program is a thin shell around libluz: luz_options_parse() reads and
  * checks every option (and the scene file) before anything is rendered, so
@@ -34,6 +35,7 @@
 #include "app/controls.h"
 #include "app/options.h"
 #include "app/panel.h"
+#include "app/probe_report.h"
 #include "io/image.h"
 #include "io/textures.h"
 #include "lab/scene.h"
@@ -116,9 +118,10 @@ static int record_layer(render_context *context, int thread_count, luz_error *er
     return 0;
 }
 
-/* Draws the scene at the given time into the context's framebuffer. */
+/* Draws the scene at the given time into the context's framebuffer, and
+ * explains the probe's pixel if probe is not NULL. */
 static int render_at(render_context *context, luz_renderer *renderer, double time_seconds,
-                     luz_frame_stats *stats, luz_error *error)
+                     luz_frame_stats *stats, luz_pixel_probe *probe, luz_error *error)
 {
     luz_scene scene = context->options->scene;
     scene.time_seconds = time_seconds;
@@ -132,7 +135,26 @@ static int render_at(render_context *context, luz_renderer *renderer, double tim
     const luz_band_hook fill_layer = {fill_layer_rows, &context->layer};
     if (context->has_layer)
         render.hook = &fill_layer;
+    render.probe = probe;
     return luz_renderer_draw(renderer, &context->frame, context->framebuffer, &render, error);
+}
+
+/* --probe X,Y: the frame at --time, drawn once, the pixel's story on
+ * standard output, and the PNG only if -o names one: the very image whose
+ * pixel the probe read. */
+static int render_probe(render_context *context, luz_renderer *renderer, luz_error *error)
+{
+    const luz_options *options = context->options;
+    luz_pixel_probe probe = {.x = options->probe_x, .y = options->probe_y};
+    if (render_at(context, renderer, options->scene.time_seconds, NULL, &probe, error) != 0)
+        return -1;
+    if (options->output_path != NULL &&
+        luz_framebuffer_write_png(context->framebuffer, options->output_path, error) != 0)
+        return -1;
+    const luz_probe_names names = {.scene = &options->scene, .textures = context->textures};
+    luz_probe_write(stdout, &probe, &names, options->width, options->height,
+                    options->scene.time_seconds);
+    return 0;
 }
 
 /* A bar that redraws itself on one line; only on a terminal, where it helps
@@ -169,7 +191,7 @@ static int render_frame(render_context *context, luz_renderer *renderer, int k,
      * gets the whole run's bytes */
     double time_seconds = options->scene.time_seconds + k / options->frames_per_second;
     if (luz_options_output_is_stdout(options)) {
-        if (render_at(context, renderer, time_seconds, NULL, error) != 0)
+        if (render_at(context, renderer, time_seconds, NULL, NULL, error) != 0)
             return -1;
         return luz_framebuffer_write_png_stream(context->framebuffer, stdout, "standard output",
                                                 error);
@@ -179,7 +201,7 @@ static int render_frame(render_context *context, luz_renderer *renderer, int k,
         return -1;
     if (options->skip_existing && frame_exists(path))
         return 0;
-    if (render_at(context, renderer, time_seconds, NULL, error) != 0 ||
+    if (render_at(context, renderer, time_seconds, NULL, NULL, error) != 0 ||
         luz_framebuffer_write_png(context->framebuffer, path, error) != 0)
         return -1;
     return 0;
@@ -216,7 +238,7 @@ static int bench_frame(void *context, double time_seconds, double parts[LUZ_BENC
 {
     bench_context *bench = context;
     luz_frame_stats stats;
-    if (render_at(bench->render, bench->renderer, time_seconds, &stats, error) != 0)
+    if (render_at(bench->render, bench->renderer, time_seconds, &stats, NULL, error) != 0)
         return -1;
     parts[0] = stats.geometry_ms;
     parts[1] = stats.raster_ms;
@@ -335,6 +357,7 @@ int main(int argc, char **argv)
     if (record_layer(&context, luz_renderer_thread_count(renderer), &error) != 0)
         goto done;
     if ((options.bench_frames > 0 ? bench(&context, renderer, &error)
+         : options.probe          ? render_probe(&context, renderer, &error)
                                   : render_files(&context, renderer, &error)) != 0)
         goto done;
     status = EXIT_OK;

@@ -48,6 +48,7 @@
 #include "app/controls.h"
 #include "app/options.h"
 #include "app/panel.h"
+#include "app/probe_panel.h"
 #include "io/image.h"
 #include "io/textures.h"
 #include "lab/scene.h"
@@ -213,6 +214,15 @@ typedef struct viewer {
     int help_first;                  /* the first row shown, when it scrolls */
     bool screenshot_requested;
     luz_step_mode step;              /* G: the frame triangle by triangle */
+    /* E: the pixel probe. A click marks a pixel (framebuffer pixels); it is
+     * probed every frame while the animation runs, and once more after a
+     * click while it is paused. probe holds the last answer, which the
+     * panel and the marker show. */
+    bool probe_mode;                 /* clicks probe; the cursor is free */
+    bool probe_marked;               /* a pixel is marked */
+    bool probe_asked;                /* probe on the next frame, paused or not */
+    int probe_x, probe_y;            /* the marked pixel */
+    luz_pixel_probe probe;
     bool paused_before_step;         /* the step mode freezes the animation */
     uint32_t step_limit;             /* triangles to draw now, 0 for all */
 
@@ -340,13 +350,35 @@ static void save_screenshot(viewer *v, const luz_framebuffer *framebuffer)
     show_message(v, message);
 }
 
+/* Whether the mouse flies (turns the camera) or points (the light panel,
+ * the probe mode). */
+static bool cursor_free(const viewer *v)
+{
+    return v->panel_open || v->probe_mode;
+}
+
+static void update_cursor(const viewer *v)
+{
+    /* Flying hides the cursor and reports relative motion; a failure (no
+     * pointer grab) leaves absolute motion, which still turns the camera. */
+    SDL_SetRelativeMouseMode(cursor_free(v) ? SDL_FALSE : SDL_TRUE);
+}
+
 static void set_panel_open(viewer *v, bool open)
 {
     v->panel_open = open;
     luz_panel_mouse_release(&v->panel);
-    /* Flying hides the cursor and reports relative motion; a failure (no
-     * pointer grab) leaves absolute motion, which still turns the camera. */
-    SDL_SetRelativeMouseMode(open ? SDL_FALSE : SDL_TRUE);
+    update_cursor(v);
+}
+
+/* A click in the probe mode: mark the pixel, and probe it on the next
+ * frame even while paused. */
+static void mark_probe(viewer *v, int x, int y)
+{
+    v->probe_marked = true;
+    v->probe_asked = true;
+    v->probe_x = x;
+    v->probe_y = y;
 }
 
 /* A window position in pixels of the framebuffer, which is smaller than the
@@ -429,6 +461,14 @@ static void handle_key(viewer *v, const SDL_KeyboardEvent *key)
             v->paused = v->paused_before_step;
         }
         break;
+    case SDLK_e:
+        if (shift) {
+            v->probe_marked = false;
+        } else {
+            v->probe_mode = !v->probe_mode;
+            update_cursor(v);
+        }
+        break;
     case SDLK_t: v->paused = !v->paused; break;
     case SDLK_i: v->hud_visible = !v->hud_visible; break;
     case SDLK_h:
@@ -466,10 +506,10 @@ static void handle_event(viewer *v, const SDL_Event *event)
         handle_key(v, &event->key);
         break;
     case SDL_MOUSEMOTION:
-        if (!v->panel_open) {
+        if (!cursor_free(v)) {
             luz_camera_turn(&v->options->scene.camera, (float)event->motion.xrel,
                             (float)event->motion.yrel);
-        } else if (v->panel.dragging >= 0) {
+        } else if (v->panel_open && v->panel.dragging >= 0) {
             to_framebuffer(v, event->motion.x, event->motion.y, &x, &y);
             luz_panel_mouse_drag(&v->panel, &v->layout, lights, x);
         }
@@ -477,9 +517,14 @@ static void handle_event(viewer *v, const SDL_Event *event)
     case SDL_MOUSEBUTTONDOWN:
         /* The help covers the panel (which is not drawn meanwhile): a
          * click on the help must not reach a slider hidden under it. */
-        if (v->panel_open && !v->help_visible && event->button.button == SDL_BUTTON_LEFT) {
+        if (!v->help_visible && cursor_free(v) && event->button.button == SDL_BUTTON_LEFT) {
             to_framebuffer(v, event->button.x, event->button.y, &x, &y);
-            luz_panel_mouse_press(&v->panel, &v->layout, lights, &v->switches, x, y);
+            /* The light panel takes the clicks that land on it; the probe
+             * mode the others. */
+            bool on_panel = v->panel_open && luz_panel_mouse_press(&v->panel, &v->layout, lights,
+                                                                   &v->switches, x, y);
+            if (!on_panel && v->probe_mode)
+                mark_probe(v, x, y);
         }
         break;
     case SDL_MOUSEWHEEL:
@@ -628,6 +673,13 @@ static int record_overlays(viewer *v, luz_error *error)
             };
             luz_hud_draw(layer, &hud);
         }
+        /* The probe's last answer: its pixel marked, its story in the
+         * bottom-left corner. */
+        if (v->probe_marked && v->probe.filled) {
+            const luz_probe_names names = {.scene = &v->options->scene, .textures = v->textures};
+            luz_probe_panel_draw(layer, &v->probe, &names, v->paused && !v->probe_asked);
+            luz_probe_marker_draw(layer, v->probe.x, v->probe.y);
+        }
         if (v->panel_open)
             luz_panel_draw(layer, &v->layout, &v->panel, &v->options->scene.lights);
     }
@@ -677,8 +729,22 @@ static int draw_frame(viewer *v, luz_error *error)
     render.triangle_limit = v->step_limit;
     render.hook = screenshot ? NULL : &fill_layer;
     render.stats = &v->stats;
+    /* The marked pixel, followed as the scene moves; while paused, its
+     * story stays as it was, unless a click asks again. A pixel that a
+     * smaller window has left is forgotten. */
+    if (v->probe_marked &&
+        (v->probe_x >= v->framebuffer->width || v->probe_y >= v->framebuffer->height))
+        v->probe_marked = false;
+    const bool probing = v->probe_marked && (!v->paused || v->probe_asked);
+    if (probing) {
+        v->probe.x = v->probe_x;
+        v->probe.y = v->probe_y;
+        render.probe = &v->probe;
+    }
     if (luz_renderer_draw(v->renderer, &v->frame, v->framebuffer, &render, error) != 0)
         return -1;
+    if (probing)
+        v->probe_asked = false;
     if (screenshot) {
         v->screenshot_requested = false;
         save_screenshot(v, v->framebuffer);
@@ -928,6 +994,8 @@ int main(int argc, char **argv)
     status = EXIT_RUNTIME;
     v.start_camera = options.scene.camera;
     v.paused = options.paused;   /* a view saved while paused opens paused */
+    if (options.probe)
+        mark_probe(&v, options.probe_x, options.probe_y);
     luz_panel_init(&v.panel);
     const luz_renderer_desc desc = luz_options_renderer_desc(&options);
     v.renderer = luz_renderer_create(&desc, &error);

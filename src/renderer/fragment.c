@@ -62,6 +62,7 @@ void luz_fragment_interpolate(const luz_triangle *triangle, int x, int y, luz_fr
     out->du_dy = (u_plane.dy - u * triangle->inverse_w.dy) * w;
     out->dv_dy = (v_plane.dy - v * triangle->inverse_w.dy) * w;
     out->depth = plane_at(triangle->depth, dx, dy);
+    out->w = w;
 }
 
 uint64_t luz_fragment_shade_rows(const luz_uniforms *frame_uniforms, const luz_draw *draws,

@@ -874,6 +874,12 @@ luz_packet_rows_function *luz_packet_rows_for(luz_packet_isa isa)
     }
 }
 
+float luz_packet_level_of_detail(const luz_texture *texture, float du_dx, float dv_dx,
+                                 float du_dy, float dv_dy)
+{
+    return level_of_detail(texture, splat(du_dx), splat(dv_dx), splat(du_dy), splat(dv_dy))[0];
+}
+
 uint64_t luz_fragment_shade_rows_packet(luz_packet_isa isa, const luz_uniforms *uniforms,
                                         const luz_draw *draws, const luz_triangle *const *by_id,
                                         luz_framebuffer *framebuffer, int first_row,

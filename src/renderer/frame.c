@@ -22,8 +22,13 @@
  *                        background given the clear colour (or, for a
  *                        --view other than color, a picture of a stage:
  *                        view.c)
+ *        probe           if a pixel is probed and lies in the band, the
+ *                        bytes it got (luz/probe.h)
  *        hook            the caller's work on top of the band, if any
  *                        (the viewer's 2D layer: luz_band_hook)
+ *
+ *   3. The probe, if one was asked for: the pixel's story, from what the
+ *      bands left (probe.c).
  *
  * A band touches only its own rows and draws triangles in submission order,
  * so the image is the same byte for byte whichever thread draws which band
@@ -70,6 +75,7 @@ typedef struct frame_job {
     luz_geometry_result geometry;   /* phase 1's triangles, binned */
     uint32_t *overdraw;             /* NULL unless the overdraw view */
     const luz_band_hook *hook;      /* NULL, or called after each band */
+    luz_pixel_probe *probe;         /* NULL, or the pixel to explain */
 } frame_job;
 
 static double now_ms(void)
@@ -133,6 +139,11 @@ static void band_job(void *context, int band_index, int worker_index)
         counters->fragments_shaded = renderer->packet_rows(uniforms, draws, by_id, framebuffer,
                                                            first_row, end_row);
     counters->fragments_tested = tested;
+
+    /* The probed pixel's bytes, before the hook can draw over them. */
+    if (job->probe)
+        luz_probe_capture(job->probe, framebuffer, first_row, end_row, band_index,
+                          worker_index);
 
     /* The caller's work on top, while the band's rows are in this core's
      * cache. */
@@ -287,6 +298,7 @@ int luz_renderer_draw(luz_renderer *renderer, const luz_frame *frame,
         .frame = frame,
         .framebuffer = framebuffer,
         .hook = options->hook,
+        .probe = options->probe,
     };
 
     /* Uniforms, once for the frame. */
@@ -303,7 +315,14 @@ int luz_renderer_draw(luz_renderer *renderer, const luz_frame *frame,
      * the caller's hook). */
     if (prepare_bands(renderer, job.geometry.band_count, error) != 0) return -1;
     if (prepare_overdraw(renderer, &job, error) != 0) return -1;
+    if (job.probe) luz_probe_begin(job.probe, framebuffer, options->view);
     luz_thread_pool_run(renderer->pool, job.geometry.band_count, band_job, &job);
+
+    /* The probed pixel's story (luz/probe.h), from what the bands left. */
+    if (job.probe)
+        luz_probe_explain(job.probe, &job.uniforms, frame->draws, job.geometry.by_id,
+                          job.geometry.triangle_count, framebuffer, job.overdraw,
+                          !renderer->reference);
     const double end = now_ms();
 
     luz_frame_stats *stats = options->stats;

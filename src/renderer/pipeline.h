@@ -15,6 +15,7 @@
  *                      (texture.c samples; the six light terms are the
  *                      inline functions of luz/shade.h)
  *     or view.c      a picture of a stage (--view)       depth, normals, uv, ...
+ *     and probe.c    one pixel explained (luz/probe.h)   the same functions again
  *
  * frame.c runs them in that order: geometry_of_draw the first three,
  * bin_triangles lists each band's triangles, band_job the rest for a band
@@ -30,6 +31,7 @@
 
 #include "luz/framebuffer.h"
 #include "luz/frame.h"
+#include "luz/probe.h"
 #include "luz/renderer.h"
 #include "luz/shade.h"
 #include "luz/vecmath.h"
@@ -173,6 +175,82 @@ luz_setup_result luz_setup_triangle(const luz_clip_vertex *v0, const luz_clip_ve
 
 /* ---- rasterisation and depth test -------------------------------------- */
 
+/* The per-pixel arithmetic of the raster stage, shared by raster.c's loops
+ * and the pixel probe (probe.c), so that the probe's account of which
+ * triangles covered a pixel, at what depth, is the rasteriser's own
+ * operations and not a second copy of them. raster.c explains the maths.
+ * Always inlined: they are the raster loop's body (GCC 12 leaves the span
+ * out of line otherwise, and the raster stage then runs 4% more
+ * instructions). */
+#define LUZ_RASTER_INLINE static inline __attribute__((always_inline))
+
+/* Narrows [*first, *last] to the x where edge E(x) = e + s x >= 0. */
+LUZ_RASTER_INLINE void luz_raster_narrow_span(int64_t e, int64_t s, int64_t *first, int64_t *last)
+{
+    if (s > 0) {
+        int64_t bound = luz_ceil_divide(-e, s);
+        if (bound > *first) *first = bound;
+    } else if (s < 0) {
+        int64_t bound = luz_floor_divide(e, -s);
+        if (bound < *last) *last = bound;
+    } else if (e < 0) {
+        *last = *first - 1;                        /* empty */
+    }
+}
+
+/* Bounding boxes at most this wide test pixels rather than divide. */
+#define LUZ_RASTER_SMALL_SPAN 8
+
+LUZ_RASTER_INLINE bool luz_raster_is_small(const luz_triangle *triangle)
+{
+    return triangle->max_x - triangle->min_x < LUZ_RASTER_SMALL_SPAN;
+}
+
+/* The pixels of row y whose centres the triangle covers, [*first, *last]
+ * (empty when *first > *last), for a row y within [min_y, max_y]; small is
+ * luz_raster_is_small(triangle), worked out once per triangle. */
+LUZ_RASTER_INLINE void luz_raster_row_span(const luz_triangle *triangle, int y, bool small,
+                                       int64_t *first, int64_t *last)
+{
+    const int64_t sample_y = (int64_t)y * LUZ_SUBPIXEL_ONE + LUZ_SUBPIXEL_ONE / 2;
+    *first = triangle->min_x;
+    *last = triangle->max_x;
+    int64_t e[3], step[3];
+    for (int k = 0; k < 3; k++) {
+        const luz_edge *edge = &triangle->edges[k];
+        /* E at the centre of pixel 0 of this row, and its step per pixel. */
+        e[k] = edge->a * (LUZ_SUBPIXEL_ONE / 2) + edge->b * sample_y + edge->c;
+        step[k] = edge->a * LUZ_SUBPIXEL_ONE;
+    }
+    if (small) {
+        int64_t covered_first = *last + 1, covered_last = *first - 1;
+        for (int64_t x = *first; x <= *last; x++) {
+            if (e[0] + step[0] * x >= 0 && e[1] + step[1] * x >= 0 && e[2] + step[2] * x >= 0) {
+                if (covered_first > x) covered_first = x;
+                covered_last = x;
+            }
+        }
+        *first = covered_first;
+        *last = covered_last;
+    } else {
+        for (int k = 0; k < 3; k++) luz_raster_narrow_span(e[k], step[k], first, last);
+    }
+}
+
+/* Window depth at the centres of row y, at x = reference_x... */
+LUZ_RASTER_INLINE float luz_raster_row_depth(luz_plane depth, float reference_y, int y)
+{
+    return depth.value + depth.dy * ((float)y + 0.5f - reference_y);
+}
+
+/* ... and at the centre of pixel x of that row: one multiply-add a pixel
+ * from the row's value, each pixel computed directly so that its value
+ * never depends on where a span began. */
+LUZ_RASTER_INLINE float luz_raster_depth(luz_plane depth, float reference_x, float row_depth, int x)
+{
+    return row_depth + depth.dx * ((float)x + 0.5f - reference_x);
+}
+
 /* Covers the pixel centres of rows [first_row, end_row) that lie inside the
  * triangle; where a sample is nearer than the depth buffer (LESS), writes
  * its depth and triangle_id into the visibility buffer. Returns the number
@@ -254,6 +332,13 @@ uint64_t luz_fragment_shade_rows_packet(luz_packet_isa isa, const luz_uniforms *
                                         luz_framebuffer *framebuffer, int first_row,
                                         int end_row);
 
+/* For the pixel probe (probe.c): the level of detail exactly as the
+ * packets compute it (their polynomial logarithm included), for one
+ * pixel. Every variant's lanes perform the same IEEE operations, so this
+ * is the value of whichever variant shaded the image. */
+float luz_packet_level_of_detail(const luz_texture *texture, float du_dx, float dv_dx,
+                                 float du_dy, float dv_dy);
+
 /* The varyings and texture-coordinate derivatives at a pixel centre. */
 typedef struct luz_fragment {
     luz_vec3 position;
@@ -261,6 +346,7 @@ typedef struct luz_fragment {
     luz_vec2 uv;
     float du_dx, dv_dx, du_dy, dv_dy;
     float depth;
+    float w;          /* 1 / (1/w): the clip w (1 for affine interpolation) */
 } luz_fragment;
 
 void luz_fragment_interpolate(const luz_triangle *triangle, int x, int y, luz_fragment *out);
@@ -280,6 +366,22 @@ static inline float luz_texture_repeat(float coordinate)
     return fraction < 1.0f ? fraction : 0.0f;       /* -1e-9 - (-1) rounds to 1 */
 }
 
+/* rho^2 for the level of detail, in texels of level 0 per pixel step:
+ * max(|(du/dx, dv/dx)|^2, |(du/dy, dv/dy)|^2) * (width, height)^2, no
+ * square root (log2(rho) = log2(rho^2) / 2). luz_texture_level_of_detail
+ * takes its logarithm; the probe reports its root as rho.
+ * fragment_packet.c's level_of_detail is the same operations per lane. */
+static inline float luz_texture_footprint_squared(const luz_texture *texture, float du_dx,
+                                                  float dv_dx, float du_dy, float dv_dy)
+{
+    float width = (float)texture->levels[0].width, height = (float)texture->levels[0].height;
+    float x_u = du_dx * width, x_v = dv_dx * height;
+    float y_u = du_dy * width, y_v = dv_dy * height;
+    float x_squared = x_u * x_u + x_v * x_v;
+    float y_squared = y_u * y_u + y_v * y_v;
+    return x_squared > y_squared ? x_squared : y_squared;
+}
+
 /* ---- views (view.c) ----------------------------------------------------- */
 
 /* Colours rows [first_row, end_row) as uniforms->show asks (see
@@ -294,6 +396,47 @@ uint64_t luz_view_shade_rows(const luz_uniforms *uniforms, const luz_draw *draws
                              const luz_triangle *const *by_id, luz_framebuffer *framebuffer,
                              int first_row, int end_row, const uint32_t *overdraw,
                              int worker_index);
+
+/* What luz_view_shade_rows gives pixel (x, y), before it becomes bytes,
+ * for every view but color and bands (the pixel probe asks too). */
+luz_vec3 luz_view_pixel(const luz_uniforms *uniforms, const luz_draw *draws,
+                        const luz_triangle *const *by_id, const luz_framebuffer *framebuffer,
+                        int x, int y, const uint32_t *overdraw);
+
+/* The bands view: a pixel whose colour view is bytes rgb, drawn by
+ * worker thread worker_index (luz/view.h's LUZ_VIEW_BANDS_TINT). */
+luz_vec3 luz_view_bands_colour(const uint8_t rgb[3], int worker_index);
+
+/* The triangles view: the distance in pixels from pixel (x, y)'s centre to
+ * the nearest of the triangle's three edges (lines through them). */
+double luz_view_edge_distance(const luz_triangle *triangle, int x, int y);
+/* Whether one of pixel (x, y)'s four neighbours in a width x height image
+ * lies outside the triangle: the triangles view shades such a pixel as
+ * its triangle's edge. */
+bool luz_view_on_edge(const luz_triangle *triangle, int x, int y, int width, int height);
+
+/* ---- the pixel probe (probe.c, luz/probe.h) ------------------------------ */
+
+/* Before the bands: marks the probe filled if (x, y) is in the
+ * framebuffer, empties its answers, and notes the view. */
+void luz_probe_begin(luz_pixel_probe *probe, const luz_framebuffer *framebuffer, luz_view view);
+
+/* Each band, right after its fragment stage (or view) and before the
+ * caller's hook: if the probe's pixel lies in rows [first_row, end_row),
+ * keeps the bytes the image holds there and which band and thread drew
+ * them. */
+void luz_probe_capture(luz_pixel_probe *probe, const luz_framebuffer *framebuffer,
+                       int first_row, int end_row, int band_index, int worker_index);
+
+/* After the bands: the rest of the story, from the frame's set-up
+ * triangles (ids 1 .. triangle_count were rasterised) and the final depth
+ * and visibility buffers. packet_path: the image's colour was shaded by
+ * fragment_packet.c, whose level of detail the probe then reports (else
+ * fragment.c's). overdraw: the overdraw view's counts, or NULL. */
+void luz_probe_explain(luz_pixel_probe *probe, const luz_uniforms *uniforms,
+                       const luz_draw *draws, const luz_triangle *const *by_id,
+                       size_t triangle_count, const luz_framebuffer *framebuffer,
+                       const uint32_t *overdraw, bool packet_path);
 
 /* ---- the renderer (frame.c) --------------------------------------------- */
 

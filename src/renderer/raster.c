@@ -23,28 +23,18 @@
  *
  * Small triangles: a 64-bit division costs some 40 cycles, three a row,
  * more than testing a few pixels. When the bounding box is at most
- * SMALL_SPAN pixels wide, each pixel of the row is tested instead (E >= 0
- * for the three edges, a multiply-add each); a triangle is convex, so the
- * pixels that pass are one span, the same span the divisions give.
+ * LUZ_RASTER_SMALL_SPAN pixels wide, each pixel of the row is tested
+ * instead (E >= 0 for the three edges, a multiply-add each); a triangle is
+ * convex, so the pixels that pass are one span, the same span the
+ * divisions give.
+ *
+ * The per-pixel arithmetic (a row's span, either way, and the depth at a
+ * pixel centre) is in pipeline.h, luz_raster_row_span and
+ * luz_raster_depth, shared with the pixel probe (probe.c) so that its
+ * account of a pixel's depth tests is this file's arithmetic. Inlined, it
+ * compiles to the same loop.
  */
 #include "renderer/pipeline.h"
-
-/* Bounding boxes at most this wide test pixels rather than divide. */
-#define SMALL_SPAN 8
-
-/* Narrows [*first, *last] to the x where edge E(x) = e + s x >= 0. */
-static void clip_span_to_edge(int64_t e, int64_t s, int64_t *first, int64_t *last)
-{
-    if (s > 0) {
-        int64_t bound = luz_ceil_divide(-e, s);
-        if (bound > *first) *first = bound;
-    } else if (s < 0) {
-        int64_t bound = luz_floor_divide(e, -s);
-        if (bound < *last) *last = bound;
-    } else if (e < 0) {
-        *last = *first - 1;                        /* empty */
-    }
-}
 
 /* The rasteriser itself. overdraw, when not NULL, counts the depth tests of
  * every pixel (the overdraw view). The two public functions below call it
@@ -58,44 +48,20 @@ static inline __attribute__((always_inline)) uint64_t raster_triangle(const luz_
     int y_end = triangle->max_y + 1 < end_row ? triangle->max_y + 1 : end_row;
     const luz_plane depth = triangle->depth;
     const int width = framebuffer->width;
-    const bool small = triangle->max_x - triangle->min_x < SMALL_SPAN;
+    const bool small = luz_raster_is_small(triangle);
     uint64_t tests = 0;
 
     for (int y = y_begin; y < y_end; y++) {
-        const int64_t sample_y = (int64_t)y * LUZ_SUBPIXEL_ONE + LUZ_SUBPIXEL_ONE / 2;
-        int64_t first = triangle->min_x, last = triangle->max_x;
-        int64_t e[3], step[3];
-        for (int k = 0; k < 3; k++) {
-            const luz_edge *edge = &triangle->edges[k];
-            /* E at the centre of pixel 0 of this row, and its step per pixel. */
-            e[k] = edge->a * (LUZ_SUBPIXEL_ONE / 2) + edge->b * sample_y + edge->c;
-            step[k] = edge->a * LUZ_SUBPIXEL_ONE;
-        }
-        if (small) {
-            int64_t covered_first = last + 1, covered_last = first - 1;
-            for (int64_t x = first; x <= last; x++) {
-                if (e[0] + step[0] * x >= 0 && e[1] + step[1] * x >= 0 &&
-                    e[2] + step[2] * x >= 0) {
-                    if (covered_first > x) covered_first = x;
-                    covered_last = x;
-                }
-            }
-            first = covered_first;
-            last = covered_last;
-        } else {
-            for (int k = 0; k < 3; k++) clip_span_to_edge(e[k], step[k], &first, &last);
-        }
+        int64_t first, last;
+        luz_raster_row_span(triangle, y, small, &first, &last);
         if (first > last) continue;
 
-        /* Depth is affine in window coordinates: one multiply-add a pixel
-         * from the row's value, each pixel computed directly so that its
-         * value never depends on where the span began. */
-        const float row_depth =
-            depth.value + depth.dy * ((float)y + 0.5f - triangle->reference_y);
+        /* Depth is affine in window coordinates (luz_raster_depth). */
+        const float row_depth = luz_raster_row_depth(depth, triangle->reference_y, y);
         float *depth_row = framebuffer->depth + (size_t)y * width;
         uint32_t *visibility_row = framebuffer->visibility + (size_t)y * width;
         for (int x = (int)first; x <= (int)last; x++) {
-            float z = row_depth + depth.dx * ((float)x + 0.5f - triangle->reference_x);
+            float z = luz_raster_depth(depth, triangle->reference_x, row_depth, x);
             if (z < depth_row[x]) {    /* GL_LESS */
                 depth_row[x] = z;
                 visibility_row[x] = triangle_id;

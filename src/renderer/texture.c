@@ -106,13 +106,8 @@ void luz_texture_destroy(luz_texture *texture)
 float luz_texture_level_of_detail(const luz_texture *texture,
                                   float du_dx, float dv_dx, float du_dy, float dv_dy)
 {
-    float width = (float)texture->levels[0].width, height = (float)texture->levels[0].height;
-    float x_u = du_dx * width, x_v = dv_dx * height;
-    float y_u = du_dy * width, y_v = dv_dy * height;
     /* log2(rho) = log2(rho^2) / 2: no square root needed. */
-    float x_squared = x_u * x_u + x_v * x_v;
-    float y_squared = y_u * y_u + y_v * y_v;
-    float rho_squared = x_squared > y_squared ? x_squared : y_squared;
+    float rho_squared = luz_texture_footprint_squared(texture, du_dx, dv_dx, du_dy, dv_dy);
     /* Magnified (a texel covers a pixel or more): lambda <= 0, level 0.
      * Most pixels of a close-up are, and they skip the logarithm. */
     if (!(rho_squared > 1.0f)) return 0.0f;

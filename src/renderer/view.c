@@ -179,6 +179,24 @@ static luz_vec3 mip_colour(const luz_texture *texture, luz_filter filter,
                levels.blend);
 }
 
+double luz_view_edge_distance(const luz_triangle *triangle, int x, int y)
+{
+    const int64_t sample_x = (int64_t)x * LUZ_SUBPIXEL_ONE + LUZ_SUBPIXEL_ONE / 2;
+    const int64_t sample_y = (int64_t)y * LUZ_SUBPIXEL_ONE + LUZ_SUBPIXEL_ONE / 2;
+    double nearest = INFINITY;
+    for (int k = 0; k < 3; k++) {
+        const luz_edge *edge = &triangle->edges[k];
+        /* E is the doubled area of the sample with the edge, in sub-pixel
+         * units squared; over the edge's length it is a distance. */
+        double e = (double)(edge->a * sample_x + edge->b * sample_y + edge->c);
+        double length = sqrt((double)edge->a * (double)edge->a +
+                             (double)edge->b * (double)edge->b);
+        double distance = fabs(e) / (length * LUZ_SUBPIXEL_ONE);
+        if (distance < nearest) nearest = distance;
+    }
+    return nearest;
+}
+
 /* Whether the triangle covers pixel (x, y)'s centre: the rasteriser's
  * test, E >= 0 for the three edge functions, in the same exact integers
  * (raster.c computes the same values a row at a time). */
@@ -197,7 +215,7 @@ static bool covers(const luz_triangle *triangle, int x, int y)
  * in the image lies outside it: that neighbour belongs to another
  * triangle, or to none. (A neighbour inside the triangle that a nearer
  * triangle won is marked on the nearer one's side, whose edge it is.) */
-static bool on_edge(const luz_triangle *triangle, int x, int y, int width, int height)
+bool luz_view_on_edge(const luz_triangle *triangle, int x, int y, int width, int height)
 {
     return (x > 0 && !covers(triangle, x - 1, y)) ||
            (x + 1 < width && !covers(triangle, x + 1, y)) ||
@@ -205,24 +223,71 @@ static bool on_edge(const luz_triangle *triangle, int x, int y, int width, int h
            (y + 1 < height && !covers(triangle, x, y + 1));
 }
 
+luz_vec3 luz_view_bands_colour(const uint8_t rgb[3], int worker_index)
+{
+    const luz_vec3 tint = luz_view_thread_colour(worker_index);
+    return (luz_vec3){
+        (1.0f - LUZ_VIEW_BANDS_TINT) * (rgb[0] / 255.0f) + LUZ_VIEW_BANDS_TINT * tint.x,
+        (1.0f - LUZ_VIEW_BANDS_TINT) * (rgb[1] / 255.0f) + LUZ_VIEW_BANDS_TINT * tint.y,
+        (1.0f - LUZ_VIEW_BANDS_TINT) * (rgb[2] / 255.0f) + LUZ_VIEW_BANDS_TINT * tint.z,
+    };
+}
+
 /* Mixes the tint into the rows fragment.c has just shaded, reading each
  * channel back from the byte the channel order put it in. */
 static void tint_rows_by_thread(luz_framebuffer *framebuffer, int first_row, int end_row,
                                 int worker_index)
 {
-    const luz_vec3 tint = luz_view_thread_colour(worker_index);
     const luz_pixel_layout layout = luz_pixel_layout_of(framebuffer->channel_order);
     const size_t begin = (size_t)first_row * framebuffer->width;
     const size_t end = (size_t)end_row * framebuffer->width;
-    const float shown[3] = {tint.x, tint.y, tint.z};
-    const int offset[3] = {layout.red, 1, layout.blue};
     for (size_t i = begin; i < end; i++) {
         uint8_t *pixel = framebuffer->colour + i * 4;
-        for (int c = 0; c < 3; c++) {
-            uint8_t *byte = pixel + offset[c];
-            *byte = luz_colour_to_byte((1.0f - LUZ_VIEW_BANDS_TINT) * (*byte / 255.0f) +
-                                       LUZ_VIEW_BANDS_TINT * shown[c]);
-        }
+        const uint8_t rgb[3] = {pixel[layout.red], pixel[1], pixel[layout.blue]};
+        luz_pixel_write(pixel, layout, luz_view_bands_colour(rgb, worker_index));
+    }
+}
+
+luz_vec3 luz_view_pixel(const luz_uniforms *uniforms, const luz_draw *draws,
+                        const luz_triangle *const *by_id, const luz_framebuffer *framebuffer,
+                        int x, int y, const uint32_t *overdraw)
+{
+    const luz_view view = uniforms->show;
+    const size_t index = (size_t)y * framebuffer->width + x;
+    const uint32_t id = framebuffer->visibility[index];
+    /* Two views colour the background by their palettes: it has a depth
+     * (the far plane) and a count of depth tests (0). The others give it
+     * the clear colour, below. */
+    if (view == LUZ_VIEW_DEPTH) {
+        float grey = luz_view_depth_brightness(framebuffer->depth[index], &uniforms->projection);
+        return (luz_vec3){grey, grey, grey};
+    }
+    if (view == LUZ_VIEW_OVERDRAW)
+        return luz_view_overdraw_colour(overdraw ? overdraw[index] : 0);
+    if (id == 0) return uniforms->clear_colour;
+
+    const luz_triangle *triangle = by_id[id];
+    const luz_material *material = &draws[triangle->draw_index].material;
+    luz_fragment fragment;
+    if (view != LUZ_VIEW_TRIANGLES) luz_fragment_interpolate(triangle, x, y, &fragment);
+    switch (view) {
+    case LUZ_VIEW_NORMALS: {
+        luz_vec3 n = luz_vec3_normalize(fragment.normal);
+        return (luz_vec3){n.x * 0.5f + 0.5f, n.y * 0.5f + 0.5f, n.z * 0.5f + 0.5f};
+    }
+    case LUZ_VIEW_UV:
+        return (luz_vec3){luz_texture_repeat(fragment.uv.x), luz_texture_repeat(fragment.uv.y),
+                          0.0f};
+    case LUZ_VIEW_MIP:
+        return mip_colour(material->texture, material->filter, &fragment);
+    case LUZ_VIEW_TRIANGLES: {
+        const luz_vec3 colour = luz_view_triangle_colour(id);
+        return luz_view_on_edge(triangle, x, y, framebuffer->width, framebuffer->height)
+                   ? luz_vec3_scale(colour, LUZ_VIEW_TRIANGLE_EDGE_SHADE)
+                   : colour;
+    }
+    default:
+        return (luz_vec3){0.0f, 0.0f, 0.0f};
     }
 }
 
@@ -231,8 +296,7 @@ uint64_t luz_view_shade_rows(const luz_uniforms *uniforms, const luz_draw *draws
                              int first_row, int end_row, const uint32_t *overdraw,
                              int worker_index)
 {
-    const luz_view view = uniforms->show;
-    if (view == LUZ_VIEW_BANDS) {
+    if (uniforms->show == LUZ_VIEW_BANDS) {
         uint64_t shaded = luz_fragment_shade_rows(uniforms, draws, by_id, framebuffer,
                                                   first_row, end_row);
         tint_rows_by_thread(framebuffer, first_row, end_row, worker_index);
@@ -246,57 +310,9 @@ uint64_t luz_view_shade_rows(const luz_uniforms *uniforms, const luz_draw *draws
         const size_t row = (size_t)y * width;
         uint8_t *colour_row = framebuffer->colour + row * 4;
         for (int x = 0; x < width; x++) {
-            const uint32_t id = framebuffer->visibility[row + x];
-            uint8_t *pixel = colour_row + (size_t)x * 4;
-            /* Two views colour the background by their palettes: it has a
-             * depth (the far plane) and a count of depth tests (0). The
-             * others give it the clear colour, below. */
-            if (view == LUZ_VIEW_DEPTH) {
-                float grey = luz_view_depth_brightness(framebuffer->depth[row + x],
-                                                       &uniforms->projection);
-                luz_pixel_write(pixel, layout, (luz_vec3){grey, grey, grey});
-                shaded += id != 0;
-                continue;
-            }
-            if (view == LUZ_VIEW_OVERDRAW) {
-                luz_pixel_write(pixel, layout,
-                                luz_view_overdraw_colour(overdraw ? overdraw[row + x] : 0));
-                shaded += id != 0;
-                continue;
-            }
-            if (id == 0) {
-                luz_pixel_write(pixel, layout, uniforms->clear_colour);
-                continue;
-            }
-
-            const luz_triangle *triangle = by_id[id];
-            const luz_material *material = &draws[triangle->draw_index].material;
-            luz_fragment fragment;
-            if (view != LUZ_VIEW_TRIANGLES) luz_fragment_interpolate(triangle, x, y, &fragment);
-            luz_vec3 colour = {0.0f, 0.0f, 0.0f};
-            switch (view) {
-            case LUZ_VIEW_NORMALS: {
-                luz_vec3 n = luz_vec3_normalize(fragment.normal);
-                colour = (luz_vec3){n.x * 0.5f + 0.5f, n.y * 0.5f + 0.5f, n.z * 0.5f + 0.5f};
-                break;
-            }
-            case LUZ_VIEW_UV:
-                colour = (luz_vec3){luz_texture_repeat(fragment.uv.x),
-                                    luz_texture_repeat(fragment.uv.y), 0.0f};
-                break;
-            case LUZ_VIEW_MIP:
-                colour = mip_colour(material->texture, material->filter, &fragment);
-                break;
-            case LUZ_VIEW_TRIANGLES:
-                colour = luz_view_triangle_colour(id);
-                if (on_edge(triangle, x, y, width, framebuffer->height))
-                    colour = luz_vec3_scale(colour, LUZ_VIEW_TRIANGLE_EDGE_SHADE);
-                break;
-            default:
-                break;
-            }
-            luz_pixel_write(pixel, layout, colour);
-            shaded++;
+            luz_pixel_write(colour_row + (size_t)x * 4, layout,
+                            luz_view_pixel(uniforms, draws, by_id, framebuffer, x, y, overdraw));
+            shaded += framebuffer->visibility[row + x] != 0;
         }
     }
     return shaded;

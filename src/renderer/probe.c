@@ -1,0 +1,322 @@
+/*
+ * probe.c: the pixel probe, one pixel of a frame explained (luz/probe.h).
+ *
+ * In:  a frame the bands have just drawn: its set-up triangles by id, the
+ *      final depth and visibility buffers, the draws, the uniforms; and
+ *      the pixel (x, y).
+ * Out: the luz_pixel_probe: the pixel's depth tests in draw order, the
+ *      winner and where it comes from, its varyings, texel and light
+ *      terms, and the bytes the image holds.
+ *
+ * Not a second renderer: each number comes from the function that made
+ * it for the image, called again on the same inputs, which gives the same
+ * bits.
+ *
+ *   history      Every triangle the raster stage drew, in id order (the
+ *                order in which each band draws its triangles), through
+ *                the raster's own coverage and depth arithmetic at the
+ *                pixel (luz_raster_row_span, luz_raster_depth), against
+ *                a one-pixel depth buffer that starts at 1.0, as each
+ *                band's is cleared. Same tests, same order, same outcomes:
+ *                the last that passed is the triangle the visibility
+ *                buffer kept.
+ *   primitive    Ids follow submission order, so the winner is the k-th
+ *                visible set-up triangle of its draw. The draw's triangles
+ *                go through the vertex stage, the clipper and setup again
+ *                (as geometry.c's triangles_of_draw sends them) until the k-th
+ *                comes up, and it is checked against the pipeline's own
+ *                triangle, field by field.
+ *   barycentric  The same clipping and setup with the three vertices'
+ *                position varyings replaced by (1, 0, 0), (0, 1, 0) and
+ *                (0, 0, 1): the clipper carries them to the vertices it
+ *                cuts, setup solves their planes, and
+ *                luz_fragment_interpolate divides them by 1/w exactly as
+ *                it does every varying (OpenGL 4.6 equation 14.9).
+ *   varyings     luz_fragment_interpolate on the winner's triangle.
+ *   texture      luz_texture_footprint_squared; the level of detail of the
+ *                fragment path that shaded the pixel (fragment_packet.c's
+ *                polynomial logarithm, or fragment.c's log2f: the one
+ *                place where the two differ); luz_texture_mip_levels and
+ *                luz_texture_sample.
+ *   lighting     luz_shade_terms, then luz_shade_colour: light x C x T.
+ *   bytes        Read from the colour buffer as each band finishes,
+ *                before the caller's hook can draw over the pixel.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "renderer/pipeline.h"
+#include "luz/probe.h"
+#include "luz/shade.h"
+#include "luz/texture.h"
+#include "luz/view.h"
+
+void luz_probe_begin(luz_pixel_probe *probe, const luz_framebuffer *framebuffer, luz_view view)
+{
+    const int x = probe->x, y = probe->y;
+    memset(probe, 0, sizeof *probe);
+    probe->x = x;
+    probe->y = y;
+    probe->view = view;
+    probe->filled = x >= 0 && y >= 0 && x < framebuffer->width && y < framebuffer->height;
+}
+
+void luz_probe_capture(luz_pixel_probe *probe, const luz_framebuffer *framebuffer,
+                       int first_row, int end_row, int band_index, int worker_index)
+{
+    if (!probe->filled || probe->y < first_row || probe->y >= end_row) return;
+    const luz_pixel_layout layout = luz_pixel_layout_of(framebuffer->channel_order);
+    const uint8_t *pixel =
+        framebuffer->colour + ((size_t)probe->y * framebuffer->width + probe->x) * 4;
+    probe->bytes[0] = pixel[layout.red];
+    probe->bytes[1] = pixel[1];
+    probe->bytes[2] = pixel[layout.blue];
+    probe->band = band_index;
+    probe->worker = worker_index;
+}
+
+/* ---- the history ---------------------------------------------------------- */
+
+/* Does the triangle cover the pixel centre, and at what depth? */
+static bool covers(const luz_triangle *triangle, int x, int y, float *depth)
+{
+    if (y < triangle->min_y || y > triangle->max_y || x < triangle->min_x ||
+        x > triangle->max_x)
+        return false;
+    int64_t first, last;
+    luz_raster_row_span(triangle, y, luz_raster_is_small(triangle), &first, &last);
+    if (x < first || x > last) return false;
+    const float row_depth = luz_raster_row_depth(triangle->depth, triangle->reference_y, y);
+    *depth = luz_raster_depth(triangle->depth, triangle->reference_x, row_depth, x);
+    return true;
+}
+
+static void record_history(luz_pixel_probe *probe, const luz_triangle *const *by_id,
+                           size_t triangle_count)
+{
+    float stored = 1.0f;   /* the cleared depth buffer */
+    for (size_t id = 1; id <= triangle_count; id++) {
+        float depth;
+        if (!covers(by_id[id], probe->x, probe->y, &depth)) continue;
+        const bool passed = depth < stored;   /* GL_LESS, as raster.c */
+        if (probe->tests_kept < LUZ_PROBE_MAX_TESTS)
+            probe->tests[probe->tests_kept++] = (luz_probe_test){
+                .triangle = (uint32_t)id,
+                .draw = (int)by_id[id]->draw_index,
+                .depth = depth,
+                .stored = stored,
+                .passed = passed,
+            };
+        probe->test_count++;
+        if (passed) stored = depth;
+    }
+}
+
+/* ---- where the winner comes from -------------------------------------- */
+
+static bool same_plane(luz_plane a, luz_plane b)
+{
+    return a.value == b.value && a.dx == b.dx && a.dy == b.dy;
+}
+
+/* Field by field: a struct's padding may hold anything. */
+static bool same_triangle(const luz_triangle *a, const luz_triangle *b)
+{
+    if (a->min_x != b->min_x || a->min_y != b->min_y || a->max_x != b->max_x ||
+        a->max_y != b->max_y || a->reference_x != b->reference_x ||
+        a->reference_y != b->reference_y || a->draw_index != b->draw_index ||
+        !same_plane(a->depth, b->depth) || !same_plane(a->inverse_w, b->inverse_w))
+        return false;
+    for (int k = 0; k < 3; k++)
+        if (a->edges[k].a != b->edges[k].a || a->edges[k].b != b->edges[k].b ||
+            a->edges[k].c != b->edges[k].c)
+            return false;
+    for (int i = 0; i < LUZ_VARYING_COUNT; i++)
+        if (!same_plane(a->varyings[i], b->varyings[i])) return false;
+    return true;
+}
+
+/* The frame's setup, as frame.c calls it. */
+static luz_setup_result set_up(const luz_clip_vertex *a, const luz_clip_vertex *b,
+                               const luz_clip_vertex *c, const luz_framebuffer *framebuffer,
+                               const luz_uniforms *uniforms, uint32_t draw_index,
+                               luz_triangle *out)
+{
+    return luz_setup_triangle(a, b, c, framebuffer->width, framebuffer->height, draw_index,
+                              uniforms->interpolation, out);
+}
+
+/* The three vertices with their position varyings replaced by the
+ * barycentric coordinates of the corners. */
+static void barycentric_corners(const luz_clip_vertex *const corners[3], luz_clip_vertex out[3])
+{
+    for (int k = 0; k < 3; k++) {
+        out[k] = *corners[k];
+        for (int j = 0; j < 3; j++)
+            out[k].varyings[LUZ_VARYING_POSITION + j] = j == k ? 1.0f : 0.0f;
+    }
+}
+
+/* Finds the mesh triangle that became the winner: the `rank`-th visible
+ * set-up triangle of its draw (from 0), by sending the draw's triangles
+ * through the vertex stage, clipping and setup as geometry.c's
+ * triangles_of_draw does. Fills primitive, vertices, the pieces and the
+ * barycentric coordinates; leaves primitive at -1 if memory runs out or
+ * (never expected) no triangle matches the pipeline's. */
+static void find_primitive(luz_pixel_probe *probe, const luz_uniforms *uniforms,
+                           const luz_draw *draw, const luz_triangle *winner, size_t rank,
+                           const luz_framebuffer *framebuffer)
+{
+    probe->primitive = -1;
+    const luz_mesh *mesh = draw->mesh;
+    luz_clip_vertex *vertices = malloc((size_t)mesh->vertex_count * sizeof *vertices);
+    if (vertices == NULL) return;
+    luz_vertex_stage(draw, uniforms->view_projection, vertices);
+
+    const uint32_t draw_index = winner->draw_index;
+    size_t visible = 0;
+    luz_triangle triangle;
+    for (uint32_t i = 0; i + 2 < mesh->index_count; i += 3) {
+        const luz_clip_vertex *corners[3] = {&vertices[mesh->indices[i]],
+                                             &vertices[mesh->indices[i + 1]],
+                                             &vertices[mesh->indices[i + 2]]};
+        const unsigned codes[3] = {corners[0]->outcode, corners[1]->outcode,
+                                   corners[2]->outcode};
+        if (codes[0] & codes[1] & codes[2]) continue;   /* all outside one plane */
+
+        luz_clip_polygon polygon;
+        int pieces = 1;
+        const bool clipped = (codes[0] | codes[1] | codes[2]) != 0;
+        if (clipped) pieces = luz_clip_triangle(corners[0], corners[1], corners[2], &polygon) - 2;
+        for (int piece = 0; piece < pieces; piece++) {
+            const luz_clip_vertex *a = clipped ? &polygon.vertices[0] : corners[0];
+            const luz_clip_vertex *b = clipped ? &polygon.vertices[piece + 1] : corners[1];
+            const luz_clip_vertex *c = clipped ? &polygon.vertices[piece + 2] : corners[2];
+            if (set_up(a, b, c, framebuffer, uniforms, draw_index, &triangle) !=
+                LUZ_SETUP_VISIBLE)
+                continue;
+            if (visible++ != rank) continue;
+            if (!same_triangle(&triangle, winner)) goto done;
+
+            /* Found. The barycentric coordinates ride along as varyings. */
+            probe->primitive = (int)(i / 3);
+            for (int k = 0; k < 3; k++) probe->vertices[k] = mesh->indices[i + (uint32_t)k];
+            probe->clipped_pieces = clipped ? pieces : 0;
+            probe->piece = piece;
+            luz_clip_vertex weighted[3];
+            barycentric_corners(corners, weighted);
+            if (clipped) {
+                luz_clip_polygon weighted_polygon;
+                luz_clip_triangle(&weighted[0], &weighted[1], &weighted[2], &weighted_polygon);
+                weighted[0] = weighted_polygon.vertices[0];
+                weighted[1] = weighted_polygon.vertices[piece + 1];
+                weighted[2] = weighted_polygon.vertices[piece + 2];
+            }
+            luz_triangle barycentric;
+            set_up(&weighted[0], &weighted[1], &weighted[2], framebuffer, uniforms, draw_index,
+                   &barycentric);
+            luz_fragment fragment;
+            luz_fragment_interpolate(&barycentric, probe->x, probe->y, &fragment);
+            probe->barycentric = fragment.position;
+            goto done;
+        }
+    }
+done:
+    free(vertices);
+}
+
+/* ---- the winner's shading ----------------------------------------------- */
+
+static void shade(luz_pixel_probe *probe, const luz_uniforms *uniforms,
+                  const luz_material *material, const luz_fragment *fragment, bool packet_path)
+{
+    probe->shading = material->shading;
+    probe->object_colour = material->colour;
+    if (material->shading == LUZ_SHADING_UNLIT) {
+        probe->colour = material->colour;
+        return;
+    }
+
+    const luz_texture *texture = material->texture;
+    probe->texture = texture;
+    probe->filter = material->filter;
+    if (texture != NULL) {
+        const float rho_squared = luz_texture_footprint_squared(
+            texture, fragment->du_dx, fragment->dv_dx, fragment->du_dy, fragment->dv_dy);
+        probe->rho = sqrtf(rho_squared);
+        /* Nearest and bilinear read level 0 and never ask for lambda. */
+        if (material->filter == LUZ_FILTER_TRILINEAR) {
+            probe->lambda = packet_path
+                                ? luz_packet_level_of_detail(texture, fragment->du_dx,
+                                                             fragment->dv_dx, fragment->du_dy,
+                                                             fragment->dv_dy)
+                                : luz_texture_level_of_detail(texture, fragment->du_dx,
+                                                              fragment->dv_dx, fragment->du_dy,
+                                                              fragment->dv_dy);
+            probe->levels = luz_texture_mip_levels(texture, probe->lambda);
+        }
+    }
+    probe->texel = luz_texture_sample(texture, material->filter, fragment->uv, probe->lambda);
+    probe->light = luz_shade_terms(&uniforms->shade, fragment->position, fragment->normal,
+                                   probe->terms);
+    probe->colour = luz_shade_colour(probe->light, material->colour, probe->texel);
+}
+
+void luz_probe_explain(luz_pixel_probe *probe, const luz_uniforms *uniforms,
+                       const luz_draw *draws, const luz_triangle *const *by_id,
+                       size_t triangle_count, const luz_framebuffer *framebuffer,
+                       const uint32_t *overdraw, bool packet_path)
+{
+    if (!probe->filled) return;
+    const int x = probe->x, y = probe->y;
+    const size_t index = (size_t)y * framebuffer->width + x;
+
+    record_history(probe, by_id, triangle_count);
+    probe->depth_buffer = framebuffer->depth[index];
+    if (overdraw != NULL) probe->overdraw = overdraw[index];
+
+    /* The winner is whom the visibility buffer names, as the fragment
+     * stage reads it. */
+    const uint32_t id = framebuffer->visibility[index];
+    probe->triangle = id;
+    if (id != 0) {
+        const luz_triangle *winner = by_id[id];
+        probe->draw = (int)winner->draw_index;
+        probe->depth = probe->depth_buffer;
+        probe->edge_distance = (float)luz_view_edge_distance(winner, x, y);
+        probe->on_edge =
+            luz_view_on_edge(winner, x, y, framebuffer->width, framebuffer->height);
+
+        /* Ids are in submission order: the draw's own start where the id
+         * before belongs to another draw. */
+        size_t first = id;
+        while (first > 1 && by_id[first - 1]->draw_index == winner->draw_index) first--;
+        find_primitive(probe, uniforms, &draws[winner->draw_index], winner, id - first,
+                       framebuffer);
+
+        luz_fragment fragment;
+        luz_fragment_interpolate(winner, x, y, &fragment);
+        probe->w = fragment.w;
+        probe->position = fragment.position;
+        probe->normal = luz_vec3_normalize(fragment.normal);
+        probe->uv = fragment.uv;
+        probe->du_dx = fragment.du_dx;
+        probe->dv_dx = fragment.dv_dx;
+        probe->du_dy = fragment.du_dy;
+        probe->dv_dy = fragment.dv_dy;
+        /* The colour view of a teaching view is fragment.c's. */
+        shade(probe, uniforms, &draws[winner->draw_index].material, &fragment,
+              packet_path && uniforms->show == LUZ_VIEW_COLOR);
+    }
+
+    /* What a teaching view shows, by view.c's own functions. */
+    if (uniforms->show == LUZ_VIEW_BANDS) {
+        const luz_vec3 colour = id != 0 ? probe->colour : uniforms->clear_colour;
+        const uint8_t rgb[3] = {luz_colour_to_byte(colour.x), luz_colour_to_byte(colour.y),
+                                luz_colour_to_byte(colour.z)};
+        probe->shown = luz_view_bands_colour(rgb, probe->worker);
+    } else if (uniforms->show != LUZ_VIEW_COLOR) {
+        probe->shown = luz_view_pixel(uniforms, draws, by_id, framebuffer, x, y, overdraw);
+    }
+}

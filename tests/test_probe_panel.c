@@ -1,0 +1,283 @@
+/*
+ * test_probe_panel.c: the viewer's probe panel (app/probe_panel.h) without
+ * a window, drawn into a framebuffer from probes made by hand.
+ *
+ * The terms of the hand-made probe are chosen so that the bars' lengths
+ * are known: their mean channels 0.2, 0.6, 0, 0.3, 0.5 and 0.1 sum to
+ * light = 1.7, the bars' scale, so on a bar of 120 pixels they are
+ * round(120 x mean / 1.7) = 14, 42, 0, 21, 35 and 7 pixels, and the sum's
+ * bar is the six end to end, 119 pixels. Each bar and swatch is then
+ * looked for in the pixels: the colours the panel promises where the
+ * layout says.
+ */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "app/probe_panel.h"
+#include "lab/scene.h"
+
+static luz_pixel_probe *hand_made_probe(void)
+{
+    luz_pixel_probe *probe = calloc(1, sizeof *probe);
+    assert_non_null(probe);
+    probe->x = 700;
+    probe->y = 450;
+    probe->filled = true;
+    probe->view = LUZ_VIEW_COLOR;
+    probe->triangle = 5;
+    probe->draw = 1;
+    probe->primitive = 2;
+    probe->vertices[0] = 4;
+    probe->vertices[1] = 5;
+    probe->vertices[2] = 6;
+    probe->barycentric = (luz_vec3){0.25f, 0.25f, 0.5f};
+    probe->w = 2.5f;
+    probe->depth = 0.96f;
+    probe->normal = (luz_vec3){0, 0, 1};
+    probe->shading = LUZ_SHADING_LIT;
+    /* means 0.2, 0.6, 0, 0.3, 0.5, 0.1 */
+    const luz_vec3 terms[LUZ_TERM_COUNT] = {
+        {0.2f, 0.2f, 0.2f}, {0.9f, 0.6f, 0.3f}, {0, 0, 0},
+        {0.3f, 0.3f, 0.3f}, {0.5f, 0.5f, 0.5f}, {0.1f, 0.1f, 0.1f},
+    };
+    memcpy(probe->terms, terms, sizeof terms);
+    probe->light = (luz_vec3){2.0f, 1.7f, 1.4f};   /* mean 1.7 */
+    probe->texel = (luz_vec3){0.5f, 0.25f, 1.0f};
+    probe->object_colour = (luz_vec3){1.0f, 0.5f, 0.2f};
+    probe->colour = (luz_vec3){1.0f, 0.2125f, 0.28f};
+    probe->bytes[0] = 255;
+    probe->bytes[1] = 54;
+    probe->bytes[2] = 71;
+    probe->test_count = probe->tests_kept = 3;
+    for (int k = 0; k < 3; k++)
+        probe->tests[k] = (luz_probe_test){.triangle = (uint32_t)(3 + k), .draw = k % 2,
+                                           .depth = 0.97f - 0.01f * k,
+                                           .stored = k ? 0.97f - 0.01f * (k - 1) : 1.0f,
+                                           .passed = true};
+    return probe;
+}
+
+typedef struct picture {
+    luz_framebuffer *framebuffer;
+    luz_layer layer;
+} picture;
+
+static void picture_begin(picture *p, int width, int height)
+{
+    luz_error error = {{0}};
+    p->framebuffer = luz_framebuffer_create(width, height, &error);
+    assert_non_null(p->framebuffer);
+    memset(p->framebuffer->colour, 0, (size_t)width * height * 4);
+    memset(&p->layer, 0, sizeof p->layer);
+    luz_layer_begin(&p->layer, width, height);
+}
+
+static void picture_fill(picture *p)
+{
+    assert_int_equal(luz_layer_finish(&p->layer), 0);
+    luz_layer_draw(&p->layer, p->framebuffer);
+}
+
+static void picture_end(picture *p)
+{
+    luz_layer_free(&p->layer);
+    luz_framebuffer_destroy(p->framebuffer);
+}
+
+static const uint8_t *pixel(const picture *p, int x, int y)
+{
+    return p->framebuffer->colour + ((size_t)y * p->framebuffer->width + x) * 4;
+}
+
+static void assert_rgb(const picture *p, int x, int y, uint8_t r, uint8_t g, uint8_t b)
+{
+    const uint8_t *got = pixel(p, x, y);
+    if (got[0] != r || got[1] != g || got[2] != b)
+        fail_msg("pixel (%d, %d) is (%d, %d, %d), expected (%d, %d, %d)", x, y, got[0], got[1],
+                 got[2], r, g, b);
+}
+
+/* Every pixel of the rectangle has the colour. */
+static void assert_filled(const picture *p, luz_rect rect, luz_rgba colour)
+{
+    assert_true(rect.width > 0 && rect.height > 0);
+    for (int y = rect.y; y < rect.y + rect.height; y++)
+        for (int x = rect.x; x < rect.x + rect.width; x++)
+            assert_rgb(p, x, y, colour.r, colour.g, colour.b);
+}
+
+static void test_bars_are_the_terms(void **state)
+{
+    (void)state;
+    luz_pixel_probe *probe = hand_made_probe();
+    const luz_scene scene = luz_scene_defaults();
+    const luz_probe_names names = {.scene = &scene};
+    const luz_probe_panel_layout layout =
+        luz_probe_panel_layout_for(1280, 720, probe, &names, false);
+    assert_int_equal(layout.scale, 1);
+    assert_int_equal(layout.bar_width, 120);
+    assert_true(layout.bar_scale > 1.6999f && layout.bar_scale < 1.7001f);
+    const int expected[LUZ_TERM_COUNT] = {14, 42, 0, 21, 35, 7};
+    int pen = layout.light_bar[0].x;
+    for (int term = 0; term < LUZ_TERM_COUNT; term++) {
+        assert_int_equal(layout.term_bar[term].width, expected[term]);
+        /* the sum: the same lengths, end to end, in luz_term's order */
+        assert_int_equal(layout.light_bar[term].width, expected[term]);
+        assert_int_equal(layout.light_bar[term].x, pen);
+        pen += expected[term];
+        /* every term's bar starts where the others do */
+        assert_int_equal(layout.term_bar[term].x, layout.light_bar[0].x);
+    }
+    assert_int_equal(pen - layout.light_bar[0].x, 119);
+
+    picture p;
+    picture_begin(&p, 1280, 720);
+    luz_probe_panel_draw(&p.layer, probe, &names, false);
+    picture_fill(&p);
+    for (int term = 0; term < LUZ_TERM_COUNT; term++) {
+        const luz_rgba colour = luz_probe_term_colour((luz_term)term);
+        if (expected[term] > 0) {
+            assert_filled(&p, layout.term_bar[term], colour);
+            assert_filled(&p, layout.light_bar[term], colour);
+        }
+    }
+    /* The swatches: the texel and C as their bytes, the colour clamped,
+     * the image's bytes as they are. */
+    assert_filled(&p, layout.swatch[LUZ_PROBE_SWATCH_TEXEL], (luz_rgba){128, 64, 255, 255});
+    assert_filled(&p, layout.swatch[LUZ_PROBE_SWATCH_OBJECT], (luz_rgba){255, 128, 51, 255});
+    assert_filled(&p, layout.swatch[LUZ_PROBE_SWATCH_COLOUR], (luz_rgba){255, 54, 71, 255});
+    assert_filled(&p, layout.swatch[LUZ_PROBE_SWATCH_BYTES], (luz_rgba){255, 54, 71, 255});
+    assert_int_equal(layout.swatch[LUZ_PROBE_SWATCH_SHOWN].width, 0);   /* no view */
+    /* The box in the bottom-left corner, inside the frame, the history
+     * listed whole. */
+    assert_true(layout.box.x >= 0 && layout.box.y >= 0);
+    assert_int_equal(layout.box.y + layout.box.height, 720 - 6);
+    assert_true(layout.box.x + layout.box.width <= 1280 / 2);
+    assert_int_equal(layout.history_rows, 3);
+    picture_end(&p);
+    free(probe);
+}
+
+static void test_a_long_history_fits_a_small_window(void **state)
+{
+    (void)state;
+    luz_pixel_probe *probe = hand_made_probe();
+    probe->test_count = probe->tests_kept = 40;
+    for (int k = 0; k < 40; k++)
+        probe->tests[k] = (luz_probe_test){.triangle = (uint32_t)(k + 1), .depth = 0.5f,
+                                           .stored = 1.0f, .passed = k == 0};
+    const luz_scene scene = luz_scene_defaults();
+    const luz_probe_names names = {.scene = &scene};
+    const int sizes[3][2] = {{1280, 720}, {640, 360}, {480, 400}};
+    for (int i = 0; i < 3; i++) {
+        const luz_probe_panel_layout layout =
+            luz_probe_panel_layout_for(sizes[i][0], sizes[i][1], probe, &names, true);
+        assert_true(layout.box.y >= 0);
+        assert_true(layout.box.y + layout.box.height <= sizes[i][1]);
+        /* 18 rows above the history and 40 tests fit in 720 rows of
+         * 12 pixels, not in 360 or 400: those list fewer, and say so */
+        if (sizes[i][1] == 720)
+            assert_int_equal(layout.history_rows, 40);
+        else
+            assert_true(layout.history_rows < 40);
+        assert_true(layout.history_rows > 0);
+    }
+    free(probe);
+}
+
+/* The panel moves to the bottom-right corner rather than hide the pixel
+ * it explains (and its marker); where both corners would, it stays. */
+static void test_the_panel_leaves_the_pixel_in_sight(void **state)
+{
+    (void)state;
+    luz_pixel_probe *probe = hand_made_probe();
+    const luz_scene scene = luz_scene_defaults();
+    const luz_probe_names names = {.scene = &scene};
+    probe->x = 1200;
+    probe->y = 100;
+    luz_probe_panel_layout layout = luz_probe_panel_layout_for(1280, 720, probe, &names, false);
+    assert_int_equal(layout.box.x, 6);
+    probe->x = 20;
+    probe->y = 700;
+    layout = luz_probe_panel_layout_for(1280, 720, probe, &names, false);
+    assert_int_equal(layout.box.x + layout.box.width, 1280 - 6);
+    /* 8 pixels of the marker and its outline: 9 pixels to the box */
+    probe->x = 6 + layout.box.width + 9;
+    layout = luz_probe_panel_layout_for(1280, 720, probe, &names, false);
+    assert_int_equal(layout.box.x, 6);
+    probe->x--;
+    layout = luz_probe_panel_layout_for(1280, 720, probe, &names, false);
+    assert_true(layout.box.x > 6);
+    /* too narrow for either corner to leave it */
+    probe->x = 200;
+    probe->y = 200;
+    layout = luz_probe_panel_layout_for(400, 300, probe, &names, false);
+    assert_int_equal(layout.box.x, 6);
+    free(probe);
+}
+
+static void test_background_and_a_view(void **state)
+{
+    (void)state;
+    luz_pixel_probe *probe = calloc(1, sizeof *probe);
+    probe->x = 3;
+    probe->y = 4;
+    probe->filled = true;
+    probe->view = LUZ_VIEW_OVERDRAW;
+    probe->overdraw = 0;
+    probe->shown = (luz_vec3){0, 0, 0};
+    const luz_scene scene = luz_scene_defaults();
+    const luz_probe_names names = {.scene = &scene};
+    const luz_probe_panel_layout layout =
+        luz_probe_panel_layout_for(640, 360, probe, &names, false);
+    /* no bars, no texel; what the view shows, and the bytes */
+    for (int term = 0; term < LUZ_TERM_COUNT; term++) {
+        assert_int_equal(layout.term_bar[term].width, 0);
+        assert_int_equal(layout.light_bar[term].width, 0);
+    }
+    assert_int_equal(layout.swatch[LUZ_PROBE_SWATCH_TEXEL].width, 0);
+    assert_true(layout.swatch[LUZ_PROBE_SWATCH_SHOWN].width > 0);
+    assert_true(layout.swatch[LUZ_PROBE_SWATCH_BYTES].width > 0);
+    free(probe);
+}
+
+static void test_marker_leaves_the_pixel(void **state)
+{
+    (void)state;
+    picture p;
+    picture_begin(&p, 64, 48);
+    luz_probe_marker_draw(&p.layer, 30, 20);
+    picture_fill(&p);
+    assert_rgb(&p, 30, 20, 0, 0, 0);   /* the pixel itself stays as it was */
+    for (int d = 3; d <= 8; d++) {
+        assert_rgb(&p, 30 + d, 20, 255, 230, 40);
+        assert_rgb(&p, 30 - d, 20, 255, 230, 40);
+        assert_rgb(&p, 30, 20 + d, 255, 230, 40);
+        assert_rgb(&p, 30, 20 - d, 255, 230, 40);
+    }
+    for (int d = 0; d <= 2; d++) assert_rgb(&p, 30 + d, 20, 0, 0, 0);
+    /* at the edge of the frame, clipped, not a crash */
+    luz_layer_begin(&p.layer, 64, 48);
+    luz_probe_marker_draw(&p.layer, 0, 47);
+    picture_fill(&p);
+    assert_rgb(&p, 3, 47, 255, 230, 40);
+    picture_end(&p);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_bars_are_the_terms),
+        cmocka_unit_test(test_a_long_history_fits_a_small_window),
+        cmocka_unit_test(test_the_panel_leaves_the_pixel_in_sight),
+        cmocka_unit_test(test_background_and_a_view),
+        cmocka_unit_test(test_marker_leaves_the_pixel),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
