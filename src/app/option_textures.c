@@ -58,7 +58,8 @@ int luz_options_resolve_textures(luz_options *options, const luz_texture_set *te
 }
 
 /* Loads the textures the options name; see options.h. */
-int luz_options_load_textures(luz_options *options, luz_texture_set *textures, luz_error *error)
+int luz_options_load_textures(luz_options *options, luz_texture_set *textures,
+                              luz_texture_budget *budget, luz_error *error)
 {
     char default_directory[4096];
     const char *directory = options->textures_directory;
@@ -71,8 +72,11 @@ int luz_options_load_textures(luz_options *options, luz_texture_set *textures, l
     }
     if (strcmp(directory, "none") != 0) {
         luz_error load_error = {{0}};
-        if (luz_texture_set_load(textures, directory, &load_error) != 0)
-            return luz_error_set(error, "%s: %s", source, load_error.message);
+        int status = luz_texture_set_load(textures, directory, budget, &load_error);
+        if (status != 0) {
+            luz_error_set(error, "%s: %s", source, load_error.message);
+            return status;
+        }
     }
     return luz_options_resolve_textures(options, textures, error);
 }

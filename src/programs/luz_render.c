@@ -35,6 +35,7 @@
 #include "app/options.h"
 #include "app/panel.h"
 #include "io/image.h"
+#include "io/input_file.h"
 #include "io/textures.h"
 #include "lab/scene.h"
 
@@ -266,9 +267,14 @@ int main(int argc, char **argv)
          * one line and status 1, rather than death by SIGPIPE. */
         signal(SIGPIPE, SIG_IGN);
     }
-    if (luz_options_load_textures(&options, &textures, &error) != 0 ||
-        luz_options_load_models(&options, &models, &error) != 0) {
-        status = EXIT_USAGE;
+    /* The run's texture budget, shared by the cube textures and the
+     * models' (io/textures.h). */
+    luz_texture_budget budget = {0};
+    int loaded = luz_options_load_textures(&options, &textures, &budget, &error);
+    if (loaded == 0) loaded = luz_options_load_models(&options, &models, &budget, &error);
+    if (loaded != 0) {
+        /* out of memory is the machine's failure, not the input's */
+        status = loaded == LUZ_MACHINE_FAILED ? EXIT_RUNTIME : EXIT_USAGE;
         goto done;
     }
 
