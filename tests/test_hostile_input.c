@@ -1168,6 +1168,52 @@ static void test_crafted_textures(void **state)
     }
 }
 
+/* The models that hung or crashed Debian's assimp 5.2.5 under luz's
+ * fuzzer, which luz now refuses before they can (io/model_guards.c and
+ * model_load.c's check_imported): exit status 2 at once, one line. Their
+ * files are in tests/fuzz/assimp-findings/ ($FUZZ_FINDINGS); its
+ * README.md says what each did. */
+static void test_assimp_findings_refused(void **state)
+{
+    (void)state;
+    if (!luz_models_supported()) {
+        print_message("skipped: this luz was built without model support (-Dmodels)\n");
+        skip();
+    }
+    const char *findings = getenv("FUZZ_FINDINGS");
+    if (findings == NULL) fail_msg("FUZZ_FINDINGS is not set (tests/meson.build sets it)");
+    static const struct {
+        const char *file, *needle;
+    } cases[] = {
+        {"ply-no-end-header.ply", "a PLY header without its end_header line"},
+        {"ply-element-count.ply", "PLY header line 3: expected `element NAME COUNT`"},
+        {"ply-triangulate-assert.ply", "assimp's importer gave mesh 0 a face with no corners"},
+        {"ply-empty-face.ply", "assimp's importer gave mesh 0 a face with no corners"},
+        {"glb-length.glb", "a binary glTF whose header claims 1112 bytes, the file has 417"},
+    };
+    sandbox box;
+    sandbox_create(&box);
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char path[1024];
+        snprintf(path, sizeof path, "%s/%s", findings, cases[i].file);
+        assert_render_refuses(&box, ARGS("--model", path, "--textures", "none", "-o", "x.png"), 20,
+                              path, cases[i].needle);
+    }
+    /* the PLY check reads an element count as a number: one more than
+     * the file's bytes is refused, and a header that ends is let through */
+    const char header[] = "ply\nformat ascii 1.0\nelement vertex 99999\nproperty float x\n"
+                          "end_header\n";
+    luz_model model;
+    luz_error error = {{0}};
+    assert_int_equal(luz_model_load_memory(&model, (const unsigned char *)header,
+                                           sizeof header - 1, "big.ply", NULL, &error),
+                     LUZ_BAD_INPUT);
+    if (strstr(error.message, "big.ply: PLY header line 3: 99999 elements in a file of 70 "
+                              "bytes") == NULL)
+        fail_msg("%s", error.message);
+    remove_tree(box.root);
+}
+
 /* A black RGBA PNG of width x height: rows of a filter byte 0 and 4 zero
  * bytes a pixel, deflated as zlib_zeros does (1.7 MB for 8192 x 8192). */
 static buffer black_png(uint32_t width, uint32_t height)
@@ -1266,6 +1312,7 @@ int main(void)
         cmocka_unit_test(test_scene_text),
         cmocka_unit_test(test_fifos_never_block),
         cmocka_unit_test(test_crafted_textures),
+        cmocka_unit_test(test_assimp_findings_refused),
         cmocka_unit_test(test_budget_through_luz_render),
         cmocka_unit_test(test_out_of_memory_while_decoding),
     };

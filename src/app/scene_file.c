@@ -641,8 +641,12 @@ void luz_options_write_scene(const luz_options *options, FILE *out)
             /* The path is absolute, so the file opens from anywhere. */
             fputs("model = ", out);
             write_text(out, source->model_path, true);
+            /* `at` is left out only for the origin the reader gives
+             * without it, +0 exactly: -0 compares equal to 0 but is
+             * another float, which the file must keep */
             if (object->position.x != 0.0f || object->position.y != 0.0f ||
-                object->position.z != 0.0f)
+                object->position.z != 0.0f || signbit(object->position.x) ||
+                signbit(object->position.y) || signbit(object->position.z))
                 fprintf(out, " at %s, %s, %s", x, y, z);
             if (object->scale != 1.0f && object->scale > 0.0f) {
                 option_format_float(x, sizeof x, object->scale);

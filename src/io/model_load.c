@@ -32,6 +32,7 @@
 #include <unistd.h>
 
 #include "io/input_file.h"
+#include "io/model_guards.h"
 #include "io/textures.h"
 
 #if defined(LUZ_HAVE_ASSIMP)
@@ -511,15 +512,39 @@ static int add_part(model_reading *reading, unsigned mesh_index, bool *added,
     return 0;
 }
 
-/* Every position the file gives, checked before the steps run: a NaN
- * compares equal to nothing, so JoinIdenticalVertices can merge a NaN
- * vertex into a finite one and leave a degenerate triangle that draws
- * nothing, and the file would load as if it were sound. */
-static int check_positions(const struct aiScene *scene, const char *path, luz_error *error)
+/* What the importer gave, checked before the steps run:
+ *  - every position: a NaN compares equal to nothing, so
+ *    JoinIdenticalVertices can merge a NaN vertex into a finite one and
+ *    leave a degenerate triangle that draws nothing, and the file would
+ *    load as if it were sound;
+ *  - every face, and every mesh's primitive types against its faces: for
+ *    files luz's fuzzer made, assimp 5.2.5's PLY importer gives faces of
+ *    no corners, on which SortByPType crashes, or, in a mesh it marks as
+ *    holding polygons, on which an assertion in Triangulate (that a mesh
+ *    marked so has a polygon) aborts the program. ValidateDataStructure
+ *    lets both through: it checks only that each face's kind is marked.
+ *    (tests/fuzz/assimp-findings/) */
+static int check_imported(const struct aiScene *scene, const char *path, luz_error *error)
 {
     for (unsigned m = 0; m < scene->mNumMeshes; m++) {
         const struct aiMesh *mesh = scene->mMeshes[m];
-        if (mesh == NULL || mesh->mVertices == NULL) continue;
+        if (mesh == NULL) continue;
+        bool polygon = false;
+        for (unsigned f = 0; f < mesh->mNumFaces && mesh->mFaces != NULL; f++) {
+            const struct aiFace *face = &mesh->mFaces[f];
+            if (face->mNumIndices == 0 || face->mIndices == NULL)
+                return luz_error_set(error, "%s: not a model luz can read (assimp's importer "
+                                            "gave mesh %u a face with no corners)", path, m);
+            for (unsigned k = 0; k < face->mNumIndices; k++)
+                if (face->mIndices[k] >= mesh->mNumVertices)
+                    return luz_error_set(error, "%s: mesh %u: face %u names vertex %u of %u",
+                                         path, m, f, face->mIndices[k], mesh->mNumVertices);
+            polygon = polygon || face->mNumIndices > 3;
+        }
+        if ((mesh->mPrimitiveTypes & aiPrimitiveType_POLYGON) && !polygon)
+            return luz_error_set(error, "%s: not a model luz can read (assimp's importer gave "
+                                        "mesh %u polygons it does not have)", path, m);
+        if (mesh->mVertices == NULL) continue;
         for (unsigned v = 0; v < mesh->mNumVertices; v++) {
             const struct aiVector3D p = mesh->mVertices[v];
             if (!isfinite(p.x) || !isfinite(p.y) || !isfinite(p.z))
@@ -551,7 +576,7 @@ static int read_model(luz_model *model, const char *path, model_files *files,
                           .UserData = (aiUserData)files};
     /* SCENE.md's steps in the order assimp's own aiImportFile(path, steps)
      * runs them, validation first and then the rest, with the positions
-     * checked in between (check_positions). */
+     * checked in between (check_imported). */
     const struct aiScene *scene = aiImportFileEx(path, aiProcess_ValidateDataStructure, &io);
     if (files->refusal != 0) {
         /* a file the model names was refused (and assimp may have carried
@@ -563,7 +588,7 @@ static int read_model(luz_model *model, const char *path, model_files *files,
     if (scene == NULL)
         return luz_error_set(error, "%s: not a model luz can read (%s)", path,
                              aiGetErrorString());
-    if (check_positions(scene, path, error) != 0) {
+    if (check_imported(scene, path, error) != 0) {
         aiReleaseImport(scene);
         return LUZ_BAD_INPUT;
     }
@@ -637,7 +662,17 @@ int luz_model_load(luz_model *model, const char *path, luz_texture_budget *budge
     int status = luz_input_open(path, "a model file", LUZ_MODEL_FILE_MAX_BYTES, &descriptor,
                                 &size, error);
     if (status != 0) return LUZ_BAD_INPUT;
+    /* its start, for the checks that keep assimp's known bugs out */
+    unsigned char start[LUZ_PLY_HEADER_MAX_BYTES];
+    size_t length = 0;
+    while (length < sizeof start) {
+        ssize_t got = pread(descriptor, start + length, sizeof start - length, (off_t)length);
+        if (got < 0 && errno == EINTR) continue;
+        if (got <= 0) break;
+        length += (size_t)got;
+    }
     close(descriptor);
+    if (luz_model_check_start(start, length, size, path, error) != 0) return LUZ_BAD_INPUT;
     model_files files = {0};
     return load(model, path, &files, budget, error);
 }
@@ -646,6 +681,7 @@ int luz_model_load_memory(luz_model *model, const unsigned char *bytes, size_t s
                           const char *name, luz_texture_budget *budget, luz_error *error)
 {
     memset(model, 0, sizeof *model);
+    if (luz_model_check_start(bytes, size, size, name, error) != 0) return LUZ_BAD_INPUT;
     static const unsigned char nothing[1] = {0};
     model_files files = {.memory = size > 0 ? bytes : nothing, .memory_size = size,
                          .memory_name = name};
