@@ -1234,6 +1234,18 @@ static buffer black_png(uint32_t width, uint32_t height)
 static void test_budget_through_luz_render(void **state)
 {
     (void)state;
+    /* Decoding is done on one thread: ThreadSanitizer has nothing to see
+     * in it, and makes its 576 MB of pixels take minutes. The plain build
+     * and AddressSanitizer's run it. */
+#if defined(__SANITIZE_THREAD__)
+    print_message("skipped: a ThreadSanitizer build (decoding is single-threaded)\n");
+    skip();
+#elif defined(__has_feature)
+#if __has_feature(thread_sanitizer)
+    print_message("skipped: a ThreadSanitizer build (decoding is single-threaded)\n");
+    skip();
+#endif
+#endif
     assert_int_equal(luz_texture_bytes(8192, 6144), sizeof(luz_texture) + 268435452u);
     sandbox box;
     sandbox_create(&box);
