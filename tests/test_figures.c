@@ -345,7 +345,7 @@ static void check_single_term_figure(const figure *f)
 
     luz_texture_set textures = {0};
     luz_error error = {{0}};
-    if (luz_options_load_textures(&options, &textures, &error) != 0)
+    if (luz_options_load_textures(&options, &textures, NULL, &error) != 0)
         fail_msg("%s: %s", f->name, error.message);
     luz_framebuffer *albedo = render_albedo(&options, &textures);
     int width, height;

@@ -64,7 +64,7 @@ static int load_textures(void **state)
         return -1;
     }
     luz_error error = {{0}};
-    if (luz_texture_set_load(&textures, directory, &error) != 0) {
+    if (luz_texture_set_load(&textures, directory, NULL, &error) != 0) {
         print_error("%s\n", error.message);
         return -1;
     }

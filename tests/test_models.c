@@ -429,7 +429,7 @@ static void load_model(const char *name, luz_model *model)
     char path[1024];
     work_path(name, path, sizeof path);
     luz_error error = {{0}};
-    if (luz_model_load(model, path, &error) != 0) fail_msg("%s: %s", name, error.message);
+    if (luz_model_load(model, path, NULL, &error) != 0) fail_msg("%s: %s", name, error.message);
 }
 
 static void assert_texels(const luz_texture *texture, int width, int height,
@@ -629,7 +629,7 @@ static void test_glb_embedded_texture(void **state)
 
     luz_model model;
     luz_error error = {{0}};
-    if (luz_model_load(&model, BOX_TEXTURED_GLB, &error) != 0) fail_msg("%s", error.message);
+    if (luz_model_load(&model, BOX_TEXTURED_GLB, NULL, &error) != 0) fail_msg("%s", error.message);
     assert_int_equal(model.part_count, 1);
     assert_int_equal(model.triangle_count, 12);
     assert_true(model.parts[0].has_uvs);
@@ -648,7 +648,7 @@ static void assert_load_refused(const char *name, const char *needle, const char
     work_path(name, path, sizeof path);
     luz_model model;
     luz_error error = {{0}};
-    if (luz_model_load(&model, path, &error) != -1) fail_msg("%s: loaded", name);
+    if (luz_model_load(&model, path, NULL, &error) != -1) fail_msg("%s: loaded", name);
     assert_contains(error.message, path);
     if (needle) assert_contains(error.message, needle);
     if (other) assert_contains(error.message, other);
@@ -671,8 +671,8 @@ static void test_load_refusals(void **state)
     assert_load_refused("models/flat.obj", "no triangle has an area", NULL);
     assert_load_refused("models/range.obj", NULL, NULL);
     assert_load_refused("models/missingtex.obj", "tex/nothere.png", NULL);
-    assert_load_refused("models/badtex.obj", "tex/bad.png", "not a readable image");
-    assert_load_refused("models/cuttex.obj", "tex/cut.png", NULL);
+    assert_load_refused("models/badtex.obj", "tex/bad.png", "not a PNG file");
+    assert_load_refused("models/cuttex.obj", "tex/cut.png", "truncated PNG");
     assert_load_refused("models/badembed.gltf", "texture '*0'", NULL);
     assert_load_refused("models/noise.obj", NULL, NULL);
     assert_load_refused("models/noise.xyz", NULL, NULL);
@@ -1027,7 +1027,7 @@ static void test_scene_model_fields(void **state)
             /* read from the other directory still: one file, read once */
             luz_model_set set;
             luz_error error = {{0}};
-            if (luz_options_load_models(&options, &set, &error) != 0)
+            if (luz_options_load_models(&options, &set, NULL, &error) != 0)
                 fail_msg("%s", error.message);
             assert_int_equal(set.count, 1);
             assert_ptr_equal(options.objects[0].model, &set.views[0]);

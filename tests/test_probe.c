@@ -70,7 +70,7 @@ static int load_textures(void **state)
     (void)state;
     const char *directory = getenv("LUZ_TEXTURES");
     luz_error error = {{0}};
-    if (directory == NULL || luz_texture_set_load(&textures, directory, &error) != 0) {
+    if (directory == NULL || luz_texture_set_load(&textures, directory, NULL, &error) != 0) {
         print_error("cannot load the textures (LUZ_TEXTURES): %s\n", error.message);
         return -1;
     }

@@ -356,7 +356,7 @@ static void test_image_is_identical_for_any_thread_count(void **state)
     bool have_textures = directory && *directory;
     if (have_textures) {
         luz_error error;
-        if (luz_texture_set_load(&textures, directory, &error) != 0)
+        if (luz_texture_set_load(&textures, directory, NULL, &error) != 0)
             fail_msg("%s", error.message);
     }
     const luz_texture_set *set = have_textures ? &textures : NULL;

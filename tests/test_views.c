@@ -66,7 +66,7 @@ static int load_textures(void **state)
     luz_texture_set *textures = calloc(1, sizeof *textures);
     luz_error error = {{0}};
     const char *directory = getenv("LUZ_TEXTURES");
-    if (!textures || !directory || luz_texture_set_load(textures, directory, &error) != 0) {
+    if (!textures || !directory || luz_texture_set_load(textures, directory, NULL, &error) != 0) {
         free(textures);
         return -1;
     }

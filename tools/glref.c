@@ -614,9 +614,15 @@ static const struct aiTexture *embedded_texture(const struct aiScene *scene, con
 static luz_texture *decode_embedded(const struct aiTexture *embedded, const char *name,
                                     luz_error *error)
 {
-    if (embedded->mHeight == 0)
-        return luz_texture_load_memory((const unsigned char *)embedded->pcData,
-                                       embedded->mWidth, name, error);
+    if (embedded->mHeight == 0) {
+        /* the format is in achFormatHint, as luz's model loader reads it */
+        char hint[sizeof embedded->achFormatHint + 1] = {0};
+        memcpy(hint, embedded->achFormatHint, sizeof embedded->achFormatHint);
+        luz_texture *texture = NULL;
+        luz_texture_load_memory((const unsigned char *)embedded->pcData, embedded->mWidth,
+                                name, hint, NULL, &texture, error);
+        return texture;
+    }
     size_t count = (size_t)embedded->mWidth * embedded->mHeight;
     uint8_t *rgba = malloc(count * 4 + 1);
     if (rgba == NULL) {
@@ -671,7 +677,7 @@ static int model_texture(gl_model *model, const struct aiScene *scene, const cha
         else if (!S_ISREG(status.st_mode))
             luz_error_set(&inner, "%s: not a regular file", joined);
         else
-            texture = luz_texture_load(joined, &inner);
+            luz_texture_load(joined, NULL, &texture, &inner);
     }
     if (texture == NULL)
         return luz_error_set(error, "%s: texture '%s': %s", model->path, name, inner.message);
@@ -1231,7 +1237,7 @@ static int load_textures(luz_options *options, luz_texture_set *textures, luz_er
         directory = luz_default_textures_directory(default_directory, sizeof default_directory);
     if (strcmp(directory, "none") != 0) {
         luz_error load_error = {{0}};
-        if (luz_texture_set_load(textures, directory, &load_error) != 0)
+        if (luz_texture_set_load(textures, directory, NULL, &load_error) != 0)
             return luz_error_set(error, "--textures: %s", load_error.message);
     }
     return luz_options_resolve_textures(options, textures, error);

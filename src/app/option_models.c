@@ -22,6 +22,7 @@
 #include <unistd.h>
 
 #include "app/bench.h"
+#include "io/input_file.h"
 
 int luz_options_model_path(const char *base_directory, const char *path, char *buffer,
                            size_t size, luz_error *error)
@@ -79,15 +80,16 @@ static void *watch_slow_load(void *context)
     return NULL;
 }
 
-static int load_noting_slowness(luz_model *model, const char *path, luz_error *error)
+static int load_noting_slowness(luz_model *model, const char *path, luz_texture_budget *budget,
+                                luz_error *error)
 {
-    if (!isatty(STDERR_FILENO)) return luz_model_load(model, path, error);
+    if (!isatty(STDERR_FILENO)) return luz_model_load(model, path, budget, error);
     slow_notice notice = {.path = path, .start_ms = luz_wall_ms()};
     pthread_mutex_init(&notice.lock, NULL);
     pthread_cond_init(&notice.done_changed, NULL);
     pthread_t watcher;
     bool watching = pthread_create(&watcher, NULL, watch_slow_load, &notice) == 0;
-    int status = luz_model_load(model, path, error);
+    int status = luz_model_load(model, path, budget, error);
     pthread_mutex_lock(&notice.lock);
     notice.done = true;
     pthread_cond_signal(&notice.done_changed);
@@ -143,7 +145,8 @@ static int find_model(const luz_model_set *set, const char *path)
     return -1;
 }
 
-int luz_options_load_models(luz_options *options, luz_model_set *set, luz_error *error)
+int luz_options_load_models(luz_options *options, luz_model_set *set,
+                            luz_texture_budget *budget, luz_error *error)
 {
     memset(set, 0, sizeof *set);
     const int count = options->scene.object_count;
@@ -162,14 +165,16 @@ int luz_options_load_models(luz_options *options, luz_model_set *set, luz_error 
         const luz_object_source *source = &options->object_sources[i];
         if (source->model_path == NULL || find_model(set, source->model_path) >= 0) continue;
         luz_error inner;
-        if (load_noting_slowness(&set->models[set->count], source->model_path, &inner) != 0) {
+        int status = load_noting_slowness(&set->models[set->count], source->model_path, budget,
+                                          &inner);
+        if (status != 0) {
             if (source->line > 0 && options->scene_path != NULL)
                 luz_error_set(error, "%s:%d: model: %s", options->scene_path, source->line,
                               inner.message);
             else
                 luz_error_set(error, "%s", inner.message);
             luz_model_set_free(set);
-            return -1;
+            return status;
         }
         if (make_view(&set->models[set->count], &set->views[set->count], error) != 0) {
             set->count++;
@@ -180,13 +185,13 @@ int luz_options_load_models(luz_options *options, luz_model_set *set, luz_error 
         /* The model and the texture files it read are inputs that no
          * output may replace. */
         const luz_model *model = &set->models[set->count - 1];
-        int status = luz_input_files_add(&options->inputs, model->path, "a model", error);
+        status = luz_input_files_add(&options->inputs, model->path, "a model", error);
         for (int k = 0; k < model->texture_file_count && status == 0; k++)
             status = luz_input_files_add(&options->inputs, model->texture_files[k],
                                          "a texture of a model", error);
-        if (status != 0) {
+        if (status != 0) {   /* out of memory, its only failure */
             luz_model_set_free(set);
-            return -1;
+            return LUZ_MACHINE_FAILED;
         }
     }
     for (int i = 0; i < count; i++) {

@@ -18,6 +18,7 @@
 #include <string.h>
 
 #include "app/option_text.h"
+#include "io/input_file.h"
 
 int luz_options_resolve_textures(luz_options *options, const luz_texture_set *textures,
                                  luz_error *error)
@@ -76,7 +77,8 @@ static int add_texture_inputs(luz_options *options, const char *directory,
 }
 
 /* Loads the textures the options name; see options.h. */
-int luz_options_load_textures(luz_options *options, luz_texture_set *textures, luz_error *error)
+int luz_options_load_textures(luz_options *options, luz_texture_set *textures,
+                              luz_texture_budget *budget, luz_error *error)
 {
     char default_directory[4096];
     const char *directory = options->textures_directory;
@@ -89,10 +91,13 @@ int luz_options_load_textures(luz_options *options, luz_texture_set *textures, l
     }
     if (strcmp(directory, "none") != 0) {
         luz_error load_error = {{0}};
-        if (luz_texture_set_load(textures, directory, &load_error) != 0)
-            return luz_error_set(error, "%s: %s", source, load_error.message);
+        int status = luz_texture_set_load(textures, directory, budget, &load_error);
+        if (status != 0) {
+            luz_error_set(error, "%s: %s", source, load_error.message);
+            return status;
+        }
         if (add_texture_inputs(options, directory, textures, error) != 0)
-            return -1;
+            return LUZ_MACHINE_FAILED;   /* out of memory is its only failure */
     }
     return luz_options_resolve_textures(options, textures, error);
 }

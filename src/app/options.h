@@ -213,11 +213,14 @@ typedef struct luz_model_set {
 } luz_model_set;
 
 /* Reads every model file the objects name into an empty set and points
- * each model object at its view. A file that takes more than a second to
- * read is announced on stderr when that is a terminal. Returns 0, or -1
- * with a message naming the file (and FILE:LINE of the scene file's model
- * line). */
-int luz_options_load_models(luz_options *options, luz_model_set *set, luz_error *error);
+ * each model object at its view; their textures are charged to *budget
+ * (the run's, shared with the cube textures; NULL: one of their own). A
+ * file that takes more than a second to read is announced on stderr when
+ * that is a terminal. Returns 0, or LUZ_BAD_INPUT (-1) or
+ * LUZ_MACHINE_FAILED (io/input_file.h) with a message naming the file (and
+ * FILE:LINE of the scene file's model line). */
+int luz_options_load_models(luz_options *options, luz_model_set *set,
+                            luz_texture_budget *budget, luz_error *error);
 void luz_model_set_free(luz_model_set *set);
 
 /* path as an absolute path: as it is if it is one, else joined to
@@ -268,6 +271,13 @@ const char *luz_default_textures_directory(char *buffer, size_t size);
  * that starts with FILE:LINE. */
 int luz_options_read_scene_file(luz_options *options, const char *path, luz_error *error);
 
+/* The same for the text of a scene file in memory (length bytes, NUL bytes
+ * and all), which messages and scene_path call `name`; for the scene
+ * fuzzer (tests/fuzz/fuzz_scene.c). A relative model FILE is taken from
+ * name's directory, as from a file's. */
+int luz_options_read_scene_text(luz_options *options, const char *text, size_t length,
+                                const char *name, luz_error *error);
+
 /* Writes the scene part of options in the scene-file format, so that what
  * the viewer shows can be rendered again with luz-render --scene; reading
  * the file back gives the same options. The keys written are the option
@@ -311,10 +321,12 @@ int luz_options_resolve_textures(luz_options *options, const luz_texture_set *te
 
 /* Loads the textures the options name (--textures, else $LUZ_TEXTURES,
  * else luz_default_textures_directory()) into an empty set, "none" leaving
- * it empty (every texel white), then resolves the custom cubes' texture
- * names (luz_options_resolve_textures). Both programs start this way.
- * Returns 0, or -1 with a message that says where the directory came from. */
+ * it empty (every texel white), charging them to *budget (the run's; NULL:
+ * one of their own), then resolves the custom cubes' texture names
+ * (luz_options_resolve_textures). Both programs start this way. Returns 0,
+ * or LUZ_BAD_INPUT (-1) or LUZ_MACHINE_FAILED (io/input_file.h) with a
+ * message that says where the directory came from. */
 int luz_options_load_textures(luz_options *options, luz_texture_set *textures,
-                              luz_error *error);
+                              luz_texture_budget *budget, luz_error *error);
 
 #endif

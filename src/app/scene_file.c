@@ -42,6 +42,7 @@
  * the cube lines leave behind.
  */
 #include "app/options.h"
+#include "io/input_file.h"
 #include "io/new_file.h"
 
 #include <errno.h>
@@ -50,8 +51,7 @@
 #include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <sys/types.h>
+#include <unistd.h>
 
 #include "app/option_text.h"
 
@@ -544,25 +544,21 @@ static scene_line next_line(FILE *file, char *text, size_t size)
     return nul ? LINE_WITH_NUL : LINE_TEXT;
 }
 
-int luz_options_read_scene_file(luz_options *options, const char *path, luz_error *error)
+/* Reads the scene text of an open stream, path naming it in messages;
+ * closes the stream. */
+static int read_scene_stream(luz_options *options, FILE *file, const char *path,
+                             luz_error *error)
 {
     char *path_copy = strdup(path);
-    if (path_copy == NULL)
+    if (path_copy == NULL) {
+        fclose(file);
         return luz_error_set(error, "%s: out of memory", path);
+    }
     free(options->scene_path);
     options->scene_path = path_copy;
-    if (luz_input_files_add(&options->inputs, path, "the scene file", error) != 0)
-        return -1;
-
-    FILE *file = fopen(path, "r");
-    if (file == NULL)
-        return luz_error_set(error, "%s: cannot open the scene file (%s)", path, strerror(errno));
-    /* Only regular files: a device or a pipe (/dev/zero, say) could feed
-     * the reader forever. */
-    struct stat status_of_file;
-    if (fstat(fileno(file), &status_of_file) != 0 || !S_ISREG(status_of_file.st_mode)) {
+    if (luz_input_files_add(&options->inputs, path, "the scene file", error) != 0) {
         fclose(file);
-        return luz_error_set(error, "%s: not a regular file (expected a scene file)", path);
+        return -1;
     }
 
     /* Lines are read into a fixed buffer, so no input can make the reader
@@ -593,6 +589,36 @@ int luz_options_read_scene_file(luz_options *options, const char *path, luz_erro
                                strerror(errno));
     fclose(file);
     return status;
+}
+
+int luz_options_read_scene_file(luz_options *options, const char *path, luz_error *error)
+{
+    /* Only a regular file, opened without blocking: a FIFO would block the
+     * open, and a device (/dev/zero, say) could feed the reader forever. */
+    int descriptor;
+    uint64_t size;
+    if (luz_input_open(path, "a scene file", LUZ_SCENE_FILE_MAX_BYTES, &descriptor, &size,
+                       error) != 0)
+        return -1;
+    FILE *file = fdopen(descriptor, "r");
+    if (file == NULL) {
+        close(descriptor);
+        return luz_error_set(error, "%s: cannot read the scene file (%s)", path,
+                             strerror(errno));
+    }
+    return read_scene_stream(options, file, path, error);
+}
+
+int luz_options_read_scene_text(luz_options *options, const char *text, size_t length,
+                                const char *name, luz_error *error)
+{
+    /* glibc's fmemopen takes a buffer of no bytes: an empty file. */
+    static const char nothing[1] = "";
+    FILE *file = fmemopen((void *)(length > 0 ? text : nothing), length, "r");
+    if (file == NULL)
+        return luz_error_set(error, "%s: cannot read the scene text (%s)", name,
+                             strerror(errno));
+    return read_scene_stream(options, file, name, error);
 }
 
 /* ---- writing ------------------------------------------------------------------------ */
@@ -679,8 +705,12 @@ void luz_options_write_scene(const luz_options *options, FILE *out)
             /* The path is absolute, so the file opens from anywhere. */
             fputs("model = ", out);
             write_text(out, source->model_path, true);
+            /* `at` is left out only for the origin the reader gives
+             * without it, +0 exactly: -0 compares equal to 0 but is
+             * another float, which the file must keep */
             if (object->position.x != 0.0f || object->position.y != 0.0f ||
-                object->position.z != 0.0f)
+                object->position.z != 0.0f || signbit(object->position.x) ||
+                signbit(object->position.y) || signbit(object->position.z))
                 fprintf(out, " at %s, %s, %s", x, y, z);
             if (object->scale != 1.0f && object->scale > 0.0f) {
                 option_format_float(x, sizeof x, object->scale);

@@ -14,8 +14,10 @@
 #define LUZ_IO_MODEL_H
 
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 
+#include "io/textures.h"
 #include "luz/error.h"
 #include "luz/mesh.h"
 #include "luz/texture.h"
@@ -55,12 +57,24 @@ typedef struct luz_model {
 /* Whether this build reads models (built with assimp: -Dmodels). */
 bool luz_models_supported(void);
 
-/* Reads the model at path into *model (zeroed first). Returns 0, or -1
- * with one line naming the file and what is wrong: not a regular file,
- * unreadable, a format assimp does not know, no triangles, a position that
- * is not finite, an index out of range, zero size, a texture it names that
- * is missing or corrupt. */
-int luz_model_load(luz_model *model, const char *path, luz_error *error);
+/* Reads the model at path into *model (zeroed first), its textures
+ * charged to *budget (NULL: a budget for this model alone). The file and
+ * every file it names are opened as io/input_file.h says (never blocking,
+ * regular files only, at most LUZ_MODEL_FILE_MAX_BYTES each). Returns 0;
+ * LUZ_BAD_INPUT (-1) with one line naming the file and what is wrong: not
+ * a regular file (it, or a file it names), unreadable, a format assimp
+ * does not know, no triangles, a position that is not finite, an index out
+ * of range, zero size, a texture it names that is missing, corrupt or over
+ * the budget; or LUZ_MACHINE_FAILED when memory runs out. */
+int luz_model_load(luz_model *model, const char *path, luz_texture_budget *budget,
+                   luz_error *error);
+
+/* The same for a model file's bytes in memory, which assimp reads as the
+ * file `name` (its extension chooses the importer); no other file exists
+ * for it (a .mtl it names is missing, so is a texture file). For the
+ * model fuzzer (tests/fuzz/fuzz_model.c). */
+int luz_model_load_memory(luz_model *model, const unsigned char *bytes, size_t size,
+                          const char *name, luz_texture_budget *budget, luz_error *error);
 void luz_model_free(luz_model *model);
 
 #endif

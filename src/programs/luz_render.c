@@ -37,6 +37,7 @@
 #include "app/panel.h"
 #include "app/probe_report.h"
 #include "io/image.h"
+#include "io/input_file.h"
 #include "io/textures.h"
 #include "lab/scene.h"
 
@@ -331,14 +332,18 @@ int main(int argc, char **argv)
          * one line and status 1, rather than death by SIGPIPE. */
         signal(SIGPIPE, SIG_IGN);
     }
-    /* The outputs are checked once every input is known: none may replace
-     * a texture, a model or the scene file, nor anything but a regular
-     * file; and all before the first frame, so that a refused name leaves
-     * no part of a sequence behind. */
-    if (luz_options_load_textures(&options, &textures, &error) != 0 ||
-        luz_options_load_models(&options, &models, &error) != 0 ||
-        luz_options_check_outputs(&options, &error) != 0) {
-        status = EXIT_USAGE;
+    /* The run's texture budget, shared by the cube textures and the
+     * models' (io/textures.h). The outputs are checked once every input
+     * is known: none may replace a texture, a model or the scene file, nor
+     * anything but a regular file; and all before the first frame, so that
+     * a refused name leaves no part of a sequence behind. */
+    luz_texture_budget budget = {0};
+    int loaded = luz_options_load_textures(&options, &textures, &budget, &error);
+    if (loaded == 0) loaded = luz_options_load_models(&options, &models, &budget, &error);
+    if (loaded == 0 && luz_options_check_outputs(&options, &error) != 0) loaded = -1;
+    if (loaded != 0) {
+        /* out of memory is the machine's failure, not the input's */
+        status = loaded == LUZ_MACHINE_FAILED ? EXIT_RUNTIME : EXIT_USAGE;
         goto done;
     }
 

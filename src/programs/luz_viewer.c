@@ -50,6 +50,7 @@
 #include "app/panel.h"
 #include "app/probe_panel.h"
 #include "io/image.h"
+#include "io/input_file.h"
 #include "io/textures.h"
 #include "lab/scene.h"
 #ifdef LUZ_VIEWER_X11
@@ -987,8 +988,17 @@ int main(int argc, char **argv)
         status = EXIT_OK;
         goto done;
     }
-    if (luz_options_load_textures(&options, &textures, &error) != 0 ||
-        luz_options_load_models(&options, &models, &error) != 0 || open_window(&v, &error) != 0)
+    /* The run's texture budget, shared by the cube textures and the
+     * models' (io/textures.h). */
+    luz_texture_budget budget = {0};
+    int loaded = luz_options_load_textures(&options, &textures, &budget, &error);
+    if (loaded == 0) loaded = luz_options_load_models(&options, &models, &budget, &error);
+    if (loaded != 0) {
+        /* out of memory is the machine's failure, not the input's */
+        if (loaded == LUZ_MACHINE_FAILED) status = EXIT_RUNTIME;
+        goto done;
+    }
+    if (open_window(&v, &error) != 0)
         goto done;
 
     status = EXIT_RUNTIME;
