@@ -372,24 +372,14 @@ static void vertex_job(void *context, int range_index, int worker_index)
 
 /* ---- batches: clipping and setup --------------------------------------- */
 
-static bool reserve_triangles(geometry_batch *batch, size_t extra)
-{
-    if (batch->count + extra <= batch->capacity) return true;
-    size_t capacity = batch->capacity ? batch->capacity : 256;
-    while (capacity < batch->count + extra) capacity *= 2;
-    luz_triangle *triangles = realloc(batch->triangles, capacity * sizeof *triangles);
-    if (!triangles) return false;
-    batch->triangles = triangles;
-    batch->capacity = capacity;
-    return true;
-}
-
 static void set_up(geometry_batch *batch, const geometry_job *job, const luz_clip_vertex *a,
-                   const luz_clip_vertex *b, const luz_clip_vertex *c, uint32_t draw_index)
+                   const luz_clip_vertex *b, const luz_clip_vertex *c, uint32_t draw_index,
+                   uint32_t primitive)
 {
     luz_triangle *out = &batch->triangles[batch->count];
     luz_setup_result result = luz_setup_triangle(a, b, c, job->width, job->height, draw_index,
                                                  job->uniforms->interpolation, out);
+    out->primitive = primitive;
     if (result == LUZ_SETUP_VISIBLE) batch->count++;
     else if (result == LUZ_SETUP_CULLED) batch->culled++;
 }
@@ -407,7 +397,8 @@ static void triangles_of_draw(geometry_batch *batch, const geometry_job *job,
         const luz_clip_vertex *c = &vertices[indices[3 * (size_t)t + 2]];
         batch->submitted++;
         /* A fan of a clipped triangle has at most this many triangles. */
-        if (!reserve_triangles(batch, LUZ_CLIP_MAX_VERTICES - 2)) {
+        if (!reserve((void **)&batch->triangles, &batch->capacity,
+                     batch->count + LUZ_CLIP_MAX_VERTICES - 2, sizeof *batch->triangles)) {
             batch->out_of_memory = true;
             return;
         }
@@ -416,7 +407,7 @@ static void triangles_of_draw(geometry_batch *batch, const geometry_job *job,
          * stage worked out each vertex's outcode). */
         const unsigned code_a = a->outcode, code_b = b->outcode, code_c = c->outcode;
         if ((code_a | code_b | code_c) == 0) {
-            set_up(batch, job, a, b, c, draw_index);
+            set_up(batch, job, a, b, c, draw_index, t);
             continue;
         }
         if (code_a & code_b & code_c) continue;   /* all outside one plane */
@@ -426,7 +417,7 @@ static void triangles_of_draw(geometry_batch *batch, const geometry_job *job,
         /* Setup, for each triangle of the polygon's fan. */
         for (int k = 1; k + 1 < count; k++)
             set_up(batch, job, &polygon.vertices[0], &polygon.vertices[k],
-                   &polygon.vertices[k + 1], draw_index);
+                   &polygon.vertices[k + 1], draw_index, t);
     }
 }
 

@@ -156,6 +156,9 @@ typedef struct luz_triangle {
     luz_plane inverse_w;             /* 1/w, linear on the screen */
     luz_plane varyings[LUZ_VARYING_COUNT];  /* varying/w, linear on the screen */
     uint32_t draw_index;
+    uint32_t primitive;              /* the mesh triangle it came from (index / 3);
+                                        set by geometry.c, not setup, which sees
+                                        only vertices */
 } luz_triangle;
 
 typedef enum luz_setup_result {

@@ -158,71 +158,66 @@ static void barycentric_corners(const luz_clip_vertex *const corners[3], luz_cli
     }
 }
 
-/* Finds the mesh triangle that became the winner: the `rank`-th visible
- * set-up triangle of its draw (from 0), by sending the draw's triangles
- * through the vertex stage, clipping and setup as geometry.c's
- * triangles_of_draw does. Fills primitive, vertices, the pieces and the
- * barycentric coordinates; leaves primitive at -1 if memory runs out or
- * (never expected) no triangle matches the pipeline's. */
+/* Explains the winner's mesh triangle (geometry.c records its index):
+ * its three vertices through the vertex stage, the clipper and setup
+ * again, to find which triangle of a clipped fan won and to carry the
+ * barycentric coordinates through the same clip, setup and interpolation
+ * as varyings. Leaves primitive at -1 if memory runs out or (never
+ * expected) setup does not give the pipeline's triangle again. */
 static void find_primitive(luz_pixel_probe *probe, const luz_uniforms *uniforms,
-                           const luz_draw *draw, const luz_triangle *winner, size_t rank,
+                           const luz_draw *draw, const luz_triangle *winner,
                            const luz_framebuffer *framebuffer)
 {
     probe->primitive = -1;
     const luz_mesh *mesh = draw->mesh;
+    const uint32_t i = 3 * winner->primitive;
+    /* The vertex stage writes vertex k at out[k]: room for the mesh, of
+     * which only the three corners are computed (and touched). */
     luz_clip_vertex *vertices = malloc((size_t)mesh->vertex_count * sizeof *vertices);
     if (vertices == NULL) return;
-    luz_vertex_stage(draw, uniforms->view_projection, vertices);
+    for (int k = 0; k < 3; k++)
+        luz_vertex_stage_range(draw, uniforms->view_projection, mesh->indices[i + k],
+                               mesh->indices[i + k] + 1, vertices);
+    const luz_clip_vertex *corners[3] = {&vertices[mesh->indices[i]],
+                                         &vertices[mesh->indices[i + 1]],
+                                         &vertices[mesh->indices[i + 2]]};
 
-    const uint32_t draw_index = winner->draw_index;
-    size_t visible = 0;
+    luz_clip_polygon polygon;
+    int pieces = 1;
+    const bool clipped = (corners[0]->outcode | corners[1]->outcode | corners[2]->outcode) != 0;
+    if (clipped) pieces = luz_clip_triangle(corners[0], corners[1], corners[2], &polygon) - 2;
     luz_triangle triangle;
-    for (uint32_t i = 0; i + 2 < mesh->index_count; i += 3) {
-        const luz_clip_vertex *corners[3] = {&vertices[mesh->indices[i]],
-                                             &vertices[mesh->indices[i + 1]],
-                                             &vertices[mesh->indices[i + 2]]};
-        const unsigned codes[3] = {corners[0]->outcode, corners[1]->outcode,
-                                   corners[2]->outcode};
-        if (codes[0] & codes[1] & codes[2]) continue;   /* all outside one plane */
+    for (int piece = 0; piece < pieces; piece++) {
+        const luz_clip_vertex *a = clipped ? &polygon.vertices[0] : corners[0];
+        const luz_clip_vertex *b = clipped ? &polygon.vertices[piece + 1] : corners[1];
+        const luz_clip_vertex *c = clipped ? &polygon.vertices[piece + 2] : corners[2];
+        if (set_up(a, b, c, framebuffer, uniforms, winner->draw_index, &triangle) !=
+                LUZ_SETUP_VISIBLE ||
+            !same_triangle(&triangle, winner))
+            continue;
 
-        luz_clip_polygon polygon;
-        int pieces = 1;
-        const bool clipped = (codes[0] | codes[1] | codes[2]) != 0;
-        if (clipped) pieces = luz_clip_triangle(corners[0], corners[1], corners[2], &polygon) - 2;
-        for (int piece = 0; piece < pieces; piece++) {
-            const luz_clip_vertex *a = clipped ? &polygon.vertices[0] : corners[0];
-            const luz_clip_vertex *b = clipped ? &polygon.vertices[piece + 1] : corners[1];
-            const luz_clip_vertex *c = clipped ? &polygon.vertices[piece + 2] : corners[2];
-            if (set_up(a, b, c, framebuffer, uniforms, draw_index, &triangle) !=
-                LUZ_SETUP_VISIBLE)
-                continue;
-            if (visible++ != rank) continue;
-            if (!same_triangle(&triangle, winner)) goto done;
-
-            /* Found. The barycentric coordinates ride along as varyings. */
-            probe->primitive = (int)(i / 3);
-            for (int k = 0; k < 3; k++) probe->vertices[k] = mesh->indices[i + (uint32_t)k];
-            probe->clipped_pieces = clipped ? pieces : 0;
-            probe->piece = piece;
-            luz_clip_vertex weighted[3];
-            barycentric_corners(corners, weighted);
-            if (clipped) {
-                luz_clip_polygon weighted_polygon;
-                luz_clip_triangle(&weighted[0], &weighted[1], &weighted[2], &weighted_polygon);
-                weighted[0] = weighted_polygon.vertices[0];
-                weighted[1] = weighted_polygon.vertices[piece + 1];
-                weighted[2] = weighted_polygon.vertices[piece + 2];
-            }
-            luz_triangle barycentric;
-            set_up(&weighted[0], &weighted[1], &weighted[2], framebuffer, uniforms, draw_index,
-                   &barycentric);
-            luz_fragment fragment;
-            luz_fragment_interpolate(&barycentric, probe->x, probe->y, &fragment);
-            probe->barycentric = fragment.position;
-            goto done;
+        /* Found. The barycentric coordinates ride along as varyings. */
+        probe->primitive = (int)winner->primitive;
+        for (int k = 0; k < 3; k++) probe->vertices[k] = mesh->indices[i + (uint32_t)k];
+        probe->clipped_pieces = clipped ? pieces : 0;
+        probe->piece = piece;
+        luz_clip_vertex weighted[3];
+        barycentric_corners(corners, weighted);
+        if (clipped) {
+            luz_clip_polygon weighted_polygon;
+            luz_clip_triangle(&weighted[0], &weighted[1], &weighted[2], &weighted_polygon);
+            weighted[0] = weighted_polygon.vertices[0];
+            weighted[1] = weighted_polygon.vertices[piece + 1];
+            weighted[2] = weighted_polygon.vertices[piece + 2];
         }
+        luz_triangle barycentric;
+        set_up(&weighted[0], &weighted[1], &weighted[2], framebuffer, uniforms,
+               winner->draw_index, &barycentric);
+        luz_fragment fragment;
+        luz_fragment_interpolate(&barycentric, probe->x, probe->y, &fragment);
+        probe->barycentric = fragment.position;
+        break;
     }
-done:
     free(vertices);
 }
 
@@ -288,12 +283,7 @@ void luz_probe_explain(luz_pixel_probe *probe, const luz_uniforms *uniforms,
         probe->on_edge =
             luz_view_on_edge(winner, x, y, framebuffer->width, framebuffer->height);
 
-        /* Ids are in submission order: the draw's own start where the id
-         * before belongs to another draw. */
-        size_t first = id;
-        while (first > 1 && by_id[first - 1]->draw_index == winner->draw_index) first--;
-        find_primitive(probe, uniforms, &draws[winner->draw_index], winner, id - first,
-                       framebuffer);
+        find_primitive(probe, uniforms, &draws[winner->draw_index], winner, framebuffer);
 
         luz_fragment fragment;
         luz_fragment_interpolate(winner, x, y, &fragment);
