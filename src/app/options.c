@@ -569,28 +569,34 @@ static int set_only(luz_options *options, const char *value, const char *where,
                          where, option_quote(value).text);
 }
 
+/* Splits value at its first separator into the text before it (copied into
+ * first, which holds size bytes) and the text after it (*second): false
+ * when there is no separator or the first part does not fit. */
+static bool split_pair(const char *value, char separator, char *first, size_t size,
+                       const char **second)
+{
+    const char *at = strchr(value, separator);
+    if (at == NULL || (size_t)(at - value) >= size) return false;
+    memcpy(first, value, (size_t)(at - value));
+    first[at - value] = '\0';
+    *second = at + 1;
+    return true;
+}
+
 /* --frame-range A:B, A: or :B (or :, every frame). Whether the frames
  * exist is luz_options_finish()'s question, once --frames is known. */
 static int set_frame_range(luz_options *options, const char *value, const char *where,
                            luz_error *error)
 {
-    const char *colon = strchr(value, ':');
+    char text[64];
+    const char *after;
     long long first = 0, last = LUZ_FRAME_RANGE_OPEN;
-    bool well_formed = colon != NULL;
-    if (well_formed) {
-        char text[64];
-        size_t length = (size_t)(colon - value);
-        /* A: and :B, with blanks allowed around each number */
-        well_formed = length < sizeof text;
-        if (well_formed) {
-            memcpy(text, value, length);
-            text[length] = '\0';
-            if (*option_skip_blanks(text) != '\0')
-                well_formed = read_integer(text, 0, LUZ_MAX_FRAMES - 1, &first);
-        }
-        if (well_formed && *option_skip_blanks(colon + 1) != '\0')
-            well_formed = read_integer(colon + 1, 0, LUZ_MAX_FRAMES - 1, &last);
-    }
+    bool well_formed = split_pair(value, ':', text, sizeof text, &after);
+    /* A: and :B, with blanks allowed around each number */
+    if (well_formed && *option_skip_blanks(text) != '\0')
+        well_formed = read_integer(text, 0, LUZ_MAX_FRAMES - 1, &first);
+    if (well_formed && *option_skip_blanks(after) != '\0')
+        well_formed = read_integer(after, 0, LUZ_MAX_FRAMES - 1, &last);
     if (!well_formed)
         return luz_error_set(error,
                              "%s: expected A:B, A: or :B, frame numbers from 0 (such as 0:99), "
@@ -605,20 +611,14 @@ static int set_frame_range(luz_options *options, const char *value, const char *
 static int set_shard(luz_options *options, const option_spec *spec, const char *value,
                      const char *where, luz_error *error)
 {
-    const char *slash = strchr(value, '/');
+    char first[64];
+    const char *second;
     long long index = -1, count = 0;
-    bool well_formed = slash != NULL && read_integer(slash + 1, (long long)spec->min,
-                                                     (long long)spec->max, &count);
-    if (well_formed) {
-        char text[64];
-        size_t length = (size_t)(slash - value);
-        well_formed = length < sizeof text;
-        if (well_formed) {
-            memcpy(text, value, length);
-            text[length] = '\0';
-            well_formed = read_integer(text, 0, count - 1, &index);
-        }
-    }
+    /* M first: it bounds K. */
+    const bool well_formed =
+        split_pair(value, '/', first, sizeof first, &second) &&
+        read_integer(second, (long long)spec->min, (long long)spec->max, &count) &&
+        read_integer(first, 0, count - 1, &index);
     if (!well_formed)
         return luz_error_set(error,
                              "%s: expected K/M, share K of M with 0 <= K < M <= %lld "
@@ -673,19 +673,12 @@ static int set_marks(luz_options *options, const char *value, const char *where,
 static int set_probe(luz_options *options, const char *value, const char *where,
                      luz_error *error)
 {
-    const char *comma = strchr(value, ',');
+    char first[64];
+    const char *second;
     long long x = -1, y = -1;
-    bool well_formed = comma != NULL && read_integer(comma + 1, 0, LUZ_MAX_DIMENSION - 1, &y);
-    if (well_formed) {
-        char text[64];
-        size_t length = (size_t)(comma - value);
-        well_formed = length < sizeof text;
-        if (well_formed) {
-            memcpy(text, value, length);
-            text[length] = '\0';
-            well_formed = read_integer(text, 0, LUZ_MAX_DIMENSION - 1, &x);
-        }
-    }
+    const bool well_formed = split_pair(value, ',', first, sizeof first, &second) &&
+                             read_integer(first, 0, LUZ_MAX_DIMENSION - 1, &x) &&
+                             read_integer(second, 0, LUZ_MAX_DIMENSION - 1, &y);
     if (!well_formed)
         return luz_error_set(error,
                              "%s: expected X,Y, a pixel's column and row counted from 0 at the "
