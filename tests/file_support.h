@@ -8,6 +8,9 @@
  *   list_tree(dir, "", out, n) every path under dir, sorted, one a line:
  *                              equal before and after a run that made no
  *                              file (neither an image nor a temporary)
+ *   key_value(text, key, buf, n) the value of a `key=value` line of a
+ *                              program's output (--probe's), NULL if none
+ *   now_seconds()              the monotonic clock, for deadlines
  */
 #ifndef LUZ_TEST_FILE_SUPPORT_H
 #define LUZ_TEST_FILE_SUPPORT_H
@@ -17,6 +20,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 static inline char *read_file(const char *path, size_t *length_out)
@@ -97,6 +101,29 @@ static inline void list_tree(const char *directory, const char *prefix, char *ou
         }
         free(names[i]);
     }
+}
+
+static inline const char *key_value(const char *text, const char *key, char *buffer, size_t size)
+{
+    const size_t length = strlen(key);
+    for (const char *line = text; *line != '\0';) {
+        const char *end = strchr(line, '\n');
+        const size_t line_length = end ? (size_t)(end - line) : strlen(line);
+        if (line_length > length && strncmp(line, key, length) == 0 && line[length] == '=') {
+            snprintf(buffer, size, "%.*s", (int)(line_length - length - 1), line + length + 1);
+            return buffer;
+        }
+        if (end == NULL) break;
+        line = end + 1;
+    }
+    return NULL;
+}
+
+static inline double now_seconds(void)
+{
+    struct timespec now;
+    clock_gettime(CLOCK_MONOTONIC, &now);
+    return (double)now.tv_sec + (double)now.tv_nsec * 1e-9;
 }
 
 #endif

@@ -198,12 +198,6 @@ typedef struct run_result {
     double seconds;
 } run_result;
 
-static double now_seconds(void)
-{
-    struct timespec now;
-    clock_gettime(CLOCK_MONOTONIC, &now);
-    return (double)now.tv_sec + (double)now.tv_nsec * 1e-9;
-}
 
 static const char *luz_render_path(void)
 {
@@ -918,22 +912,6 @@ static void test_textures_directory(void **state)
     sandbox_destroy(&box);
 }
 
-/* The value of key=, on a line of its own, into buffer; NULL if none. */
-static const char *probe_value(const char *text, const char *key, char *buffer, size_t size)
-{
-    const size_t length = strlen(key);
-    for (const char *line = text; *line != '\0';) {
-        const char *end = strchr(line, '\n');
-        const size_t line_length = end ? (size_t)(end - line) : strlen(line);
-        if (line_length > length && strncmp(line, key, length) == 0 && line[length] == '=') {
-            snprintf(buffer, size, "%.*s", (int)(line_length - length - 1), line + length + 1);
-            return buffer;
-        }
-        if (end == NULL) break;
-        line = end + 1;
-    }
-    return NULL;
-}
 
 /* --probe X,Y prints the pixel's story and writes no PNG; with -o it
  * writes the image, and bytes= is that image's pixel. The background
@@ -952,13 +930,13 @@ static void test_probe(void **state)
     list_tree(box.work, "", after, sizeof after);
     assert_string_equal(before, after);   /* no file without -o */
     char value[256];
-    assert_string_equal(probe_value(result.out, "pixel", value, sizeof value), "16,9");
-    assert_string_equal(probe_value(result.out, "size", value, sizeof value), "32,18");
-    assert_string_equal(probe_value(result.out, "time", value, sizeof value), "0");
-    assert_string_equal(probe_value(result.out, "object", value, sizeof value), "0");
-    assert_string_equal(probe_value(result.out, "mesh", value, sizeof value), "0");
-    assert_string_equal(probe_value(result.out, "texture", value, sizeof value), "a.bmp");
-    assert_string_equal(probe_value(result.out, "N", value, sizeof value), "0,0,1");
+    assert_string_equal(key_value(result.out, "pixel", value, sizeof value), "16,9");
+    assert_string_equal(key_value(result.out, "size", value, sizeof value), "32,18");
+    assert_string_equal(key_value(result.out, "time", value, sizeof value), "0");
+    assert_string_equal(key_value(result.out, "object", value, sizeof value), "0");
+    assert_string_equal(key_value(result.out, "mesh", value, sizeof value), "0");
+    assert_string_equal(key_value(result.out, "texture", value, sizeof value), "a.bmp");
+    assert_string_equal(key_value(result.out, "N", value, sizeof value), "0,0,1");
     assert_contains(result.out, "\ntest=1 object=0 mesh=0 triangle=");
     assert_contains(result.out, " result=pass\n");
     static const char *const keys[] = {"triangle", "barycentric", "w", "P", "uv", "rho",
@@ -966,10 +944,10 @@ static void test_probe(void **state)
                                        "diffuse", "specular", "point", "spot", "directional",
                                        "light", "C", "colour", "bytes"};
     for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++)
-        if (probe_value(result.out, keys[i], value, sizeof value) == NULL)
+        if (key_value(result.out, keys[i], value, sizeof value) == NULL)
             fail_msg("no %s= in:\n%s", keys[i], result.out);
     char bytes_without_png[64];
-    probe_value(result.out, "bytes", bytes_without_png, sizeof bytes_without_png);
+    key_value(result.out, "bytes", bytes_without_png, sizeof bytes_without_png);
     run_result_free(&result);
 
     /* With -o: the image, and the pixel the probe read is in it. */
@@ -989,7 +967,7 @@ static void test_probe(void **state)
         const unsigned char *p = image + ((size_t)probed[i][1] * width + probed[i][0]) * 3;
         char expected[64];
         snprintf(expected, sizeof expected, "%u,%u,%u", p[0], p[1], p[2]);
-        assert_string_equal(probe_value(result.out, "bytes", value, sizeof value), expected);
+        assert_string_equal(key_value(result.out, "bytes", value, sizeof value), expected);
         if (i == 0) {
             assert_string_equal(expected, bytes_without_png);
         } else {
@@ -1007,11 +985,11 @@ static void test_probe(void **state)
     result = run_in(&box, ARGS("--size", "32x18", "--textures", "none", "--probe", "16,9",
                                "--view", "overdraw"), NULL);
     assert_success(&result);
-    assert_string_equal(probe_value(result.out, "view", value, sizeof value), "overdraw");
+    assert_string_equal(key_value(result.out, "view", value, sizeof value), "overdraw");
     char tests[32];
-    assert_non_null(probe_value(result.out, "tests", tests, sizeof tests));
-    assert_string_equal(probe_value(result.out, "overdraw", value, sizeof value), tests);
-    assert_non_null(probe_value(result.out, "shown", value, sizeof value));
+    assert_non_null(key_value(result.out, "tests", tests, sizeof tests));
+    assert_string_equal(key_value(result.out, "overdraw", value, sizeof value), tests);
+    assert_non_null(key_value(result.out, "shown", value, sizeof value));
     run_result_free(&result);
     sandbox_destroy(&box);
 }

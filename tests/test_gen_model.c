@@ -115,12 +115,6 @@ typedef struct run_result {
     double seconds;
 } run_result;
 
-static double now_seconds(void)
-{
-    struct timespec now;
-    clock_gettime(CLOCK_MONOTONIC, &now);
-    return (double)now.tv_sec + (double)now.tv_nsec * 1e-9;
-}
 
 /* $GEN_MODEL made absolute, since gen-model runs in another directory. */
 static const char *gen_model_path(void)

@@ -945,12 +945,6 @@ typedef struct run_result {
     double seconds;
 } run_result;
 
-static double now_seconds(void)
-{
-    struct timespec now;
-    clock_gettime(CLOCK_MONOTONIC, &now);
-    return (double)now.tv_sec + (double)now.tv_nsec * 1e-9;
-}
 
 /* Runs luz-render with arguments (NULL-terminated) in work, stderr into
  * work/../stderr, no LUZ_TEXTURES; killed if it runs past `deadline`

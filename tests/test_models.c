@@ -1381,22 +1381,6 @@ static int pixels_differing(const image *a, const image *b)
     return count;
 }
 
-/* The value of key= on a line of its own. */
-static const char *probe_value(const char *text, const char *key, char *buffer, size_t size)
-{
-    const size_t length = strlen(key);
-    for (const char *line = text; *line != '\0';) {
-        const char *end = strchr(line, '\n');
-        const size_t line_length = end ? (size_t)(end - line) : strlen(line);
-        if (line_length > length && strncmp(line, key, length) == 0 && line[length] == '=') {
-            snprintf(buffer, size, "%.*s", (int)(line_length - length - 1), line + length + 1);
-            return buffer;
-        }
-        if (end == NULL) break;
-        line = end + 1;
-    }
-    return NULL;
-}
 
 /* --probe on two.obj: its quad and its triangle land, at t = 0 in a
  * 64x36 image, on pixels (21, 23) and (42, 20) (the model scaled by 2/3
@@ -1421,16 +1405,16 @@ static void test_probe_names_a_model(void **state)
         if (result.status != 0 || result.err[0] != '\0')
             fail_msg("luz-render exited %d: %s", result.status, result.err);
         char value[256];
-        assert_string_equal(probe_value(result.out, "object", value, sizeof value), "0");
-        assert_string_equal(probe_value(result.out, "model", value, sizeof value), "two.obj");
-        assert_string_equal(probe_value(result.out, "mesh", value, sizeof value), expected[i].mesh);
-        assert_string_equal(probe_value(result.out, "mesh_name", value, sizeof value),
+        assert_string_equal(key_value(result.out, "object", value, sizeof value), "0");
+        assert_string_equal(key_value(result.out, "model", value, sizeof value), "two.obj");
+        assert_string_equal(key_value(result.out, "mesh", value, sizeof value), expected[i].mesh);
+        assert_string_equal(key_value(result.out, "mesh_name", value, sizeof value),
                             expected[i].mesh_name);
-        assert_string_equal(probe_value(result.out, "material", value, sizeof value),
+        assert_string_equal(key_value(result.out, "material", value, sizeof value),
                             expected[i].material);
-        assert_string_equal(probe_value(result.out, "texture", value, sizeof value),
+        assert_string_equal(key_value(result.out, "texture", value, sizeof value),
                             expected[i].texture);
-        assert_string_equal(probe_value(result.out, "C", value, sizeof value),
+        assert_string_equal(key_value(result.out, "C", value, sizeof value),
                             expected[i].colour);
         char path[1024];
         work_path("probe.png", path, sizeof path);
@@ -1441,7 +1425,7 @@ static void test_probe_names_a_model(void **state)
         const unsigned char *p = pixels + ((size_t)y * width + x) * 3;
         char bytes[64];
         snprintf(bytes, sizeof bytes, "%u,%u,%u", p[0], p[1], p[2]);
-        assert_string_equal(probe_value(result.out, "bytes", value, sizeof value), bytes);
+        assert_string_equal(key_value(result.out, "bytes", value, sizeof value), bytes);
         stbi_image_free(pixels);
         run_result_free(&result);
     }
