@@ -42,16 +42,6 @@ static float plane_distance(luz_vec4 p, int plane)
     }
 }
 
-unsigned luz_clip_outcode(luz_vec4 position)
-{
-    unsigned code = 0;
-    for (int plane = 0; plane < LUZ_CLIP_PLANE_COUNT; plane++) {
-        /* "!(d >= 0)" so that a NaN coordinate counts as outside. */
-        if (!(plane_distance(position, plane) >= 0.0f)) code |= 1u << plane;
-    }
-    return code;
-}
-
 /* The point where the edge from inside to outside crosses the plane. */
 static luz_clip_vertex crossing(const luz_clip_vertex *inside, float inside_distance,
                                 const luz_clip_vertex *outside, float outside_distance)

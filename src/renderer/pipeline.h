@@ -105,8 +105,20 @@ typedef struct luz_clip_polygon {
     luz_clip_vertex vertices[LUZ_CLIP_MAX_VERTICES];
 } luz_clip_polygon;
 
-/* One bit per clip plane the point is outside of (0: inside them all). */
-unsigned luz_clip_outcode(luz_vec4 position);
+/* One bit per clip plane the point is outside of (0: inside them all):
+ * bit k for plane k of clip.c's plane_distance, the same distances
+ * (near, far, left, right, bottom, top). Inline: the vertex stage computes
+ * it for every vertex. "!(d >= 0)" so that a NaN coordinate counts as
+ * outside. */
+static inline unsigned luz_clip_outcode(luz_vec4 p)
+{
+    const float guard = LUZ_CLIP_GUARD_BAND;
+    return (unsigned)!(p.w + p.z >= 0.0f) << 0 | (unsigned)!(p.w - p.z >= 0.0f) << 1 |
+           (unsigned)!(guard * p.w + p.x >= 0.0f) << 2 |
+           (unsigned)!(guard * p.w - p.x >= 0.0f) << 3 |
+           (unsigned)!(guard * p.w + p.y >= 0.0f) << 4 |
+           (unsigned)!(guard * p.w - p.y >= 0.0f) << 5;
+}
 
 /* Sutherland-Hodgman: clips triangle (a, b, c) against the near, far and
  * guard-band planes. Returns the number of vertices of the result (0 if

@@ -83,8 +83,11 @@ static luz_edge make_edge(int64_t xi, int64_t yi, int64_t xj, int64_t yj)
 }
 
 /* The plane through (x_k, y_k, value_k), k = 0..2 (Cramer's rule on the
- * two edge vectors), given by its value at the reference point (rx, ry). */
-static luz_plane make_plane(const double x[3], const double y[3], double inverse_determinant,
+ * two edge vectors), given by its value at the reference point (rx, ry).
+ * Inlined, so that the ten calls of a triangle share the differences of
+ * x and y (the compiler computes them once; the arithmetic of each plane
+ * is unchanged). */
+static inline __attribute__((always_inline)) luz_plane make_plane(const double x[3], const double y[3], double inverse_determinant,
                             double rx, double ry, double value0, double value1, double value2)
 {
     double d1 = value1 - value0, d2 = value2 - value0;
