@@ -340,6 +340,88 @@ static void test_bands_match_one_pass(void **state)
     assert_true(count_id(framebuffer, 1) > 50);
 }
 
+/* Small triangles, which setup drops when they cover no pixel centre
+ * (before solving their planes), against the fill rule written out from
+ * its definition: random front faces with corners on the 1/256 sub-pixel
+ * grid, up to 3 pixels across, their covered centres counted in exact
+ * double arithmetic. Setup says OFFSCREEN exactly when that count is 0,
+ * and otherwise the rasteriser covers exactly those centres. Among them
+ * the split square of a pixel whose centre lies on the diagonal: one half
+ * has it, the other none. */
+static int centres_covered(const double x[3], const double y[3], int pixels[SIZE * SIZE])
+{
+    int count = 0;
+    for (int py = 0; py < SIZE; py++)
+        for (int px = 0; px < SIZE; px++) {
+            const double sx = px + 0.5, sy = py + 0.5;
+            bool inside = true;
+            for (int k = 0; k < 3; k++) {
+                /* Edge k runs from corner k+1 to corner k+2. */
+                const int i = (k + 1) % 3, j = (k + 2) % 3;
+                const double dx = x[j] - x[i], dy = y[j] - y[i];
+                const double e = dy * (sx - x[i]) - dx * (sy - y[i]);
+                const bool top = dy == 0 && dx < 0, left = dy > 0;
+                inside = inside && (e > 0 || (e == 0 && (top || left)));
+            }
+            pixels[py * SIZE + px] = inside;
+            count += inside;
+        }
+    return count;
+}
+
+static void test_small_triangles_covering_no_centre_are_dropped(void **state)
+{
+    luz_framebuffer *framebuffer = *state;
+    luz_triangle triangle;
+    /* The pixel (1, 1) square split along x + y = 3, through its centre:
+     * the diagonal is the lower triangle's left edge... */
+    assert_int_equal(set_up((window_point){1, 2}, (window_point){2, 2}, (window_point){2, 1}, 0.0f,
+                            &triangle),
+                     LUZ_SETUP_VISIBLE);
+    /* ... and the upper one's right edge: no centre. */
+    assert_int_equal(set_up((window_point){1, 1}, (window_point){1, 2}, (window_point){2, 1}, 0.0f,
+                            &triangle),
+                     LUZ_SETUP_OFFSCREEN);
+
+    uint32_t random = 12345;
+    int dropped = 0, kept = 0;
+    for (int n = 0; n < 4000; n++) {
+        double x[3], y[3];
+        const unsigned span = (unsigned)(n % 3 + 1);   /* pixels across, at most */
+        for (int k = 0; k < 3; k++) {
+            random = random * 1664525u + 1013904223u;
+            x[k] = 4.0 + (double)((random >> 8) % (256u * span + 1)) / 256.0;
+            random = random * 1664525u + 1013904223u;
+            y[k] = 4.0 + (double)((random >> 8) % (256u * span + 1)) / 256.0;
+        }
+        /* Front faces only: positive doubled area as setup measures it. */
+        double area = (y[1] - y[0]) * (x[2] - x[0]) - (x[1] - x[0]) * (y[2] - y[0]);
+        if (area == 0) continue;
+        if (area < 0) {
+            double t = x[1]; x[1] = x[2]; x[2] = t;
+            t = y[1]; y[1] = y[2]; y[2] = t;
+        }
+        int expected[SIZE * SIZE];
+        const int count = centres_covered(x, y, expected);
+        luz_setup_result result = set_up((window_point){x[0], y[0]}, (window_point){x[1], y[1]},
+                                         (window_point){x[2], y[2]}, 0.0f, &triangle);
+        if (count == 0) {
+            assert_int_equal(result, LUZ_SETUP_OFFSCREEN);
+            dropped++;
+            continue;
+        }
+        assert_int_equal(result, LUZ_SETUP_VISIBLE);
+        kept++;
+        clear(framebuffer);
+        assert_int_equal(luz_raster_triangle(&triangle, 1, framebuffer, 0, SIZE), count);
+        for (int i = 0; i < SIZE * SIZE; i++)
+            assert_int_equal(framebuffer->visibility[i] == 1, expected[i]);
+    }
+    /* Both outcomes are exercised many times. */
+    assert_true(dropped > 500);
+    assert_true(kept > 500);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -358,6 +440,8 @@ int main(void)
                                         teardown_framebuffer),
         cmocka_unit_test_setup_teardown(test_bands_match_one_pass, setup_framebuffer,
                                         teardown_framebuffer),
+        cmocka_unit_test_setup_teardown(test_small_triangles_covering_no_centre_are_dropped,
+                                        setup_framebuffer, teardown_framebuffer),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

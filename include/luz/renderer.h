@@ -70,7 +70,9 @@ typedef struct luz_frame_stats {
                                      as submitted) were never looked at */
     uint64_t triangles_clipped;   /* triangles that crossed a clip plane */
     uint64_t triangles_culled;    /* back faces and zero-area triangles */
-    uint64_t triangles_rasterised;
+    uint64_t triangles_rasterised;  /* front faces that cover a pixel centre of
+                                       the viewport (a small one that falls
+                                       between centres is dropped at setup) */
     uint64_t fragments_tested;    /* depth tests, over all bands */
     uint64_t fragments_shaded;    /* pixels shaded (once each) */
     uint64_t memory_bytes;        /* what the renderer holds for its frames'

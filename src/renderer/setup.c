@@ -82,6 +82,31 @@ static luz_edge make_edge(int64_t xi, int64_t yi, int64_t xj, int64_t yj)
     return edge;
 }
 
+/* Boxes of at most this many pixels are tested for a covered centre
+ * before their planes are solved. */
+#define SMALL_BOX_PIXELS 16
+
+/* Whether any pixel centre of the triangle's box passes its three edge
+ * functions: E(X, Y) = a X + b Y + c >= 0 at X = 256 x + 128, Y = 256 y +
+ * 128, as raster.c tests them (the fill rule is in c). */
+static bool covers_a_centre(const luz_triangle *triangle)
+{
+    const int64_t half = LUZ_SUBPIXEL_ONE / 2;
+    for (int y = triangle->min_y; y <= triangle->max_y; y++) {
+        const int64_t sample_y = (int64_t)y * LUZ_SUBPIXEL_ONE + half;
+        for (int x = triangle->min_x; x <= triangle->max_x; x++) {
+            const int64_t sample_x = (int64_t)x * LUZ_SUBPIXEL_ONE + half;
+            bool inside = true;
+            for (int k = 0; k < 3; k++) {
+                const luz_edge *edge = &triangle->edges[k];
+                inside &= edge->a * sample_x + edge->b * sample_y + edge->c >= 0;
+            }
+            if (inside) return true;
+        }
+    }
+    return false;
+}
+
 /* The plane through (x_k, y_k, value_k), k = 0..2 (Cramer's rule on the
  * two edge vectors), given by its value at the reference point (rx, ry).
  * Inlined, so that the ten calls of a triangle share the differences of
@@ -156,6 +181,15 @@ luz_setup_result luz_setup_triangle(const luz_clip_vertex *v0, const luz_clip_ve
     out->edges[0] = make_edge(fixed_x[1], fixed_y[1], fixed_x[2], fixed_y[2]);
     out->edges[1] = make_edge(fixed_x[2], fixed_y[2], fixed_x[0], fixed_y[0]);
     out->edges[2] = make_edge(fixed_x[0], fixed_y[0], fixed_x[1], fixed_y[1]);
+
+    /* A small triangle often covers no pixel centre at all (a triangle of
+     * a million-triangle mesh is about a pixel in size, and half of those
+     * fall between centres). Its planes would never be read: test the few
+     * centres of its box with the rasteriser's own E >= 0 and drop it as
+     * if it were off screen. */
+    if ((max_x - min_x + 1) * (max_y - min_y + 1) <= SMALL_BOX_PIXELS &&
+        !covers_a_centre(out))
+        return LUZ_SETUP_OFFSCREEN;
 
     /* 5. Planes. Snapping is for coverage only: the planes are solved from
      * the exact window positions (as llvmpipe's lp_setup_tri.c does), or
