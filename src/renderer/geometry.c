@@ -56,6 +56,7 @@ typedef struct geometry_batch {
     uint32_t triangle_first, triangle_end;
     bool whole_draws;
     const luz_clip_vertex *vertices;
+    const luz_window_vertex *window;   /* the same vertices, projected */
     /* What it made, reused from frame to frame. */
     luz_triangle *triangles;
     size_t count, capacity;
@@ -67,10 +68,12 @@ typedef struct geometry_batch {
 typedef struct vertex_range {
     uint32_t draw, first, end;
     luz_clip_vertex *out;          /* the draw's vertex 0 in the arena */
+    luz_window_vertex *window;     /* the same, projected */
 } vertex_range;
 
 typedef struct vertex_scratch {
     luz_clip_vertex *vertices;
+    luz_window_vertex *window;
     uint32_t capacity;
 } vertex_scratch;
 
@@ -82,6 +85,8 @@ struct luz_geometry {
     size_t vertex_range_count, vertex_range_capacity;
     luz_clip_vertex *arena;        /* the big draws' vertices */
     size_t arena_capacity;
+    luz_window_vertex *window_arena;   /* the same, projected */
+    size_t window_arena_capacity;
     vertex_scratch *scratch;       /* one per thread, for small draws */
     bool *draw_outside;            /* per draw: wholly outside the clip volume */
     size_t draw_outside_capacity;
@@ -123,10 +128,14 @@ void luz_geometry_destroy(luz_geometry *geometry)
 {
     if (!geometry) return;
     for (int i = 0; i < geometry->batch_capacity; i++) free(geometry->batches[i].triangles);
-    for (int i = 0; i < geometry->thread_count; i++) free(geometry->scratch[i].vertices);
+    for (int i = 0; i < geometry->thread_count; i++) {
+        free(geometry->scratch[i].vertices);
+        free(geometry->scratch[i].window);
+    }
     free(geometry->batches);
     free(geometry->vertex_ranges);
     free(geometry->arena);
+    free(geometry->window_arena);
     free(geometry->scratch);
     free(geometry->draw_outside);
     free(geometry->band_slots);
@@ -143,10 +152,12 @@ size_t luz_geometry_memory(const luz_geometry *geometry)
     for (int i = 0; i < geometry->batch_capacity; i++)
         bytes += geometry->batches[i].capacity * sizeof(luz_triangle);
     for (int i = 0; i < geometry->thread_count; i++)
-        bytes += geometry->scratch[i].capacity * sizeof(luz_clip_vertex);
+        bytes += geometry->scratch[i].capacity *
+                 (sizeof(luz_clip_vertex) + sizeof(luz_window_vertex));
     bytes += (size_t)geometry->thread_count * sizeof *geometry->scratch;
     bytes += geometry->vertex_range_capacity * sizeof *geometry->vertex_ranges;
     bytes += geometry->arena_capacity * sizeof *geometry->arena;
+    bytes += geometry->window_arena_capacity * sizeof *geometry->window_arena;
     bytes += geometry->draw_outside_capacity * sizeof *geometry->draw_outside;
     bytes += geometry->band_slot_capacity * sizeof *geometry->band_slots;
     bytes += geometry->by_id_capacity * sizeof *geometry->by_id;
@@ -291,7 +302,9 @@ static int plan(luz_geometry *geometry, luz_thread_pool *pool, geometry_job *job
             arena_vertices += draw->mesh->vertex_count;
     }
     if (!reserve((void **)&geometry->arena, &geometry->arena_capacity, arena_vertices,
-                 sizeof *geometry->arena))
+                 sizeof *geometry->arena) ||
+        !reserve((void **)&geometry->window_arena, &geometry->window_arena_capacity,
+                 arena_vertices, sizeof *geometry->window_arena))
         return luz_error_set(error, "out of memory for the frame's %zu vertices",
                              arena_vertices);
 
@@ -317,6 +330,7 @@ static int plan(luz_geometry *geometry, luz_thread_pool *pool, geometry_job *job
         }
         open = NULL;
         luz_clip_vertex *vertices = geometry->arena + arena_used;
+        luz_window_vertex *window = geometry->window_arena + arena_used;
         const uint32_t vertex_count = draw->mesh->vertex_count;
         arena_used += vertex_count;
         for (uint32_t first = 0; first < vertex_count; first += VERTEX_BATCH) {
@@ -327,6 +341,7 @@ static int plan(luz_geometry *geometry, luz_thread_pool *pool, geometry_job *job
             range->end = vertex_count - first > VERTEX_BATCH ? first + VERTEX_BATCH
                                                              : vertex_count;
             range->out = vertices;
+            range->window = window;
         }
         const uint32_t triangle_count = triangles_of(draw);
         for (uint32_t first = 0; first < triangle_count; first += BATCH_TRIANGLES) {
@@ -339,6 +354,7 @@ static int plan(luz_geometry *geometry, luz_thread_pool *pool, geometry_job *job
             batch->triangle_end = triangle_count - first > BATCH_TRIANGLES
                                       ? first + BATCH_TRIANGLES : triangle_count;
             batch->vertices = vertices;
+            batch->window = window;
         }
     }
     return 0;
@@ -368,33 +384,37 @@ static void vertex_job(void *context, int range_index, int worker_index)
     const vertex_range *range = &job->geometry->vertex_ranges[range_index];
     luz_vertex_stage_range(&job->frame->draws[range->draw], job->uniforms->view_projection,
                            range->first, range->end, range->out);
+    luz_setup_project(range->out, range->first, range->end, job->width, job->height,
+                      range->window);
 }
 
 /* ---- batches: clipping and setup --------------------------------------- */
 
 static void set_up(geometry_batch *batch, const geometry_job *job, const luz_clip_vertex *a,
-                   const luz_clip_vertex *b, const luz_clip_vertex *c, uint32_t draw_index,
-                   uint32_t primitive)
+                   const luz_clip_vertex *b, const luz_clip_vertex *c,
+                   const luz_window_vertex *window_a, const luz_window_vertex *window_b,
+                   const luz_window_vertex *window_c, uint32_t draw_index, uint32_t primitive)
 {
     luz_triangle *out = &batch->triangles[batch->count];
-    luz_setup_result result = luz_setup_triangle(a, b, c, job->width, job->height, draw_index,
-                                                 job->uniforms->interpolation, out);
+    luz_setup_result result =
+        luz_setup_projected(a, b, c, window_a, window_b, window_c, job->width, job->height,
+                            draw_index, job->uniforms->interpolation, out);
     out->primitive = primitive;
     if (result == LUZ_SETUP_VISIBLE) batch->count++;
     else if (result == LUZ_SETUP_CULLED) batch->culled++;
 }
 
 /* Clips and sets up triangles [first, end) of draw draw_index, whose
- * clip-space vertices are at vertices. */
+ * clip-space vertices are at vertices, and projected at window. */
 static void triangles_of_draw(geometry_batch *batch, const geometry_job *job,
                               uint32_t draw_index, const luz_clip_vertex *vertices,
-                              uint32_t first, uint32_t end)
+                              const luz_window_vertex *window, uint32_t first, uint32_t end)
 {
     const uint32_t *indices = job->frame->draws[draw_index].mesh->indices;
     for (uint32_t t = first; t < end; t++) {
-        const luz_clip_vertex *a = &vertices[indices[3 * (size_t)t]];
-        const luz_clip_vertex *b = &vertices[indices[3 * (size_t)t + 1]];
-        const luz_clip_vertex *c = &vertices[indices[3 * (size_t)t + 2]];
+        const uint32_t ia = indices[3 * (size_t)t], ib = indices[3 * (size_t)t + 1],
+                       ic = indices[3 * (size_t)t + 2];
+        const luz_clip_vertex *a = &vertices[ia], *b = &vertices[ib], *c = &vertices[ic];
         batch->submitted++;
         /* A fan of a clipped triangle has at most this many triangles. */
         if (!reserve((void **)&batch->triangles, &batch->capacity,
@@ -407,17 +427,24 @@ static void triangles_of_draw(geometry_batch *batch, const geometry_job *job,
          * stage worked out each vertex's outcode). */
         const unsigned code_a = a->outcode, code_b = b->outcode, code_c = c->outcode;
         if ((code_a | code_b | code_c) == 0) {
-            set_up(batch, job, a, b, c, draw_index, t);
+            set_up(batch, job, a, b, c, &window[ia], &window[ib], &window[ic], draw_index, t);
             continue;
         }
         if (code_a & code_b & code_c) continue;   /* all outside one plane */
         batch->clipped++;
         luz_clip_polygon polygon;
         int count = luz_clip_triangle(a, b, c, &polygon);
-        /* Setup, for each triangle of the polygon's fan. */
+        /* The polygon's vertices are inside every plane: project each once
+         * (outcode 0 by construction), then set up each triangle of its
+         * fan. */
+        luz_window_vertex polygon_window[LUZ_CLIP_MAX_VERTICES];
+        for (int k = 0; k < count; k++) polygon.vertices[k].outcode = 0;
+        luz_setup_project(polygon.vertices, 0, (uint32_t)count, job->width, job->height,
+                          polygon_window);
         for (int k = 1; k + 1 < count; k++)
             set_up(batch, job, &polygon.vertices[0], &polygon.vertices[k],
-                   &polygon.vertices[k + 1], draw_index, t);
+                   &polygon.vertices[k + 1], &polygon_window[0], &polygon_window[k],
+                   &polygon_window[k + 1], draw_index, t);
     }
 }
 
@@ -443,7 +470,7 @@ static void batch_job(void *context, int batch_index, int worker_index)
     batch->out_of_memory = false;
 
     if (!batch->whole_draws) {
-        triangles_of_draw(batch, job, batch->draw_first, batch->vertices,
+        triangles_of_draw(batch, job, batch->draw_first, batch->vertices, batch->window,
                           batch->triangle_first, batch->triangle_end);
     } else {
         vertex_scratch *scratch = &geometry->scratch[worker_index];
@@ -454,16 +481,22 @@ static void batch_job(void *context, int batch_index, int worker_index)
             if (vertex_count > scratch->capacity) {
                 luz_clip_vertex *vertices =
                     realloc(scratch->vertices, (size_t)vertex_count * sizeof *vertices);
-                if (!vertices) {
+                if (vertices) scratch->vertices = vertices;
+                luz_window_vertex *window =
+                    realloc(scratch->window, (size_t)vertex_count * sizeof *window);
+                if (window) scratch->window = window;
+                if (!vertices || !window) {
                     batch->out_of_memory = true;
                     break;
                 }
-                scratch->vertices = vertices;
                 scratch->capacity = vertex_count;
             }
             /* Vertex stage, for a draw too small to be worth its own pass. */
             luz_vertex_stage(draw, job->uniforms->view_projection, scratch->vertices);
-            triangles_of_draw(batch, job, d, scratch->vertices, 0, triangles_of(draw));
+            luz_setup_project(scratch->vertices, 0, vertex_count, job->width, job->height,
+                              scratch->window);
+            triangles_of_draw(batch, job, d, scratch->vertices, scratch->window, 0,
+                              triangles_of(draw));
         }
     }
     if (!batch->out_of_memory)

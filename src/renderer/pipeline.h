@@ -179,8 +179,38 @@ typedef enum luz_setup_result {
     LUZ_SETUP_OFFSCREEN,   /* covers no pixel centre of the viewport */
 } luz_setup_result;
 
+/* A vertex after setup's steps 1 and 2 (divide, viewport, snap), which
+ * depend on the vertex alone: done once per vertex rather than once per
+ * triangle corner (a vertex of a closed mesh is a corner of six). Doubles:
+ * the planes are solved from these exact positions. */
+typedef struct luz_window_vertex {
+    double x, y;                /* window position, clamped to the fixed-point range */
+    double depth;               /* window depth, (z_ndc + 1) / 2 */
+    double inverse_w;           /* 1 / w */
+    int32_t fixed_x, fixed_y;   /* x, y snapped to 1/256 pixel (|X| <= 2^24) */
+} luz_window_vertex;
+
+/* fixed_x of a vertex with w <= 0 or a coordinate that is not finite:
+ * setup culls its triangles. */
+#define LUZ_WINDOW_INVALID INT32_MIN
+
+/* Projects vertices[first, end) into out[first, end) for a width x height
+ * viewport; vertices with a non-zero outcode are left alone (their
+ * triangles go to the clipper, whose polygon vertices are projected
+ * afresh). */
+void luz_setup_project(const luz_clip_vertex *vertices, uint32_t first, uint32_t end, int width,
+                       int height, luz_window_vertex *out);
+
+/* Sets up triangle (v0, v1, v2), projected as (p0, p1, p2) by
+ * luz_setup_project, for a width x height viewport. */
+luz_setup_result luz_setup_projected(const luz_clip_vertex *v0, const luz_clip_vertex *v1,
+                                     const luz_clip_vertex *v2, const luz_window_vertex *p0,
+                                     const luz_window_vertex *p1, const luz_window_vertex *p2,
+                                     int width, int height, uint32_t draw_index,
+                                     luz_interpolation interpolation, luz_triangle *out);
+
 /* Projects, snaps and sets up triangle (v0, v1, v2) for a width x height
- * viewport. With LUZ_INTERPOLATION_AFFINE the varying planes hold the
+ * viewport: luz_setup_project and luz_setup_projected in one. With LUZ_INTERPOLATION_AFFINE the varying planes hold the
  * varyings themselves and inverse_w is the constant 1 (the teaching
  * toggle); the fragment stages read both kinds the same way. */
 luz_setup_result luz_setup_triangle(const luz_clip_vertex *v0, const luz_clip_vertex *v1,

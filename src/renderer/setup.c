@@ -125,28 +125,52 @@ static inline __attribute__((always_inline)) luz_plane make_plane(const double x
     return plane;
 }
 
+void luz_setup_project(const luz_clip_vertex *vertices, uint32_t first, uint32_t end, int width,
+                       int height, luz_window_vertex *out)
+{
+    for (uint32_t i = first; i < end; i++) {
+        const luz_vec4 p = vertices[i].position;
+        luz_window_vertex *window = &out[i];
+        if (vertices[i].outcode != 0) continue;   /* only the clipper reads it */
+        if (!(p.w > 0.0f) || !isfinite(p.x) || !isfinite(p.y) || !isfinite(p.z)) {
+            window->fixed_x = LUZ_WINDOW_INVALID;   /* unreachable unless NaN */
+            continue;
+        }
+        /* 1-2. Divide, viewport, snap. */
+        window->inverse_w = 1.0 / p.w;
+        double x_ndc = p.x * window->inverse_w, y_ndc = p.y * window->inverse_w;
+        window->x = clamp_to_limit((x_ndc + 1.0) * 0.5 * width);
+        window->y = clamp_to_limit((1.0 - y_ndc) * 0.5 * height);
+        window->fixed_x = (int32_t)snap(window->x);
+        window->fixed_y = (int32_t)snap(window->y);
+        window->depth = (p.z * window->inverse_w + 1.0) * 0.5;
+    }
+}
+
 luz_setup_result luz_setup_triangle(const luz_clip_vertex *v0, const luz_clip_vertex *v1,
                                     const luz_clip_vertex *v2, int width, int height,
                                     uint32_t draw_index, luz_interpolation interpolation,
                                     luz_triangle *out)
 {
-    const luz_clip_vertex *vertex[3] = {v0, v1, v2};
-    int64_t fixed_x[3], fixed_y[3];
-    double x[3], y[3], depth[3], inverse_w[3];   /* x, y: exact, not snapped */
+    luz_clip_vertex vertices[3] = {*v0, *v1, *v2};
+    luz_window_vertex window[3];
+    for (int k = 0; k < 3; k++) vertices[k].outcode = 0;   /* project all three */
+    luz_setup_project(vertices, 0, 3, width, height, window);
+    return luz_setup_projected(v0, v1, v2, &window[0], &window[1], &window[2], width, height,
+                               draw_index, interpolation, out);
+}
 
-    /* 1-2. Divide, viewport, snap. */
-    for (int k = 0; k < 3; k++) {
-        luz_vec4 p = vertex[k]->position;
-        if (!(p.w > 0.0f) || !isfinite(p.x) || !isfinite(p.y) || !isfinite(p.z))
-            return LUZ_SETUP_CULLED;   /* unreachable after clipping, unless NaN */
-        inverse_w[k] = 1.0 / p.w;
-        double x_ndc = p.x * inverse_w[k], y_ndc = p.y * inverse_w[k];
-        x[k] = clamp_to_limit((x_ndc + 1.0) * 0.5 * width);
-        y[k] = clamp_to_limit((1.0 - y_ndc) * 0.5 * height);
-        fixed_x[k] = snap(x[k]);
-        fixed_y[k] = snap(y[k]);
-        depth[k] = (p.z * inverse_w[k] + 1.0) * 0.5;
-    }
+luz_setup_result luz_setup_projected(const luz_clip_vertex *v0, const luz_clip_vertex *v1,
+                                     const luz_clip_vertex *v2, const luz_window_vertex *p0,
+                                     const luz_window_vertex *p1, const luz_window_vertex *p2,
+                                     int width, int height, uint32_t draw_index,
+                                     luz_interpolation interpolation, luz_triangle *out)
+{
+    if (p0->fixed_x == LUZ_WINDOW_INVALID || p1->fixed_x == LUZ_WINDOW_INVALID ||
+        p2->fixed_x == LUZ_WINDOW_INVALID)
+        return LUZ_SETUP_CULLED;
+    const int64_t fixed_x[3] = {p0->fixed_x, p1->fixed_x, p2->fixed_x};
+    const int64_t fixed_y[3] = {p0->fixed_y, p1->fixed_y, p2->fixed_y};
 
     /* 3. Cull back faces and degenerate triangles. */
     int64_t doubled_area = (fixed_y[1] - fixed_y[0]) * (fixed_x[2] - fixed_x[0]) -
@@ -196,6 +220,9 @@ luz_setup_result luz_setup_triangle(const luz_clip_vertex *v0, const luz_clip_ve
      * every varying would be read as if its vertices had moved by up to
      * 1/512 pixel, enough to flip a nearest-filtered texel. They are stored
      * relative to the snapped vertex 0, which a float holds exactly. */
+    const double x[3] = {p0->x, p1->x, p2->x}, y[3] = {p0->y, p1->y, p2->y};
+    const double depth[3] = {p0->depth, p1->depth, p2->depth};
+    const double inverse_w[3] = {p0->inverse_w, p1->inverse_w, p2->inverse_w};
     double determinant = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
     if (!(determinant != 0.0) || !isfinite(determinant)) return LUZ_SETUP_CULLED;
     double inverse_determinant = 1.0 / determinant;
