@@ -713,7 +713,7 @@ static void test_legends_have_every_entry(void **state)
 {
     (void)state;
     /* mip: levels 0 to 8, 9 and up, and untextured, in the view's colours */
-    luz_legend legend = luz_legend_of(LUZ_VIEW_MIP, 2);
+    luz_legend legend = luz_legend_of(LUZ_VIEW_MIP, 2, 100);
     assert_int_equal(legend.entry_count, 11);
     for (int level = 0; level <= 9; level++) {
         luz_vec3 expected = luz_view_mip_colour(level);
@@ -725,18 +725,18 @@ static void test_legends_have_every_entry(void **state)
     assert_string_equal(legend.entries[8].label, "8");
     assert_near(legend.entries[10].colour.x, LUZ_VIEW_MIP_UNTEXTURED.x, 0.0f);
     /* overdraw: 0 to 7, and 8 or more */
-    legend = luz_legend_of(LUZ_VIEW_OVERDRAW, 2);
+    legend = luz_legend_of(LUZ_VIEW_OVERDRAW, 2, 100);
     assert_int_equal(legend.entry_count, 9);
     assert_string_equal(legend.entries[8].label, "8+");
     assert_near(legend.entries[8].colour.x, luz_view_overdraw_colour(100).x, 0.0f);
     /* bands: one per thread */
-    assert_int_equal(luz_legend_of(LUZ_VIEW_BANDS, 3).entry_count, 3);
-    assert_int_equal(luz_legend_of(LUZ_VIEW_BANDS, 1).entry_count, 1);
-    legend = luz_legend_of(LUZ_VIEW_BANDS, 3);
+    assert_int_equal(luz_legend_of(LUZ_VIEW_BANDS, 3, 100).entry_count, 3);
+    assert_int_equal(luz_legend_of(LUZ_VIEW_BANDS, 1, 100).entry_count, 1);
+    legend = luz_legend_of(LUZ_VIEW_BANDS, 3, 100);
     assert_near(legend.entries[2].colour.y, luz_view_thread_colour(2).y, 0.0f);
     /* depth: the greys the view draws at those distances, for SCENE.md's
      * projection; window depth from the distance by the matrix's z row */
-    legend = luz_legend_of(LUZ_VIEW_DEPTH, 2);
+    legend = luz_legend_of(LUZ_VIEW_DEPTH, 2, 100);
     assert_int_equal(legend.entry_count, 4);
     luz_mat4 projection = luz_mat4_perspective(luz_radians(45.0f), 16.0f / 9.0f, 0.1f, 100.0f);
     const double distances[4] = {0.1, 1.0, 10.0, 100.0};
@@ -747,13 +747,21 @@ static void test_legends_have_every_entry(void **state)
         assert_near(legend.entries[i].colour.x, grey, 2e-3f);
     }
     /* triangles: flat and edge shades */
-    legend = luz_legend_of(LUZ_VIEW_TRIANGLES, 2);
+    legend = luz_legend_of(LUZ_VIEW_TRIANGLES, 2, 100);
+    assert_int_equal(legend.entry_count, 6);
     assert_near(legend.entries[0].colour.x, luz_view_triangle_colour(1).x, 0.0f);
     assert_near(legend.entries[3].colour.x,
                 luz_view_triangle_colour(1).x * LUZ_VIEW_TRIANGLE_EDGE_SHADE, 1e-6f);
+    /* no swatch for a triangle the frame does not have */
+    legend = luz_legend_of(LUZ_VIEW_TRIANGLES, 2, 2);
+    assert_int_equal(legend.entry_count, 4);
+    assert_string_equal(legend.entries[1].label, "id 2");
+    assert_near(legend.entries[2].colour.x,
+                luz_view_triangle_colour(1).x * LUZ_VIEW_TRIANGLE_EDGE_SHADE, 1e-6f);
+    assert_int_equal(luz_legend_of(LUZ_VIEW_TRIANGLES, 2, 0).entry_count, 0);
     /* every view has a title; every entry a label */
     for (int view = 0; view < LUZ_VIEW_COUNT; view++) {
-        legend = luz_legend_of((luz_view)view, 4);
+        legend = luz_legend_of((luz_view)view, 4, 100);
         assert_non_null(legend.title);
         for (int e = 0; e < legend.entry_count; e++)
             assert_true(strlen(legend.entries[e].label) > 0);
@@ -761,7 +769,7 @@ static void test_legends_have_every_entry(void **state)
 
     /* Drawn, the entries wrap to the width given: nothing past it but the
      * title (which the HUD measures with the rest). */
-    legend = luz_legend_of(LUZ_VIEW_MIP, 2);
+    legend = luz_legend_of(LUZ_VIEW_MIP, 2, 100);
     luz_layer layer = {0};
     luz_layer_begin(&layer, 1000, 1000);
     luz_rect drawn = luz_legend_draw(&layer, &legend, 10, 20, 150, 1);

@@ -350,6 +350,50 @@ static void check_geometry(const luz_frame *frame, const probe_case *c,
     const bool comparable = !affine || probe->clipped_pieces == 0;
     const double px = probe->x + 0.5, py = probe->y + 0.5;
 
+    /* The corners: the vertex stage's clip-space positions, and setup's
+     * window positions, snapped to 1/256 of a pixel, with the depth there. */
+    double exact[3][3];   /* window x, y and depth of the unsnapped corners */
+    for (int k = 0; k < 3; k++) {
+        const double *p = corners.clip[k];
+        exact[k][0] = (p[0] / p[3] + 1.0) / 2.0 * WIDTH;
+        exact[k][1] = (1.0 - p[1] / p[3]) / 2.0 * HEIGHT;
+        exact[k][2] = (p[2] / p[3] + 1.0) / 2.0;
+    }
+    for (int k = 0; k < 3; k++) {
+        const float *clip = &probe->corner_clip[k].x;
+        for (int j = 0; j < 4; j++)
+            assert_near(clip[j], corners.clip[k][j], 1e-5 * (1.0 + fabs(corners.clip[k][j])));
+        const luz_vec3 window = probe->corner_window[k];
+        assert_true(window.x * 256.0f == floorf(window.x * 256.0f));
+        assert_true(window.y * 256.0f == floorf(window.y * 256.0f));
+        if (probe->clipped_pieces == 0) {
+            assert_near(window.x, exact[k][0], 1.0 / 512 + 1e-4);
+            assert_near(window.y, exact[k][1], 1.0 / 512 + 1e-4);
+            /* Window depth is affine on the screen: the plane through the
+             * exact corners, at the snapped one. */
+            const double ax = exact[1][0] - exact[0][0], ay = exact[1][1] - exact[0][1];
+            const double bx = exact[2][0] - exact[0][0], by = exact[2][1] - exact[0][1];
+            const double da = exact[1][2] - exact[0][2], db = exact[2][2] - exact[0][2];
+            const double determinant = ax * by - bx * ay;
+            const double dx = (da * by - db * ay) / determinant;
+            const double dy = (db * ax - da * bx) / determinant;
+            assert_near(window.z,
+                        exact[0][2] + dx * (window.x - exact[0][0]) +
+                            dy * (window.y - exact[0][1]),
+                        2e-5);
+        }
+    }
+    /* The pixel centre lies in the window triangle, which is
+     * counter-clockwise in NDC, so clockwise with y down: each edge
+     * function (x_j - x_i)(py - y_i) - (y_j - y_i)(px - x_i) <= 0. */
+    for (int k = 0; k < 3; k++) {
+        const luz_vec3 from = probe->corner_window[(k + 1) % 3],
+                       to = probe->corner_window[(k + 2) % 3];
+        const double e = ((double)to.x - from.x) * (py - from.y) -
+                         ((double)to.y - from.y) * (px - from.x);
+        assert_true(e <= 1e-9);
+    }
+
     const dvec3 b = d3(probe->barycentric);
     assert_near(b.x + b.y + b.z, 1.0, 1e-5);
     if (comparable) {
@@ -1109,7 +1153,9 @@ static void the_text(void **state)
     assert_true(probe->triangle != 0);
     char *text = written(probe, &names);
     const char *order[] = {"pixel=", "size=", "time=", "test=1 ", "object=", "mesh=",
-                           "triangle=", "barycentric=", "w=", "P=", "N=", "uv=", "texture=",
+                           "triangle=", "corner0_clip=", "corner1_clip=", "corner2_clip=",
+                           "clipped=", "corner0_window=", "corner1_window=", "corner2_window=",
+                           "barycentric=", "w=", "P=", "N=", "uv=", "texture=",
                            "rho=", "lod=", "levels=", "weight=", "texel=", "ambient=",
                            "diffuse=", "specular=", "point=", "spot=", "directional=",
                            "light=", "C=", "colour=", "bytes="};
@@ -1165,6 +1211,65 @@ static void the_text(void **state)
     free(d);
 }
 
+/* The README's tour follows pixel (700, 450) of the default frame at
+ * 1280x720: its corners, worked out here by hand from SCENE.md's numbers
+ * (the cube table's +Z face, cube 0 at the origin and not yet turned at
+ * t = 0, the camera at (0, 0, 3) looking down -z, a 45 degree field of
+ * view, near 0.1, far 100), not from the frame's matrices. */
+static void the_tour_pixel(void **state)
+{
+    (void)state;
+    enum { TOUR_WIDTH = 1280, TOUR_HEIGHT = 720 };
+    const luz_scene scene = luz_scene_defaults();
+    luz_frame frame = {0};
+    assert_int_equal(luz_scene_build_frame(test_lab(), &scene, textures.textures, textures.count,
+                                           (float)TOUR_WIDTH / TOUR_HEIGHT, &frame, NULL),
+                     0);
+    luz_error error = {{0}};
+    luz_renderer *renderer =
+        luz_renderer_create(&(luz_renderer_desc){.thread_count = 1}, &error);
+    assert_non_null(renderer);
+    luz_framebuffer *framebuffer = luz_framebuffer_create(TOUR_WIDTH, TOUR_HEIGHT, &error);
+    assert_non_null(framebuffer);
+    luz_pixel_probe *probe = calloc(1, sizeof *probe);
+    assert_non_null(probe);
+    *probe = (luz_pixel_probe){.x = 700, .y = 450};
+    assert_int_equal(
+        luz_renderer_draw(renderer, &frame, framebuffer, &(luz_render_options){.probe = probe},
+                          &error),
+        0);
+
+    /* The first triangle of the +Z face, vertices 0, 1, 2, drawn first. */
+    assert_int_equal(probe->triangle, 1);
+    assert_int_equal(probe->draw, 0);
+    assert_int_equal(probe->primitive, 0);
+    assert_int_equal(probe->clipped_pieces, 0);
+    const double corner[3][3] = {{-0.5, -0.5, 0.5}, {0.5, -0.5, 0.5}, {0.5, 0.5, 0.5}};
+    const double pi = 3.14159265358979323846;
+    const double f = 1.0 / tan(45.0 / 2.0 * pi / 180.0), aspect = 1280.0 / 720.0;
+    const double near = 0.1, far = 100.0;
+    for (int k = 0; k < 3; k++) {
+        assert_int_equal(probe->vertices[k], k);
+        /* eye space: the camera's translation only */
+        const double x = corner[k][0], y = corner[k][1], z = corner[k][2] - 3.0;
+        const double clip[4] = {f / aspect * x, f * y,
+                                (far + near) / (near - far) * z + 2 * far * near / (near - far),
+                                -z};
+        const float *got = &probe->corner_clip[k].x;
+        for (int j = 0; j < 4; j++) assert_near(got[j], clip[j], 1e-6 * (1.0 + fabs(clip[j])));
+        const double window_x = (clip[0] / clip[3] + 1.0) / 2.0 * TOUR_WIDTH;
+        const double window_y = (1.0 - clip[1] / clip[3]) / 2.0 * TOUR_HEIGHT;
+        /* setup's snap to the nearest 1/256 pixel */
+        assert_near(probe->corner_window[k].x, round(window_x * 256.0) / 256.0, 1e-9);
+        assert_near(probe->corner_window[k].y, round(window_y * 256.0) / 256.0, 1e-9);
+        assert_near(probe->corner_window[k].z, (clip[2] / clip[3] + 1.0) / 2.0, 1e-6);
+    }
+    free(probe);
+    luz_framebuffer_destroy(framebuffer);
+    luz_renderer_destroy(renderer);
+    luz_frame_free(&frame);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1181,6 +1286,7 @@ int main(void)
         cmocka_unit_test(bytes_before_the_hook_in_bgra),
         cmocka_unit_test(only_the_triangles_drawn),
         cmocka_unit_test(the_text),
+        cmocka_unit_test(the_tour_pixel),
     };
     return cmocka_run_group_tests(tests, load_textures, free_textures);
 }

@@ -214,11 +214,69 @@ static void test_the_panel_leaves_the_pixel_in_sight(void **state)
     probe->x--;
     layout = luz_probe_panel_layout_for(1280, 720, probe, &names, false);
     assert_true(layout.box.x > 6);
-    /* too narrow for either corner to leave it */
+    /* too narrow for either bottom corner to leave it: the top-right one */
     probe->x = 200;
     probe->y = 200;
     layout = luz_probe_panel_layout_for(400, 300, probe, &names, false);
+    assert_int_equal(layout.box.x + layout.box.width, 400 - 6);
+    assert_int_equal(layout.box.y, 6);
+    assert_true(layout.box.y + layout.box.height <= 200 - 9);
+    /* hidden in every corner: it stays in the bottom-left one */
+    probe->x = 200;
+    probe->y = 150;
+    layout = luz_probe_panel_layout_for(400, 300, probe, &names, false);
     assert_int_equal(layout.box.x, 6);
+    assert_int_equal(layout.box.y + layout.box.height, 300 - 6);
+    free(probe);
+}
+
+/* In a small window the whole story would cover most of it: the panel
+ * leaves out the six term rows, whose bars the light row's bar still
+ * shows end to end, and lists fewer tests, to stay within half the
+ * window's area. */
+static void test_a_small_window_gets_a_compact_panel(void **state)
+{
+    (void)state;
+    luz_pixel_probe *probe = hand_made_probe();
+    probe->x = 20;
+    probe->y = 20;
+    const luz_scene scene = luz_scene_defaults();
+    const luz_probe_names names = {.scene = &scene};
+    luz_probe_panel_layout layout = luz_probe_panel_layout_for(1280, 720, probe, &names, false);
+    assert_false(layout.compact);
+    const int whole_rows = layout.row_count;
+    assert_false(luz_probe_panel_layout_for(640, 360, probe, &names, false).compact);
+
+    layout = luz_probe_panel_layout_for(480, 270, probe, &names, false);
+    assert_true(layout.compact);
+    assert_true(layout.box.width * layout.box.height <= 480 * 270 / 2);
+    assert_true(layout.row_count < whole_rows - LUZ_TERM_COUNT + 1);
+    assert_true(layout.box.y >= 0 && layout.box.y + layout.box.height <= 270);
+    const int expected[LUZ_TERM_COUNT] = {14, 42, 0, 21, 35, 7};
+    picture p;
+    picture_begin(&p, 480, 270);
+    luz_probe_panel_draw(&p.layer, probe, &names, false);
+    picture_fill(&p);
+    for (int term = 0; term < LUZ_TERM_COUNT; term++) {
+        assert_int_equal(layout.term_bar[term].width, 0);
+        assert_int_equal(layout.light_bar[term].width, expected[term]);
+        if (expected[term] > 0)
+            assert_filled(&p, layout.light_bar[term], luz_probe_term_colour((luz_term)term));
+    }
+    assert_filled(&p, layout.swatch[LUZ_PROBE_SWATCH_BYTES], (luz_rgba){255, 54, 71, 255});
+    picture_end(&p);
+
+    /* A long history: cut to the half, and counted. */
+    probe->test_count = probe->tests_kept = 40;
+    for (int k = 0; k < 40; k++)
+        probe->tests[k] = (luz_probe_test){.triangle = (uint32_t)(k + 1), .depth = 0.5f,
+                                           .stored = 1.0f, .passed = k == 0};
+    layout = luz_probe_panel_layout_for(480, 400, probe, &names, false);
+    assert_true(layout.compact);
+    assert_true(layout.box.width * layout.box.height <= 480 * 400 / 2);
+    assert_true(layout.history_rows > 0 && layout.history_rows < 40);
+    layout = luz_probe_panel_layout_for(480, 270, probe, &names, false);
+    assert_true(layout.box.width * layout.box.height <= 480 * 270 / 2);
     free(probe);
 }
 
@@ -275,6 +333,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_bars_are_the_terms),
         cmocka_unit_test(test_a_long_history_fits_a_small_window),
+        cmocka_unit_test(test_a_small_window_gets_a_compact_panel),
         cmocka_unit_test(test_the_panel_leaves_the_pixel_in_sight),
         cmocka_unit_test(test_background_and_a_view),
         cmocka_unit_test(test_marker_leaves_the_pixel),

@@ -10,9 +10,10 @@
  *                 triangle, its depth there, the depth the buffer held and
  *                 whether it passed (LESS); the last test that passed is
  *                 the winner, the triangle the visibility buffer keeps
- *   the winner    its draw, its triangle in the draw's mesh, the
- *                 perspective-correct barycentric coordinates of the pixel
- *                 centre in that triangle, and w
+ *   the winner    its draw, its triangle in the draw's mesh, that
+ *                 triangle's corners in clip space and in window
+ *                 coordinates, the perspective-correct barycentric
+ *                 coordinates of the pixel centre in it, and w
  *   the varyings  world position P, normal N (re-normalised), uv
  *   the texture   the footprint rho, the level of detail the sampler used,
  *                 the mip levels and their blend, the texel T
@@ -85,6 +86,15 @@ struct luz_pixel_probe {
                                indices 3 primitive .. 3 primitive + 2; -1 if
                                it could not be told (out of memory) */
     uint32_t vertices[3];   /* those indices */
+    luz_vec4 corner_clip[3];   /* those vertices in clip space, as the vertex
+                                  stage gives them: projection x view x
+                                  model x position */
+    luz_vec3 corner_window[3]; /* the winner's corners (for a clipped
+                                  primitive, those of its piece) as setup
+                                  placed them: window x and y in pixels,
+                                  row 0 on top, snapped to 1/256 of a pixel,
+                                  and the window depth that the triangle's
+                                  depth plane gives there */
     int clipped_pieces;     /* 0: not clipped; else the primitive was cut
                                into a fan of this many triangles ... */
     int piece;              /* ... of which this is the piece-th (from 0) */

@@ -29,7 +29,7 @@ static luz_vec3 grey(float value)
     return (luz_vec3){value, value, value};
 }
 
-luz_legend luz_legend_of(luz_view view, int thread_count)
+luz_legend luz_legend_of(luz_view view, int thread_count, uint64_t triangle_count)
 {
     luz_legend legend;
     memset(&legend, 0, sizeof legend);
@@ -88,19 +88,22 @@ luz_legend luz_legend_of(luz_view view, int thread_count)
             add(&legend, luz_view_thread_colour(worker), label);
         }
         break;
-    case LUZ_VIEW_TRIANGLES:
+    case LUZ_VIEW_TRIANGLES: {
         legend.title = "triangles: a colour each; darker where a neighbour is another's";
-        for (uint32_t id = 1; id <= 3; id++) {
+        /* Examples, the first three ids, of those the frame has. */
+        const uint32_t shown = triangle_count < 3 ? (uint32_t)triangle_count : 3;
+        for (uint32_t id = 1; id <= shown; id++) {
             snprintf(label, sizeof label, "id %u", (unsigned)id);
             add(&legend, luz_view_triangle_colour(id), label);
         }
-        for (uint32_t id = 1; id <= 3; id++) {
+        for (uint32_t id = 1; id <= shown; id++) {
             snprintf(label, sizeof label, "%u at an edge", (unsigned)id);
             add(&legend, luz_vec3_scale(luz_view_triangle_colour(id),
                                         LUZ_VIEW_TRIANGLE_EDGE_SHADE),
                 label);
         }
         break;
+    }
     case LUZ_VIEW_COUNT:
         break;
     }

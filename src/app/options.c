@@ -236,8 +236,9 @@ static const option_spec option_table[] = {
      .default_text = "off"},
     /* A question about one run, not part of a scene. */
     {.name = "probe", .kind = OPTION_PROBE, .syntax = "X,Y",
-     .summary = "explain pixel X,Y (row 0 on top): its depth tests, the winning triangle, "
-                "its varyings, texel, six light terms and bytes; luz-render prints them on "
+     .summary = "explain pixel X,Y (row 0 on top): its depth tests, the winning triangle "
+                "and its corners in clip space and on the screen, its varyings, texel, six "
+                "light terms and bytes; luz-render prints them on "
                 "stdout, one key=value a line, and writes a PNG only with -o; the viewer "
                 "opens its probe panel on the pixel",
      .default_text = "off"},

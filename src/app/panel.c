@@ -557,7 +557,11 @@ void luz_hud_draw(luz_layer *layer, const luz_hud *hud)
     room -= 2 * MARGIN * s + 2 * PAD * s;   /* the text's width inside the box */
     int text_height;
     int width = hud_flow(&text, s, room, &text_height);
-    luz_legend legend = luz_legend_of(scene->view, hud->threads);
+    /* In the step mode the picture holds step_shown of the triangles. */
+    const uint64_t drawn = hud->step_shown > 0 && hud->step_shown < hud->step_total
+                               ? hud->step_shown
+                               : hud->step_total;
+    luz_legend legend = luz_legend_of(scene->view, hud->threads, drawn);
     const bool show_legend = scene->view != LUZ_VIEW_COLOR;
     luz_rect legend_rect = {0, 0, 0, 0};
     if (show_legend) {

@@ -215,9 +215,11 @@ typedef struct luz_legend {
 } luz_legend;
 
 /* Every entry of the view's key; the bands view has one per thread of
- * thread_count (at most LUZ_LEGEND_MAX_ENTRIES). The colour view has a
- * title and no entries. */
-luz_legend luz_legend_of(luz_view view, int thread_count);
+ * thread_count (at most LUZ_LEGEND_MAX_ENTRIES), the triangles view a
+ * flat and an edge swatch for each of the frame's first triangles, ids 1
+ * to min(3, triangle_count), so that it names none the picture lacks. The
+ * colour view has a title and no entries. */
+luz_legend luz_legend_of(luz_view view, int thread_count, uint64_t triangle_count);
 
 /* Draws the legend with its top-left corner at (x, y), the title on the
  * first line and the swatches in as many rows as max_width needs, at text
@@ -266,7 +268,9 @@ typedef struct luz_hud {
     bool paused;
     bool panel_open;
     uint32_t step_shown;      /* the step mode's triangles drawn, 0 when off */
-    uint64_t step_total;      /* and the frame's triangles */
+    uint64_t step_total;      /* and the frame's triangles (rasterised), also
+                                 when it is off: the triangles view's legend
+                                 shows no more ids than the frame has */
     uint64_t triangles;       /* the last frame's, submitted */
     const luz_scene *scene;   /* its view and interpolation are shown too, with
                                  the view's legend (luz_legend_of) */

@@ -178,8 +178,10 @@ static void add_view_rows(panel_rows *rows, const luz_pixel_probe *probe)
     if (detail[0] != '\0') add_text(rows, dim_colour, "%s%s", luz_view_name(probe->view), detail);
 }
 
+/* compact: the six term rows left out (the light row's bar still shows
+ * each term, in its colour, end to end). */
 static void panel_rows_of(panel_rows *rows, const luz_pixel_probe *probe,
-                          const luz_probe_names *names, bool frozen)
+                          const luz_probe_names *names, bool frozen, bool compact)
 {
     rows->count = 0;
     char a[96], b[96], c[96];
@@ -237,7 +239,7 @@ static void panel_rows_of(panel_rows *rows, const luz_pixel_probe *probe,
             format_vec3(a, sizeof a, probe->texel);
             add_swatch(row, LUZ_PROBE_SWATCH_TEXEL, "T", swatch_of(probe->texel), a);
 
-            for (int term = 0; term < LUZ_TERM_COUNT; term++) {
+            for (int term = 0; term < LUZ_TERM_COUNT && !compact; term++) {
                 row = add_row(rows, ROW_TERM, text_colour);
                 if (row == NULL) break;
                 row->term = term;
@@ -321,18 +323,45 @@ static bool rects_overlap(luz_rect a, luz_rect b)
            b.y < a.y + a.height;
 }
 
+static int widest_row(const panel_rows *rows, int s)
+{
+    int inner = 0;
+    for (int i = 0; i < rows->count; i++) {
+        int w = row_width(&rows->rows[i], s);
+        if (w > inner) inner = w;
+    }
+    return inner;
+}
+
+/* compact: panel_rows_of's, and the history cut to keep the box within
+ * half the frame's area. */
 static luz_probe_panel_layout layout_rows(int width, int height, const luz_pixel_probe *probe,
-                                          panel_rows *rows)
+                                          panel_rows *rows, bool compact)
 {
     luz_probe_panel_layout layout;
     memset(&layout, 0, sizeof layout);
     const int s = (width >= 2200 && height >= 1200) ? 2 : 1;
     layout.scale = s;
     layout.row_height = ROW * s;
+    layout.compact = compact;
 
     /* History rows that do not fit under the rest are left out (and
-     * counted in a last row). */
-    const int room = (height - 2 * MARGIN * s - 2 * PAD * s) / layout.row_height;
+     * counted in a last row); compact, also those that would take the box
+     * past half the frame's area, and all of them if not one fits. */
+    int room = (height - 2 * MARGIN * s - 2 * PAD * s) / layout.row_height;
+    if (compact) {
+        const int box_width = widest_row(rows, s) + 2 * PAD * s;
+        const int half = (int)((long long)width * height / 2 / box_width);
+        const int rows_in_half = (half - 2 * PAD * s) / layout.row_height;
+        if (rows_in_half < room) room = rows_in_half;
+        if (room <= rows->first_history && rows->count > rows->first_history &&
+            rows->first_history > 0) {
+            rows->count = rows->first_history;
+            panel_row *header = &rows->rows[rows->first_history - 1];
+            snprintf(header->text, sizeof header->text, "%d depth test%s (listed in a larger window)",
+                     probe->test_count, probe->test_count == 1 ? "" : "s");
+        }
+    }
     layout.history_rows = rows->count - rows->first_history;
     if (rows->count > room && room > rows->first_history) {
         rows->count = room - 1;
@@ -344,22 +373,29 @@ static luz_probe_panel_layout layout_rows(int width, int height, const luz_pixel
     }
     layout.row_count = rows->count;
 
-    int inner = 0;
-    for (int i = 0; i < rows->count; i++) {
-        int w = row_width(&rows->rows[i], s);
-        if (w > inner) inner = w;
-    }
+    const int inner = widest_row(rows, s);
     const int box_height = rows->count * layout.row_height + 2 * PAD * s;
     layout.box = (luz_rect){MARGIN * s, height - MARGIN * s - box_height, inner + 2 * PAD * s,
                             box_height};
     /* The panel must not hide the pixel it explains, nor its marker: if the
-     * bottom-left corner would, the bottom-right one, if that does not. */
+     * bottom-left corner would, the bottom-right one, if that does not,
+     * else the top-right one (away from the HUD). A pixel that both bottom
+     * corners hide lies in both boxes' columns, so the two top corners
+     * hide it alike. */
     const luz_rect around = {probe->x - MARKER_REACH, probe->y - MARKER_REACH,
                              2 * MARKER_REACH + 1, 2 * MARKER_REACH + 1};
     if (rects_overlap(layout.box, around)) {
-        luz_rect right = layout.box;
-        right.x = width - MARGIN * s - right.width;
-        if (!rects_overlap(right, around)) layout.box = right;
+        const int right = width - MARGIN * s - layout.box.width, top = MARGIN * s;
+        const int corners[2][2] = {{right, layout.box.y}, {right, top}};
+        for (int k = 0; k < 2; k++) {
+            luz_rect moved = layout.box;
+            moved.x = corners[k][0];
+            moved.y = corners[k][1];
+            if (!rects_overlap(moved, around)) {
+                layout.box = moved;
+                break;
+            }
+        }
     }
 
     /* The swatches, after their labels. */
@@ -405,6 +441,20 @@ static luz_probe_panel_layout layout_rows(int width, int height, const luz_pixel
     return layout;
 }
 
+/* The whole story, or, where its box would cover more than half the
+ * frame's area, the compact one. */
+static luz_probe_panel_layout rows_and_layout(panel_rows *rows, int width, int height,
+                                              const luz_pixel_probe *probe,
+                                              const luz_probe_names *names, bool frozen)
+{
+    panel_rows_of(rows, probe, names, frozen, false);
+    luz_probe_panel_layout layout = layout_rows(width, height, probe, rows, false);
+    if ((long long)layout.box.width * layout.box.height <= (long long)width * height / 2)
+        return layout;
+    panel_rows_of(rows, probe, names, frozen, true);
+    return layout_rows(width, height, probe, rows, true);
+}
+
 luz_probe_panel_layout luz_probe_panel_layout_for(int width, int height,
                                                   const luz_pixel_probe *probe,
                                                   const luz_probe_names *names, bool frozen)
@@ -413,8 +463,7 @@ luz_probe_panel_layout luz_probe_panel_layout_for(int width, int height,
     memset(&layout, 0, sizeof layout);
     panel_rows *rows = malloc(sizeof *rows);
     if (rows == NULL) return layout;
-    panel_rows_of(rows, probe, names, frozen);
-    layout = layout_rows(width, height, probe, rows);
+    layout = rows_and_layout(rows, width, height, probe, names, frozen);
     free(rows);
     return layout;
 }
@@ -434,8 +483,8 @@ void luz_probe_panel_draw(luz_layer *layer, const luz_pixel_probe *probe,
 {
     panel_rows *rows = malloc(sizeof *rows);
     if (rows == NULL) return;
-    panel_rows_of(rows, probe, names, frozen);
-    const luz_probe_panel_layout layout = layout_rows(layer->width, layer->height, probe, rows);
+    const luz_probe_panel_layout layout =
+        rows_and_layout(rows, layer->width, layer->height, probe, names, frozen);
     const int s = layout.scale;
     luz_overlay_fill(layer, layout.box, box_colour);
     const char *hint = "E: mode  Shift+E: close";

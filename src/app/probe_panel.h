@@ -8,8 +8,10 @@
  * panel keeps the story it had (a new click still asks again). Shift+E
  * forgets the pixel. luz-render --probe prints the same story as text.
  *
- * The panel, in the bottom-left corner (the bottom-right one when the
- * other would hide the pixel it explains):
+ * The panel, in the bottom-left corner (else the bottom-right or the
+ * top-right one, the first that does not hide the pixel it explains).
+ * Where it would cover more than half the frame (a small window), it is
+ * compact: the six term rows go, and the history lists fewer tests:
  *
  *     PROBE 700,450                        E: mode  Shift+E: close
  *     cube 0  mesh 0  triangle 1  primitive 0
@@ -53,7 +55,7 @@ typedef enum luz_probe_swatch {
 } luz_probe_swatch;
 
 /* Where the panel's parts are, for a framebuffer of width x height and a
- * probe: the box, one row per line, the swatches (zero size when absent),
+ * probe (compact where the whole would cover more than half of it): the box, one row per line, the swatches (zero size when absent),
  * the bars of the six terms and of their sum (whose segments are the six
  * bars, end to end, in order). */
 #define LUZ_PROBE_PANEL_MAX_ROWS 64
@@ -67,6 +69,11 @@ typedef struct luz_probe_panel_layout {
     float bar_scale;                   /* the value a bar's full width stands for */
     int bar_width;                     /* that full width in pixels */
     int history_rows;                  /* tests listed (the others counted) */
+    bool compact;                      /* the whole story would cover more than
+                                          half the frame: no term rows (the
+                                          light row's bar still shows each
+                                          term), and the history cut to keep
+                                          the box within half the frame */
     luz_rect swatch[LUZ_PROBE_SWATCH_COUNT];
 } luz_probe_panel_layout;
 

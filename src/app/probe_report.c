@@ -76,6 +76,19 @@ static void line_vec3(FILE *out, const char *key, luz_vec3 value)
     fputc('\n', out);
 }
 
+static void line_vec4(FILE *out, const char *key, luz_vec4 value)
+{
+    fprintf(out, "%s=", key);
+    put_float(out, value.x);
+    fputc(',', out);
+    put_float(out, value.y);
+    fputc(',', out);
+    put_float(out, value.z);
+    fputc(',', out);
+    put_float(out, value.w);
+    fputc('\n', out);
+}
+
 /* A name the user's files gave: any character that could break the line
  * or the terminal shows as '?'. */
 static void line_name(FILE *out, const char *key, const char *name)
@@ -129,11 +142,20 @@ static void write_winner(FILE *out, const luz_pixel_probe *probe, const luz_prob
         fprintf(out, "primitive=%d\nvertices=%lu,%lu,%lu\n", probe->primitive,
                 (unsigned long)probe->vertices[0], (unsigned long)probe->vertices[1],
                 (unsigned long)probe->vertices[2]);
+        char key[32];
+        for (int k = 0; k < 3; k++) {
+            snprintf(key, sizeof key, "corner%d_clip", k);
+            line_vec4(out, key, probe->corner_clip[k]);
+        }
         if (probe->clipped_pieces > 0)
             fprintf(out, "clipped=yes\npiece=%d\npieces=%d\n", probe->piece,
                     probe->clipped_pieces);
         else
             fputs("clipped=no\n", out);
+        for (int k = 0; k < 3; k++) {
+            snprintf(key, sizeof key, "corner%d_window", k);
+            line_vec3(out, key, probe->corner_window[k]);
+        }
         line_vec3(out, "barycentric", probe->barycentric);
     } else {
         fputs("primitive=unknown\n", out);

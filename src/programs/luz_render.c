@@ -85,6 +85,7 @@ typedef struct render_context {
     luz_frame frame;
     luz_layer layer;       /* --legend and --mark, drawn over every frame */
     bool has_layer;
+    int thread_count;      /* the renderer's, for the bands view's legend */
 } render_context;
 
 /* The renderer's hook: the legend's and the marks' share of a band. */
@@ -94,9 +95,17 @@ static void fill_layer_rows(void *layer, luz_framebuffer *framebuffer, int first
     luz_layer_draw_rows(layer, framebuffer, first_row, end_row);
 }
 
+/* Does the legend depend on the frame? The triangles view's shows as
+ * many ids as the frame has triangles (up to 3), known once it is drawn. */
+static bool legend_of_the_frame(const luz_options *options)
+{
+    return options->legend && options->scene.view == LUZ_VIEW_TRIANGLES;
+}
+
 /* Records what --legend and --mark draw over the image; they are the same
- * for every frame. */
-static int record_layer(render_context *context, int thread_count, luz_error *error)
+ * for every frame, but for the legend of a frame of triangle_count
+ * triangles (legend_of_the_frame). */
+static int record_layer(render_context *context, uint64_t triangle_count, luz_error *error)
 {
     const luz_options *options = context->options;
     const bool legend = options->legend && options->scene.view != LUZ_VIEW_COLOR;
@@ -106,7 +115,8 @@ static int record_layer(render_context *context, int thread_count, luz_error *er
     luz_layer *layer = &context->layer;
     luz_layer_begin(layer, options->width, options->height);
     if (legend) {
-        const luz_legend key = luz_legend_of(options->scene.view, thread_count);
+        const luz_legend key =
+            luz_legend_of(options->scene.view, context->thread_count, triangle_count);
         luz_legend_draw_in_corner(layer, &key);
     }
     /* Rings twice the size in a large image, where a picture is shown
@@ -131,13 +141,26 @@ static int render_at(render_context *context, luz_renderer *renderer, double tim
                               context->textures->count, aspect, &context->frame, error) != 0)
         return -1;
     luz_render_options render = luz_scene_render_options(&scene);
+    /* The legend and marks, filled band by band over the finished rows;
+     * a legend of the frame's own is recorded once the frame is drawn,
+     * and drawn over the whole image then. */
+    const bool after = context->has_layer && legend_of_the_frame(context->options);
+    luz_frame_stats own_stats;
+    if (after && stats == NULL)
+        stats = &own_stats;
     render.stats = stats;
-    /* The legend and marks, filled band by band over the finished rows. */
     const luz_band_hook fill_layer = {fill_layer_rows, &context->layer};
-    if (context->has_layer)
+    if (context->has_layer && !after)
         render.hook = &fill_layer;
     render.probe = probe;
-    return luz_renderer_draw(renderer, &context->frame, context->framebuffer, &render, error);
+    if (luz_renderer_draw(renderer, &context->frame, context->framebuffer, &render, error) != 0)
+        return -1;
+    if (after) {
+        if (record_layer(context, stats->triangles_rasterised, error) != 0)
+            return -1;
+        luz_layer_draw(&context->layer, context->framebuffer);
+    }
+    return 0;
 }
 
 /* --probe X,Y: the frame at --time, drawn once, the pixel's story on
@@ -359,7 +382,8 @@ int main(int argc, char **argv)
     context.framebuffer = luz_framebuffer_create(options.width, options.height, &error);
     if (context.framebuffer == NULL)
         goto done;
-    if (record_layer(&context, luz_renderer_thread_count(renderer), &error) != 0)
+    context.thread_count = luz_renderer_thread_count(renderer);
+    if (record_layer(&context, 0, &error) != 0)
         goto done;
     if ((options.bench_frames > 0 ? bench(&context, renderer, &error)
          : options.probe          ? render_probe(&context, renderer, &error)

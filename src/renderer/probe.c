@@ -20,12 +20,15 @@
  *                band's is cleared. Same tests, same order, same outcomes:
  *                the last that passed is the triangle the visibility
  *                buffer kept.
- *   primitive    Ids follow submission order, so the winner is the k-th
- *                visible set-up triangle of its draw. The draw's triangles
- *                go through the vertex stage, the clipper and setup again
- *                (as geometry.c's triangles_of_draw sends them) until the k-th
- *                comes up, and it is checked against the pipeline's own
- *                triangle, field by field.
+ *   primitive    The winner records its mesh triangle (geometry.c). Its
+ *                three vertices go through the vertex stage, the clipper
+ *                and setup again (as geometry.c's triangles_of_draw sends
+ *                them) to find the piece of a clipped fan that won, checked
+ *                against the pipeline's own triangle, field by field.
+ *   corners      The vertex stage's clip-space positions of the three
+ *                vertices; the winner's window corners, read back from
+ *                setup's snapped reference point and edges, and its depth
+ *                plane there.
  *   barycentric  The same clipping and setup with the three vertices'
  *                position varyings replaced by (1, 0, 0), (0, 1, 0) and
  *                (0, 0, 1): the clipper carries them to the vertices it
@@ -137,7 +140,7 @@ static bool same_triangle(const luz_triangle *a, const luz_triangle *b)
     return true;
 }
 
-/* The frame's setup, as frame.c calls it. */
+/* The frame's setup, as geometry.c calls it. */
 static luz_setup_result set_up(const luz_clip_vertex *a, const luz_clip_vertex *b,
                                const luz_clip_vertex *c, const luz_framebuffer *framebuffer,
                                const luz_uniforms *uniforms, uint32_t draw_index,
@@ -158,11 +161,33 @@ static void barycentric_corners(const luz_clip_vertex *const corners[3], luz_cli
     }
 }
 
+/* The corners of a set-up triangle, read back from setup's own output:
+ * vertex 0 is the reference point, which setup snapped to 1/256 of a pixel
+ * and a float holds exactly, and edge k runs from vertex k + 1 to vertex
+ * k + 2 with a = dy and b = -dx in those units (setup.c, step 4), so
+ * vertex 1 = vertex 0 + (-b, a) of edge 2 and vertex 2 = vertex 0 + (b, -a)
+ * of edge 1. The depth there is the triangle's depth plane's. */
+static void window_corners(const luz_triangle *triangle, luz_vec3 out[3])
+{
+    const double one = LUZ_SUBPIXEL_ONE;
+    const int64_t x0 = llrint((double)triangle->reference_x * one);
+    const int64_t y0 = llrint((double)triangle->reference_y * one);
+    const int64_t x[3] = {x0, x0 - triangle->edges[2].b, x0 + triangle->edges[1].b};
+    const int64_t y[3] = {y0, y0 + triangle->edges[2].a, y0 - triangle->edges[1].a};
+    const luz_plane depth = triangle->depth;
+    for (int k = 0; k < 3; k++) {
+        const float window_x = (float)((double)x[k] / one), window_y = (float)((double)y[k] / one);
+        out[k] = (luz_vec3){window_x, window_y,
+                            depth.value + depth.dx * (window_x - triangle->reference_x) +
+                                depth.dy * (window_y - triangle->reference_y)};
+    }
+}
+
 /* Explains the winner's mesh triangle (geometry.c records its index):
- * its three vertices through the vertex stage, the clipper and setup
- * again, to find which triangle of a clipped fan won and to carry the
- * barycentric coordinates through the same clip, setup and interpolation
- * as varyings. Leaves primitive at -1 if memory runs out or (never
+ * its three vertices through the vertex stage (whose clip-space positions
+ * the probe keeps), the clipper and setup again, to find which triangle of
+ * a clipped fan won and to carry the barycentric coordinates through the
+ * same clip, setup and interpolation as varyings. Leaves primitive at -1 if memory runs out or (never
  * expected) setup does not give the pipeline's triangle again. */
 static void find_primitive(luz_pixel_probe *probe, const luz_uniforms *uniforms,
                            const luz_draw *draw, const luz_triangle *winner,
@@ -198,7 +223,11 @@ static void find_primitive(luz_pixel_probe *probe, const luz_uniforms *uniforms,
 
         /* Found. The barycentric coordinates ride along as varyings. */
         probe->primitive = (int)winner->primitive;
-        for (int k = 0; k < 3; k++) probe->vertices[k] = mesh->indices[i + (uint32_t)k];
+        for (int k = 0; k < 3; k++) {
+            probe->vertices[k] = mesh->indices[i + (uint32_t)k];
+            probe->corner_clip[k] = corners[k]->position;
+        }
+        window_corners(winner, probe->corner_window);
         probe->clipped_pieces = clipped ? pieces : 0;
         probe->piece = piece;
         luz_clip_vertex weighted[3];
