@@ -192,17 +192,21 @@ static double element(const luz_mat4 *m, int row, int column)
 /* Whether every point of the mesh's bounding box, through the model and
  * view_projection matrices, is outside one of clip.c's six planes, by a
  * margin: then so is every vertex, and clipping would reject each of the
- * draw's triangles (all three outcodes share that plane's bit). The clip
- * coordinates are affine in the object position, so a plane's distance
- * is below zero over the box when it is at the eight corners; computed in
- * double with a margin of 1e-4 of the coordinates' size, far beyond the
- * float rounding of the vertex stage, so a draw is dropped only where the
- * renderer would have drawn nothing of it. */
+ * draw's triangles (all three outcodes share that plane's bit).
+ *
+ * The clip coordinates are affine in the object position, so over the box
+ * (centre c, half extents h along the object axes) a plane's distance
+ * d = k . clip, a fixed combination k of (x, y, z, w), is largest at one
+ * corner: max d = k . M c + sum over axes a of |k . M_a| h_a, where M_a is
+ * M's column a (the "positive vertex" of Greene's box-frustum test). The
+ * draw goes when that maximum is below minus a margin of 1e-4 of the
+ * coordinates' size over the box, far beyond the float rounding of the
+ * vertex stage, so a draw is dropped only where the renderer would have
+ * drawn nothing of it. In double: one 4x4 product, then six planes of a
+ * few multiplies each. */
 static bool outside_the_clip_volume(const luz_draw *draw, const luz_mat4 *view_projection)
 {
-    /* M = view_projection * model, then the box as its centre and half
-     * extents: corner = centre +- half.x +- half.y +- half.z, each through
-     * M as four columns. */
+    /* M = view_projection * model. */
     double m[4][4];
     for (int r = 0; r < 4; r++)
         for (int c = 0; c < 4; c++) {
@@ -217,28 +221,39 @@ static bool outside_the_clip_volume(const luz_draw *draw, const luz_mat4 *view_p
     const double half[3] = {0.5 * ((double)bounds.max.x - bounds.min.x),
                             0.5 * ((double)bounds.max.y - bounds.min.y),
                             0.5 * ((double)bounds.max.z - bounds.min.z)};
+    /* The box in clip space: its centre and its three half axes. */
     double clip_centre[4], axis[3][4];
     for (int r = 0; r < 4; r++) {
         clip_centre[r] = m[r][0] * centre[0] + m[r][1] * centre[1] + m[r][2] * centre[2] + m[r][3];
         for (int a = 0; a < 3; a++) axis[a][r] = m[r][a] * half[a];
     }
     const double g = LUZ_CLIP_GUARD_BAND;
-    unsigned all_outside = 0x3f;
-    for (int corner = 0; corner < 8 && all_outside; corner++) {
-        double clip[4];
-        for (int r = 0; r < 4; r++)
-            clip[r] = clip_centre[r] + (corner & 1 ? axis[0][r] : -axis[0][r]) +
-                      (corner & 2 ? axis[1][r] : -axis[1][r]) +
-                      (corner & 4 ? axis[2][r] : -axis[2][r]);
-        const double x = clip[0], y = clip[1], z = clip[2], w = clip[3];
-        const double margin = 1e-4 * (fabs(x) + fabs(y) + fabs(z) + fabs(w) * g);
-        const double distance[6] = {w + z, w - z, g * w + x, g * w - x, g * w + y, g * w - y};
-        unsigned outside = 0;
-        for (int plane = 0; plane < 6; plane++)
-            if (distance[plane] < -margin) outside |= 1u << plane;
-        all_outside &= outside;
+    /* The margin, at least the largest of 1e-4 (|x| + |y| + |z| + g |w|)
+     * over the box. */
+    double size = 0.0;
+    for (int r = 0; r < 4; r++) {
+        double extent = fabs(clip_centre[r]);
+        for (int a = 0; a < 3; a++) extent += fabs(axis[a][r]);
+        size += r == 3 ? g * extent : extent;
     }
-    return all_outside != 0;
+    const double margin = 1e-4 * size;
+    /* clip.c's planes as combinations of (x, y, z, w): near w + z, far
+     * w - z, left g w + x, right g w - x, bottom g w + y, top g w - y. */
+    static const double planes[LUZ_CLIP_PLANE_COUNT][4] = {
+        {0, 0, 1, 1}, {0, 0, -1, 1}, {1, 0, 0, LUZ_CLIP_GUARD_BAND},
+        {-1, 0, 0, LUZ_CLIP_GUARD_BAND}, {0, 1, 0, LUZ_CLIP_GUARD_BAND},
+        {0, -1, 0, LUZ_CLIP_GUARD_BAND},
+    };
+    for (int plane = 0; plane < LUZ_CLIP_PLANE_COUNT; plane++) {
+        const double *k = planes[plane];
+        double largest = k[0] * clip_centre[0] + k[1] * clip_centre[1] + k[2] * clip_centre[2] +
+                         k[3] * clip_centre[3];
+        for (int a = 0; a < 3; a++)
+            largest += fabs(k[0] * axis[a][0] + k[1] * axis[a][1] + k[2] * axis[a][2] +
+                            k[3] * axis[a][3]);
+        if (largest < -margin) return true;
+    }
+    return false;
 }
 
 /* Draws per job of the culling pass. */
