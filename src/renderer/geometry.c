@@ -60,6 +60,10 @@ typedef struct geometry_batch {
     /* What it made, reused from frame to frame. */
     luz_triangle *triangles;
     size_t count, capacity;
+    /* Per triangle, the bands its box touches, first | last << 16: what
+     * binning reads, 4 bytes a triangle instead of the whole record. */
+    uint32_t *band_ranges;
+    size_t band_range_capacity;
     size_t first_id;
     uint64_t submitted, clipped, culled;
     bool out_of_memory;
@@ -127,7 +131,10 @@ luz_geometry *luz_geometry_create(int thread_count)
 void luz_geometry_destroy(luz_geometry *geometry)
 {
     if (!geometry) return;
-    for (int i = 0; i < geometry->batch_capacity; i++) free(geometry->batches[i].triangles);
+    for (int i = 0; i < geometry->batch_capacity; i++) {
+        free(geometry->batches[i].triangles);
+        free(geometry->batches[i].band_ranges);
+    }
     for (int i = 0; i < geometry->thread_count; i++) {
         free(geometry->scratch[i].vertices);
         free(geometry->scratch[i].window);
@@ -150,7 +157,8 @@ size_t luz_geometry_memory(const luz_geometry *geometry)
     size_t bytes = sizeof *geometry;
     bytes += (size_t)geometry->batch_capacity * sizeof *geometry->batches;
     for (int i = 0; i < geometry->batch_capacity; i++)
-        bytes += geometry->batches[i].capacity * sizeof(luz_triangle);
+        bytes += geometry->batches[i].capacity * sizeof(luz_triangle) +
+                 geometry->batches[i].band_range_capacity * sizeof(uint32_t);
     for (int i = 0; i < geometry->thread_count; i++)
         bytes += geometry->scratch[i].capacity *
                  (sizeof(luz_clip_vertex) + sizeof(luz_window_vertex));
@@ -463,15 +471,29 @@ static void triangles_of_draw(geometry_batch *batch, const geometry_job *job,
     }
 }
 
+/* Each triangle's bands, while its record is still in the cache (a band
+ * index fits 16 bits: LUZ_MAX_DIMENSION / band height < 2^16). */
+static bool find_band_ranges(geometry_batch *batch, int band_height)
+{
+    if (!reserve((void **)&batch->band_ranges, &batch->band_range_capacity, batch->count,
+                 sizeof *batch->band_ranges))
+        return false;
+    for (size_t i = 0; i < batch->count; i++) {
+        const luz_triangle *triangle = &batch->triangles[i];
+        batch->band_ranges[i] = (uint32_t)(triangle->min_y / band_height) |
+                                (uint32_t)(triangle->max_y / band_height) << 16;
+    }
+    return true;
+}
+
 /* Counts the first count triangles of a batch per band, into its row. */
-static void count_per_band(const geometry_batch *batch, size_t count, int band_height,
-                           size_t *row, int band_count)
+static void count_per_band(const geometry_batch *batch, size_t count, size_t *row,
+                           int band_count)
 {
     memset(row, 0, (size_t)band_count * sizeof *row);
     for (size_t i = 0; i < count; i++) {
-        const luz_triangle *triangle = &batch->triangles[i];
-        for (int b = triangle->min_y / band_height; b <= triangle->max_y / band_height; b++)
-            row[b]++;
+        const uint32_t range = batch->band_ranges[i];
+        for (uint32_t b = range & 0xffff; b <= range >> 16; b++) row[b]++;
     }
 }
 
@@ -514,8 +536,10 @@ static void batch_job(void *context, int batch_index, int worker_index)
                               triangles_of(draw));
         }
     }
+    if (!batch->out_of_memory && !find_band_ranges(batch, job->band_height))
+        batch->out_of_memory = true;
     if (!batch->out_of_memory)
-        count_per_band(batch, batch->count, job->band_height,
+        count_per_band(batch, batch->count,
                        geometry->band_slots + (size_t)batch_index * job->band_count,
                        job->band_count);
 }
@@ -549,7 +573,7 @@ static int number(luz_geometry *geometry, geometry_job *job, size_t limit, luz_e
         const geometry_batch *batch = &geometry->batches[k];
         if (batch->first_id + batch->count - 1 <= job->binned) continue;
         size_t kept = batch->first_id > job->binned ? 0 : job->binned - batch->first_id + 1;
-        count_per_band(batch, kept, job->band_height,
+        count_per_band(batch, kept,
                        geometry->band_slots + (size_t)k * band_count, band_count);
     }
 
@@ -581,13 +605,12 @@ static void bin_job(void *context, int batch_index, int worker_index)
     luz_geometry *geometry = job->geometry;
     const geometry_batch *batch = &geometry->batches[batch_index];
     size_t *slot = geometry->band_slots + (size_t)batch_index * job->band_count;
-    const int band_height = job->band_height;
     for (size_t i = 0; i < batch->count; i++) {
         const size_t id = batch->first_id + i;
-        const luz_triangle *triangle = &batch->triangles[i];
-        geometry->by_id[id] = triangle;
+        geometry->by_id[id] = &batch->triangles[i];
         if (id > job->binned) continue;
-        for (int b = triangle->min_y / band_height; b <= triangle->max_y / band_height; b++)
+        const uint32_t range = batch->band_ranges[i];
+        for (uint32_t b = range & 0xffff; b <= range >> 16; b++)
             geometry->band_ids[slot[b]++] = (uint32_t)id;
     }
 }
