@@ -84,9 +84,12 @@ static _Noreturn void run_child(const char *path, int pipe_end, const luz_model_
                                 luz_model_child_work work, const void *context)
 {
     signal(SIGPIPE, SIG_IGN);
-    /* ^C ends it with the parent, whatever the parent does with SIGINT */
-    signal(SIGINT, SIG_DFL);
-    signal(SIGTERM, SIG_DFL);
+    /* A crash ends the child with its signal, which the parent reports,
+     * whatever handlers the parent had (a test framework's, a sanitizer's,
+     * whose report would go to /dev/null); ^C ends it with the parent. */
+    static const int ending[] = {SIGSEGV, SIGBUS, SIGILL, SIGFPE, SIGABRT, SIGXCPU,
+                                 SIGINT, SIGTERM, SIGHUP};
+    for (size_t i = 0; i < sizeof ending / sizeof ending[0]; i++) signal(ending[i], SIG_DFL);
     int nothing = open("/dev/null", O_RDWR | O_CLOEXEC);
     if (nothing >= 0) {
         dup2(nothing, STDIN_FILENO);
@@ -121,24 +124,26 @@ static _Noreturn void run_child(const char *path, int pipe_end, const luz_model_
 }
 
 /* Reaps the child, killing it first if it has not exited by the deadline
- * (or at once, if kill_now). */
+ * (or at once, if kill_now); *killed says whether it was. */
 static void reap(pid_t child, double deadline, bool kill_now, int *wait_status,
                  struct rusage *usage, bool *killed)
 {
     *killed = false;
     for (;;) {
-        pid_t done = wait4(child, wait_status, kill_now ? 0 : WNOHANG, usage);
+        if (kill_now && !*killed) {
+            kill(child, SIGKILL);
+            *killed = true;
+        }
+        pid_t done = wait4(child, wait_status, *killed ? 0 : WNOHANG, usage);
         if (done == child) return;
         if (done < 0 && errno != EINTR) {
             *wait_status = 0;   /* cannot happen for our own child */
             return;
         }
-        if (done == 0 && now_seconds() >= deadline) kill_now = true;
-        if (kill_now && !*killed) {
-            kill(child, SIGKILL);
-            *killed = true;
+        if (done == 0) {
+            if (now_seconds() >= deadline) kill_now = true;
+            else nanosleep(&(struct timespec){0, 5 * 1000 * 1000}, NULL);
         }
-        if (done == 0) nanosleep(&(struct timespec){0, 5 * 1000 * 1000}, NULL);
     }
 }
 
