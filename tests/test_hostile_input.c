@@ -39,6 +39,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/types.h>
@@ -1369,7 +1370,9 @@ static void test_model_child_ends(void **state)
 }
 
 /* luz_model_load through its child, a sound model and a refused one:
- * no zombie, no descriptor left open. */
+ * no zombie, no descriptor left open. luz's process holds 4 GiB of
+ * address space first (as it may, with a gigabyte of textures and other
+ * models): the child's memory limit is on top of that. */
 static void test_model_load_leaves_nothing(void **state)
 {
     (void)state;
@@ -1381,6 +1384,12 @@ static void test_model_load_leaves_nothing(void **state)
     sandbox_create(&box);
     sandbox_text(&box, "m.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     sandbox_text(&box, "bad.obj", "v 0 0 0\nf 1 2 9\n");
+    /* (MAP_ANONYMOUS is not POSIX: /dev/zero, private, is the same) */
+    int zero = open("/dev/zero", O_RDONLY | O_CLOEXEC);
+    assert_true(zero >= 0);
+    void *held = mmap(NULL, (size_t)4 << 30, PROT_NONE, MAP_PRIVATE, zero, 0);
+    close(zero);
+    assert_true(held != MAP_FAILED);
     const int descriptors = open_descriptors();
     char path[600];
     luz_model model;
@@ -1397,6 +1406,7 @@ static void test_model_load_leaves_nothing(void **state)
     assert_int_equal(waitpid(-1, NULL, WNOHANG), -1);
     assert_int_equal(errno, ECHILD);
     assert_int_equal(open_descriptors(), descriptors);
+    munmap(held, (size_t)4 << 30);
     remove_tree(box.root);
 }
 

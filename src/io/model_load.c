@@ -190,7 +190,7 @@ static int decode_embedded(const luz_described_texture *embedded, const char *na
 /* The texture a material names, decoded once: embedded in the file (the
  * import found it, as "*N" or by the embedded texture's own file name),
  * else a file relative to the model's directory, a backslash read as a
- * slash (files written on Windows say `.\\tex\\a.jpg`). */
+ * slash (files written on Windows say `.\tex\a.jpg`). */
 static int load_texture(model_reading *reading, const char *name, int32_t embedded,
                         const luz_texture **out, luz_error *error)
 {

@@ -79,6 +79,22 @@ static void lower_limit(int resource, rlim_t soft, rlim_t hard)
     setrlimit(resource, &(struct rlimit){soft, hard});
 }
 
+/* The address space this process takes now, in bytes (the first field of
+ * /proc/self/statm, in pages); 0 if it cannot be told. */
+static uint64_t address_space_bytes(void)
+{
+    int descriptor = open("/proc/self/statm", O_RDONLY | O_CLOEXEC);
+    if (descriptor < 0) return 0;
+    char text[128];
+    ssize_t length = read(descriptor, text, sizeof text - 1);
+    close(descriptor);
+    if (length <= 0) return 0;
+    text[length] = '\0';
+    unsigned long long pages = strtoull(text, NULL, 10);
+    long page_size = sysconf(_SC_PAGESIZE);
+    return page_size > 0 ? pages * (uint64_t)page_size : 0;
+}
+
 /* The child: its limits, its work, what it found down the pipe, _exit. */
 static _Noreturn void run_child(const char *path, int pipe_end, const luz_model_limits *limits,
                                 luz_model_child_work work, const void *context)
@@ -101,8 +117,12 @@ static _Noreturn void run_child(const char *path, int pipe_end, const luz_model_
     /* at the soft limit SIGXCPU, a second later SIGKILL */
     const rlim_t cpu = (rlim_t)limits->cpu_seconds + 1;
     lower_limit(RLIMIT_CPU, cpu, cpu + 1);
-    if (limits->memory_bytes > 0)
-        lower_limit(RLIMIT_AS, (rlim_t)limits->memory_bytes, (rlim_t)limits->memory_bytes);
+    if (limits->memory_bytes > 0) {
+        /* on top of what the child shares with luz's process (the cube
+         * textures, models read before): the limit is assimp's alone */
+        const rlim_t memory = (rlim_t)(address_space_bytes() + limits->memory_bytes);
+        lower_limit(RLIMIT_AS, memory, memory);
+    }
     luz_model_writer writer = {.descriptor = pipe_end};
     luz_error error = {{0}};
     int status = work(context, limits->memory_bytes, &writer, &error);

@@ -20,11 +20,15 @@
 #include "io/model_description.h"
 #include "luz/error.h"
 
-/* The limits for a model file of file_size bytes: 30 s of CPU time and
- * 1 s more a MiB; a wall-clock deadline of twice that and 10 s more (the
- * machine may be busy); 1 GiB of address space and 16 bytes more for
- * each byte of the file (a 1.1 GB OBJ of 10 million triangles needs
- * about ... ); descriptions at most as long as the memory limit. Under
+/* The limits for a model file of file_size bytes: 10 s of CPU time and
+ * 0.5 s more a MiB; a wall-clock deadline of twice that and 10 s more
+ * (the machine may be busy); 1 GiB of address space and 16 bytes more for
+ * each byte of the file, on top of what the child shares with luz's
+ * process when it starts. A 1.1 GB OBJ of 10 million triangles (gen-model's
+ * torus knot) takes under 70 s of CPU time and 13 GB of address space,
+ * within its 550 s and 19 GB; the fuzzer's OpenGEX file that loops is
+ * stopped after 10 s, its PLY file that allocates 1 GB at once.
+ * Descriptions may be at most as long as the memory limit. Under
  * AddressSanitizer or ThreadSanitizer, which reserve terabytes of address
  * space, the address space is not limited (memory_bytes 0). */
 #define LUZ_MODEL_SECONDS 10.0
@@ -35,7 +39,8 @@
 typedef struct luz_model_limits {
     double cpu_seconds;        /* RLIMIT_CPU of the child */
     double wall_seconds;       /* from fork to the child's end */
-    uint64_t memory_bytes;     /* RLIMIT_AS of the child; 0: none */
+    uint64_t memory_bytes;     /* RLIMIT_AS of the child, above what it has
+                                  from the parent; 0: none */
     uint64_t description_bytes;   /* the most the child may send */
 } luz_model_limits;
 
