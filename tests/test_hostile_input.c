@@ -1329,7 +1329,7 @@ static void test_model_child_ends(void **state)
         /* 1 s of CPU time, or 3 s on the clock on a busy machine */
         {CHILD_SPIN, LUZ_BAD_INPUT, true, "x.obj: assimp took more than "},
         {CHILD_SLEEP, LUZ_BAD_INPUT, true, "x.obj: assimp took more than 3 s to read it"},
-        {CHILD_ALLOCATE, LUZ_BAD_INPUT, false, "x.obj: reading it needs more than 256 MiB"},
+        {CHILD_ALLOCATE, LUZ_BAD_INPUT, false, "x.obj: assimp needs more than 256 MiB to read it"},
         {CHILD_LIE, LUZ_BAD_INPUT, true,
          "x.obj: assimp's process sent a description luz cannot read"},
         {CHILD_FLOOD, LUZ_BAD_INPUT, true, "x.obj: assimp's process sent more than 1 MiB"},

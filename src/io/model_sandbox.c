@@ -129,8 +129,8 @@ static _Noreturn void run_child(const char *path, int pipe_end, const luz_model_
     if (status == LUZ_MACHINE_FAILED && limits->memory_bytes > 0) {
         /* out of memory within the limit: the file asked for too much */
         status = LUZ_BAD_INPUT;
-        luz_error_set(&error, "%s: reading it needs more than %llu MiB (luz's limit for a "
-                              "model file of this size)", path,
+        luz_error_set(&error, "%s: assimp needs more than %llu MiB to read it (luz's limit "
+                              "for a model file of this size)", path,
                       (unsigned long long)(limits->memory_bytes >> 20));
     }
     if (status != 0) {
