@@ -88,7 +88,7 @@ static void put(luz_model_writer *writer, const void *bytes, size_t length)
     const unsigned char *from = bytes;
     while (length > 0 && writer->status == 0) {
         if (writer->length == writer->capacity) {
-            if (writer->descriptor >= 0 && writer->capacity >= WRITER_CHUNK) {
+            if (writer->descriptor >= 0 && writer->capacity > 0) {   /* full: down the pipe */
                 luz_model_writer_flush(writer);
                 continue;
             }

@@ -40,7 +40,9 @@
 /* ---- writing ------------------------------------------------------------------------------ */
 
 /* Where a description goes: a growing buffer (descriptor -1), or a pipe,
- * written whenever a mebibyte has gathered. */
+ * written whenever the buffer is full: a mebibyte, or the caller's own
+ * buffer (bytes and capacity set, length 0; not freed here), which a
+ * process out of memory can still write its refusal through. */
 typedef struct luz_model_writer {
     int descriptor;           /* -1: keep the whole description in bytes */
     unsigned char *bytes;

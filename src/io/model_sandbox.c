@@ -123,7 +123,10 @@ static _Noreturn void run_child(const char *path, int pipe_end, const luz_model_
         const rlim_t memory = (rlim_t)(address_space_bytes() + limits->memory_bytes);
         lower_limit(RLIMIT_AS, memory, memory);
     }
-    luz_model_writer writer = {.descriptor = pipe_end};
+    /* the writer's buffer, which needs no memory that may have run out */
+    unsigned char buffer[64 << 10];
+    luz_model_writer writer = {.descriptor = pipe_end, .bytes = buffer,
+                               .capacity = sizeof buffer};
     luz_error error = {{0}};
     int status = work(context, limits->memory_bytes, &writer, &error);
     if (status == LUZ_MACHINE_FAILED && limits->memory_bytes > 0) {
@@ -135,8 +138,7 @@ static _Noreturn void run_child(const char *path, int pipe_end, const luz_model_
     }
     if (status != 0) {
         /* after what was written of the description: the reader stops at
-         * the refusal. A writer that ran out of memory has room for it in
-         * the buffer it has; one whose pipe broke has no reader. */
+         * the refusal. (A writer whose pipe broke has no reader.) */
         writer.status = 0;
         luz_model_write_refusal(&writer, status, error.message);
     }
