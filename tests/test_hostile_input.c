@@ -39,6 +39,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/types.h>
@@ -50,9 +51,25 @@
 
 #include "file_support.h"
 
+/* AddressSanitizer and ThreadSanitizer reserve terabytes of address space:
+ * no limit on it can be set under them, and their reports end a
+ * process. */
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define LUZ_TEST_SANITIZED 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
+#define LUZ_TEST_SANITIZED 1
+#endif
+#endif
+#ifndef LUZ_TEST_SANITIZED
+#define LUZ_TEST_SANITIZED 0
+#endif
+
 #include "app/options.h"
 #include "io/input_file.h"
 #include "io/model.h"
+#include "io/model_description.h"
+#include "io/model_sandbox.h"
 #include "io/textures.h"
 
 /* ---- bytes ------------------------------------------------------------------------------- */
@@ -1164,7 +1181,9 @@ static void test_crafted_textures(void **state)
 
 /* The models that hung or crashed Debian's assimp 5.2.5 under luz's
  * fuzzer, which luz now refuses before they can (io/model_guards.c and
- * model_load.c's check_imported): exit status 2 at once, one line. Their
+ * model_import.c's check_imported), or stops within the limits of the
+ * process it reads models in (io/model_sandbox.h): exit status 2, one
+ * line. Their
  * files are in tests/fuzz/assimp-findings/ ($FUZZ_FINDINGS); its
  * README.md says what each did. */
 static void test_assimp_findings_refused(void **state)
@@ -1184,14 +1203,38 @@ static void test_assimp_findings_refused(void **state)
         {"ply-triangulate-assert.ply", "assimp's importer gave mesh 0 a face with no corners"},
         {"ply-empty-face.ply", "assimp's importer gave mesh 0 a face with no corners"},
         {"glb-length.glb", "a binary glTF whose header claims 1112 bytes, the file has 417"},
+        /* the findings no check keeps out, stopped by the limits assimp
+         * runs under in its own process (io/model_sandbox.h): */
+        /* a parser that reads past its buffer and loops: 10 s of CPU
+         * time; under AddressSanitizer, its report ends the process */
+#if LUZ_TEST_SANITIZED
+        {"opengex-heap-over-read.glb", "assimp"},
+#else
+        {"opengex-heap-over-read.glb", "assimp took more than"},
+#endif
+        /* 245 million indices: over 1 GiB (under the sanitizers, which
+         * cannot limit memory, over 10 s) */
+#if LUZ_TEST_SANITIZED
+        {"ply-slow-list-count.ply", "assimp took more than"},
+#else
+        {"ply-slow-list-count.ply", "needs more than 1024 MiB to read it (luz's limit"},
+#endif
+        /* 4.5 s before assimp refuses it: within the limit, or (under the
+         * sanitizers, over 10 s) not */
+#if LUZ_TEST_SANITIZED
+        {"ply-slow-truncated.ply", ""},
+#else
+        {"ply-slow-truncated.ply", "the model has zero size"},
+#endif
     };
     sandbox box;
     sandbox_create(&box);
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         char path[1024];
         snprintf(path, sizeof path, "%s/%s", findings, cases[i].file);
-        assert_render_refuses(&box, ARGS("--model", path, "--textures", "none", "-o", "x.png"), 20,
-                              path, cases[i].needle);
+        /* generous: the limit is 10 s of CPU time, 30 s on the clock */
+        assert_render_refuses(&box, ARGS("--model", path, "--textures", "none", "-o", "x.png"),
+                              120, path, cases[i].needle);
     }
     /* the PLY check reads an element count as a number: one more than
      * the file's bytes is refused, and a header that ends is let through */
@@ -1205,6 +1248,165 @@ static void test_assimp_findings_refused(void **state)
     if (strstr(error.message, "big.ply: PLY header line 3: 99999 elements in a file of 70 "
                               "bytes") == NULL)
         fail_msg("%s", error.message);
+    remove_tree(box.root);
+}
+
+/* ---- the process models are read in (io/model_sandbox.h) ---------------------------------- */
+
+/* What a child of luz_model_run_isolated does instead of assimp's import,
+ * for each way a child can end. */
+enum child_act { CHILD_SEGV, CHILD_ILL, CHILD_SPIN, CHILD_SLEEP, CHILD_ALLOCATE, CHILD_LIE,
+                 CHILD_FLOOD, CHILD_REFUSE, CHILD_EXIT };
+
+static int misbehave(const void *context, uint64_t memory_limit, luz_model_writer *writer,
+                     luz_error *error)
+{
+    (void)memory_limit;
+    switch (*(const enum child_act *)context) {
+    case CHILD_SEGV: raise(SIGSEGV); break;
+    case CHILD_ILL: raise(SIGILL); break;
+    case CHILD_SPIN:
+        for (volatile unsigned long i = 0;; i++) {}
+    case CHILD_SLEEP:
+        for (;;) pause();
+    case CHILD_ALLOCATE:
+        /* until malloc fails: touched, so that it is memory */
+        for (;;) {
+            char *block = malloc((size_t)16 << 20);
+            if (block == NULL) {
+                luz_error_set(error, "x.obj: out of memory");
+                return LUZ_MACHINE_FAILED;
+            }
+            memset(block, 1, (size_t)16 << 20);
+        }
+    case CHILD_LIE: {
+        /* a part of a million vertices, and not one of them sent */
+        const luz_described_part part = {.vertex_count = 1000000, .triangle_count = 1,
+                                         .mesh_name = "", .material_name = "",
+                                         .texture_name = "", .embedded = -1};
+        luz_model_write_part_start(writer, &part);
+        luz_model_write_end(writer, 1, 0);
+        return 0;
+    }
+    case CHILD_FLOOD: {
+        static unsigned char zeros[1 << 16];
+        for (int i = 0; i < 64; i++) luz_model_write_vertices(writer, (const luz_vertex *)zeros,
+                                                              sizeof zeros / sizeof(luz_vertex));
+        return 0;
+    }
+    case CHILD_REFUSE:
+        return luz_error_set(error, "x.obj: refused\nwith a second line");
+    case CHILD_EXIT:
+        _exit(3);
+    }
+    return 0;
+}
+
+static int open_descriptors(void)
+{
+    int count = 0;
+    for (int fd = 0; fd < 1024; fd++) count += fcntl(fd, F_GETFD) != -1;
+    return count;
+}
+
+/* Every way the child can end is one line naming the file: a crash, the
+ * time limit (on the CPU and on the clock), the memory limit, a lying or
+ * flooding description, a refusal of its own, a failed exit. Nothing is
+ * left behind: no child to reap, no descriptor open. */
+static void test_model_child_ends(void **state)
+{
+    (void)state;
+    const int descriptors = open_descriptors();
+    static const struct {
+        enum child_act act;
+        int status;               /* of luz_model_run_isolated, then of reading */
+        bool sanitized_too;       /* run under the sanitizers too */
+        const char *needle;
+    } cases[] = {
+        /* the sanitizers catch SIGSEGV and end the process with their report */
+        {CHILD_SEGV, LUZ_BAD_INPUT, false, "x.obj: assimp crashed reading it (SIGSEGV, signal 11)"},
+        {CHILD_ILL, LUZ_BAD_INPUT, true, "x.obj: assimp crashed reading it (SIGILL, signal 4)"},
+        /* 1 s of CPU time, or 3 s on the clock on a busy machine */
+        {CHILD_SPIN, LUZ_BAD_INPUT, true, "x.obj: assimp took more than "},
+        {CHILD_SLEEP, LUZ_BAD_INPUT, true, "x.obj: assimp took more than 3 s to read it"},
+        {CHILD_ALLOCATE, LUZ_BAD_INPUT, false, "x.obj: assimp needs more than 256 MiB to read it"},
+        {CHILD_LIE, LUZ_BAD_INPUT, true,
+         "x.obj: assimp's process sent a description luz cannot read"},
+        {CHILD_FLOOD, LUZ_BAD_INPUT, true, "x.obj: assimp's process sent more than 1 MiB"},
+        {CHILD_REFUSE, LUZ_BAD_INPUT, true, "x.obj: refused?with a second line"},
+        {CHILD_EXIT, LUZ_BAD_INPUT, true,
+         "x.obj: assimp failed reading it (its process exited with status 3)"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        if (LUZ_TEST_SANITIZED && !cases[i].sanitized_too) continue;
+        /* small limits, so that the test is quick */
+        const luz_model_limits limits = {.cpu_seconds = 1.0, .wall_seconds = 3.0,
+                                         .memory_bytes = LUZ_TEST_SANITIZED ? 0 : (uint64_t)256 << 20,
+                                         .description_bytes = (uint64_t)1 << 20};
+        unsigned char *bytes = NULL;
+        size_t size = 0;
+        luz_error error = {{0}};
+        int status = luz_model_run_isolated("x.obj", &limits, misbehave, &cases[i].act, &bytes,
+                                            &size, &error);
+        if (status == 0) {
+            luz_model_description description;
+            status = luz_model_description_read(bytes, size, "x.obj", &description, &error);
+            if (status == 0 && description.refusal != 0) {
+                status = description.refusal;
+                luz_error_set(&error, "%s", description.refusal_message);
+            }
+            if (status == 0) luz_model_description_free(&description);
+            free(bytes);
+        }
+        if (status != cases[i].status || strstr(error.message, cases[i].needle) == NULL ||
+            strchr(error.message, '\n') != NULL)
+            fail_msg("case %zu: status %d, '%s'; expected %d, '%s'", i, status, error.message,
+                     cases[i].status, cases[i].needle);
+    }
+    errno = 0;
+    assert_int_equal(waitpid(-1, NULL, WNOHANG), -1);   /* no child left, not even a zombie */
+    assert_int_equal(errno, ECHILD);
+    assert_int_equal(open_descriptors(), descriptors);
+}
+
+/* luz_model_load through its child, a sound model and a refused one:
+ * no zombie, no descriptor left open. luz's process holds 4 GiB of
+ * address space first (as it may, with a gigabyte of textures and other
+ * models): the child's memory limit is on top of that. */
+static void test_model_load_leaves_nothing(void **state)
+{
+    (void)state;
+    if (!luz_models_supported()) {
+        print_message("skipped: this luz was built without model support (-Dmodels)\n");
+        skip();
+    }
+    sandbox box;
+    sandbox_create(&box);
+    sandbox_text(&box, "m.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    sandbox_text(&box, "bad.obj", "v 0 0 0\nf 1 2 9\n");
+    /* (MAP_ANONYMOUS is not POSIX: /dev/zero, private, is the same) */
+    int zero = open("/dev/zero", O_RDONLY | O_CLOEXEC);
+    assert_true(zero >= 0);
+    void *held = mmap(NULL, (size_t)4 << 30, PROT_NONE, MAP_PRIVATE, zero, 0);
+    close(zero);
+    assert_true(held != MAP_FAILED);
+    const int descriptors = open_descriptors();
+    char path[600];
+    luz_model model;
+    luz_error error = {{0}};
+    sandbox_path(&box, "m.obj", path, sizeof path);
+    if (luz_model_load(&model, path, NULL, &error) != 0) fail_msg("%s", error.message);
+    assert_int_equal(model.part_count, 1);
+    assert_int_equal(model.triangle_count, 1);
+    luz_model_free(&model);
+    sandbox_path(&box, "bad.obj", path, sizeof path);
+    assert_int_equal(luz_model_load(&model, path, NULL, &error), LUZ_BAD_INPUT);
+    assert_non_null(strstr(error.message, "bad.obj: "));
+    errno = 0;
+    assert_int_equal(waitpid(-1, NULL, WNOHANG), -1);
+    assert_int_equal(errno, ECHILD);
+    assert_int_equal(open_descriptors(), descriptors);
+    munmap(held, (size_t)4 << 30);
     remove_tree(box.root);
 }
 
@@ -1319,6 +1521,8 @@ int main(void)
         cmocka_unit_test(test_fifos_never_block),
         cmocka_unit_test(test_crafted_textures),
         cmocka_unit_test(test_assimp_findings_refused),
+        cmocka_unit_test(test_model_child_ends),
+        cmocka_unit_test(test_model_load_leaves_nothing),
         cmocka_unit_test(test_budget_through_luz_render),
         cmocka_unit_test(test_out_of_memory_while_decoding),
     };

@@ -60,19 +60,29 @@ bool luz_models_supported(void);
 /* Reads the model at path into *model (zeroed first), its textures
  * charged to *budget (NULL: a budget for this model alone). The file and
  * every file it names are opened as io/input_file.h says (never blocking,
- * regular files only, at most LUZ_MODEL_FILE_MAX_BYTES each). Returns 0;
+ * regular files only, at most LUZ_MODEL_FILE_MAX_BYTES each).
+ * assimp reads it in a child process (fork(): call this before starting
+ * threads), within limits that grow with the file's size
+ * (io/model_sandbox.h: LUZ_MODEL_SECONDS of CPU time and
+ * LUZ_MODEL_SECONDS_PER_MIB more a MiB; LUZ_MODEL_MEMORY_BYTES of address
+ * space and LUZ_MODEL_MEMORY_PER_BYTE more a byte of the file: 10 s and
+ * 1 GiB for a small file, 550 s and 19 GB for a 1.1 GB OBJ); the
+ * textures are decoded here. Returns 0;
  * LUZ_BAD_INPUT (-1) with one line naming the file and what is wrong: not
  * a regular file (it, or a file it names), unreadable, a format assimp
  * does not know, no triangles, a position that is not finite, an index out
  * of range, zero size, a texture it names that is missing, corrupt or over
- * the budget; or LUZ_MACHINE_FAILED when memory runs out. */
+ * the budget, assimp crashing or going over a limit on it; or
+ * LUZ_MACHINE_FAILED when memory runs out here, or no child process could
+ * be made, or the system killed it. */
 int luz_model_load(luz_model *model, const char *path, luz_texture_budget *budget,
                    luz_error *error);
 
 /* The same for a model file's bytes in memory, which assimp reads as the
  * file `name` (its extension chooses the importer); no other file exists
- * for it (a .mtl it names is missing, so is a texture file). For the
- * model fuzzer (tests/fuzz/fuzz_model.c). */
+ * for it (a .mtl it names is missing, so is a texture file). assimp runs
+ * in this process, without limits: for the model fuzzer
+ * (tests/fuzz/fuzz_model.c), which must see it. */
 int luz_model_load_memory(luz_model *model, const unsigned char *bytes, size_t size,
                           const char *name, luz_texture_budget *budget, luz_error *error);
 void luz_model_free(luz_model *model);

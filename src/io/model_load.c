@@ -1,26 +1,21 @@
 /*
- * model_load.c: a model file into a luz_model, through assimp's C API
- * (SCENE.md, "Models").
+ * model_load.c: a model file into a luz_model (SCENE.md, "Models").
  *
  * In:  a path to any file assimp reads (OBJ, glTF 2.0, PLY, STL, FBX, 3DS,
  *      ...).
  * Out: one luz_mesh per triangle mesh of the file, in its order, with the
  *      colour and the texture of its material, and the bounds of them all.
  *
- * assimp does the parsing with exactly SCENE.md's post-processing steps;
- * this file then checks what it returns as it would check any stranger's
- * data (luz_mesh_create refuses an index out of range or a position that
- * is not finite; the positions are also checked before the steps, which
- * could merge a NaN away) and keeps nothing of assimp once it returns.
- *
- * assimp reads every file through luz's own file system (an aiFileIO):
- * the model and each file it names (an OBJ's .mtl, a glTF's .bin) are
- * opened as io/input_file.h opens any input, never blocking, regular files
- * only, at most LUZ_MODEL_FILE_MAX_BYTES each. assimp carries on without a
- * .mtl it cannot open, as without a missing one; but a file that luz
- * refused (a FIFO, a device, one too large) makes the whole model refused,
- * naming that file. Textures are decoded by io/textures.h, within the
- * run's texture budget.
+ * assimp reads the file in a child process, within a time and memory limit
+ * (io/model_sandbox.h, io/model_import.h), and sends back a description
+ * of the model with no assimp in it (io/model_description.h). This file
+ * turns that description into luz meshes and textures, checking it as it
+ * would check any stranger's data (luz_mesh_create refuses an index out of
+ * range or a position that is not finite), and decodes the textures the
+ * parts name, files beside the model or embedded in it, with
+ * io/textures.h, within the run's texture budget: the image decoders, the
+ * budget and the files a run reads stay in luz's own process.
+ * luz_model_load_memory (the fuzzer's) runs the import in this process.
  */
 #include "io/model.h"
 
@@ -32,16 +27,11 @@
 #include <unistd.h>
 
 #include "io/input_file.h"
+#include "io/model_description.h"
 #include "io/model_guards.h"
+#include "io/model_import.h"
+#include "io/model_sandbox.h"
 #include "io/textures.h"
-
-#if defined(LUZ_HAVE_ASSIMP)
-#include <assimp/cfileio.h>
-#include <assimp/cimport.h>
-#include <assimp/material.h>
-#include <assimp/postprocess.h>
-#include <assimp/scene.h>
-#endif
 
 void luz_model_free(luz_model *model)
 {
@@ -92,12 +82,6 @@ bool luz_models_supported(void)
     return true;
 }
 
-/* SCENE.md's steps, exactly. */
-static const unsigned int model_steps =
-    aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_GenSmoothNormals |
-    aiProcess_PreTransformVertices | aiProcess_SortByPType | aiProcess_FlipUVs |
-    aiProcess_ValidateDataStructure;
-
 static char *copy_text(const char *text)
 {
     size_t length = strlen(text) + 1;
@@ -114,147 +98,16 @@ static const char *base_name(const char *path)
     return slash ? slash + 1 : path;
 }
 
-/* ---- the files assimp reads ------------------------------------------------------------- */
-
-/* luz's file system for assimp: every file it asks for (the model, then
- * whatever the model names) is opened with luz_input_open, or, for a model
- * in memory, is that model or nothing. */
-typedef struct model_files {
-    const unsigned char *memory;   /* a model in memory (the fuzzer's), else NULL */
-    size_t memory_size;
-    const char *memory_name;       /* the one name it answers to */
-    int refusal;                   /* 0, or the status of the first file refused */
-    luz_error refusal_error;       /* its message */
-} model_files;
-
-/* One open file: a descriptor, or the model in memory. */
-typedef struct model_file {
-    struct aiFile file;            /* first: assimp's handle is this struct */
-    int descriptor;                /* -1 for the model in memory */
-    const unsigned char *memory;
-    uint64_t size, position;
-} model_file;
-
-static size_t file_read(struct aiFile *handle, char *buffer, size_t size, size_t count)
-{
-    model_file *file = (model_file *)handle;
-    if (size == 0 || file->position >= file->size) return 0;
-    const uint64_t left = file->size - file->position;
-    if (count > left / size) count = (size_t)(left / size);
-    size_t wanted = size * count, done = 0;
-    while (done < wanted) {
-        if (file->memory != NULL) {
-            memcpy(buffer, file->memory + file->position, wanted);
-            done = wanted;
-            break;
-        }
-        ssize_t got = pread(file->descriptor, buffer + done, wanted - done,
-                            (off_t)(file->position + done));
-        if (got < 0 && errno == EINTR) continue;
-        if (got <= 0) break;   /* an error, or the file shrank: what was read */
-        done += (size_t)got;
-    }
-    file->position += done;
-    return done / size;
-}
-
-static size_t file_write(struct aiFile *handle, const char *buffer, size_t size, size_t count)
-{
-    (void)handle;
-    (void)buffer;
-    (void)size;
-    (void)count;
-    return 0;   /* opened for reading only */
-}
-
-static size_t file_tell(struct aiFile *handle)
-{
-    return (size_t)((model_file *)handle)->position;
-}
-
-static size_t file_size(struct aiFile *handle)
-{
-    return (size_t)((model_file *)handle)->size;
-}
-
-/* assimp passes a negative offset (from the end, or back from here) as a
- * size_t, wrapped around, as C's fseek would take a long. */
-static enum aiReturn file_seek(struct aiFile *handle, size_t offset, enum aiOrigin origin)
-{
-    model_file *file = (model_file *)handle;
-    const uint64_t base = origin == aiOrigin_SET   ? 0
-                          : origin == aiOrigin_CUR ? file->position
-                          : origin == aiOrigin_END ? file->size
-                                                   : UINT64_MAX;
-    if (base == UINT64_MAX) return aiReturn_FAILURE;
-    const uint64_t target = base + (uint64_t)offset;   /* modulo 2^64: a wrapped offset subtracts */
-    if (target > file->size) return aiReturn_FAILURE;
-    file->position = target;
-    return aiReturn_SUCCESS;
-}
-
-static void file_flush(struct aiFile *handle)
-{
-    (void)handle;
-}
-
-static struct aiFile *files_open(struct aiFileIO *io, const char *path, const char *mode)
-{
-    model_files *files = (model_files *)io->UserData;
-    if (path == NULL || mode == NULL || strpbrk(mode, "wa+") != NULL) return NULL;
-    int descriptor = -1;
-    uint64_t size = 0;
-    const unsigned char *memory = NULL;
-    if (files->memory != NULL) {
-        if (strcmp(path, files->memory_name) != 0) return NULL;   /* nothing else exists */
-        memory = files->memory;
-        size = files->memory_size;
-    } else {
-        luz_error refusal;
-        int status = luz_input_open(path, "a file the model names", LUZ_MODEL_FILE_MAX_BYTES,
-                                    &descriptor, &size, &refusal);
-        if (status == LUZ_NO_SUCH_FILE) return NULL;   /* assimp decides what that means */
-        if (status != 0) {
-            if (files->refusal == 0) {
-                files->refusal = status;
-                files->refusal_error = refusal;
-            }
-            return NULL;
-        }
-    }
-    model_file *file = calloc(1, sizeof *file);
-    if (file == NULL) {
-        if (descriptor >= 0) close(descriptor);
-        return NULL;
-    }
-    file->file = (struct aiFile){.ReadProc = file_read, .WriteProc = file_write,
-                                 .TellProc = file_tell, .FileSizeProc = file_size,
-                                 .SeekProc = file_seek, .FlushProc = file_flush};
-    file->descriptor = descriptor;
-    file->memory = memory;
-    file->size = size;
-    return &file->file;
-}
-
-static void files_close(struct aiFileIO *io, struct aiFile *handle)
-{
-    (void)io;
-    model_file *file = (model_file *)handle;
-    if (file == NULL) return;
-    if (file->descriptor >= 0) close(file->descriptor);
-    free(file);
-}
-
 /* ---- textures --------------------------------------------------------------------------- */
 
-/* What reading one model needs besides the model: assimp's scene, where
- * its files come from, the run's texture budget, and the textures already
- * decoded, by the name the materials use, so that the parts that share
- * one share its memory. */
+/* What building one model needs besides the model: its description, whether
+ * it was read from memory (then no other file exists), the run's texture
+ * budget, and the textures already decoded, by the name the materials use,
+ * so that the parts that share one share its memory. */
 typedef struct model_reading {
     luz_model *model;
-    const struct aiScene *scene;
-    model_files *files;
+    const luz_model_description *description;
+    bool from_memory;
     luz_texture_budget *budget;
     char **texture_keys;
     int texture_key_count;
@@ -298,22 +151,22 @@ static int remember_texture_file(luz_model *model, const char *path, luz_error *
     return 0;
 }
 
-/* An embedded texture: compressed (mHeight 0: mWidth bytes of a PNG, JPEG,
- * ..., the format in achFormatHint) and decoded like a file, or raw BGRA
- * texels. */
-static int decode_embedded(const struct aiTexture *embedded, const char *name,
+/* An embedded texture: compressed (the bytes of a PNG, JPEG, ..., the
+ * format in the hint) and decoded like a file, or raw BGRA texels. */
+static int decode_embedded(const luz_described_texture *embedded, const char *name,
                            luz_texture_budget *budget, luz_texture **texture, luz_error *error)
 {
-    if (embedded->mHeight == 0) {
-        char hint[sizeof embedded->achFormatHint + 1] = {0};
-        memcpy(hint, embedded->achFormatHint, sizeof embedded->achFormatHint);
-        return luz_texture_load_memory((const unsigned char *)embedded->pcData,
-                                       embedded->mWidth, name, hint, budget, texture, error);
-    }
-    const unsigned width = embedded->mWidth, height = embedded->mHeight;
-    if (embedded->pcData == NULL || width > LUZ_TEXTURE_MAX_SIZE || height > LUZ_TEXTURE_MAX_SIZE)
+    if (embedded->compressed)
+        return luz_texture_load_memory(embedded->bytes, (size_t)embedded->size, name,
+                                       embedded->hint, budget, texture, error);
+    const unsigned width = embedded->width, height = embedded->height;
+    if (embedded->bytes == NULL || width > LUZ_TEXTURE_MAX_SIZE || height > LUZ_TEXTURE_MAX_SIZE)
         return luz_error_set(error, "%s: image is %ux%u, expected 1x1 to %dx%d", name, width,
                              height, LUZ_TEXTURE_MAX_SIZE, LUZ_TEXTURE_MAX_SIZE);
+    /* BGRA texels, 4 bytes each, as many as the size says */
+    if (embedded->size != (uint64_t)width * height * 4)
+        return luz_error_set(error, "%s: %llu bytes of texels for a %ux%u image", name,
+                             (unsigned long long)embedded->size, width, height);
     if (luz_texture_budget_check(budget, (int)width, (int)height, name, error) != 0)
         return LUZ_BAD_INPUT;
     uint8_t *rgba = malloc((size_t)width * height * 4 + 1);
@@ -322,11 +175,11 @@ static int decode_embedded(const struct aiTexture *embedded, const char *name,
         return LUZ_MACHINE_FAILED;
     }
     for (size_t i = 0; i < (size_t)width * height; i++) {
-        const struct aiTexel *texel = &embedded->pcData[i];
-        rgba[i * 4 + 0] = texel->r;
-        rgba[i * 4 + 1] = texel->g;
-        rgba[i * 4 + 2] = texel->b;
-        rgba[i * 4 + 3] = texel->a;
+        const unsigned char *texel = embedded->bytes + 4 * i;   /* assimp's aiTexel: b g r a */
+        rgba[i * 4 + 0] = texel[2];
+        rgba[i * 4 + 1] = texel[1];
+        rgba[i * 4 + 2] = texel[0];
+        rgba[i * 4 + 3] = texel[3];
     }
     int status = luz_texture_create_in_budget((int)width, (int)height, rgba, name, budget,
                                               texture, error);
@@ -334,32 +187,12 @@ static int decode_embedded(const struct aiTexture *embedded, const char *name,
     return status;
 }
 
-/* The embedded texture a material names: "*N", or the embedded texture's
- * own file name (glTF binaries name them so). NULL if there is none. */
-static const struct aiTexture *find_embedded(const struct aiScene *scene, const char *name)
-{
-    if (name[0] == '*') {
-        char *end;
-        errno = 0;
-        unsigned long index = strtoul(name + 1, &end, 10);
-        if (errno == 0 && end != name + 1 && *end == '\0' && index < scene->mNumTextures)
-            return scene->mTextures[index];
-        return NULL;
-    }
-    for (unsigned i = 0; i < scene->mNumTextures; i++) {
-        if (scene->mTextures[i] == NULL) continue;
-        const char *own = scene->mTextures[i]->mFilename.data;
-        if (own[0] != '\0' && (strcmp(own, name) == 0 || strcmp(base_name(own), base_name(name)) == 0))
-            return scene->mTextures[i];
-    }
-    return NULL;
-}
-
-/* The texture a material names, decoded once: embedded in the file, else
- * a file relative to the model's directory, a backslash read as a slash
- * (files written on Windows say `.\tex\a.jpg`). */
-static int load_texture(model_reading *reading, const char *name, const luz_texture **out,
-                        luz_error *error)
+/* The texture a material names, decoded once: embedded in the file (the
+ * import found it, as "*N" or by the embedded texture's own file name),
+ * else a file relative to the model's directory, a backslash read as a
+ * slash (files written on Windows say `.\tex\a.jpg`). */
+static int load_texture(model_reading *reading, const char *name, int32_t embedded,
+                        const luz_texture **out, luz_error *error)
 {
     luz_model *model = reading->model;
     for (int i = 0; i < reading->texture_key_count; i++) {
@@ -371,9 +204,9 @@ static int load_texture(model_reading *reading, const char *name, const luz_text
     luz_error inner = {{0}};
     luz_texture *texture = NULL;
     int status;
-    const struct aiTexture *embedded = find_embedded(reading->scene, name);
-    if (embedded != NULL) {
-        status = decode_embedded(embedded, name, reading->budget, &texture, &inner);
+    if (embedded >= 0) {
+        status = decode_embedded(&reading->description->textures[embedded], name,
+                                 reading->budget, &texture, &inner);
     } else if (name[0] == '*') {
         status = luz_error_set(&inner, "%s: no such embedded texture", name);
     } else {
@@ -389,7 +222,7 @@ static int load_texture(model_reading *reading, const char *name, const luz_text
             snprintf(path, sizeof path, "%s", file);
         else
             snprintf(path, sizeof path, "%.*s/%s", (int)(slash - model->path), model->path, file);
-        if (reading->files->memory != NULL)
+        if (reading->from_memory)
             status = luz_error_set(&inner, "%s: no such file (the model is read from memory)",
                                    path);
         else {
@@ -412,27 +245,6 @@ static int load_texture(model_reading *reading, const char *name, const luz_text
 }
 
 /* ---- meshes ------------------------------------------------------------------------------ */
-
-static bool is_finite_colour(struct aiColor4D c)
-{
-    return isfinite(c.r) && isfinite(c.g) && isfinite(c.b);
-}
-
-/* The colour of a material: its diffuse colour, unless it is assimp's
- * stand-in for a file without materials ("DefaultMaterial") or has none. */
-static bool material_colour(const struct aiMaterial *material, luz_vec3 *colour)
-{
-    struct aiString name;
-    if (aiGetMaterialString(material, AI_MATKEY_NAME, &name) == aiReturn_SUCCESS &&
-        strcmp(name.data, AI_DEFAULT_MATERIAL_NAME) == 0)
-        return false;
-    struct aiColor4D diffuse;
-    if (aiGetMaterialColor(material, AI_MATKEY_COLOR_DIFFUSE, &diffuse) != aiReturn_SUCCESS ||
-        !is_finite_colour(diffuse))
-        return false;
-    *colour = (luz_vec3){diffuse.r, diffuse.g, diffuse.b};
-    return true;
-}
 
 /* How many of the triangles have an area: corners not all on one line.
  * The indices are in range (luz_mesh_create has checked them). */
@@ -468,86 +280,45 @@ static void free_part_names(luz_model_part *part)
     free(part->texture_name);
 }
 
-/* One assimp mesh's triangles as a part; *added is false for a mesh with
- * none (points or lines only), which is dropped. *with_area grows by the
- * number of its triangles that have an area. */
-static int add_part(model_reading *reading, unsigned mesh_index, bool *added,
+/* One described part as a luz part, its texture decoded. *with_area
+ * grows by the number of its triangles that have an area. */
+static int add_part(model_reading *reading, const luz_described_part *source,
                     uint64_t *with_area, luz_error *error)
 {
     luz_model *model = reading->model;
-    const struct aiScene *scene = reading->scene;
-    const struct aiMesh *source = scene->mMeshes[mesh_index];
-    *added = false;
-    if (source == NULL || !(source->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) return 0;
-    uint32_t triangles = 0;
-    for (unsigned f = 0; f < source->mNumFaces; f++)
-        triangles += source->mFaces[f].mNumIndices == 3;
-    if (triangles == 0) return 0;
+    const unsigned mesh_index = source->mesh_index;
+    const uint32_t triangles = source->triangle_count;
+    if (triangles == 0)
+        return luz_error_set(error, "%s: mesh %u has no triangles", model->path, mesh_index);
     if (triangles > LUZ_MESH_MAX_TRIANGLES)
         return luz_error_set(error, "%s: mesh %u has %u triangles, more than %u", model->path,
                              mesh_index, (unsigned)triangles, (unsigned)LUZ_MESH_MAX_TRIANGLES);
-
-    const unsigned vertex_count = source->mNumVertices;
+    const unsigned vertex_count = source->vertex_count;
     if (vertex_count > LUZ_MESH_MAX_VERTICES)
         return luz_error_set(error, "%s: mesh %u has %u vertices, more than %u", model->path,
                              mesh_index, vertex_count, (unsigned)LUZ_MESH_MAX_VERTICES);
-    luz_vertex *vertices = malloc((size_t)vertex_count * sizeof *vertices + 1);
-    uint32_t *indices = malloc((size_t)triangles * 3 * sizeof *indices);
-    if (!vertices || !indices) {
-        free(vertices);
-        free(indices);
-        luz_error_set(error, "%s: out of memory for mesh %u (%u vertices)", model->path,
-                      mesh_index, vertex_count);
-        return LUZ_MACHINE_FAILED;
-    }
-    const struct aiVector3D *uvs = source->mTextureCoords[0];
-    for (unsigned v = 0; v < vertex_count; v++) {
-        const struct aiVector3D p = source->mVertices[v];
-        const struct aiVector3D n = source->mNormals ? source->mNormals[v]
-                                                     : (struct aiVector3D){0.0f, 0.0f, 0.0f};
-        vertices[v] = (luz_vertex){{p.x, p.y, p.z}, {n.x, n.y, n.z},
-                                   {uvs ? uvs[v].x : 0.0f, uvs ? uvs[v].y : 0.0f}};
-    }
-    uint32_t *index = indices;
-    for (unsigned f = 0; f < source->mNumFaces; f++) {
-        const struct aiFace *face = &source->mFaces[f];
-        if (face->mNumIndices != 3) continue;
-        for (int k = 0; k < 3; k++) *index++ = face->mIndices[k];
-    }
     luz_error inner;
-    luz_mesh *mesh = luz_mesh_create(&(luz_mesh_desc){.vertices = vertices,
+    luz_mesh *mesh = luz_mesh_create(&(luz_mesh_desc){.vertices = source->vertices,
                                                       .vertex_count = vertex_count,
-                                                      .indices = indices,
+                                                      .indices = source->indices,
                                                       .index_count = triangles * 3},
                                      &inner);
-    if (mesh != NULL) *with_area += count_with_area(vertices, indices, triangles);
-    free(vertices);
-    free(indices);
     if (mesh == NULL)
         return luz_error_set(error, "%s: mesh %u: %s", model->path, mesh_index, inner.message);
+    *with_area += count_with_area(source->vertices, source->indices, triangles);
 
-    luz_model_part part = {.mesh = mesh, .has_uvs = uvs != NULL};
-    bool names_fit = name_part(&part.mesh_name, source->mName.data);
-    const struct aiMaterial *material =
-        source->mMaterialIndex < scene->mNumMaterials ? scene->mMaterials[source->mMaterialIndex]
-                                                      : NULL;
-    if (material != NULL) {
-        part.has_colour = material_colour(material, &part.colour);
-        struct aiString material_name;
-        if (aiGetMaterialString(material, AI_MATKEY_NAME, &material_name) == aiReturn_SUCCESS)
-            names_fit = name_part(&part.material_name, material_name.data) && names_fit;
-        struct aiString texture_name;
-        if (part.has_uvs && aiGetMaterialTextureCount(material, aiTextureType_DIFFUSE) > 0 &&
-            aiGetMaterialTexture(material, aiTextureType_DIFFUSE, 0, &texture_name, NULL, NULL,
-                                 NULL, NULL, NULL, NULL) == aiReturn_SUCCESS &&
-            texture_name.data[0] != '\0') {
-            names_fit = name_part(&part.texture_name, texture_name.data) && names_fit;
-            int status = load_texture(reading, texture_name.data, &part.texture, error);
-            if (status != 0) {
-                free_part_names(&part);
-                luz_mesh_destroy(mesh);
-                return status;
-            }
+    luz_model_part part = {.mesh = mesh, .has_uvs = source->has_uvs,
+                           .has_colour = source->has_colour, .colour = source->colour};
+    bool names_fit = name_part(&part.mesh_name, source->mesh_name) &&
+                     name_part(&part.material_name, source->material_name);
+    if (part.has_uvs && source->texture_name[0] != '\0') {
+        names_fit = name_part(&part.texture_name, source->texture_name) && names_fit;
+        int status = load_texture(reading, source->texture_name, source->embedded,
+                                  &part.texture, error);
+        if (status != 0) {
+            free_part_names(&part);
+            luz_mesh_destroy(mesh);
+            return status;
         }
     }
 
@@ -563,50 +334,6 @@ static int add_part(model_reading *reading, unsigned mesh_index, bool *added,
     model->parts = parts;
     model->parts[model->part_count++] = part;
     model->triangle_count += triangles;
-    *added = true;
-    return 0;
-}
-
-/* What the importer gave, checked before the steps run:
- *  - every position: a NaN compares equal to nothing, so
- *    JoinIdenticalVertices can merge a NaN vertex into a finite one and
- *    leave a degenerate triangle that draws nothing, and the file would
- *    load as if it were sound;
- *  - every face, and every mesh's primitive types against its faces: for
- *    files luz's fuzzer made, assimp 5.2.5's PLY importer gives faces of
- *    no corners, on which SortByPType crashes, or, in a mesh it marks as
- *    holding polygons, on which an assertion in Triangulate (that a mesh
- *    marked so has a polygon) aborts the program. ValidateDataStructure
- *    lets both through: it checks only that each face's kind is marked.
- *    (tests/fuzz/assimp-findings/) */
-static int check_imported(const struct aiScene *scene, const char *path, luz_error *error)
-{
-    for (unsigned m = 0; m < scene->mNumMeshes; m++) {
-        const struct aiMesh *mesh = scene->mMeshes[m];
-        if (mesh == NULL) continue;
-        bool polygon = false;
-        for (unsigned f = 0; f < mesh->mNumFaces && mesh->mFaces != NULL; f++) {
-            const struct aiFace *face = &mesh->mFaces[f];
-            if (face->mNumIndices == 0 || face->mIndices == NULL)
-                return luz_error_set(error, "%s: not a model luz can read (assimp's importer "
-                                            "gave mesh %u a face with no corners)", path, m);
-            for (unsigned k = 0; k < face->mNumIndices; k++)
-                if (face->mIndices[k] >= mesh->mNumVertices)
-                    return luz_error_set(error, "%s: mesh %u: face %u names vertex %u of %u",
-                                         path, m, f, face->mIndices[k], mesh->mNumVertices);
-            polygon = polygon || face->mNumIndices > 3;
-        }
-        if ((mesh->mPrimitiveTypes & aiPrimitiveType_POLYGON) && !polygon)
-            return luz_error_set(error, "%s: not a model luz can read (assimp's importer gave "
-                                        "mesh %u polygons it does not have)", path, m);
-        if (mesh->mVertices == NULL) continue;
-        for (unsigned v = 0; v < mesh->mNumVertices; v++) {
-            const struct aiVector3D p = mesh->mVertices[v];
-            if (!isfinite(p.x) || !isfinite(p.y) || !isfinite(p.z))
-                return luz_error_set(error, "%s: mesh %u: vertex %u has a position that is not "
-                                            "finite", path, m, v);
-        }
-    }
     return 0;
 }
 
@@ -622,47 +349,22 @@ static void grow_bounds(luz_bounds *bounds, luz_bounds more, bool first)
                              fmaxf(bounds->max.z, more.max.z)};
 }
 
-/* assimp's import of path through files, then luz's checks of what it
- * returns. model->path and ->name are set. */
-static int read_model(luz_model *model, const char *path, model_files *files,
-                      luz_texture_budget *budget, luz_error *error)
+/* The description's parts as the model's, then the checks of the whole:
+ * some triangle, a size, some area. model->path is set. */
+static int build_model(luz_model *model, const luz_model_description *description,
+                       bool from_memory, luz_texture_budget *budget, luz_error *error)
 {
-    struct aiFileIO io = {.OpenProc = files_open, .CloseProc = files_close,
-                          .UserData = (aiUserData)files};
-    /* SCENE.md's steps in the order assimp's own aiImportFile(path, steps)
-     * runs them, validation first and then the rest, with the positions
-     * checked in between (check_imported). */
-    const struct aiScene *scene = aiImportFileEx(path, aiProcess_ValidateDataStructure, &io);
-    if (files->refusal != 0) {
-        /* a file the model names was refused (and assimp may have carried
-         * on without it): the model is refused with it */
-        if (scene != NULL) aiReleaseImport(scene);
-        luz_error_set(error, "%s: %s", path, files->refusal_error.message);
-        return files->refusal;
-    }
-    if (scene == NULL)
-        return luz_error_set(error, "%s: not a model luz can read (%s)", path,
-                             aiGetErrorString());
-    if (check_imported(scene, path, error) != 0) {
-        aiReleaseImport(scene);
-        return LUZ_BAD_INPUT;
-    }
-    /* On failure this releases the scene itself, and sets no error string. */
-    scene = aiApplyPostProcessing(scene, model_steps & ~(unsigned)aiProcess_ValidateDataStructure);
-    if (scene == NULL)
-        return luz_error_set(error, "%s: not a model luz can read (assimp's post-processing "
-                                    "failed)", path);
-    model_reading reading = {.model = model, .scene = scene, .files = files, .budget = budget};
+    const char *path = model->path;
+    model_reading reading = {.model = model, .description = description,
+                             .from_memory = from_memory, .budget = budget};
     int status = 0;
     uint64_t with_area = 0;
-    for (unsigned m = 0; m < scene->mNumMeshes && status == 0; m++) {
-        bool added;
-        status = add_part(&reading, m, &added, &with_area, error);
-        if (status == 0 && added)
+    for (int p = 0; p < description->part_count && status == 0; p++) {
+        status = add_part(&reading, &description->parts[p], &with_area, error);
+        if (status == 0)
             grow_bounds(&model->bounds, luz_mesh_bounds(model->parts[model->part_count - 1].mesh),
                         model->part_count == 1);
     }
-    aiReleaseImport(scene);
     for (int i = 0; i < reading.texture_key_count; i++) free(reading.texture_keys[i]);
     free(reading.texture_keys);
     if (status != 0) return status;
@@ -689,10 +391,10 @@ static int read_model(luz_model *model, const char *path, model_files *files,
     return 0;
 }
 
-/* Sets the model's path and name, reads it, and leaves it empty on
- * failure. */
-static int load(luz_model *model, const char *path, model_files *files,
-                luz_texture_budget *budget, luz_error *error)
+/* The description in bytes, read and built into model (path and name
+ * set first); the model is left empty on failure. */
+static int build(luz_model *model, const char *path, const unsigned char *bytes, size_t size,
+                 bool from_memory, luz_texture_budget *budget, luz_error *error)
 {
     model->path = copy_text(path);
     model->name = copy_text(base_name(path));
@@ -701,10 +403,25 @@ static int load(luz_model *model, const char *path, model_files *files,
         luz_error_set(error, "%s: out of memory", path);
         return LUZ_MACHINE_FAILED;
     }
+    luz_model_description description;
+    int status = luz_model_description_read(bytes, size, path, &description, error);
+    if (status == 0 && description.refusal != 0) {
+        luz_error_set(error, "%s", description.refusal_message);
+        status = description.refusal;
+    }
     luz_texture_budget own = {0};
-    int status = read_model(model, path, files, budget ? budget : &own, error);
+    if (status == 0)
+        status = build_model(model, &description, from_memory, budget ? budget : &own, error);
+    luz_model_description_free(&description);
     if (status != 0) luz_model_free(model);
     return status;
+}
+
+/* The child's work: the import, its description down the pipe. */
+static int import_in_child(const void *context, uint64_t memory_limit, luz_model_writer *writer,
+                           luz_error *error)
+{
+    return luz_model_import(context, memory_limit, writer, error);
 }
 
 int luz_model_load(luz_model *model, const char *path, luz_texture_budget *budget,
@@ -728,8 +445,16 @@ int luz_model_load(luz_model *model, const char *path, luz_texture_budget *budge
     }
     close(descriptor);
     if (luz_model_check_start(start, length, size, path, error) != 0) return LUZ_BAD_INPUT;
-    model_files files = {0};
-    return load(model, path, &files, budget, error);
+    const luz_model_limits limits = luz_model_limits_for(size);
+    const luz_model_source source = {.path = path};
+    unsigned char *bytes;
+    size_t byte_count;
+    status = luz_model_run_isolated(path, &limits, import_in_child, &source, &bytes, &byte_count,
+                                    error);
+    if (status != 0) return status;
+    status = build(model, path, bytes, byte_count, false, budget, error);
+    free(bytes);
+    return status;
 }
 
 int luz_model_load_memory(luz_model *model, const unsigned char *bytes, size_t size,
@@ -737,10 +462,16 @@ int luz_model_load_memory(luz_model *model, const unsigned char *bytes, size_t s
 {
     memset(model, 0, sizeof *model);
     if (luz_model_check_start(bytes, size, size, name, error) != 0) return LUZ_BAD_INPUT;
-    static const unsigned char nothing[1] = {0};
-    model_files files = {.memory = size > 0 ? bytes : nothing, .memory_size = size,
-                         .memory_name = name};
-    return load(model, name, &files, budget, error);
+    const luz_model_source source = {.path = name, .memory = bytes, .memory_size = size};
+    luz_model_writer writer = {.descriptor = -1};
+    int status = luz_model_import(&source, 0, &writer, error);
+    if (status != 0) {
+        luz_model_writer_free(&writer);
+        return status;
+    }
+    status = build(model, name, writer.bytes, writer.length, true, budget, error);
+    luz_model_writer_free(&writer);
+    return status;
 }
 
 #endif

@@ -1,0 +1,318 @@
+/*
+ * model_sandbox.c: a model's import in a child process, within limits
+ * (io/model_sandbox.h).
+ *
+ * In:  a model file's path and size, and the work the child does (assimp's
+ *      import, writing the model's description down a pipe).
+ * Out: the bytes the child sent, once it has exited normally; else one
+ *      line naming the file: crashed, over the time or memory limit, or
+ *      failed.
+ *
+ * The child is made with fork() and ends with _exit(): it runs no atexit
+ * handler and flushes none of the parent's stdio buffers (luz-render may
+ * hold half a PNG for standard output). It limits itself (RLIMIT_CPU,
+ * RLIMIT_AS, no core files), writes to the pipe and exits. The parent
+ * reads with poll() against a wall-clock deadline (a child that blocks or
+ * sleeps uses no CPU time), kills the child when it passes, always reaps
+ * it (no zombies) and closes both ends of the pipe on every path. The
+ * pipe is made O_CLOEXEC; the child ignores SIGPIPE, so a parent that
+ * stopped reading makes its write fail (EPIPE) and it exits.
+ */
+#define _GNU_SOURCE   /* pipe2 */
+#include "io/model_sandbox.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <stdbool.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <sys/time.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "io/input_file.h"
+
+/* AddressSanitizer and ThreadSanitizer reserve terabytes of address space
+ * for their shadow memory: under them, RLIMIT_AS would stop everything. */
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define LUZ_ADDRESS_SPACE_RESERVED 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
+#define LUZ_ADDRESS_SPACE_RESERVED 1
+#endif
+#endif
+#ifndef LUZ_ADDRESS_SPACE_RESERVED
+#define LUZ_ADDRESS_SPACE_RESERVED 0
+#endif
+
+luz_model_limits luz_model_limits_for(uint64_t file_size)
+{
+    const double mib = (double)file_size / (1024.0 * 1024.0);
+    const double cpu = LUZ_MODEL_SECONDS + LUZ_MODEL_SECONDS_PER_MIB * mib;
+    const uint64_t memory = LUZ_MODEL_MEMORY_BYTES + LUZ_MODEL_MEMORY_PER_BYTE * file_size;
+    return (luz_model_limits){.cpu_seconds = cpu,
+                              .wall_seconds = 2.0 * cpu + 10.0,
+                              .memory_bytes = LUZ_ADDRESS_SPACE_RESERVED ? 0 : memory,
+                              .description_bytes = memory};
+}
+
+static double now_seconds(void)
+{
+    struct timespec now;
+    clock_gettime(CLOCK_MONOTONIC, &now);
+    return (double)now.tv_sec + (double)now.tv_nsec / 1e9;
+}
+
+/* Lowers a limit of the process to at most `value` (never raises one
+ * that is lower already, which setrlimit could not do anyway). */
+static void lower_limit(int resource, rlim_t soft, rlim_t hard)
+{
+    struct rlimit now;
+    if (getrlimit(resource, &now) != 0) return;
+    if (now.rlim_max != RLIM_INFINITY && now.rlim_max < hard) hard = now.rlim_max;
+    if (soft > hard) soft = hard;
+    if (now.rlim_cur != RLIM_INFINITY && now.rlim_cur < soft) soft = now.rlim_cur;
+    setrlimit(resource, &(struct rlimit){soft, hard});
+}
+
+/* The address space this process takes now, in bytes (the first field of
+ * /proc/self/statm, in pages); 0 if it cannot be told. */
+static uint64_t address_space_bytes(void)
+{
+    int descriptor = open("/proc/self/statm", O_RDONLY | O_CLOEXEC);
+    if (descriptor < 0) return 0;
+    char text[128];
+    ssize_t length = read(descriptor, text, sizeof text - 1);
+    close(descriptor);
+    if (length <= 0) return 0;
+    text[length] = '\0';
+    unsigned long long pages = strtoull(text, NULL, 10);
+    long page_size = sysconf(_SC_PAGESIZE);
+    return page_size > 0 ? pages * (uint64_t)page_size : 0;
+}
+
+/* The child: its limits, its work, what it found down the pipe, _exit. */
+static _Noreturn void run_child(const char *path, int pipe_end, const luz_model_limits *limits,
+                                luz_model_child_work work, const void *context)
+{
+    signal(SIGPIPE, SIG_IGN);
+    /* A crash ends the child with its signal, which the parent reports,
+     * whatever handlers the parent had (a test framework's, a sanitizer's,
+     * whose report would go to /dev/null); ^C ends it with the parent. */
+    static const int ending[] = {SIGSEGV, SIGBUS, SIGILL, SIGFPE, SIGABRT, SIGXCPU,
+                                 SIGINT, SIGTERM, SIGHUP};
+    for (size_t i = 0; i < sizeof ending / sizeof ending[0]; i++) signal(ending[i], SIG_DFL);
+    int nothing = open("/dev/null", O_RDWR | O_CLOEXEC);
+    if (nothing >= 0) {
+        dup2(nothing, STDIN_FILENO);
+        dup2(nothing, STDOUT_FILENO);
+        dup2(nothing, STDERR_FILENO);
+        if (nothing > STDERR_FILENO) close(nothing);
+    }
+    lower_limit(RLIMIT_CORE, 0, 0);
+    /* at the soft limit SIGXCPU, a second later SIGKILL */
+    const rlim_t cpu = (rlim_t)limits->cpu_seconds + 1;
+    lower_limit(RLIMIT_CPU, cpu, cpu + 1);
+    if (limits->memory_bytes > 0) {
+        /* on top of what the child shares with luz's process (the cube
+         * textures, models read before): the limit is assimp's alone */
+        const rlim_t memory = (rlim_t)(address_space_bytes() + limits->memory_bytes);
+        lower_limit(RLIMIT_AS, memory, memory);
+    }
+    /* the writer's buffer, which needs no memory that may have run out */
+    unsigned char buffer[64 << 10];
+    luz_model_writer writer = {.descriptor = pipe_end, .bytes = buffer,
+                               .capacity = sizeof buffer};
+    luz_error error = {{0}};
+    int status = work(context, limits->memory_bytes, &writer, &error);
+    if (status == LUZ_MACHINE_FAILED && limits->memory_bytes > 0) {
+        /* out of memory within the limit: the file asked for too much */
+        status = LUZ_BAD_INPUT;
+        luz_error_set(&error, "%s: assimp needs more than %llu MiB to read it (luz's limit "
+                              "for a model file of this size)", path,
+                      (unsigned long long)(limits->memory_bytes >> 20));
+    }
+    if (status != 0) {
+        /* after what was written of the description: the reader stops at
+         * the refusal. (A writer whose pipe broke has no reader.) */
+        writer.status = 0;
+        luz_model_write_refusal(&writer, status, error.message);
+    }
+    _exit(luz_model_writer_flush(&writer) == 0 ? 0 : 1);
+}
+
+/* Reaps the child, killing it first if it has not exited by the deadline
+ * (or at once, if kill_now); *killed says whether it was. */
+static void reap(pid_t child, double deadline, bool kill_now, int *wait_status,
+                 struct rusage *usage, bool *killed)
+{
+    *killed = false;
+    for (;;) {
+        if (kill_now && !*killed) {
+            kill(child, SIGKILL);
+            *killed = true;
+        }
+        pid_t done = wait4(child, wait_status, *killed ? 0 : WNOHANG, usage);
+        if (done == child) return;
+        if (done < 0 && errno != EINTR) {
+            *wait_status = 0;   /* cannot happen for our own child */
+            return;
+        }
+        if (done == 0) {
+            if (now_seconds() >= deadline) kill_now = true;
+            else nanosleep(&(struct timespec){0, 5 * 1000 * 1000}, NULL);
+        }
+    }
+}
+
+static const char *signal_name(int number)
+{
+    switch (number) {
+    case SIGSEGV: return "SIGSEGV";
+    case SIGBUS: return "SIGBUS";
+    case SIGABRT: return "SIGABRT";
+    case SIGFPE: return "SIGFPE";
+    case SIGILL: return "SIGILL";
+    case SIGKILL: return "SIGKILL";
+    case SIGXCPU: return "SIGXCPU";
+    case SIGINT: return "SIGINT";
+    case SIGTERM: return "SIGTERM";
+    case SIGHUP: return "SIGHUP";
+    default: return "a signal";
+    }
+}
+
+int luz_model_run_isolated(const char *path, const luz_model_limits *limits,
+                           luz_model_child_work work, const void *context,
+                           unsigned char **description, size_t *size, luz_error *error)
+{
+    *description = NULL;
+    *size = 0;
+    int ends[2];
+    if (pipe2(ends, O_CLOEXEC) != 0) {
+        luz_error_set(error, "%s: cannot make a pipe to read it through (%s)", path,
+                      strerror(errno));
+        return LUZ_MACHINE_FAILED;
+    }
+    const double start = now_seconds(), deadline = start + limits->wall_seconds;
+    pid_t child = fork();
+    if (child < 0) {
+        int reason = errno;
+        close(ends[0]);
+        close(ends[1]);
+        luz_error_set(error, "%s: cannot start a process to read it (%s)", path,
+                      strerror(reason));
+        return LUZ_MACHINE_FAILED;
+    }
+    if (child == 0) {
+        close(ends[0]);
+        run_child(path, ends[1], limits, work, context);
+    }
+    close(ends[1]);
+
+    /* What the child sends, until it closes the pipe, the deadline passes
+     * or it sends more than it may. */
+    unsigned char *bytes = NULL;
+    size_t length = 0, capacity = 0;
+    enum { READING, ENDED, LATE, TOO_LONG, NO_MEMORY, BROKEN } reading = READING;
+    int read_error = 0;
+    while (reading == READING) {
+        const double left = deadline - now_seconds();
+        if (left <= 0.0) {
+            reading = LATE;
+            break;
+        }
+        struct pollfd wait = {.fd = ends[0], .events = POLLIN};
+        int ready = poll(&wait, 1, left > 60.0 ? 60000 : (int)(left * 1000.0) + 1);
+        if (ready < 0 && errno != EINTR) {
+            read_error = errno;
+            reading = BROKEN;
+        }
+        if (ready <= 0) continue;
+        if (length == capacity) {
+            if (capacity > limits->description_bytes) {
+                reading = TOO_LONG;
+                break;
+            }
+            size_t grown_capacity = capacity < ((size_t)1 << 20) ? (size_t)1 << 20 : 2 * capacity;
+            if (grown_capacity > limits->description_bytes + 1)
+                grown_capacity = (size_t)limits->description_bytes + 1;
+            unsigned char *grown = grown_capacity > capacity ? realloc(bytes, grown_capacity)
+                                                             : NULL;
+            if (grown == NULL) {
+                reading = grown_capacity > capacity ? NO_MEMORY : TOO_LONG;
+                break;
+            }
+            bytes = grown;
+            capacity = grown_capacity;
+        }
+        ssize_t got = read(ends[0], bytes + length, capacity - length);
+        if (got > 0) length += (size_t)got;
+        else if (got == 0) reading = ENDED;
+        else if (errno != EINTR && errno != EAGAIN) {
+            read_error = errno;
+            reading = BROKEN;
+        }
+    }
+    close(ends[0]);
+    int wait_status = 0;
+    struct rusage usage = {0};
+    bool killed;
+    reap(child, deadline, reading != ENDED, &wait_status, &usage, &killed);
+    const double cpu = (double)usage.ru_utime.tv_sec + (double)usage.ru_stime.tv_sec +
+                       ((double)usage.ru_utime.tv_usec + (double)usage.ru_stime.tv_usec) / 1e6;
+
+    int status = LUZ_BAD_INPUT;
+    if (reading == NO_MEMORY) {
+        luz_error_set(error, "%s: out of memory for its description (%zu bytes)", path, length);
+        status = LUZ_MACHINE_FAILED;
+    } else if (reading == BROKEN) {
+        luz_error_set(error, "%s: cannot read from the process that reads it (%s)", path,
+                      strerror(read_error));
+        status = LUZ_MACHINE_FAILED;
+    } else if (reading == TOO_LONG) {
+        luz_error_set(error, "%s: assimp's process sent more than %llu MiB (luz's limit for a "
+                             "model file of this size)", path,
+                      (unsigned long long)(limits->description_bytes >> 20));
+    } else if (reading == LATE || (killed && WIFSIGNALED(wait_status)) ||
+               (WIFSIGNALED(wait_status) &&
+                (WTERMSIG(wait_status) == SIGXCPU ||
+                 (WTERMSIG(wait_status) == SIGKILL && cpu >= limits->cpu_seconds)))) {
+        luz_error_set(error, "%s: assimp took more than %.0f s to read it (luz's limit for a "
+                             "model file of this size)", path,
+                      reading == LATE || killed ? limits->wall_seconds : limits->cpu_seconds);
+    } else if (WIFSIGNALED(wait_status)) {
+        const int number = WTERMSIG(wait_status);
+        if (number == SIGKILL || number == SIGINT || number == SIGTERM || number == SIGHUP) {
+            /* not luz's doing nor the file's: the system's out-of-memory
+             * killer, or a user who stopped it */
+            luz_error_set(error, "%s: the process reading it was stopped (%s)", path,
+                          signal_name(number));
+            status = LUZ_MACHINE_FAILED;
+        } else if (number == SIGABRT && limits->memory_bytes > 0) {
+            luz_error_set(error, "%s: assimp crashed reading it (SIGABRT: a failed check, or "
+                                 "more memory than luz's limit of %llu MiB for a model file "
+                                 "of this size)", path,
+                          (unsigned long long)(limits->memory_bytes >> 20));
+        } else {
+            luz_error_set(error, "%s: assimp crashed reading it (%s, signal %d)", path,
+                          signal_name(number), number);
+        }
+    } else if (!WIFEXITED(wait_status) || WEXITSTATUS(wait_status) != 0) {
+        luz_error_set(error, "%s: assimp failed reading it (its process exited with status %d)",
+                      path, WIFEXITED(wait_status) ? WEXITSTATUS(wait_status) : -1);
+    } else {
+        status = 0;
+    }
+    if (status != 0) {
+        free(bytes);
+        return status;
+    }
+    *description = bytes;
+    *size = length;
+    return 0;
+}
