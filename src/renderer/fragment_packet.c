@@ -232,6 +232,11 @@ typedef struct packet_uniforms {
     float shininess;
     float spot_strength_squared;
     float cos_inner, cos_outer, reach;
+    /* cos_inner - cos_outer, the smooth step's divisor; 1 when the two
+     * cones are one (every lane computes the step, and the lanes that
+     * would divide by zero are the ones that never use it: luz_shade_spot
+     * divides only strictly between the cones). */
+    float cone_width;
     /* The framebuffer's channel order, as the shifts that put red and blue
      * into a pixel's uint32_t (CHANNEL_SHIFT), and the clear colour packed
      * in it. */
@@ -264,6 +269,7 @@ static packet_uniforms packet_uniforms_of(const luz_uniforms *uniforms, luz_chan
         .cos_outer = uniforms->shade.spot_cos_outer,
         .reach = lights->spot_reach,
     };
+    u.cone_width = u.cos_inner - u.cos_outer != 0.0f ? u.cos_inner - u.cos_outer : 1.0f;
     const float s = lights->shininess;
     u.shininess_whole = luz_shade_power_is_whole(s);
     u.shininess_exponent = u.shininess_whole ? (unsigned)s : 0;
@@ -338,7 +344,7 @@ INLINE vvec3 shade_lighting(const packet_uniforms *u, vvec3 position, vvec3 norm
     if (u->spot_on) {
         const vvec3 ray = {-to_eye.x, -to_eye.y, -to_eye.z};
         const vfloat c = dot3_uniform(ray, u->spot_axis);
-        const vfloat s = sqrt_lanes((c - u->cos_outer) / (u->cos_inner - u->cos_outer));
+        const vfloat s = sqrt_lanes((c - u->cos_outer) / u->cone_width);
         const vfloat smooth = s * s * (3.0f - 2.0f * s);
         const vfloat f_direction =
             select_float(c > u->cos_inner, splat(1.0f),
