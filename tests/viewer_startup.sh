@@ -105,6 +105,53 @@ for case in "no display" "dead X11" "dead Wayland" "dead Wayland, no runtime dir
     fi
 done
 
+# An X server that accepts the connection and never answers (one that
+# hangs, or a network path that drops its replies): Xlib would wait for it
+# forever; luz asks first, for a second. A listener on a free port from
+# 6100, DISPLAY=127.0.0.1:N for port 6000 + N.
+python3 -c "
+import socket, sys, time
+for port in range(6100, 6200):
+    s = socket.socket()
+    try:
+        s.bind(('127.0.0.1', port))
+    except OSError:
+        continue
+    s.listen(4)
+    open(sys.argv[1], 'w').write(str(port - 6000))
+    held = []
+    end = time.time() + 30
+    while time.time() < end:
+        s.settimeout(1)
+        try:
+            held.append(s.accept())
+        except OSError:
+            pass
+    break
+" "$work/silent-display" 2>/dev/null &
+listener=$!
+waited=0
+while [ ! -s "$work/silent-display" ] && [ "$waited" -lt 50 ] && kill -0 "$listener" 2>/dev/null; do
+    sleep 0.1
+    waited=$((waited + 1))
+done
+if [ -s "$work/silent-display" ]; then
+    number=$(cat "$work/silent-display")
+    start=$(now_ms)
+    timeout 10 env -u WAYLAND_DISPLAY -u SDL_VIDEODRIVER DISPLAY="127.0.0.1:$number" \
+        "$luz" --textures none >"$work/out" 2>"$work/err"
+    status=$?
+    elapsed=$(($(now_ms) - start))
+    if [ "$status" -ne 2 ] || [ "$(wc -l <"$work/err")" -ne 1 ] ||
+       ! grep -q "^luz: cannot open a window: no display available (the X display 127.0.0.1:$number did not answer within 1 s" "$work/err"; then
+        fail "silent X11 server: status $status, stderr '$(cat "$work/err")'"
+    elif [ "$elapsed" -gt 5000 ]; then
+        fail "silent X11 server: luz took $elapsed ms to give up"
+    fi
+fi
+kill "$listener" 2>/dev/null
+wait "$listener" 2>/dev/null
+
 # --help and --version succeed on stdout.
 "$luz" --version >"$work/out" 2>"$work/err" || fail "luz --version failed"
 grep -q '^luz [0-9]' "$work/out" || fail "luz --version printed '$(cat "$work/out")'"

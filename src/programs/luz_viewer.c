@@ -56,6 +56,7 @@
 #ifdef LUZ_VIEWER_X11
 #include "present_x11.h"
 #endif
+#include "x11_display_probe.h"
 
 #ifndef LUZ_VERSION
 #error "src/meson.build passes LUZ_VERSION"
@@ -900,8 +901,22 @@ static int open_window(viewer *v, luz_error *error)
     /* Without a Wayland socket to reach, try X11 alone, unless the user
      * chose a driver. */
     const char *asked = getenv("SDL_VIDEODRIVER");
-    if ((asked == NULL || asked[0] == '\0') && !wayland_socket_exists())
+    const bool x11_only = (asked == NULL || asked[0] == '\0') ? !wayland_socket_exists()
+                                                              : strcmp(asked, "x11") == 0;
+    if (x11_only && (asked == NULL || asked[0] == '\0'))
         SDL_SetHint(SDL_HINT_VIDEODRIVER, "x11");
+    /* Xlib waits for an X server's first answer without a limit: a server
+     * that hangs, or a network path that drops its packets, would keep
+     * luz waiting with no window and no word. Ask it first, for a
+     * second. */
+    const char *display = getenv("DISPLAY");
+    char silent[1024];
+    if (x11_only && display != NULL && display[0] != '\0' &&
+        !luz_x11_display_answers(display, 1.0, silent, sizeof silent))
+        return luz_error_set(error,
+                             "cannot open a window: no display available (%s); luz-render "
+                             "renders the same scene to PNG files",
+                             silent);
     if (SDL_Init(SDL_INIT_VIDEO) != 0)
         return luz_error_set(error,
                              "cannot open a window: no display available (%s); luz-render "
