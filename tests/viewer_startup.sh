@@ -135,7 +135,9 @@ while [ ! -s "$work/silent-display" ] && [ "$waited" -lt 50 ] && kill -0 "$liste
     sleep 0.1
     waited=$((waited + 1))
 done
-if [ -s "$work/silent-display" ]; then
+if [ ! -s "$work/silent-display" ]; then
+    echo "silent X11 server: not checked (no python3, or no free port from 6100 to 6199)"
+else
     number=$(cat "$work/silent-display")
     start=$(now_ms)
     timeout 10 env -u WAYLAND_DISPLAY -u SDL_VIDEODRIVER DISPLAY="127.0.0.1:$number" \

@@ -106,9 +106,11 @@ typedef struct luz_render_options {
                                           image, or a stage of the pipeline */
     luz_interpolation interpolation;
     uint32_t triangle_limit;           /* 0: every triangle; N: only the first
-                                          N that survive clipping and culling,
-                                          in submission order (the viewer's
-                                          step mode) */
+                                          N that survive clipping and culling
+                                          and cover a pixel centre (a small
+                                          triangle that falls between centres
+                                          is dropped at setup), in submission
+                                          order (the viewer's step mode) */
     const luz_band_hook *hook;         /* NULL, or called after each band */
     luz_frame_stats *stats;            /* NULL, or filled in */
     luz_pixel_probe *probe;            /* NULL, or the pixel at probe->x,

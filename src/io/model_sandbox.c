@@ -114,7 +114,9 @@ static _Noreturn void run_child(const char *path, int pipe_end, const luz_model_
         if (nothing > STDERR_FILENO) close(nothing);
     }
     lower_limit(RLIMIT_CORE, 0, 0);
-    /* at the soft limit SIGXCPU, a second later SIGKILL */
+    /* at the soft limit SIGXCPU, a second later SIGKILL: whole seconds,
+     * rounded up past cpu_seconds (the kernel counts in whole seconds), so
+     * a child is stopped within two seconds after the stated limit */
     const rlim_t cpu = (rlim_t)limits->cpu_seconds + 1;
     lower_limit(RLIMIT_CPU, cpu, cpu + 1);
     if (limits->memory_bytes > 0) {
@@ -146,9 +148,10 @@ static _Noreturn void run_child(const char *path, int pipe_end, const luz_model_
 }
 
 /* Reaps the child, killing it first if it has not exited by the deadline
- * (or at once, if kill_now); *killed says whether it was. */
-static void reap(pid_t child, double deadline, bool kill_now, int *wait_status,
-                 struct rusage *usage, bool *killed)
+ * (or at once, if kill_now); *killed says whether it was. Returns 0, or
+ * the errno of a wait that failed (then *wait_status means nothing). */
+static int reap(pid_t child, double deadline, bool kill_now, int *wait_status,
+                struct rusage *usage, bool *killed)
 {
     *killed = false;
     for (;;) {
@@ -157,10 +160,15 @@ static void reap(pid_t child, double deadline, bool kill_now, int *wait_status,
             *killed = true;
         }
         pid_t done = wait4(child, wait_status, *killed ? 0 : WNOHANG, usage);
-        if (done == child) return;
+        if (done == child) return 0;
         if (done < 0 && errno != EINTR) {
-            *wait_status = 0;   /* cannot happen for our own child */
-            return;
+            /* Not for our own child, unless the program that links luz
+             * reaps children itself (SIGCHLD ignored: ECHILD). Its status
+             * is then unknown: kill it in case, and say so. */
+            const int why = errno;
+            kill(child, SIGKILL);
+            *killed = true;
+            return why;
         }
         if (done == 0) {
             if (now_seconds() >= deadline) kill_now = true;
@@ -262,12 +270,16 @@ int luz_model_run_isolated(const char *path, const luz_model_limits *limits,
     int wait_status = 0;
     struct rusage usage = {0};
     bool killed;
-    reap(child, deadline, reading != ENDED, &wait_status, &usage, &killed);
+    const int wait_error = reap(child, deadline, reading != ENDED, &wait_status, &usage, &killed);
     const double cpu = (double)usage.ru_utime.tv_sec + (double)usage.ru_stime.tv_sec +
                        ((double)usage.ru_utime.tv_usec + (double)usage.ru_stime.tv_usec) / 1e6;
 
     int status = LUZ_BAD_INPUT;
-    if (reading == NO_MEMORY) {
+    if (wait_error != 0) {
+        luz_error_set(error, "%s: cannot learn how the process that reads it ended (%s)", path,
+                      strerror(wait_error));
+        status = LUZ_MACHINE_FAILED;
+    } else if (reading == NO_MEMORY) {
         luz_error_set(error, "%s: out of memory for its description (%zu bytes)", path, length);
         status = LUZ_MACHINE_FAILED;
     } else if (reading == BROKEN) {

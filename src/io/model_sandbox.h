@@ -5,7 +5,9 @@
  * Some of assimp's bugs (tests/fuzz/assimp-findings/) no cheap check keeps
  * out: a parser that reads past its buffer and loops forever, a count in a
  * file's body that makes it allocate a gigabyte. luz_model_load therefore
- * runs assimp in a child (fork, before the renderer's threads exist),
+ * runs assimp in a child (fork, before the renderer's threads exist; the
+ * only other thread then may be option_models.c's watcher, which prints
+ * "reading FILE" on a terminal, and which the child never touches),
  * under limits that grow with the file's size, and reads the description
  * of the model it sends back (io/model_description.h) as a stranger's
  * bytes. However the child ends (refused, crashed, over a limit), the

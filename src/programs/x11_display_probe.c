@@ -3,10 +3,16 @@
  * within a deadline, before the viewer hands the display to SDL.
  *
  * In:  a DISPLAY string ([tcp/|unix/][host]:number[.screen]) and seconds.
- * Out: true when a server there answered the first message of the X11
- *      protocol (with success, failure or a request to authenticate: any
- *      answer says a server is alive); false, with the reason, when nothing
- *      listens, or something listens and never answers.
+ * Out: false, with the reason, only when something takes the connection
+ *      and then says nothing to the first message of the X11 protocol
+ *      within the deadline (or the connection itself hangs): the case in
+ *      which Xlib would wait forever. True otherwise: a server answered
+ *      (with success, failure or a request to authenticate: it is alive),
+ *      or nothing listens, or the connection was closed or refused. Those
+ *      are Xlib's to judge, as before this probe: it fails on them at once,
+ *      or succeeds where this probe cannot (an ssh -X forwarder closes a
+ *      connection without its cookie, which Xlib sends; libxcb falls back
+ *      from a missing local socket to TCP; bracketed IPv6 hosts).
  *
  * Why: Xlib (under SDL) connects and then waits for the server's reply to
  * its setup request with no time limit. An X server that hangs, or a TCP
@@ -192,11 +198,8 @@ bool luz_x11_display_answers(const char *display, double seconds, char *why, siz
     probe_result result = local ? probe_local(number, deadline, reason, sizeof reason)
                                 : probe_tcp(host[0] ? host : "localhost", number, deadline,
                                             reason, sizeof reason);
-    if (result == PROBE_ANSWERED) return true;
-    if (result == PROBE_SILENT)
-        snprintf(why, why_size, "the X display %s did not answer within %g s: %s", display,
-                 seconds, reason);
-    else
-        snprintf(why, why_size, "the X display %s cannot be reached: %s", display, reason);
+    if (result != PROBE_SILENT) return true;
+    snprintf(why, why_size, "the X display %s did not answer within %g s: %s", display, seconds,
+             reason);
     return false;
 }

@@ -9,9 +9,11 @@
 #include <stdbool.h>
 #include <stddef.h>
 
-/* True when a server at display answered the X11 setup request within
- * seconds, or display is a form left to Xlib; false with why (one phrase
- * naming the display and what happened) otherwise. */
+/* False, with why (one phrase naming the display and what happened), when
+ * a connection to display is taken and the X11 setup request gets no
+ * answer within seconds (Xlib would wait forever); true otherwise (an
+ * answer, or a failure Xlib reports itself at once, or a display form left
+ * to Xlib). */
 bool luz_x11_display_answers(const char *display, double seconds, char *why, size_t why_size);
 
 #endif

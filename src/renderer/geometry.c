@@ -19,9 +19,10 @@
  *                several to a batch; a big draw is cut into ranges of
  *                triangles, and its vertices get a place in the frame's
  *                vertex arena
- *   vertex pass  (parallel) the big draws' vertices, in ranges
- *   batches      (parallel) each small draw's vertex stage (into the
- *                thread's scratch), then clipping and setup of the batch's
+ *   vertex pass  (parallel) the big draws' vertices, in ranges: the vertex
+ *                stage, then setup's per-vertex projection
+ *   batches      (parallel) each small draw's vertex stage and projection
+ *                (into the thread's scratch), then clipping and setup of the batch's
  *                triangles; the batch counts its triangles per band
  *   number       (one thread) prefix sums: each batch's first id, and
  *                each batch's place in each band's list (a counting sort)

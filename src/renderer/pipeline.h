@@ -7,7 +7,9 @@
  *                                                        clip space + varyings
  *     -> clip.c      luz_clip_triangle: a luz_clip_polygon per triangle that
  *                    crosses a plane (the others pass)   inside the clip volume
- *     -> setup.c     luz_setup_triangle: a luz_triangle per fan triangle
+ *     -> setup.c     luz_setup_project: a luz_window_vertex per vertex
+ *                                                        divided, viewport, snapped
+ *                    luz_setup_projected: a luz_triangle per fan triangle
  *                                                        fixed-point edges, planes
  *     -> raster.c    luz_raster_triangle: depth + visibility per pixel
  *                                                        who is nearest
@@ -190,8 +192,9 @@ typedef struct luz_window_vertex {
     int32_t fixed_x, fixed_y;   /* x, y snapped to 1/256 pixel (|X| <= 2^24) */
 } luz_window_vertex;
 
-/* fixed_x of a vertex with w <= 0 or a coordinate that is not finite:
- * setup culls its triangles. */
+/* fixed_x of a vertex with w <= 0 (or NaN) or an x, y or z that is not
+ * finite: setup culls its triangles. (An infinite w passes, as it always
+ * did: 1/w is 0.) */
 #define LUZ_WINDOW_INVALID INT32_MIN
 
 /* Projects vertices[first, end) into out[first, end) for a width x height

@@ -2,11 +2,16 @@
  * setup.c: triangle setup, done once per triangle so that the per-pixel
  * loops only add and compare.
  *
- * In:  three clip-space vertices (already clipped, so w > 0).
+ * In:  clip-space vertices (already clipped, so w > 0); luz_setup_project
+ *      divides, maps and snaps each vertex once (steps 1-2, a
+ *      luz_window_vertex), luz_setup_projected sets up a triangle of three
+ *      of them (steps 3-5).
  * Out: a luz_triangle: the pixel bounding box, three fixed-point edge
  *      functions with the fill rule folded in, and screen-space planes for
  *      depth, 1/w and every varying/w (for affine interpolation: 1 and
- *      every varying).
+ *      every varying); or CULLED (a back face), or OFFSCREEN (no pixel
+ *      centre covered: outside the viewport, or a small triangle whose box
+ *      holds centres that all fall outside it).
  *
  * Steps, as in OpenGL 4.6 section 13.8 (coordinate transformations) and
  * Fabian Giesen's "Triangle rasterization in practice":
@@ -112,8 +117,9 @@ static bool covers_a_centre(const luz_triangle *triangle)
  * Inlined, so that the ten calls of a triangle share the differences of
  * x and y (the compiler computes them once; the arithmetic of each plane
  * is unchanged). */
-static inline __attribute__((always_inline)) luz_plane make_plane(const double x[3], const double y[3], double inverse_determinant,
-                            double rx, double ry, double value0, double value1, double value2)
+static inline __attribute__((always_inline)) luz_plane
+make_plane(const double x[3], const double y[3], double inverse_determinant, double rx, double ry,
+           double value0, double value1, double value2)
 {
     double d1 = value1 - value0, d2 = value2 - value0;
     double dx = (d1 * (y[2] - y[0]) - d2 * (y[1] - y[0])) * inverse_determinant;
