@@ -53,32 +53,6 @@
 #define HALF_WIDTH 640      /* for the many variations, to keep the suite */
 #define HALF_HEIGHT 360     /* quick under the sanitizers */
 
-/* The textures of the default scene, loaded once for every test. */
-static luz_texture_set textures;
-
-static int load_textures(void **state)
-{
-    (void)state;
-    const char *directory = getenv("LUZ_TEXTURES");
-    if (directory == NULL || directory[0] == '\0') {
-        print_error("LUZ_TEXTURES is not set (meson test sets it)\n");
-        return -1;
-    }
-    luz_error error = {{0}};
-    if (luz_texture_set_load(&textures, directory, NULL, &error) != 0) {
-        print_error("%s\n", error.message);
-        return -1;
-    }
-    return 0;
-}
-
-static int free_textures(void **state)
-{
-    (void)state;
-    luz_texture_set_free(&textures);
-    return 0;
-}
-
 /* The fast path's compiled variants, and their names for the messages. */
 static const luz_packet_isa variants[] = {LUZ_PACKET_ISA_BASELINE, LUZ_PACKET_ISA_AVX2,
                                           LUZ_PACKET_ISA_AVX512};
@@ -184,8 +158,8 @@ static size_t minified_pixels(const luz_scene *scene, size_t *shaded)
     luz_scene bilinear = *scene, trilinear = *scene;
     bilinear.filter = LUZ_FILTER_BILINEAR;
     trilinear.filter = LUZ_FILTER_TRILINEAR;
-    luz_framebuffer *a = render(&bilinear, &textures, WIDTH, HEIGHT, 1, reference_stage);
-    luz_framebuffer *b = render(&trilinear, &textures, WIDTH, HEIGHT, 1, reference_stage);
+    luz_framebuffer *a = render(&bilinear, lab_textures(), WIDTH, HEIGHT, 1, reference_stage);
+    luz_framebuffer *b = render(&trilinear, lab_textures(), WIDTH, HEIGHT, 1, reference_stage);
     agreement same = compare(a, b);
     luz_framebuffer_destroy(a);
     luz_framebuffer_destroy(b);
@@ -212,7 +186,7 @@ static void default_scene_with_each_filter(void **state)
             char name[64];
             snprintf(name, sizeof name, "default t=%g %s", times[t],
                      luz_filter_name(filters[f]));
-            assert_agreement(name, &scene, &textures, WIDTH, HEIGHT);
+            assert_agreement(name, &scene, lab_textures(), WIDTH, HEIGHT);
         }
     }
 }
@@ -230,7 +204,7 @@ static void each_term_alone(void **state)
             if (other != term) luz_lights_term(&scene.lights, (luz_term)other)->strength = 0.0f;
         char name[64];
         snprintf(name, sizeof name, "only %s", luz_term_name((luz_term)term));
-        assert_agreement(name, &scene, &textures, HALF_WIDTH, HALF_HEIGHT);
+        assert_agreement(name, &scene, lab_textures(), HALF_WIDTH, HALF_HEIGHT);
     }
 }
 
@@ -252,7 +226,7 @@ static void camera_close_to_a_cube(void **state)
         scene.filter = filters[f];
         char name[64];
         snprintf(name, sizeof name, "close %s", luz_filter_name(filters[f]));
-        assert_agreement(name, &scene, &textures, WIDTH, HEIGHT);
+        assert_agreement(name, &scene, lab_textures(), WIDTH, HEIGHT);
     }
 }
 
@@ -277,7 +251,7 @@ static void camera_far_from_tiny_cubes(void **state)
         scene.filter = filters[f];
         char name[64];
         snprintf(name, sizeof name, "far %s", luz_filter_name(filters[f]));
-        assert_agreement(name, &scene, &textures, WIDTH, HEIGHT);
+        assert_agreement(name, &scene, lab_textures(), WIDTH, HEIGHT);
     }
 }
 
@@ -289,19 +263,19 @@ static void lights_at_their_limits(void **state)
     /* A fractional exponent: luz_shade_power falls back to powf. */
     luz_scene scene = luz_scene_defaults();
     scene.lights.shininess = 7.5f;
-    assert_agreement("shininess 7.5", &scene, &textures, HALF_WIDTH, HALF_HEIGHT);
+    assert_agreement("shininess 7.5", &scene, lab_textures(), HALF_WIDTH, HALF_HEIGHT);
 
     /* pow(x, 0) = 1: the highlight covers every lit pixel. */
     scene = luz_scene_defaults();
     scene.lights.shininess = 0.0f;
-    assert_agreement("shininess 0", &scene, &textures, HALF_WIDTH, HALF_HEIGHT);
+    assert_agreement("shininess 0", &scene, lab_textures(), HALF_WIDTH, HALF_HEIGHT);
 
     /* Equal cones: the smooth band between them is empty (and nothing
      * divides by cos(inner) - cos(outer) = 0: equal_cones_divide_by_nothing). */
     scene = luz_scene_defaults();
     scene.lights.spot_inner_degrees = 10.0f;
     scene.lights.spot_outer_degrees = 10.0f;
-    assert_agreement("spot cones equal", &scene, &textures, HALF_WIDTH, HALF_HEIGHT);
+    assert_agreement("spot cones equal", &scene, lab_textures(), HALF_WIDTH, HALF_HEIGHT);
 
     /* The widest cones, coloured lights. */
     scene = luz_scene_defaults();
@@ -309,7 +283,7 @@ static void lights_at_their_limits(void **state)
     scene.lights.spot_outer_degrees = 89.0f;
     scene.lights.diffuse.colour = (luz_vec3){1.0f, 0.5f, 0.25f};
     scene.lights.point.colour = (luz_vec3){0.2f, 1.0f, 0.6f};
-    assert_agreement("spot cones 0-89, colours", &scene, &textures, HALF_WIDTH, HALF_HEIGHT);
+    assert_agreement("spot cones 0-89, colours", &scene, lab_textures(), HALF_WIDTH, HALF_HEIGHT);
 }
 
 /* Equal cones with every variant, the frame drawn on this thread: the
@@ -328,7 +302,7 @@ static void equal_cones_divide_by_nothing(void **state)
         if (!luz_packet_isa_supported(variants[v])) continue;
         feclearexcept(FE_DIVBYZERO);
         luz_framebuffer *image =
-            render(&scene, &textures, HALF_WIDTH, HALF_HEIGHT, 1, (stage){false, variants[v]});
+            render(&scene, lab_textures(), HALF_WIDTH, HALF_HEIGHT, 1, (stage){false, variants[v]});
         const bool divided_by_zero = fetestexcept(FE_DIVBYZERO) != 0;
         luz_framebuffer_destroy(image);
         if (divided_by_zero) fail_msg("%s: a division by zero", variant_names[v]);
@@ -353,11 +327,11 @@ static void same_bytes_for_any_thread_count_and_variant(void **state)
     for (size_t v = 0; v < VARIANT_COUNT; v++) {
         if (!luz_packet_isa_supported(variants[v])) continue;
         const stage fast = {false, variants[v]};
-        luz_framebuffer *one = render(&scene, &textures, ODD_WIDTH, ODD_HEIGHT, 1, fast);
+        luz_framebuffer *one = render(&scene, lab_textures(), ODD_WIDTH, ODD_HEIGHT, 1, fast);
         const int thread_counts[] = {2, 3, 7};
         for (size_t k = 0; k < sizeof thread_counts / sizeof thread_counts[0]; k++) {
             luz_framebuffer *many =
-                render(&scene, &textures, ODD_WIDTH, ODD_HEIGHT, thread_counts[k], fast);
+                render(&scene, lab_textures(), ODD_WIDTH, ODD_HEIGHT, thread_counts[k], fast);
             assert_memory_equal(one->colour, many->colour, (size_t)ODD_WIDTH * ODD_HEIGHT * 4);
             luz_framebuffer_destroy(many);
         }
@@ -488,7 +462,7 @@ static void every_byte_written_in_either_order(void **state)
     scene.time_seconds = 3.0;
     scene.cube_count = 40;
     luz_frame frame = {0};
-    assert_int_equal(luz_scene_build_frame(test_lab(), &scene, textures.textures, textures.count,
+    assert_int_equal(luz_scene_build_frame(test_lab(), &scene, lab_textures()->textures, lab_textures()->count,
                                            (float)SMALL_WIDTH / (float)SMALL_HEIGHT, &frame, NULL),
                      0);
     frame.clear_colour = tinted_clear;
@@ -554,7 +528,7 @@ static void pixel_sized_triangles(void **state)
     luz_scene scene = luz_scene_defaults();
     scene.time_seconds = 3.0;
     luz_frame frame = {0};
-    assert_int_equal(luz_scene_build_frame(test_lab(), &scene, textures.textures, textures.count,
+    assert_int_equal(luz_scene_build_frame(test_lab(), &scene, lab_textures()->textures, lab_textures()->count,
                                            (float)SMALL_WIDTH / (float)SMALL_HEIGHT, &frame, NULL),
                      0);
     frame.draw_count = 0;   /* keep the camera and the lights, draw the grid */
@@ -595,7 +569,7 @@ static void pixel_sized_triangles(void **state)
         assert_non_null(halves[half]);
         luz_draw draw = {.mesh = halves[half], .model = luz_mat4_identity()};
         draw.material.colour = half ? (luz_vec3){0.9f, 0.6f, 0.3f} : (luz_vec3){0.4f, 0.8f, 1.0f};
-        draw.material.texture = textures.textures[half];
+        draw.material.texture = lab_textures()->textures[half];
         assert_int_equal(luz_frame_add_draw(&frame, &draw, &error), 0);
     }
     free(vertices);
@@ -657,5 +631,5 @@ int main(void)
         cmocka_unit_test(every_byte_written_in_either_order),
         cmocka_unit_test(pixel_sized_triangles),
     };
-    return cmocka_run_group_tests(tests, load_textures, free_textures);
+    return cmocka_run_group_tests(tests, lab_textures_load, lab_textures_free);
 }

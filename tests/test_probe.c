@@ -63,27 +63,6 @@
 #define WIDTH 48
 #define HEIGHT 27
 
-static luz_texture_set textures;
-
-static int load_textures(void **state)
-{
-    (void)state;
-    const char *directory = getenv("LUZ_TEXTURES");
-    luz_error error = {{0}};
-    if (directory == NULL || luz_texture_set_load(&textures, directory, NULL, &error) != 0) {
-        print_error("cannot load the textures (LUZ_TEXTURES): %s\n", error.message);
-        return -1;
-    }
-    return 0;
-}
-
-static int free_textures(void **state)
-{
-    (void)state;
-    luz_texture_set_free(&textures);
-    return 0;
-}
-
 /* ---- double precision, worked out here ------------------------------------------- */
 
 typedef struct dvec3 {
@@ -211,8 +190,8 @@ static uint32_t overdraw_of(const uint8_t *pixel)
 static void prepare(drawn *d, const probe_case *c)
 {
     memset(&d->frame, 0, sizeof d->frame);
-    assert_int_equal(luz_scene_build_frame(test_lab(), &c->scene, textures.textures,
-                                           textures.count, (float)WIDTH / HEIGHT, &d->frame,
+    assert_int_equal(luz_scene_build_frame(test_lab(), &c->scene, lab_textures()->textures,
+                                           lab_textures()->count, (float)WIDTH / HEIGHT, &d->frame,
                                            NULL),
                      0);
     luz_error error = {{0}};
@@ -682,7 +661,7 @@ static case_summary run_case(const probe_case *c)
     case_summary summary = {0};
     luz_pixel_probe *probe = calloc(1, sizeof *probe);
     assert_non_null(probe);
-    const luz_probe_names names = {.scene = &c->scene, .textures = &textures};
+    const luz_probe_names names = {.scene = &c->scene, .textures = lab_textures()};
 
     for (int y = 0; y < HEIGHT; y++) {
         for (int x = 0; x < WIDTH; x++) {
@@ -954,7 +933,7 @@ static void a_model(void **state)
     luz_mesh *sphere = sphere_mesh(0.6, 0, 12, 16);
     luz_mesh *ring = sphere_mesh(0.12, 0.9, 10, 24);
     const luz_lab_model_part parts[2] = {
-        {.mesh = sphere, .has_uvs = true, .texture = textures.textures[0],
+        {.mesh = sphere, .has_uvs = true, .texture = lab_textures()->textures[0],
          .mesh_name = "ball", .material_name = "stone", .texture_name = "ball.png"},
         {.mesh = ring, .has_colour = true, .colour = {0.9f, 0.6f, 0.2f}, .has_uvs = true,
          .mesh_name = "ring", .material_name = "gold"},
@@ -979,7 +958,7 @@ static void a_model(void **state)
 
     /* The names: the draws are cube 0, the ball, the ring, cube 2, the
      * marker. */
-    const luz_probe_names names = {.scene = &c.scene, .textures = &textures};
+    const luz_probe_names names = {.scene = &c.scene, .textures = lab_textures()};
     luz_probe_source source = luz_probe_source_of(&names, 2);
     assert_int_equal(source.object, 1);
     assert_int_equal(source.mesh, 1);
@@ -993,8 +972,8 @@ static void a_model(void **state)
     assert_int_equal(luz_probe_source_of(&names, 5).object, LUZ_DRAW_NONE);
     /* the ball's texture is a file of the directory (the set's name wins);
      * cube 2 names its own */
-    assert_string_equal(luz_probe_texture_name(&names, 1, textures.textures[0]), textures.names[0]);
-    assert_string_equal(luz_probe_texture_name(&names, 3, textures.textures[2]), textures.names[2]);
+    assert_string_equal(luz_probe_texture_name(&names, 1, lab_textures()->textures[0]), lab_textures()->names[0]);
+    assert_string_equal(luz_probe_texture_name(&names, 3, lab_textures()->textures[2]), lab_textures()->names[2]);
     assert_string_equal(luz_probe_texture_name(&names, 3, NULL), "none");
     luz_mesh_destroy(sphere);
     luz_mesh_destroy(ring);
@@ -1143,7 +1122,7 @@ static void the_text(void **state)
     drawn *d = calloc(1, sizeof *d);
     assert_non_null(d);
     prepare(d, &c);
-    const luz_probe_names names = {.scene = &c.scene, .textures = &textures};
+    const luz_probe_names names = {.scene = &c.scene, .textures = lab_textures()};
 
     /* A lit pixel: the keys in the issue's order, and numbers that read
      * back to the probe's floats exactly. */
@@ -1222,7 +1201,7 @@ static void the_tour_pixel(void **state)
     enum { TOUR_WIDTH = 1280, TOUR_HEIGHT = 720 };
     const luz_scene scene = luz_scene_defaults();
     luz_frame frame = {0};
-    assert_int_equal(luz_scene_build_frame(test_lab(), &scene, textures.textures, textures.count,
+    assert_int_equal(luz_scene_build_frame(test_lab(), &scene, lab_textures()->textures, lab_textures()->count,
                                            (float)TOUR_WIDTH / TOUR_HEIGHT, &frame, NULL),
                      0);
     luz_error error = {{0}};
@@ -1288,5 +1267,5 @@ int main(void)
         cmocka_unit_test(the_text),
         cmocka_unit_test(the_tour_pixel),
     };
-    return cmocka_run_group_tests(tests, load_textures, free_textures);
+    return cmocka_run_group_tests(tests, lab_textures_load, lab_textures_free);
 }

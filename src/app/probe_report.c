@@ -65,28 +65,25 @@ static void line_float(FILE *out, const char *key, float value)
     fputc('\n', out);
 }
 
-static void line_vec3(FILE *out, const char *key, luz_vec3 value)
+/* key=v0,v1,...: the values comma-separated. */
+static void line_floats(FILE *out, const char *key, const float *values, int count)
 {
     fprintf(out, "%s=", key);
-    put_float(out, value.x);
-    fputc(',', out);
-    put_float(out, value.y);
-    fputc(',', out);
-    put_float(out, value.z);
+    for (int i = 0; i < count; i++) {
+        if (i > 0) fputc(',', out);
+        put_float(out, values[i]);
+    }
     fputc('\n', out);
+}
+
+static void line_vec3(FILE *out, const char *key, luz_vec3 value)
+{
+    line_floats(out, key, (const float[]){value.x, value.y, value.z}, 3);
 }
 
 static void line_vec4(FILE *out, const char *key, luz_vec4 value)
 {
-    fprintf(out, "%s=", key);
-    put_float(out, value.x);
-    fputc(',', out);
-    put_float(out, value.y);
-    fputc(',', out);
-    put_float(out, value.z);
-    fputc(',', out);
-    put_float(out, value.w);
-    fputc('\n', out);
+    line_floats(out, key, (const float[]){value.x, value.y, value.z, value.w}, 4);
 }
 
 /* A name the user's files gave: any character that could break the line
@@ -166,11 +163,7 @@ static void write_winner(FILE *out, const luz_pixel_probe *probe, const luz_prob
     /* the varyings */
     line_vec3(out, "P", probe->position);
     line_vec3(out, "N", probe->normal);
-    fputs("uv=", out);
-    put_float(out, probe->uv.x);
-    fputc(',', out);
-    put_float(out, probe->uv.y);
-    fputc('\n', out);
+    line_floats(out, "uv", (const float[]){probe->uv.x, probe->uv.y}, 2);
 
     if (probe->shading == LUZ_SHADING_UNLIT) {
         fputs("shading=unlit\n", out);
