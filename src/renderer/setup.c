@@ -93,7 +93,10 @@ static luz_edge make_edge(int64_t xi, int64_t yi, int64_t xj, int64_t yj)
 
 /* Whether any pixel centre of the triangle's box passes its three edge
  * functions: E(X, Y) = a X + b Y + c >= 0 at X = 256 x + 128, Y = 256 y +
- * 128, as raster.c tests them (the fill rule is in c). */
+ * 128, as raster.c tests them (the fill rule is in c). Not raster's
+ * luz_raster_row_span: that finds a row's whole span, where this stops at
+ * the first centre, and on a million-triangle mesh calling it cost 6% of
+ * the frame. */
 static bool covers_a_centre(const luz_triangle *triangle)
 {
     const int64_t half = LUZ_SUBPIXEL_ONE / 2;
