@@ -451,6 +451,12 @@ static void triangles_of_draw(geometry_batch *batch, const geometry_job *job,
          * stage worked out each vertex's outcode). */
         const unsigned code_a = a->outcode, code_b = b->outcode, code_c = c->outcode;
         if ((code_a | code_b | code_c) == 0) {
+            /* Half the triangles of a closed mesh face away: drop them
+             * here, as setup would. */
+            if (!luz_setup_front_facing(&window[ia], &window[ib], &window[ic])) {
+                batch->culled++;
+                continue;
+            }
             set_up(batch, job, a, b, c, &window[ia], &window[ib], &window[ic], draw_index, t);
             continue;
         }

@@ -197,6 +197,24 @@ typedef struct luz_window_vertex {
  * did: 1/w is 0.) */
 #define LUZ_WINDOW_INVALID INT32_MIN
 
+/* Step 3 of setup alone: whether the projected triangle (p0, p1, p2) is a
+ * front face, with a positive doubled area in fixed point (setup.c), and
+ * its three vertices valid. luz_setup_projected culls by it; inline, so
+ * that geometry.c drops a back face, half of a closed mesh, before it
+ * pays for the call. |X| <= 2^24, so each product is below 2^50. */
+static inline bool luz_setup_front_facing(const luz_window_vertex *p0,
+                                          const luz_window_vertex *p1,
+                                          const luz_window_vertex *p2)
+{
+    if (p0->fixed_x == LUZ_WINDOW_INVALID || p1->fixed_x == LUZ_WINDOW_INVALID ||
+        p2->fixed_x == LUZ_WINDOW_INVALID)
+        return false;
+    const int64_t doubled_area =
+        ((int64_t)p1->fixed_y - p0->fixed_y) * ((int64_t)p2->fixed_x - p0->fixed_x) -
+        ((int64_t)p1->fixed_x - p0->fixed_x) * ((int64_t)p2->fixed_y - p0->fixed_y);
+    return doubled_area > 0;
+}
+
 /* Projects vertices[first, end) into out[first, end) for a width x height
  * viewport; vertices with a non-zero outcode are left alone (their
  * triangles go to the clipper, whose polygon vertices are projected
