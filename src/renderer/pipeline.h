@@ -38,6 +38,27 @@
 #include "luz/shade.h"
 #include "luz/vecmath.h"
 
+/* ---- functions compiled per instruction set ------------------------------ */
+
+/* A static function marked LUZ_CLONES is compiled three times where the
+ * toolchain can: for x86-64 and for its AVX2 and AVX-512 levels
+ * (x86-64-v3, -v4), and the loader picks the one this CPU runs (an ifunc).
+ * For the per-vertex and per-triangle arithmetic of big meshes: wider
+ * vectors doing the same IEEE operations lane by lane, so the same bits
+ * (-ffp-contract=off holds for every clone: no fused multiply-add). GCC
+ * vectorises such code only at -O3 (its -O2 cost model leaves it scalar);
+ * clang is given the clones alone. Static only: GCC exports a cloned
+ * function whatever its visibility. */
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define LUZ_CLONES __attribute__((target_clones("default", "arch=x86-64-v3", \
+                                                "arch=x86-64-v4"), optimize("O3")))
+#elif defined(__x86_64__) && defined(__clang__)
+#define LUZ_CLONES __attribute__((target_clones("default", "arch=x86-64-v3", \
+                                                "arch=x86-64-v4")))
+#else
+#define LUZ_CLONES
+#endif
+
 /* ---- meshes (mesh.c) ----------------------------------------------------- */
 
 /* A mesh as luz_mesh_create made it: its own copies of the arrays, checked,

@@ -55,26 +55,6 @@
 
 #include "renderer/pipeline.h"
 
-/* solve_planes does the same arithmetic for ten planes of every
- * triangle that covers a pixel: most of a million-triangle mesh's setup.
- * Where the toolchain can, it is compiled three times, for x86-64 and for
- * the AVX2 and AVX-512 levels (x86-64-v3, -v4), and the loader picks the
- * one this CPU runs (an ifunc): wider vectors, the same IEEE operations
- * lane by lane, so the same bits (-ffp-contract=off holds for every
- * clone: no fused multiply-add). GCC vectorises the planes only at -O3
- * (its -O2 cost model leaves them scalar; clang is given the clones
- * alone). Counted with callgrind on a 150k-triangle sphere, the AVX2
- * clone takes setup from 88 to 71 million instructions a frame. */
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define SETUP_CLONES __attribute__((target_clones("default", "arch=x86-64-v3", \
-                                                  "arch=x86-64-v4"), optimize("O3")))
-#elif defined(__x86_64__) && defined(__clang__)
-#define SETUP_CLONES __attribute__((target_clones("default", "arch=x86-64-v3", \
-                                                  "arch=x86-64-v4")))
-#else
-#define SETUP_CLONES
-#endif
-
 /* 2^24 sub-pixel units: beyond the guard band, a bound that rounding can't
  * leave and that keeps the proof above true for any input. */
 #define COORDINATE_LIMIT 16777216.0
@@ -165,9 +145,13 @@ make_plane(const double x[3], const double y[3], double inverse_determinant, dou
     return plane;
 }
 
-/* Step 5's planes for depth, 1/w and every varying/w (setup.c's top),
- * into out. */
-static SETUP_CLONES void solve_planes(const double x[3], const double y[3],
+/* Step 5's planes for depth, 1/w and every varying/w (this file's top),
+ * into out: the same arithmetic for ten planes of every triangle that
+ * covers a pixel, most of a million-triangle mesh's setup, so compiled
+ * for wider vectors too (LUZ_CLONES). Counted with callgrind on a
+ * 150k-triangle sphere, the AVX2 clone takes setup from 44 to 35 million
+ * instructions a frame. */
+static LUZ_CLONES void solve_planes(const double x[3], const double y[3],
                                       double inverse_determinant, double rx, double ry,
                                       const double depth[3], const double inverse_w[3],
                                       const luz_clip_vertex *v0, const luz_clip_vertex *v1,

@@ -46,19 +46,21 @@ void luz_vertex_stage(const luz_draw *draw, luz_mat4 view_projection, luz_clip_v
     luz_vertex_stage_range(draw, view_projection, 0, draw->mesh->vertex_count, out);
 }
 
-void luz_vertex_stage_range(const luz_draw *draw, luz_mat4 view_projection, uint32_t first,
-                            uint32_t end, luz_clip_vertex *out)
+/* The loop of luz_vertex_stage_range: a 4x4, a 3x3 and a 4x4 transform
+ * per vertex, compiled for wider vectors too (LUZ_CLONES). */
+static LUZ_CLONES void transform_vertices(const luz_mesh *mesh, const luz_mat4 *model,
+                                          const luz_mat3 *normal_matrix,
+                                          const luz_mat4 *view_projection, uint32_t first,
+                                          uint32_t end, luz_clip_vertex *out)
 {
-    const luz_mesh *mesh = draw->mesh;
-    const luz_mat3 normal_matrix = luz_mat3_normal_matrix(draw->model);
     for (uint32_t i = first; i < end; i++) {
         const luz_vertex *vertex = &mesh->vertices[i];
-        const luz_vec4 world4 = transform4(&draw->model, vertex->position.x,
-                                           vertex->position.y, vertex->position.z, 1.0f);
+        const luz_vec4 world4 = transform4(model, vertex->position.x, vertex->position.y,
+                                           vertex->position.z, 1.0f);
         const luz_vec3 world = {world4.x, world4.y, world4.z};
-        const luz_vec3 normal = transform3(&normal_matrix, vertex->normal);
+        const luz_vec3 normal = transform3(normal_matrix, vertex->normal);
 
-        out[i].position = transform4(&view_projection, world.x, world.y, world.z, 1.0f);
+        out[i].position = transform4(view_projection, world.x, world.y, world.z, 1.0f);
         out[i].outcode = luz_clip_outcode(out[i].position);
         float *varying = out[i].varyings;
         varying[LUZ_VARYING_POSITION + 0] = world.x;
@@ -70,4 +72,12 @@ void luz_vertex_stage_range(const luz_draw *draw, luz_mat4 view_projection, uint
         varying[LUZ_VARYING_UV + 0] = vertex->uv.x;
         varying[LUZ_VARYING_UV + 1] = vertex->uv.y;
     }
+}
+
+void luz_vertex_stage_range(const luz_draw *draw, luz_mat4 view_projection, uint32_t first,
+                            uint32_t end, luz_clip_vertex *out)
+{
+    const luz_mat3 normal_matrix = luz_mat3_normal_matrix(draw->model);
+    transform_vertices(draw->mesh, &draw->model, &normal_matrix, &view_projection, first, end,
+                       out);
 }
