@@ -48,8 +48,20 @@
  * (-ffp-contract=off holds for every clone: no fused multiply-add). GCC
  * vectorises such code only at -O3 (its -O2 cost model leaves it scalar);
  * clang is given the clones alone. Static only: GCC exports a cloned
- * function whatever its visibility. */
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+ * function whatever its visibility. Not under ThreadSanitizer: the loader
+ * runs an ifunc's resolver before TSan's runtime is set up, and the
+ * instrumented resolver crashes every program at start. */
+#if defined(__has_feature)
+#if __has_feature(thread_sanitizer)
+#define LUZ_THREAD_SANITIZER 1
+#endif
+#endif
+#if defined(__SANITIZE_THREAD__)
+#define LUZ_THREAD_SANITIZER 1
+#endif
+#if defined(LUZ_THREAD_SANITIZER)
+#define LUZ_CLONES
+#elif defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 #define LUZ_CLONES __attribute__((target_clones("default", "arch=x86-64-v3", \
                                                 "arch=x86-64-v4"), optimize("O3")))
 #elif defined(__x86_64__) && defined(__clang__)
