@@ -706,7 +706,10 @@ INLINE void gather_triangles(lane_triangles *out, const luz_triangle *const *by_
     const float *from[LANES];
     for (int i = 0; i < LANES; i++) {
         const luz_triangle *triangle = (lanes >> i & 1u) ? by_id[ids[i]] : fallback;
-        from[i] = &triangle->reference_x;
+        /* The 32 floats as bytes of the record (not as an array at
+         * &reference_x, which holds one float). */
+        from[i] = (const float *)((const char *)triangle +
+                                  offsetof(luz_triangle, reference_x));
     }
     vfloat column[READ_FLOATS];
     read_columns(from, column);

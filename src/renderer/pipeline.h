@@ -46,11 +46,17 @@
  * For the per-vertex and per-triangle arithmetic of big meshes: wider
  * vectors doing the same IEEE operations lane by lane, so the same bits
  * (-ffp-contract=off holds for every clone: no fused multiply-add). GCC
- * vectorises such code only at -O3 (its -O2 cost model leaves it scalar);
- * clang is given the clones alone. Static only: GCC exports a cloned
- * function whatever its visibility. Not under ThreadSanitizer: the loader
- * runs an ifunc's resolver before TSan's runtime is set up, and the
- * instrumented resolver crashes every program at start. */
+ * vectorises such code only at -O3 (its -O2 cost model leaves it scalar).
+ * Static only: GCC exports a cloned function whatever its visibility.
+ * Where it is left empty, each function is compiled once, as before:
+ * - GCC before 12 and clang before 18 do not dispatch on "arch=x86-64-v3"
+ *   (clang 14-17 accept it and always pick the default);
+ * - without glibc there may be no ifunc;
+ * - a build whose baseline already has AVX2 (-march=native, say) gains
+ *   nothing, and its always_inline helpers could not inline into a clone
+ *   of another arch;
+ * - under ThreadSanitizer the loader runs the instrumented resolver before
+ *   TSan's runtime is set up, and every program crashes at start. */
 #if defined(__has_feature)
 #if __has_feature(thread_sanitizer)
 #define LUZ_THREAD_SANITIZER 1
@@ -59,14 +65,15 @@
 #if defined(__SANITIZE_THREAD__)
 #define LUZ_THREAD_SANITIZER 1
 #endif
-#if defined(LUZ_THREAD_SANITIZER)
+#if defined(LUZ_THREAD_SANITIZER) || !defined(__x86_64__) || !defined(__GLIBC__) || \
+    defined(__AVX2__)
 #define LUZ_CLONES
-#elif defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define LUZ_CLONES __attribute__((target_clones("default", "arch=x86-64-v3", \
-                                                "arch=x86-64-v4"), optimize("O3")))
-#elif defined(__x86_64__) && defined(__clang__)
+#elif defined(__clang__) && __clang_major__ >= 18
 #define LUZ_CLONES __attribute__((target_clones("default", "arch=x86-64-v3", \
                                                 "arch=x86-64-v4")))
+#elif !defined(__clang__) && defined(__GNUC__) && __GNUC__ >= 12
+#define LUZ_CLONES __attribute__((target_clones("default", "arch=x86-64-v3", \
+                                                "arch=x86-64-v4"), optimize("O3")))
 #else
 #define LUZ_CLONES
 #endif
@@ -234,7 +241,7 @@ typedef struct luz_window_vertex {
  * front face, with a positive doubled area in fixed point (setup.c), and
  * its three vertices valid. luz_setup_projected culls by it; inline, so
  * that geometry.c drops a back face, half of a closed mesh, before it
- * pays for the call. |X| <= 2^24, so each product is below 2^50. */
+ * pays for the call. |X| <= 2^24, so each product is at most 2^50. */
 static inline bool luz_setup_front_facing(const luz_window_vertex *p0,
                                           const luz_window_vertex *p1,
                                           const luz_window_vertex *p2)
