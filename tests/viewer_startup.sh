@@ -76,6 +76,24 @@ fi
 now_ms() {
     echo $(($(date +%s%N) / 1000000))
 }
+# expect_no_display NAME PATTERN COMMAND...: COMMAND luz --textures none
+# (COMMAND sets the environment) exits with 2 within 5 s, with one line on
+# stderr that starts with PATTERN (grep, basic).
+expect_no_display() {
+    name=$1
+    pattern=$2
+    shift 2
+    start=$(now_ms)
+    timeout 10 "$@" "$luz" --textures none >"$work/out" 2>"$work/err"
+    status=$?
+    elapsed=$(($(now_ms) - start))
+    if [ "$status" -ne 2 ] || [ "$(wc -l <"$work/err")" -ne 1 ] ||
+       ! grep -q "^$pattern" "$work/err"; then
+        fail "$name: status $status, stderr '$(cat "$work/err")'"
+    elif [ "$elapsed" -gt 5000 ]; then
+        fail "$name: luz took $elapsed ms to give up"
+    fi
+}
 mkdir "$work/runtime"
 chmod 700 "$work/runtime"
 # a Wayland socket nobody listens on any more (a compositor that died)
@@ -93,16 +111,7 @@ for case in "no display" "dead X11" "dead Wayland" "dead Wayland, no runtime dir
         set -- "$@" XDG_RUNTIME_DIR="$work/runtime" WAYLAND_DISPLAY=wayland-7 ;;
     "dead X11 and Wayland") set -- "$@" DISPLAY=:97 WAYLAND_DISPLAY=wayland-9 ;;
     esac
-    start=$(now_ms)
-    timeout 10 "$@" "$luz" --textures none >"$work/out" 2>"$work/err"
-    status=$?
-    elapsed=$(($(now_ms) - start))
-    if [ "$status" -ne 2 ] || [ "$(wc -l <"$work/err")" -ne 1 ] ||
-       ! grep -q '^luz: cannot open a window: no display available' "$work/err"; then
-        fail "$case, SDL's choice: status $status, stderr '$(cat "$work/err")'"
-    elif [ "$elapsed" -gt 5000 ]; then
-        fail "$case: luz took $elapsed ms to give up"
-    fi
+    expect_no_display "$case, SDL's choice" 'luz: cannot open a window: no display available' "$@"
 done
 
 # An X server that accepts the connection and never answers (one that
@@ -139,17 +148,9 @@ if [ ! -s "$work/silent-display" ]; then
     echo "silent X11 server: not checked (no python3, or no free port from 6100 to 6199)"
 else
     number=$(cat "$work/silent-display")
-    start=$(now_ms)
-    timeout 10 env -u WAYLAND_DISPLAY -u SDL_VIDEODRIVER DISPLAY="127.0.0.1:$number" \
-        "$luz" --textures none >"$work/out" 2>"$work/err"
-    status=$?
-    elapsed=$(($(now_ms) - start))
-    if [ "$status" -ne 2 ] || [ "$(wc -l <"$work/err")" -ne 1 ] ||
-       ! grep -q "^luz: cannot open a window: no display available (the X display 127.0.0.1:$number did not answer within 1 s" "$work/err"; then
-        fail "silent X11 server: status $status, stderr '$(cat "$work/err")'"
-    elif [ "$elapsed" -gt 5000 ]; then
-        fail "silent X11 server: luz took $elapsed ms to give up"
-    fi
+    expect_no_display "silent X11 server" \
+        "luz: cannot open a window: no display available (the X display 127.0.0.1:$number did not answer within 1 s" \
+        env -u WAYLAND_DISPLAY -u SDL_VIDEODRIVER DISPLAY="127.0.0.1:$number"
 fi
 kill "$listener" 2>/dev/null
 wait "$listener" 2>/dev/null
