@@ -145,11 +145,11 @@ make_plane(const double x[3], const double y[3], double inverse_determinant, dou
  * 150k-triangle sphere, the AVX2 clone takes setup from 44 to 35 million
  * instructions a frame. */
 static LUZ_CLONES void solve_planes(const double x[3], const double y[3],
-                                      double inverse_determinant, double rx, double ry,
-                                      const double depth[3], const double inverse_w[3],
-                                      const luz_clip_vertex *v0, const luz_clip_vertex *v1,
-                                      const luz_clip_vertex *v2, luz_interpolation interpolation,
-                                      luz_triangle *out)
+                                    double inverse_determinant, double rx, double ry,
+                                    const double depth[3], const double inverse_w[3],
+                                    const luz_clip_vertex *v0, const luz_clip_vertex *v1,
+                                    const luz_clip_vertex *v2, luz_interpolation interpolation,
+                                    luz_triangle *out)
 {
     out->depth = make_plane(x, y, inverse_determinant, rx, ry, depth[0], depth[1], depth[2]);
     /* The weight each vertex's varyings are divided by: 1/w for
