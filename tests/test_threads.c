@@ -2,8 +2,9 @@
  * test_threads.c: the renderer's thread pool (src/renderer/bands.c). Every
  * job index of a batch must run exactly once, on a worker index below the
  * pool's thread count that names its thread (0 the caller's, one index a
- * thread), and the pool must survive batch after batch. Run under
- * ThreadSanitizer, this is also the pool's race test.
+ * thread), and the pool must survive batch after batch; each thread
+ * starts with its own share of the jobs. Run under ThreadSanitizer, this
+ * is also the pool's race test.
  */
 #include <errno.h>
 #include <pthread.h>
@@ -141,6 +142,7 @@ typedef struct index_batch {
     int wanted;                      /* threads to wait for: the pool's count */
     struct timespec deadline;        /* CLOCK_MONOTONIC */
     index_observation seen[INDEX_MAX_JOBS];   /* by job index */
+    int first_job[INDEX_POOL_MAX_THREADS];    /* by worker index */
 } index_batch;
 
 /* Records who ran the job, then holds its thread until every thread of
@@ -158,6 +160,8 @@ static void observe_worker(void *context, int job_index, int worker_index)
     for (int k = 0; k < batch->started_count; k++)
         if (pthread_equal(batch->started[k], self)) known = true;
     if (!known) {
+        if (worker_index >= 0 && worker_index < INDEX_POOL_MAX_THREADS)
+            batch->first_job[worker_index] = job_index;
         batch->started[batch->started_count++] = self;
         pthread_cond_broadcast(&batch->arrived);
     }
@@ -208,6 +212,18 @@ static void test_worker_indices_are_distinct(void **state)
             if (batch.started_count < 2)
                 fail_msg("%d threads, batch %d: only %d thread ran jobs", thread_count, round,
                          batch.started_count);
+            /* Shares (bands.c): thread k of n claims from the k-th n-th of
+             * the jobs first, so that consecutive passes over the same
+             * data give a thread the same part of it. Its first job is the
+             * first of its share, floor(k * jobs / n): no thread can take
+             * another's before it has finished its own, and each is held
+             * in its first job until all have started one. */
+            if (batch.started_count == thread_count)
+                for (int k = 0; k < thread_count; k++)
+                    if (batch.first_job[k] != k * job_count / thread_count)
+                        fail_msg("%d threads, batch %d: worker %d began with job %d, not the "
+                                 "first of its share, %d", thread_count, round, k,
+                                 batch.first_job[k], k * job_count / thread_count);
 
             for (int job = 0; job < job_count; job++) {
                 const index_observation seen = batch.seen[job];

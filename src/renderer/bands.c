@@ -3,9 +3,18 @@
  *
  * A pool of thread_count - 1 workers, started once and reused for every
  * frame; the calling thread works too, so thread_count threads share each
- * batch of jobs. Jobs are claimed one at a time from an atomic counter, so
- * a thread that finishes its band early takes the next one and both cores
- * finish together. Which thread runs which job varies from run to run; the
+ * batch of jobs. Each thread has a share of the jobs, a run of consecutive
+ * indices (thread k of n: the k-th n-th of them), and claims them one at a
+ * time from its share's atomic counter; a thread whose share is done takes
+ * jobs from the others' shares, so that all finish together. The shares
+ * are for the caches: the passes of a frame cut the same data the same
+ * way (the geometry's vertex ranges, then its batches of triangles, then
+ * their bins, in mesh order), so that a thread mostly reads what it wrote
+ * itself, from its own cache, rather than lines another core holds
+ * (taking jobs from one counter, two threads' jobs interleave, and on the
+ * 1M-triangle sphere the triangle pass spent about 60% longer reading its
+ * vertices with two threads than with one). Which thread runs which job
+ * still varies from run to run; the
  * callers (frame.c) make sure the result never depends on it: a job writes
  * only its own rows or its own output list.
  *
@@ -25,6 +34,14 @@ typedef struct worker {
     pthread_t thread;
 } worker;
 
+/* Jobs [next, end) of a thread's share are not claimed yet. A cache line
+ * each, so that claiming from one share does not slow the other threads'
+ * claims. */
+typedef struct job_share {
+    _Alignas(64) atomic_int next;
+    int end;
+} job_share;
+
 struct luz_thread_pool {
     int thread_count;
     worker *workers;            /* thread_count - 1 of them */
@@ -41,17 +58,20 @@ struct luz_thread_pool {
      * changes, read by the workers after they see the change. */
     luz_job_function *job;
     void *context;
-    int job_count;
-    atomic_int next_job;
+    job_share *shares;          /* thread_count of them */
 };
 
+/* Runs the jobs of the thread's own share, then helps with the others'. */
 static void run_jobs(luz_thread_pool *pool, luz_job_function *job, void *context,
-                     int job_count, int worker_index)
+                     int worker_index)
 {
-    for (;;) {
-        int index = atomic_fetch_add_explicit(&pool->next_job, 1, memory_order_relaxed);
-        if (index >= job_count) return;
-        job(context, index, worker_index);
+    for (int k = 0; k < pool->thread_count; k++) {
+        job_share *share = &pool->shares[(worker_index + k) % pool->thread_count];
+        for (;;) {
+            int index = atomic_fetch_add_explicit(&share->next, 1, memory_order_relaxed);
+            if (index >= share->end) break;
+            job(context, index, worker_index);
+        }
     }
 }
 
@@ -69,10 +89,9 @@ static void *worker_main(void *argument)
         seen = pool->generation;
         luz_job_function *job = pool->job;
         void *context = pool->context;
-        int job_count = pool->job_count;
         pthread_mutex_unlock(&pool->mutex);
 
-        run_jobs(pool, job, context, job_count, self->index);
+        run_jobs(pool, job, context, self->index);
 
         pthread_mutex_lock(&pool->mutex);
         if (--pool->busy_workers == 0) pthread_cond_signal(&pool->finished);
@@ -87,11 +106,17 @@ luz_thread_pool *luz_thread_pool_create(int thread_count)
     luz_thread_pool *pool = calloc(1, sizeof *pool);
     if (!pool) return NULL;
     pool->thread_count = thread_count;
-    atomic_init(&pool->next_job, 0);
     if (thread_count == 1) return pool;
 
     pool->workers = calloc((size_t)thread_count - 1, sizeof *pool->workers);
     if (!pool->workers) goto fail_workers;
+    pool->shares =
+        aligned_alloc(_Alignof(job_share), (size_t)thread_count * sizeof *pool->shares);
+    if (!pool->shares) goto fail_shares;
+    for (int i = 0; i < thread_count; i++) {
+        atomic_init(&pool->shares[i].next, 0);
+        pool->shares[i].end = 0;
+    }
     if (pthread_mutex_init(&pool->mutex, NULL) != 0) goto fail_mutex;
     if (pthread_cond_init(&pool->start, NULL) != 0) goto fail_start;
     if (pthread_cond_init(&pool->finished, NULL) != 0) goto fail_finished;
@@ -120,6 +145,8 @@ fail_finished:
 fail_start:
     pthread_mutex_destroy(&pool->mutex);
 fail_mutex:
+    free(pool->shares);
+fail_shares:
     free(pool->workers);
 fail_workers:
     free(pool);
@@ -139,6 +166,7 @@ void luz_thread_pool_destroy(luz_thread_pool *pool)
         pthread_cond_destroy(&pool->finished);
         pthread_cond_destroy(&pool->start);
         pthread_mutex_destroy(&pool->mutex);
+        free(pool->shares);
         free(pool->workers);
     }
     free(pool);
@@ -159,14 +187,19 @@ void luz_thread_pool_run(luz_thread_pool *pool, int job_count, luz_job_function 
     pthread_mutex_lock(&pool->mutex);
     pool->job = job;
     pool->context = context;
-    pool->job_count = job_count;
-    atomic_store_explicit(&pool->next_job, 0, memory_order_relaxed);
+    for (int i = 0; i < pool->thread_count; i++) {
+        job_share *share = &pool->shares[i];
+        atomic_store_explicit(&share->next,
+                              (int)((int64_t)job_count * i / pool->thread_count),
+                              memory_order_relaxed);
+        share->end = (int)((int64_t)job_count * (i + 1) / pool->thread_count);
+    }
     pool->busy_workers = pool->thread_count - 1;
     pool->generation++;
     pthread_cond_broadcast(&pool->start);
     pthread_mutex_unlock(&pool->mutex);
 
-    run_jobs(pool, job, context, job_count, 0);
+    run_jobs(pool, job, context, 0);
 
     pthread_mutex_lock(&pool->mutex);
     while (pool->busy_workers > 0) pthread_cond_wait(&pool->finished, &pool->mutex);
