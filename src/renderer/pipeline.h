@@ -566,7 +566,10 @@ typedef void luz_job_function(void *context, int job_index, int worker_index);
 luz_thread_pool *luz_thread_pool_create(int thread_count);
 void luz_thread_pool_destroy(luz_thread_pool *pool);
 int luz_thread_pool_thread_count(const luz_thread_pool *pool);
-/* Runs the jobs and returns when all are done. */
+/* Runs the jobs and returns when all are done. Thread k of n runs jobs
+ * from [k * job_count / n, (k + 1) * job_count / n) first, then helps
+ * with the others' (bands.c): passes cut alike give a thread the same part
+ * of the data. */
 void luz_thread_pool_run(luz_thread_pool *pool, int job_count, luz_job_function *job,
                          void *context);
 
