@@ -132,7 +132,7 @@ static void band_job(void *context, int band_index, int worker_index)
             __builtin_prefetch(&by_id[ids[k + 2 * PREFETCH_AHEAD]]);
         if (k + PREFETCH_AHEAD < list_end) {
             const char *ahead = (const char *)by_id[ids[k + PREFETCH_AHEAD]];
-            /* 224 bytes from a 16-byte boundary: at most five lines. */
+            /* Every line the record touches (200 bytes: at most four). */
             for (size_t offset = 0; offset < sizeof(luz_triangle); offset += 64)
                 __builtin_prefetch(ahead + offset);
             __builtin_prefetch(ahead + sizeof(luz_triangle) - 1);

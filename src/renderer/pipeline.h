@@ -191,9 +191,13 @@ static inline int64_t luz_ceil_divide(int64_t a, int64_t b)
 
 /* An edge function E(X, Y) = a X + b Y + c in fixed-point units, positive
  * inside; the top-left rule is folded into c, so a sample is covered by
- * the edge exactly when E >= 0. */
+ * the edge exactly when E >= 0. a and b are differences of coordinates of
+ * at most 2^24 in magnitude (setup.c), so they fit 32 bits; c and E need
+ * 64 (each product is taken in 64 bits). 16 bytes an edge, not 24: the
+ * record of a triangle is written once and read twice a frame. */
 typedef struct luz_edge {
-    int64_t a, b, c;
+    int32_t a, b;
+    int64_t c;
 } luz_edge;
 
 /* A quantity that varies linearly across the screen: its value at the
@@ -325,8 +329,8 @@ LUZ_RASTER_INLINE void luz_raster_row_span(const luz_triangle *triangle, int y, 
     for (int k = 0; k < 3; k++) {
         const luz_edge *edge = &triangle->edges[k];
         /* E at the centre of pixel 0 of this row, and its step per pixel. */
-        e[k] = edge->a * (LUZ_SUBPIXEL_ONE / 2) + edge->b * sample_y + edge->c;
-        step[k] = edge->a * LUZ_SUBPIXEL_ONE;
+        e[k] = (int64_t)edge->a * (LUZ_SUBPIXEL_ONE / 2) + edge->b * sample_y + edge->c;
+        step[k] = (int64_t)edge->a * LUZ_SUBPIXEL_ONE;
     }
     if (small) {
         int64_t covered_first = *last + 1, covered_last = *first - 1;

@@ -78,9 +78,9 @@ static luz_edge make_edge(int64_t xi, int64_t yi, int64_t xj, int64_t yj)
 {
     luz_edge edge;
     int64_t dx = xj - xi, dy = yj - yi;
-    edge.a = dy;
-    edge.b = -dx;
-    edge.c = -(edge.a * xi + edge.b * yi);
+    edge.a = (int32_t)dy;   /* |dy|, |dx| <= 2^25 (the proof at the top) */
+    edge.b = (int32_t)-dx;
+    edge.c = -(dy * xi - dx * yi);
     bool top_edge = dy == 0 && dx < 0;
     bool left_edge = dy > 0;
     if (!top_edge && !left_edge) edge.c -= 1;
