@@ -4,19 +4,19 @@
  * A pool of thread_count - 1 workers, started once and reused for every
  * frame; the calling thread works too, so thread_count threads share each
  * batch of jobs. Each thread has a share of the jobs, a run of consecutive
- * indices (thread k of n: the k-th n-th of them), and claims them one at a
- * time from its share's atomic counter; a thread whose share is done takes
- * jobs from the others' shares, so that all finish together. The shares
- * are for the caches: the passes of a frame cut the same data the same
- * way (the geometry's vertex ranges, then its batches of triangles, then
- * their bins, in mesh order), so that a thread mostly reads what it wrote
- * itself, from its own cache, rather than lines another core holds
- * (taking jobs from one counter, two threads' jobs interleave, and on the
- * 1M-triangle sphere the triangle pass spent about 60% longer reading its
- * vertices with two threads than with one). Which thread runs which job
- * still varies from run to run; the
- * callers (frame.c) make sure the result never depends on it: a job writes
- * only its own rows or its own output list.
+ * indices (thread k of n, counting from 0: [k N / n, (k + 1) N / n) of N),
+ * and claims them one at a time from its share's atomic counter; a thread
+ * whose share is done takes jobs from the others' shares, so that all
+ * finish together. The shares are for the caches: the passes of a frame
+ * cut the same data the same way (the geometry's vertex ranges, then its
+ * batches of triangles, then their bins, in mesh order), so that a thread
+ * mostly reads what it wrote itself, from its own cache, rather than lines
+ * another core holds (taking jobs from one counter, two threads' jobs
+ * interleave, and on the 1M-triangle sphere the triangle pass spent about
+ * 60% longer reading its vertices with two threads than with one). Which
+ * thread runs which job still varies from run to run; the callers
+ * (frame.c) make sure the result never depends on it: a job writes only
+ * its own rows or its own output list.
  *
  * Between batches the workers sleep on a condition variable: no spinning,
  * so an idle viewer or a single-threaded test costs no CPU.
@@ -67,6 +67,8 @@ static void run_jobs(luz_thread_pool *pool, luz_job_function *job, void *context
 {
     for (int k = 0; k < pool->thread_count; k++) {
         job_share *share = &pool->shares[(worker_index + k) % pool->thread_count];
+        /* A share already done costs a read, not a contended add. */
+        if (atomic_load_explicit(&share->next, memory_order_relaxed) >= share->end) continue;
         for (;;) {
             int index = atomic_fetch_add_explicit(&share->next, 1, memory_order_relaxed);
             if (index >= share->end) break;

@@ -47,9 +47,10 @@
  * Fixed-point range, the proof that int64 cannot overflow: the guard band
  * keeps |x_ndc|, |y_ndc| <= 4, so -1.5 W <= x_win <= 2.5 W with W <=
  * LUZ_MAX_DIMENSION = 2^14: |x_win| < 2^16 pixels, |X| < 2^24 in 1/256
- * units (coordinates are clamped to that range anyway). Then |Xj - Xi| <
- * 2^25, each product in E is below 2^49, the constant c below 2^51 and E at
- * any pixel centre of the viewport below 2^52: far from 2^63.
+ * units (coordinates are clamped to |X| <= 2^24 anyway). Then |Xj - Xi| <=
+ * 2^25 (so an edge's a and b fit 32 bits), each product in E is at most
+ * 2^49, the constant c below 2^51 and E at any pixel centre of the
+ * viewport below 2^52: far from 2^63.
  */
 #include <math.h>
 
