@@ -226,6 +226,7 @@ void luz_renderer_destroy(luz_renderer *renderer)
 void luz_renderer_set_packet_isa(luz_renderer *renderer, luz_packet_isa isa)
 {
     renderer->packet_rows = luz_packet_rows_for(isa);
+    luz_geometry_set_isa(renderer->geometry, isa);
 }
 
 int luz_renderer_thread_count(const luz_renderer *renderer)

@@ -58,6 +58,7 @@ typedef struct geometry_batch {
     bool whole_draws;
     const luz_clip_vertex *vertices;
     const luz_window_vertex *window;   /* the same vertices, projected */
+    const luz_fixed_vertex *fixed;     /* and their snapped positions alone */
     /* What it made, reused from frame to frame. */
     luz_triangle *triangles;
     size_t count, capacity;
@@ -74,11 +75,13 @@ typedef struct vertex_range {
     uint32_t draw, first, end;
     luz_clip_vertex *out;          /* the draw's vertex 0 in the arena */
     luz_window_vertex *window;     /* the same, projected */
+    luz_fixed_vertex *fixed;       /* and snapped */
 } vertex_range;
 
 typedef struct vertex_scratch {
     luz_clip_vertex *vertices;
     luz_window_vertex *window;
+    luz_fixed_vertex *fixed;
     uint32_t capacity;
 } vertex_scratch;
 
@@ -92,6 +95,8 @@ struct luz_geometry {
     size_t arena_capacity;
     luz_window_vertex *window_arena;   /* the same, projected */
     size_t window_arena_capacity;
+    luz_fixed_vertex *fixed_arena;     /* and their snapped positions */
+    size_t fixed_arena_capacity;
     vertex_scratch *scratch;       /* one per thread, for small draws */
     bool *draw_outside;            /* per draw: wholly outside the clip volume */
     size_t draw_outside_capacity;
@@ -104,6 +109,7 @@ struct luz_geometry {
     int band_capacity;
     uint32_t *band_ids;
     size_t band_id_capacity;
+    luz_screen_function *screen;   /* screen.c's variant for this CPU */
 };
 
 /* What the jobs of one frame's geometry share. */
@@ -114,6 +120,7 @@ typedef struct geometry_job {
     int width, height;
     int band_height, band_count;
     size_t binned;                 /* ids 1 .. binned go to the bands */
+    luz_screen_function *screen;   /* screen.c's variant for this CPU */
 } geometry_job;
 
 luz_geometry *luz_geometry_create(int thread_count)
@@ -121,6 +128,7 @@ luz_geometry *luz_geometry_create(int thread_count)
     luz_geometry *geometry = calloc(1, sizeof *geometry);
     if (!geometry) return NULL;
     geometry->thread_count = thread_count;
+    geometry->screen = luz_screen_for(LUZ_PACKET_ISA_BEST);
     geometry->scratch = calloc((size_t)thread_count, sizeof *geometry->scratch);
     if (!geometry->scratch) {
         free(geometry);
@@ -139,11 +147,13 @@ void luz_geometry_destroy(luz_geometry *geometry)
     for (int i = 0; i < geometry->thread_count; i++) {
         free(geometry->scratch[i].vertices);
         free(geometry->scratch[i].window);
+        free(geometry->scratch[i].fixed);
     }
     free(geometry->batches);
     free(geometry->vertex_ranges);
     free(geometry->arena);
     free(geometry->window_arena);
+    free(geometry->fixed_arena);
     free(geometry->scratch);
     free(geometry->draw_outside);
     free(geometry->band_slots);
@@ -151,6 +161,11 @@ void luz_geometry_destroy(luz_geometry *geometry)
     free(geometry->band_start);
     free(geometry->band_ids);
     free(geometry);
+}
+
+void luz_geometry_set_isa(luz_geometry *geometry, luz_packet_isa isa)
+{
+    geometry->screen = luz_screen_for(isa);
 }
 
 size_t luz_geometry_memory(const luz_geometry *geometry)
@@ -162,11 +177,13 @@ size_t luz_geometry_memory(const luz_geometry *geometry)
                  geometry->batches[i].band_range_capacity * sizeof(uint32_t);
     for (int i = 0; i < geometry->thread_count; i++)
         bytes += geometry->scratch[i].capacity *
-                 (sizeof(luz_clip_vertex) + sizeof(luz_window_vertex));
+                 (sizeof(luz_clip_vertex) + sizeof(luz_window_vertex) +
+                  sizeof(luz_fixed_vertex));
     bytes += (size_t)geometry->thread_count * sizeof *geometry->scratch;
     bytes += geometry->vertex_range_capacity * sizeof *geometry->vertex_ranges;
     bytes += geometry->arena_capacity * sizeof *geometry->arena;
     bytes += geometry->window_arena_capacity * sizeof *geometry->window_arena;
+    bytes += geometry->fixed_arena_capacity * sizeof *geometry->fixed_arena;
     bytes += geometry->draw_outside_capacity * sizeof *geometry->draw_outside;
     bytes += geometry->band_slot_capacity * sizeof *geometry->band_slots;
     bytes += geometry->by_id_capacity * sizeof *geometry->by_id;
@@ -328,7 +345,9 @@ static int plan(luz_geometry *geometry, luz_thread_pool *pool, geometry_job *job
     if (!reserve((void **)&geometry->arena, &geometry->arena_capacity, arena_vertices,
                  sizeof *geometry->arena) ||
         !reserve((void **)&geometry->window_arena, &geometry->window_arena_capacity,
-                 arena_vertices, sizeof *geometry->window_arena))
+                 arena_vertices, sizeof *geometry->window_arena) ||
+        !reserve((void **)&geometry->fixed_arena, &geometry->fixed_arena_capacity,
+                 arena_vertices, sizeof *geometry->fixed_arena))
         return luz_error_set(error, "out of memory for the frame's %zu vertices",
                              arena_vertices);
 
@@ -355,6 +374,7 @@ static int plan(luz_geometry *geometry, luz_thread_pool *pool, geometry_job *job
         open = NULL;
         luz_clip_vertex *vertices = geometry->arena + arena_used;
         luz_window_vertex *window = geometry->window_arena + arena_used;
+        luz_fixed_vertex *fixed = geometry->fixed_arena + arena_used;
         const uint32_t vertex_count = draw->mesh->vertex_count;
         arena_used += vertex_count;
         for (uint32_t first = 0; first < vertex_count; first += VERTEX_BATCH) {
@@ -366,6 +386,7 @@ static int plan(luz_geometry *geometry, luz_thread_pool *pool, geometry_job *job
                                                              : vertex_count;
             range->out = vertices;
             range->window = window;
+            range->fixed = fixed;
         }
         const uint32_t triangle_count = triangles_of(draw);
         for (uint32_t first = 0; first < triangle_count; first += BATCH_TRIANGLES) {
@@ -379,6 +400,7 @@ static int plan(luz_geometry *geometry, luz_thread_pool *pool, geometry_job *job
                                       ? first + BATCH_TRIANGLES : triangle_count;
             batch->vertices = vertices;
             batch->window = window;
+            batch->fixed = fixed;
         }
     }
     return 0;
@@ -409,7 +431,7 @@ static void vertex_job(void *context, int range_index, int worker_index)
     luz_vertex_stage_range(&job->frame->draws[range->draw], job->uniforms->view_projection,
                            range->first, range->end, range->out);
     luz_setup_project(range->out, range->first, range->end, job->width, job->height,
-                      range->window);
+                      range->window, range->fixed);
 }
 
 /* ---- batches: clipping and setup --------------------------------------- */
@@ -428,53 +450,72 @@ static void set_up(geometry_batch *batch, const geometry_job *job, const luz_cli
     else if (result == LUZ_SETUP_CULLED) batch->culled++;
 }
 
-/* Clips and sets up triangles [first, end) of draw draw_index, whose
- * clip-space vertices are at vertices, and projected at window. */
-static void triangles_of_draw(geometry_batch *batch, const geometry_job *job,
-                              uint32_t draw_index, const luz_clip_vertex *vertices,
-                              const luz_window_vertex *window, uint32_t first, uint32_t end)
+/* Clips and sets up triangle t of draw draw_index, whose clip-space
+ * vertices are at vertices, and projected at window. */
+static void one_triangle(geometry_batch *batch, const geometry_job *job, uint32_t draw_index,
+                         const uint32_t *indices, const luz_clip_vertex *vertices,
+                         const luz_window_vertex *window, uint32_t t)
 {
-    const uint32_t *indices = job->frame->draws[draw_index].mesh->indices;
-    for (uint32_t t = first; t < end; t++) {
-        const uint32_t ia = indices[3 * (size_t)t], ib = indices[3 * (size_t)t + 1],
-                       ic = indices[3 * (size_t)t + 2];
-        const luz_clip_vertex *a = &vertices[ia], *b = &vertices[ib], *c = &vertices[ic];
-        batch->submitted++;
-        /* A fan of a clipped triangle has at most this many triangles. */
-        if (!reserve((void **)&batch->triangles, &batch->capacity,
-                     batch->count + LUZ_CLIP_MAX_VERTICES - 2, sizeof *batch->triangles)) {
-            batch->out_of_memory = true;
+    const uint32_t ia = indices[3 * (size_t)t], ib = indices[3 * (size_t)t + 1],
+                   ic = indices[3 * (size_t)t + 2];
+    const luz_clip_vertex *a = &vertices[ia], *b = &vertices[ib], *c = &vertices[ic];
+    /* A fan of a clipped triangle has at most this many triangles. */
+    if (!reserve((void **)&batch->triangles, &batch->capacity,
+                 batch->count + LUZ_CLIP_MAX_VERTICES - 2, sizeof *batch->triangles)) {
+        batch->out_of_memory = true;
+        return;
+    }
+
+    /* Clipping: trivially accept, trivially reject, or cut (the vertex
+     * stage worked out each vertex's outcode). */
+    const unsigned code_a = a->outcode, code_b = b->outcode, code_c = c->outcode;
+    if ((code_a | code_b | code_c) == 0) {
+        /* Half the triangles of a closed mesh face away: drop them here,
+         * as setup would. */
+        if (!luz_setup_front_facing(&window[ia], &window[ib], &window[ic])) {
+            batch->culled++;
             return;
         }
+        set_up(batch, job, a, b, c, &window[ia], &window[ib], &window[ic], draw_index, t);
+        return;
+    }
+    if (code_a & code_b & code_c) return;   /* all outside one plane */
+    batch->clipped++;
+    luz_clip_polygon polygon;
+    int count = luz_clip_triangle(a, b, c, &polygon);
+    /* The polygon's vertices are inside every plane: project each once
+     * (outcode 0 by construction), then set up each triangle of its fan. */
+    luz_window_vertex polygon_window[LUZ_CLIP_MAX_VERTICES];
+    for (int k = 0; k < count; k++) polygon.vertices[k].outcode = 0;
+    luz_setup_project(polygon.vertices, 0, (uint32_t)count, job->width, job->height,
+                      polygon_window, NULL);
+    for (int k = 1; k + 1 < count; k++)
+        set_up(batch, job, &polygon.vertices[0], &polygon.vertices[k], &polygon.vertices[k + 1],
+               &polygon_window[0], &polygon_window[k], &polygon_window[k + 1], draw_index, t);
+}
 
-        /* Clipping: trivially accept, trivially reject, or cut (the vertex
-         * stage worked out each vertex's outcode). */
-        const unsigned code_a = a->outcode, code_b = b->outcode, code_c = c->outcode;
-        if ((code_a | code_b | code_c) == 0) {
-            /* Half the triangles of a closed mesh face away: drop them
-             * here, as setup would. */
-            if (!luz_setup_front_facing(&window[ia], &window[ib], &window[ic])) {
-                batch->culled++;
-                continue;
-            }
-            set_up(batch, job, a, b, c, &window[ia], &window[ib], &window[ic], draw_index, t);
-            continue;
-        }
-        if (code_a & code_b & code_c) continue;   /* all outside one plane */
-        batch->clipped++;
-        luz_clip_polygon polygon;
-        int count = luz_clip_triangle(a, b, c, &polygon);
-        /* The polygon's vertices are inside every plane: project each once
-         * (outcode 0 by construction), then set up each triangle of its
-         * fan. */
-        luz_window_vertex polygon_window[LUZ_CLIP_MAX_VERTICES];
-        for (int k = 0; k < count; k++) polygon.vertices[k].outcode = 0;
-        luz_setup_project(polygon.vertices, 0, (uint32_t)count, job->width, job->height,
-                          polygon_window);
-        for (int k = 1; k + 1 < count; k++)
-            set_up(batch, job, &polygon.vertices[0], &polygon.vertices[k],
-                   &polygon.vertices[k + 1], &polygon_window[0], &polygon_window[k],
-                   &polygon_window[k + 1], draw_index, t);
+/* Triangles screened at a time: the list of those left fits the stack. */
+#define SCREEN_CHUNK 1024
+
+/* Clips and sets up triangles [first, end) of draw draw_index: screening
+ * first drops, many at a time, the back faces and the triangles that
+ * cover no pixel centre (screen.c), then each one left goes alone. */
+static void triangles_of_draw(geometry_batch *batch, const geometry_job *job,
+                              uint32_t draw_index, const luz_clip_vertex *vertices,
+                              const luz_window_vertex *window, const luz_fixed_vertex *fixed,
+                              uint32_t first, uint32_t end)
+{
+    const uint32_t *indices = job->frame->draws[draw_index].mesh->indices;
+    uint32_t survivors[SCREEN_CHUNK];
+    for (uint32_t chunk = first; chunk < end && !batch->out_of_memory; chunk += SCREEN_CHUNK) {
+        const uint32_t chunk_end = end - chunk > SCREEN_CHUNK ? chunk + SCREEN_CHUNK : end;
+        uint32_t culled = 0;
+        const size_t count = job->screen(indices, chunk, chunk_end, fixed, job->width,
+                                         job->height, survivors, &culled);
+        batch->submitted += chunk_end - chunk;
+        batch->culled += culled;
+        for (size_t k = 0; k < count && !batch->out_of_memory; k++)
+            one_triangle(batch, job, draw_index, indices, vertices, window, survivors[k]);
     }
 }
 
@@ -515,7 +556,7 @@ static void batch_job(void *context, int batch_index, int worker_index)
 
     if (!batch->whole_draws) {
         triangles_of_draw(batch, job, batch->draw_first, batch->vertices, batch->window,
-                          batch->triangle_first, batch->triangle_end);
+                          batch->fixed, batch->triangle_first, batch->triangle_end);
     } else {
         vertex_scratch *scratch = &geometry->scratch[worker_index];
         for (uint32_t d = batch->draw_first; d < batch->draw_end && !batch->out_of_memory; d++) {
@@ -529,7 +570,10 @@ static void batch_job(void *context, int batch_index, int worker_index)
                 luz_window_vertex *window =
                     realloc(scratch->window, (size_t)vertex_count * sizeof *window);
                 if (window) scratch->window = window;
-                if (!vertices || !window) {
+                luz_fixed_vertex *fixed =
+                    realloc(scratch->fixed, (size_t)vertex_count * sizeof *fixed);
+                if (fixed) scratch->fixed = fixed;
+                if (!vertices || !window || !fixed) {
                     batch->out_of_memory = true;
                     break;
                 }
@@ -538,9 +582,9 @@ static void batch_job(void *context, int batch_index, int worker_index)
             /* Vertex stage, for a draw too small to be worth its own pass. */
             luz_vertex_stage(draw, job->uniforms->view_projection, scratch->vertices);
             luz_setup_project(scratch->vertices, 0, vertex_count, job->width, job->height,
-                              scratch->window);
-            triangles_of_draw(batch, job, d, scratch->vertices, scratch->window, 0,
-                              triangles_of(draw));
+                              scratch->window, scratch->fixed);
+            triangles_of_draw(batch, job, d, scratch->vertices, scratch->window, scratch->fixed,
+                              0, triangles_of(draw));
         }
     }
     if (!batch->out_of_memory && !find_band_ranges(batch, job->band_height))
@@ -637,6 +681,7 @@ int luz_geometry_run(luz_geometry *geometry, luz_thread_pool *pool, const luz_fr
         .height = framebuffer->height,
         .band_height = band_height,
         .band_count = (framebuffer->height + band_height - 1) / band_height,
+        .screen = geometry->screen,
     };
     memset(out, 0, sizeof *out);
 

@@ -9,6 +9,8 @@
  *                    crosses a plane (the others pass)   inside the clip volume
  *     -> setup.c     luz_setup_project: a luz_window_vertex per vertex
  *                                                        divided, viewport, snapped
+ *     -> screen.c    luz_screen_for: the triangles setup would drop without
+ *                    a record (back faces, no pixel centre), 16 at a time
  *                    luz_setup_projected: a luz_triangle per fan triangle
  *                                                        fixed-point edges, planes
  *     -> raster.c    luz_raster_triangle: depth + visibility per pixel
@@ -236,10 +238,22 @@ typedef struct luz_window_vertex {
     int32_t fixed_x, fixed_y;   /* x, y snapped to 1/256 pixel (|X| <= 2^24) */
 } luz_window_vertex;
 
+/* A vertex's snapped position alone, 8 bytes: what screening (screen.c)
+ * reads of each corner of every triangle, packed so that a million
+ * triangles' corners are a few megabytes of cache, not forty. x holds the
+ * same markers as luz_window_vertex's fixed_x. */
+typedef struct luz_fixed_vertex {
+    int32_t x, y;
+} luz_fixed_vertex;
+
 /* fixed_x of a vertex with w <= 0 (or NaN) or an x, y or z that is not
  * finite: setup culls its triangles. (An infinite w passes, as it always
  * did: 1/w is 0.) */
 #define LUZ_WINDOW_INVALID INT32_MIN
+/* fixed_x of a vertex outside a clip plane (a non-zero outcode): only the
+ * clipper reads such a vertex, and it projects its own; the marker tells
+ * screening (screen.c) to leave the triangle to it. */
+#define LUZ_WINDOW_CLIPPED (INT32_MIN + 1)
 
 /* Step 3 of setup alone: whether the projected triangle (p0, p1, p2) is a
  * front face, with a positive doubled area in fixed point (setup.c), and
@@ -264,7 +278,7 @@ static inline bool luz_setup_front_facing(const luz_window_vertex *p0,
  * triangles go to the clipper, whose polygon vertices are projected
  * afresh). */
 void luz_setup_project(const luz_clip_vertex *vertices, uint32_t first, uint32_t end, int width,
-                       int height, luz_window_vertex *out);
+                       int height, luz_window_vertex *out, luz_fixed_vertex *fixed);
 
 /* Sets up triangle (v0, v1, v2), projected as (p0, p1, p2) by
  * luz_setup_project, for a width x height viewport. */
@@ -442,6 +456,22 @@ uint64_t luz_fragment_shade_rows_packet(luz_packet_isa isa, const luz_uniforms *
                                         luz_framebuffer *framebuffer, int first_row,
                                         int end_row);
 
+/* ---- screening (screen.c) ---------------------------------------------- */
+
+/* Screening (screen.c): of triangles [first, end) of an index buffer
+ * (vertex indices indices[3 t .. 3 t + 2], projected at window), lists in
+ * survivors, in order, those that luz_setup_projected or the clipper must
+ * still see, and returns how many; the others are back faces (counted in
+ * *culled) or have no pixel centre to cover, exactly as setup would find.
+ * survivors has room for end - first. The build's baseline variant lets
+ * every triangle through. */
+typedef size_t luz_screen_function(const uint32_t *indices, uint32_t first, uint32_t end,
+                                   const luz_fixed_vertex *fixed, int width, int height,
+                                   uint32_t *survivors, uint32_t *culled);
+/* The variant for isa (LUZ_PACKET_ISA_BEST: the widest there is; AVX-512 is the one
+ * variant that screens), asking the CPU. */
+luz_screen_function *luz_screen_for(luz_packet_isa isa);
+
 /* For the pixel probe (probe.c): the level of detail exactly as the
  * packets compute it (their polynomial logarithm included), for one
  * pixel. Every variant's lanes perform the same IEEE operations, so this
@@ -584,6 +614,9 @@ typedef struct luz_geometry luz_geometry;
 
 luz_geometry *luz_geometry_create(int thread_count);
 void luz_geometry_destroy(luz_geometry *geometry);
+/* Which screening variant (screen.c) its batches run: isa's, as
+ * luz_screen_for picks it (LUZ_PACKET_ISA_BEST when it is made). */
+void luz_geometry_set_isa(luz_geometry *geometry, luz_packet_isa isa);
 /* The bytes its buffers hold. */
 size_t luz_geometry_memory(const luz_geometry *geometry);
 

@@ -168,14 +168,19 @@ static LUZ_CLONES void solve_planes(const double x[3], const double y[3],
 }
 
 void luz_setup_project(const luz_clip_vertex *vertices, uint32_t first, uint32_t end, int width,
-                       int height, luz_window_vertex *out)
+                       int height, luz_window_vertex *out, luz_fixed_vertex *fixed)
 {
     for (uint32_t i = first; i < end; i++) {
         const luz_vec4 p = vertices[i].position;
         luz_window_vertex *window = &out[i];
-        if (vertices[i].outcode != 0) continue;   /* only the clipper reads it */
+        if (vertices[i].outcode != 0) {   /* only the clipper reads it */
+            window->fixed_x = LUZ_WINDOW_CLIPPED;
+            window->fixed_y = 0;
+            continue;
+        }
         if (!(p.w > 0.0f) || !isfinite(p.x) || !isfinite(p.y) || !isfinite(p.z)) {
             window->fixed_x = LUZ_WINDOW_INVALID;   /* unreachable unless NaN */
+            window->fixed_y = 0;
             continue;
         }
         /* 1-2. Divide, viewport, snap. */
@@ -186,6 +191,12 @@ void luz_setup_project(const luz_clip_vertex *vertices, uint32_t first, uint32_t
         window->fixed_x = (int32_t)snap(window->x);
         window->fixed_y = (int32_t)snap(window->y);
         window->depth = (p.z * window->inverse_w + 1.0) * 0.5;
+    }
+    if (fixed != NULL) {
+        for (uint32_t i = first; i < end; i++) {
+            fixed[i].x = out[i].fixed_x;
+            fixed[i].y = out[i].fixed_y;
+        }
     }
 }
 
@@ -267,7 +278,7 @@ luz_setup_result luz_setup_triangle(const luz_clip_vertex *v0, const luz_clip_ve
     luz_clip_vertex vertices[3] = {*v0, *v1, *v2};
     luz_window_vertex window[3];
     for (int k = 0; k < 3; k++) vertices[k].outcode = 0;   /* project all three */
-    luz_setup_project(vertices, 0, 3, width, height, window);
+    luz_setup_project(vertices, 0, 3, width, height, window, NULL);
     return luz_setup_projected(v0, v1, v2, &window[0], &window[1], &window[2], width, height,
                                draw_index, interpolation, out);
 }

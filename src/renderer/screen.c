@@ -1,0 +1,243 @@
+/*
+ * screen.c: screening, the cheap decisions of triangle setup taken for
+ * sixteen triangles at once, before any triangle is set up alone.
+ *
+ * In:  a draw's index buffer, a range of its triangles, and its vertices
+ *      as luz_setup_project left them (luz_window_vertex: the snapped
+ *      position, or a marker for a vertex outside a clip plane or one that
+ *      could not be projected).
+ * Out: the triangles of the range that still need luz_setup_projected
+ *      (or the clipper), in order, and the number of back faces dropped.
+ *      The others are exactly those setup would drop without a record:
+ *      back faces and zero areas (CULLED), and front faces whose box holds
+ *      no pixel centre of the viewport or, for a box of up to 2 x 2
+ *      pixels, whose box's centres all fall outside the edges (OFFSCREEN).
+ *
+ * Why: on a mesh of a million triangles nearly every triangle is one of
+ * those (the 1M sphere: 569k back faces and 191k front faces between
+ * centres, 238k left), and one at a time each decision is a branch the CPU
+ * cannot predict and a call. Here each decision is a lane of a mask: no
+ * branch per triangle, and the triangles that remain are listed with one
+ * compress, so the loop that sets them up runs only over those.
+ *
+ * The arithmetic is setup.c's, in the same integers: the doubled area of
+ * luz_setup_front_facing, the box of pixel centres of
+ * luz_setup_projected, and make_edge's edge functions with the fill rule,
+ * E = dy (X - Xi) - dx (Y - Yi) - bias, at the box's centres. setup.c's
+ * proof bounds every coordinate by 2^24, so differences fit 32 bits and
+ * each product, taken in 64 (a signed 32 x 32 -> 64 multiply), is exact.
+ * tests/test_screen.c holds each decision to luz_setup_projected's on
+ * random and hand-made triangles.
+ *
+ * Instruction sets: src/renderer/meson.build compiles this file once for
+ * the build's target (which screens nothing: every triangle is left to
+ * setup, the loop luz had before; it also holds the dispatcher) and once
+ * with AVX-512, whose masks, compress and 64-bit lanes the kernel is
+ * written for. As fragment_packet.c, the CPU picks a variant at run time.
+ */
+#include <stddef.h>
+#include <stdint.h>
+
+#include "renderer/pipeline.h"
+
+#if defined(LUZ_SCREEN_AVX512)
+#if !defined(__AVX512F__) || !defined(__AVX512DQ__)
+#error "the AVX-512 variant is compiled with -mavx512f -mavx512dq ..."
+#endif
+#include <immintrin.h>
+
+/* Lanes 0..15: element j of the result is indices[3 j + corner] of the
+ * sixteen triangles' 48 indices, loaded as three vectors of 16. The first
+ * permute takes what lies in the first 32 (from_two[j] = 3 j + corner),
+ * the second keeps those (j) and takes the rest from the third vector
+ * (16 + 3 j + corner - 32 picks its element 3 j + corner - 32). */
+static const int32_t from_two[3][16] = {
+    {0, 3, 6, 9, 12, 15, 18, 21, 24, 27, 30, 0, 0, 0, 0, 0},
+    {1, 4, 7, 10, 13, 16, 19, 22, 25, 28, 31, 0, 0, 0, 0, 0},
+    {2, 5, 8, 11, 14, 17, 20, 23, 26, 29, 0, 0, 0, 0, 0, 0},
+};
+static const int32_t from_third[3][16] = {
+    {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 17, 20, 23, 26, 29},
+    {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 18, 21, 24, 27, 30},
+    {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 16, 19, 22, 25, 28, 31},
+};
+
+static __m512i corner_indices(__m512i first, __m512i second, __m512i third, int corner)
+{
+    const __m512i two = _mm512_permutex2var_epi32(first, _mm512_loadu_si512(from_two[corner]),
+                                                  second);
+    return _mm512_permutex2var_epi32(two, _mm512_loadu_si512(from_third[corner]), third);
+}
+
+/* The snapped (X, Y) of eight vertices, one 64-bit load each. */
+static inline __attribute__((always_inline)) void
+gather_corners(__m256i vertex_index, const luz_fixed_vertex *fixed, __m512i *x, __m512i *y)
+{
+    _Static_assert(sizeof(luz_fixed_vertex) == 8, "a vertex's x and y are one 64-bit load");
+    /* Indices zero-extended to 64 bits: a mesh may have 2^31 vertices or
+     * more, which a 32-bit gather index would read as negative. */
+    const __m512i both = _mm512_i64gather_epi64(_mm512_cvtepu32_epi64(vertex_index),
+                                                (const void *)fixed, 8);
+    *x = _mm512_srai_epi64(_mm512_slli_epi64(both, 32), 32);
+    *y = _mm512_srai_epi64(both, 32);
+}
+
+/* E >= 0 at the centres (X, Y), (X + 256, Y), (X, Y + 256), (X + 256,
+ * Y + 256) for the edge from (xi, yi) to (xj, yj); four masks. */
+static inline __attribute__((always_inline)) void edge_at_centres(__m512i xi, __m512i yi, __m512i xj, __m512i yj, __m512i sample_x,
+                            __m512i sample_y, __mmask8 inside[4])
+{
+    const __m512i dx = _mm512_sub_epi64(xj, xi), dy = _mm512_sub_epi64(yj, yi);
+    const __m512i zero = _mm512_setzero_si512();
+    /* make_edge's fill rule: a top edge (dy = 0, dx < 0) or a left edge
+     * (dy > 0) keeps E = 0, the others need E >= 1. */
+    const __mmask8 top_or_left = (_mm512_cmpeq_epi64_mask(dy, zero) &
+                                  _mm512_cmplt_epi64_mask(dx, zero)) |
+                                 _mm512_cmpgt_epi64_mask(dy, zero);
+    const __m512i bias = _mm512_mask_blend_epi64(top_or_left, _mm512_set1_epi64(1), zero);
+    const __m512i column0 = _mm512_mul_epi32(dy, _mm512_sub_epi64(sample_x, xi));
+    const __m512i column1 = _mm512_add_epi64(column0, _mm512_slli_epi64(dy, LUZ_SUBPIXEL_BITS));
+    const __m512i row0 = _mm512_add_epi64(_mm512_mul_epi32(dx, _mm512_sub_epi64(sample_y, yi)),
+                                          bias);
+    const __m512i row1 = _mm512_add_epi64(row0, _mm512_slli_epi64(dx, LUZ_SUBPIXEL_BITS));
+    inside[0] &= _mm512_cmpge_epi64_mask(column0, row0);
+    inside[1] &= _mm512_cmpge_epi64_mask(column1, row0);
+    inside[2] &= _mm512_cmpge_epi64_mask(column0, row1);
+    inside[3] &= _mm512_cmpge_epi64_mask(column1, row1);
+}
+
+/* Eight triangles, (a, b, c) vertex indices: which setup would cull, and
+ * which it would find offscreen. */
+static inline __attribute__((always_inline)) void screen_eight(__m256i a, __m256i b, __m256i c, const luz_fixed_vertex *fixed,
+                         int width, int height, __mmask8 *culled, __mmask8 *offscreen)
+{
+    __m512i x0, y0, x1, y1, x2, y2;
+    gather_corners(a, fixed, &x0, &y0);
+    gather_corners(b, fixed, &x1, &y1);
+    gather_corners(c, fixed, &x2, &y2);
+
+    /* A marker (LUZ_WINDOW_INVALID, LUZ_WINDOW_CLIPPED) is below every
+     * snapped coordinate, -2^24: such a triangle is left to setup. */
+    const __m512i lowest = _mm512_set1_epi64(-((int64_t)1 << 24));
+    const __mmask8 eligible = _mm512_cmpge_epi64_mask(x0, lowest) &
+                              _mm512_cmpge_epi64_mask(x1, lowest) &
+                              _mm512_cmpge_epi64_mask(x2, lowest);
+
+    /* Step 3: the doubled area, as luz_setup_front_facing. */
+    const __m512i area = _mm512_sub_epi64(
+        _mm512_mul_epi32(_mm512_sub_epi64(y1, y0), _mm512_sub_epi64(x2, x0)),
+        _mm512_mul_epi32(_mm512_sub_epi64(x1, x0), _mm512_sub_epi64(y2, y0)));
+    const __mmask8 front = _mm512_cmpgt_epi64_mask(area, _mm512_setzero_si512());
+
+    /* The box of pixel centres: ceil((min X - 128) / 256) = -((128 - min
+     * X) >> 8) and floor((max X - 128) / 256) = (max X - 128) >> 8, the
+     * shifts arithmetic (floors), clamped to the viewport. */
+    const __m512i half = _mm512_set1_epi64(LUZ_SUBPIXEL_ONE / 2);
+    const __m512i zero = _mm512_setzero_si512();
+    const __m512i min_fx = _mm512_min_epi64(_mm512_min_epi64(x0, x1), x2);
+    const __m512i max_fx = _mm512_max_epi64(_mm512_max_epi64(x0, x1), x2);
+    const __m512i min_fy = _mm512_min_epi64(_mm512_min_epi64(y0, y1), y2);
+    const __m512i max_fy = _mm512_max_epi64(_mm512_max_epi64(y0, y1), y2);
+    __m512i min_x = _mm512_sub_epi64(zero, _mm512_srai_epi64(_mm512_sub_epi64(half, min_fx),
+                                                             LUZ_SUBPIXEL_BITS));
+    __m512i max_x = _mm512_srai_epi64(_mm512_sub_epi64(max_fx, half), LUZ_SUBPIXEL_BITS);
+    __m512i min_y = _mm512_sub_epi64(zero, _mm512_srai_epi64(_mm512_sub_epi64(half, min_fy),
+                                                             LUZ_SUBPIXEL_BITS));
+    __m512i max_y = _mm512_srai_epi64(_mm512_sub_epi64(max_fy, half), LUZ_SUBPIXEL_BITS);
+    min_x = _mm512_max_epi64(min_x, zero);
+    min_y = _mm512_max_epi64(min_y, zero);
+    max_x = _mm512_min_epi64(max_x, _mm512_set1_epi64(width - 1));
+    max_y = _mm512_min_epi64(max_y, _mm512_set1_epi64(height - 1));
+    const __mmask8 empty = _mm512_cmpgt_epi64_mask(min_x, max_x) |
+                           _mm512_cmpgt_epi64_mask(min_y, max_y);
+    const __m512i one = _mm512_set1_epi64(1);
+    const __mmask8 second_column = _mm512_cmpgt_epi64_mask(max_x, min_x);
+    const __mmask8 second_row = _mm512_cmpgt_epi64_mask(max_y, min_y);
+    const __mmask8 small =
+        _mm512_cmple_epi64_mask(_mm512_sub_epi64(max_x, min_x), one) &
+        _mm512_cmple_epi64_mask(_mm512_sub_epi64(max_y, min_y), one);
+
+    /* The box's first centre, X = 256 x + 128, and its (up to) three
+     * neighbours; a centre counts where it lies in the box. */
+    const __m512i sample_x = _mm512_add_epi64(_mm512_slli_epi64(min_x, LUZ_SUBPIXEL_BITS), half);
+    const __m512i sample_y = _mm512_add_epi64(_mm512_slli_epi64(min_y, LUZ_SUBPIXEL_BITS), half);
+    __mmask8 inside[4] = {0xff, second_column, second_row, second_column & second_row};
+    edge_at_centres(x1, y1, x2, y2, sample_x, sample_y, inside);   /* edge 0: 1 -> 2 */
+    edge_at_centres(x2, y2, x0, y0, sample_x, sample_y, inside);   /* edge 1: 2 -> 0 */
+    edge_at_centres(x0, y0, x1, y1, sample_x, sample_y, inside);   /* edge 2: 0 -> 1 */
+    const __mmask8 covers = inside[0] | inside[1] | inside[2] | inside[3];
+
+    *culled = eligible & ~front;
+    *offscreen = eligible & front & (empty | (small & ~covers));
+}
+
+luz_screen_function luz_screen_triangles_avx512;
+
+size_t luz_screen_triangles_avx512(const uint32_t *indices, uint32_t first, uint32_t end,
+                                   const luz_fixed_vertex *fixed, int width, int height,
+                                   uint32_t *survivors, uint32_t *culled_count)
+{
+    size_t count = 0;
+    uint32_t culled_total = 0;
+    uint32_t t = first;
+    const __m512i lane = _mm512_set_epi32(15, 14, 13, 12, 11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0);
+    for (; end - t >= 16; t += 16) {
+        const uint32_t *triangle_indices = indices + 3 * (size_t)t;
+        const __m512i first16 = _mm512_loadu_si512(triangle_indices);
+        const __m512i second16 = _mm512_loadu_si512(triangle_indices + 16);
+        const __m512i third16 = _mm512_loadu_si512(triangle_indices + 32);
+        const __m512i a = corner_indices(first16, second16, third16, 0);
+        const __m512i b = corner_indices(first16, second16, third16, 1);
+        const __m512i c = corner_indices(first16, second16, third16, 2);
+        __mmask8 culled_low, offscreen_low, culled_high, offscreen_high;
+        screen_eight(_mm512_castsi512_si256(a), _mm512_castsi512_si256(b),
+                     _mm512_castsi512_si256(c), fixed, width, height, &culled_low,
+                     &offscreen_low);
+        screen_eight(_mm512_extracti64x4_epi64(a, 1), _mm512_extracti64x4_epi64(b, 1),
+                     _mm512_extracti64x4_epi64(c, 1), fixed, width, height, &culled_high,
+                     &offscreen_high);
+        const __mmask16 culled = (__mmask16)(culled_low | (unsigned)culled_high << 8);
+        const __mmask16 dropped =
+            (__mmask16)(culled | offscreen_low | (unsigned)offscreen_high << 8);
+        const __m512i triangle = _mm512_add_epi32(_mm512_set1_epi32((int)t), lane);
+        /* The compress in a register, then a plain store: AMD's Zen 4
+         * runs a compress straight to memory as slow microcode. */
+        _mm512_storeu_si512(survivors + count,
+                            _mm512_maskz_compress_epi32((__mmask16)~dropped, triangle));
+        count += (size_t)(16 - __builtin_popcount(dropped));
+        culled_total += (uint32_t)__builtin_popcount(culled);
+    }
+    for (; t < end; t++) survivors[count++] = t;   /* the last few: one by one */
+    *culled_count = culled_total;
+    return count;
+}
+
+#else /* the baseline variant, and the dispatcher */
+
+/* Screens nothing: every triangle goes to setup, one by one. */
+static size_t screen_nothing(const uint32_t *indices, uint32_t first, uint32_t end,
+                             const luz_fixed_vertex *fixed, int width, int height,
+                             uint32_t *survivors, uint32_t *culled_count)
+{
+    (void)indices, (void)fixed, (void)width, (void)height;
+    size_t count = 0;
+    for (uint32_t t = first; t < end; t++) survivors[count++] = t;
+    *culled_count = 0;
+    return count;
+}
+
+#if defined(LUZ_SCREEN_HAVE_AVX512)
+luz_screen_function luz_screen_triangles_avx512;
+#endif
+
+luz_screen_function *luz_screen_for(luz_packet_isa isa)
+{
+    if (isa == LUZ_PACKET_ISA_BEST) isa = LUZ_PACKET_ISA_AVX512;
+#if defined(LUZ_SCREEN_HAVE_AVX512)
+    if (isa == LUZ_PACKET_ISA_AVX512 && luz_packet_isa_supported(isa))
+        return luz_screen_triangles_avx512;
+#endif
+    return screen_nothing;
+}
+
+#endif

@@ -1,0 +1,323 @@
+/*
+ * test_screen.c: screening (src/renderer/screen.c), which drops back faces
+ * and triangles that cover no pixel centre, many at a time, before setup.
+ *
+ * What it may drop is defined without it: a triangle is a back face when
+ * its doubled area in fixed point, (Y1 - Y0)(X2 - X0) - (X1 - X0)(Y2 - Y0),
+ * is not positive; it covers a pixel centre (X, Y) = (256 x + 128, 256 y +
+ * 128) of the viewport when for each edge i -> j, E = (Yj - Yi)(X - Xi) -
+ * (Xj - Xi)(Y - Yi) > 0, or = 0 on a top edge (dy = 0, dx < 0) or a left
+ * edge (dy > 0). The tests count the centres by trying every pixel of the
+ * viewport, and hold every variant to it: nothing dropped that covers a
+ * centre, every back face dropped counted, and the AVX-512 variant
+ * dropping every triangle it is meant to (a back face, a box with no
+ * centre of the viewport, a box of up to 2 x 2 pixels with none covered).
+ * luz_setup_projected, the other implementation, must agree on each
+ * dropped triangle. Vertices outside a clip plane, or invalid, leave their
+ * triangles to setup.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "renderer/pipeline.h"
+
+#define WIDTH 40
+#define HEIGHT 24
+
+static const luz_packet_isa variants[] = {LUZ_PACKET_ISA_BASELINE, LUZ_PACKET_ISA_AVX512};
+static const char *const variant_names[] = {"baseline", "AVX-512"};
+
+/* A mesh of projected vertices, as luz_setup_project leaves them. */
+typedef struct mesh {
+    uint32_t vertex_count, triangle_count;
+    luz_window_vertex *window;
+    luz_fixed_vertex *fixed;
+    luz_clip_vertex *clip;   /* zero: setup reads only the varyings */
+    uint32_t *indices;
+} mesh;
+
+static void set_vertex(mesh *m, uint32_t i, int32_t fixed_x, int32_t fixed_y)
+{
+    m->window[i] = (luz_window_vertex){
+        .x = fixed_x / (double)LUZ_SUBPIXEL_ONE, .y = fixed_y / (double)LUZ_SUBPIXEL_ONE,
+        .depth = 0.5, .inverse_w = 1.0, .fixed_x = fixed_x, .fixed_y = fixed_y};
+    m->fixed[i] = (luz_fixed_vertex){fixed_x, fixed_y};
+}
+
+static mesh mesh_create(uint32_t vertex_count, uint32_t triangle_count)
+{
+    mesh m = {vertex_count, triangle_count, calloc(vertex_count, sizeof(luz_window_vertex)),
+              calloc(vertex_count, sizeof(luz_fixed_vertex)),
+              calloc(vertex_count, sizeof(luz_clip_vertex)),
+              calloc(3 * (size_t)triangle_count, sizeof(uint32_t))};
+    assert_non_null(m.window);
+    assert_non_null(m.fixed);
+    assert_non_null(m.clip);
+    assert_non_null(m.indices);
+    return m;
+}
+
+static void mesh_destroy(mesh *m)
+{
+    free(m->window);
+    free(m->fixed);
+    free(m->clip);
+    free(m->indices);
+}
+
+static bool is_marker(int32_t fixed_x)
+{
+    return fixed_x == LUZ_WINDOW_CLIPPED || fixed_x == LUZ_WINDOW_INVALID;
+}
+
+/* The definitions at the top, by brute force. */
+static int64_t doubled_area(const luz_fixed_vertex p[3])
+{
+    return ((int64_t)p[1].y - p[0].y) * ((int64_t)p[2].x - p[0].x) -
+           ((int64_t)p[1].x - p[0].x) * ((int64_t)p[2].y - p[0].y);
+}
+
+static int centres_covered(const luz_fixed_vertex p[3])
+{
+    int count = 0;
+    for (int y = 0; y < HEIGHT; y++)
+        for (int x = 0; x < WIDTH; x++) {
+            const int64_t sx = 256 * (int64_t)x + 128, sy = 256 * (int64_t)y + 128;
+            bool inside = true;
+            for (int k = 0; k < 3; k++) {
+                const luz_fixed_vertex from = p[(k + 1) % 3], to = p[(k + 2) % 3];
+                const int64_t dx = (int64_t)to.x - from.x, dy = (int64_t)to.y - from.y;
+                const int64_t e = dy * (sx - from.x) - dx * (sy - from.y);
+                const bool top = dy == 0 && dx < 0, left = dy > 0;
+                inside = inside && (e > 0 || (e == 0 && (top || left)));
+            }
+            count += inside;
+        }
+    return count;
+}
+
+/* The pixels whose centres lie within the triangle's box, clamped to the
+ * viewport: -1 if none, else the larger of its width and height. */
+static int64_t box_size(const luz_fixed_vertex p[3])
+{
+    int64_t lo_x = INT64_MAX, hi_x = INT64_MIN, lo_y = INT64_MAX, hi_y = INT64_MIN;
+    for (int k = 0; k < 3; k++) {
+        if (p[k].x < lo_x) lo_x = p[k].x;
+        if (p[k].x > hi_x) hi_x = p[k].x;
+        if (p[k].y < lo_y) lo_y = p[k].y;
+        if (p[k].y > hi_y) hi_y = p[k].y;
+    }
+    /* Centres 256 x + 128 within [lo, hi], x within the viewport. */
+    int64_t first_x = 0, last_x = WIDTH - 1, first_y = 0, last_y = HEIGHT - 1;
+    while (first_x < WIDTH && 256 * first_x + 128 < lo_x) first_x++;
+    while (last_x >= 0 && 256 * last_x + 128 > hi_x) last_x--;
+    while (first_y < HEIGHT && 256 * first_y + 128 < lo_y) first_y++;
+    while (last_y >= 0 && 256 * last_y + 128 > hi_y) last_y--;
+    if (first_x > last_x || first_y > last_y) return -1;
+    const int64_t w = last_x - first_x + 1, h = last_y - first_y + 1;
+    return w > h ? w : h;
+}
+
+typedef struct tally {
+    int dropped_back, dropped_uncovered, kept;
+} tally;
+
+/* Screens triangles [first, end) with variant v and checks every verdict. */
+static tally screen_and_check(const mesh *m, int v, uint32_t first, uint32_t end)
+{
+    luz_screen_function *screen = luz_screen_for(variants[v]);
+    uint32_t *survivors = malloc((end - first + 1) * sizeof *survivors);
+    assert_non_null(survivors);
+    uint32_t culled = 12345;
+    const size_t count = screen(m->indices, first, end, m->fixed, WIDTH, HEIGHT, survivors,
+                                &culled);
+    assert_true(count <= end - first);
+
+    tally result = {0, 0, 0};
+    size_t next = 0;
+    for (uint32_t t = first; t < end; t++) {
+        const bool kept = next < count && survivors[next] == t;
+        if (kept) next++;
+        luz_fixed_vertex p[3];
+        bool eligible = true;
+        for (int k = 0; k < 3; k++) {
+            p[k] = m->fixed[m->indices[3 * (size_t)t + k]];
+            eligible = eligible && !is_marker(p[k].x);
+        }
+        if (kept) {
+            result.kept++;
+            /* The last (end - first) % 16 go to setup unscreened. */
+            const bool in_a_group = t < first + (end - first) / 16 * 16;
+            if (!eligible || !in_a_group || variants[v] == LUZ_PACKET_ISA_BASELINE) continue;
+            /* What the AVX-512 variant must not leave to setup. */
+            const int64_t size = box_size(p);
+            if (doubled_area(p) <= 0 || size < 0 || (size <= 2 && centres_covered(p) == 0))
+                fail_msg("%s kept triangle %u, which it should drop", variant_names[v], t);
+            continue;
+        }
+        /* Dropped: it must be eligible, and a back face or cover nothing. */
+        if (!eligible) fail_msg("%s dropped triangle %u with a marked vertex", variant_names[v], t);
+        if (doubled_area(p) <= 0) result.dropped_back++;
+        else if (centres_covered(p) == 0) result.dropped_uncovered++;
+        else fail_msg("%s dropped triangle %u, which covers a centre", variant_names[v], t);
+        /* And setup, the other implementation, says the same. */
+        const uint32_t *index = &m->indices[3 * (size_t)t];
+        luz_triangle triangle;
+        const luz_setup_result setup = luz_setup_projected(
+            &m->clip[index[0]], &m->clip[index[1]], &m->clip[index[2]], &m->window[index[0]],
+            &m->window[index[1]], &m->window[index[2]], WIDTH, HEIGHT, 0,
+            LUZ_INTERPOLATION_PERSPECTIVE, &triangle);
+        assert_int_equal(setup, doubled_area(p) <= 0 ? LUZ_SETUP_CULLED : LUZ_SETUP_OFFSCREEN);
+    }
+    /* The survivors are in order, each once, and within the range. */
+    assert_int_equal(next, count);
+    assert_int_equal(culled, (uint32_t)result.dropped_back);
+    free(survivors);
+    return result;
+}
+
+static uint32_t next_random(uint32_t *state)
+{
+    *state = *state * 1664525u + 1013904223u;
+    return *state >> 8;
+}
+
+/* RANDOM TRIANGLES, most a pixel or two across, around and beyond a 40 x
+ * 24 viewport, in shuffled vertex order; a few with a vertex marked
+ * outside a clip plane or invalid, a few degenerate, a few huge (corners
+ * near the +-2^24 limit of setup.c's proof). */
+static void test_screening_drops_what_setup_would(void **state)
+{
+    (void)state;
+    const uint32_t triangle_count = 20011;   /* not a multiple of 16 */
+    mesh m = mesh_create(3 * triangle_count, triangle_count);
+    uint32_t random = 2024;
+    uint32_t *order = malloc(m.vertex_count * sizeof *order);
+    assert_non_null(order);
+    for (uint32_t i = 0; i < m.vertex_count; i++) order[i] = i;
+    for (uint32_t i = m.vertex_count - 1; i > 0; i--) {
+        const uint32_t j = next_random(&random) % (i + 1), swap = order[i];
+        order[i] = order[j];
+        order[j] = swap;
+    }
+    for (uint32_t t = 0; t < triangle_count; t++) {
+        const uint32_t kind = next_random(&random) % 100;
+        const int32_t base_x = (int32_t)(next_random(&random) % (256 * (WIDTH + 8))) - 256 * 4;
+        const int32_t base_y = (int32_t)(next_random(&random) % (256 * (HEIGHT + 8))) - 256 * 4;
+        const int32_t reach = kind < 60 ? 256 : kind < 90 ? 768 : 256 * 12;
+        for (int k = 0; k < 3; k++) {
+            const uint32_t i = order[3 * t + (uint32_t)k];
+            m.indices[3 * (size_t)t + (size_t)k] = i;
+            int32_t x = base_x + (int32_t)(next_random(&random) % (uint32_t)(2 * reach + 1)) - reach;
+            int32_t y = base_y + (int32_t)(next_random(&random) % (uint32_t)(2 * reach + 1)) - reach;
+            if (kind == 99) {   /* huge: corners at the limit */
+                x = (next_random(&random) & 1) ? (1 << 24) : -(1 << 24);
+                y = (next_random(&random) & 1) ? (1 << 24) : -(1 << 24);
+            }
+            set_vertex(&m, i, x, y);
+            if (kind == 97 && k == 1) m.fixed[i].x = m.window[i].fixed_x = LUZ_WINDOW_CLIPPED;
+            if (kind == 98 && k == 2) m.fixed[i].x = m.window[i].fixed_x = LUZ_WINDOW_INVALID;
+        }
+        if (kind == 96) {   /* degenerate: two corners the same vertex */
+            m.indices[3 * (size_t)t + 2] = m.indices[3 * (size_t)t];
+        }
+    }
+    for (int v = 0; v < 2; v++) {
+        if (!luz_packet_isa_supported(variants[v])) {
+            print_message("%s: not on this CPU or build, skipped\n", variant_names[v]);
+            continue;
+        }
+        /* Whole, and in pieces that start and end anywhere. */
+        tally whole = screen_and_check(&m, v, 0, triangle_count);
+        tally pieces = {0, 0, 0};
+        for (uint32_t first = 0; first < triangle_count;) {
+            const uint32_t end = first + 1 + next_random(&random) % 70;
+            const tally piece = screen_and_check(&m, v, first,
+                                                 end < triangle_count ? end : triangle_count);
+            pieces.dropped_back += piece.dropped_back;
+            pieces.dropped_uncovered += piece.dropped_uncovered;
+            pieces.kept += piece.kept;
+            first = end;
+        }
+        print_message("%s: %d back faces and %d covering no centre dropped, %d kept\n",
+                      variant_names[v], whole.dropped_back, whole.dropped_uncovered, whole.kept);
+        if (variants[v] == LUZ_PACKET_ISA_BASELINE) {
+            assert_int_equal(whole.kept, triangle_count);
+            continue;
+        }
+        /* Both kinds of drop happen, often, and the tails (the last
+         * triangles of a range, fewer than 16) are kept for setup. */
+        assert_true(whole.dropped_back > 5000);
+        assert_true(whole.dropped_uncovered > 2000);
+        assert_true(pieces.kept >= whole.kept);
+    }
+    free(order);
+    mesh_destroy(&m);
+}
+
+/* HAND-MADE: pixel (1, 1)'s square split along x + y = 3, through its
+ * centre. The lower half has the centre on its left edge (kept), the upper
+ * half on its right edge (dropped); the same upper half listed the other
+ * way round is a back face (dropped, counted); the lower half with a
+ * vertex outside a clip plane is left to setup (kept); a front face left
+ * of the viewport, x < 0, has no centre to cover (dropped). Sixteen
+ * triangles, so that the AVX-512 variant screens them all at once. */
+static void test_screening_the_split_pixel(void **state)
+{
+    (void)state;
+    mesh m = mesh_create(12, 16);
+    const int32_t one = LUZ_SUBPIXEL_ONE;
+    set_vertex(&m, 0, 1 * one, 2 * one);
+    set_vertex(&m, 1, 2 * one, 2 * one);
+    set_vertex(&m, 2, 2 * one, 1 * one);
+    set_vertex(&m, 3, 1 * one, 1 * one);
+    set_vertex(&m, 4, 2 * one, 2 * one);
+    m.fixed[4].x = m.window[4].fixed_x = LUZ_WINDOW_CLIPPED;
+    set_vertex(&m, 5, -3 * one, 2 * one);
+    set_vertex(&m, 6, -2 * one, 2 * one);
+    set_vertex(&m, 7, -2 * one, 1 * one);
+    const uint32_t triangles[16][3] = {
+        {0, 1, 2},   /* lower half: kept */
+        {3, 0, 2},   /* upper half: dropped */
+        {3, 2, 0},   /* upper half, back face: dropped */
+        {0, 4, 2},   /* clipped vertex: kept */
+        {5, 6, 7},   /* left of the viewport: dropped */
+    };
+    for (uint32_t t = 0; t < 16; t++)
+        for (int k = 0; k < 3; k++)
+            m.indices[3 * t + (uint32_t)k] = t < 5 ? triangles[t][k] : triangles[0][k];
+
+    for (int v = 0; v < 2; v++) {
+        if (!luz_packet_isa_supported(variants[v])) continue;
+        uint32_t survivors[16], culled = 99;
+        const size_t count = luz_screen_for(variants[v])(m.indices, 0, 16, m.fixed, WIDTH,
+                                                         HEIGHT, survivors, &culled);
+        if (variants[v] == LUZ_PACKET_ISA_BASELINE) {
+            assert_int_equal(count, 16);
+            assert_int_equal(culled, 0);
+            continue;
+        }
+        /* 0, 3 and the eleven copies of 0 (5..15). */
+        assert_int_equal(count, 13);
+        assert_int_equal(culled, 1);
+        assert_int_equal(survivors[0], 0);
+        assert_int_equal(survivors[1], 3);
+        for (uint32_t k = 2; k < 13; k++) assert_int_equal(survivors[k], k + 3);
+    }
+    mesh_destroy(&m);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_screening_drops_what_setup_would),
+        cmocka_unit_test(test_screening_the_split_pixel),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
