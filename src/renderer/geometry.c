@@ -113,6 +113,7 @@ struct luz_geometry {
     uint32_t *band_ids;
     size_t band_id_capacity;
     luz_screen_function *screen;   /* screen.c's variant for this CPU */
+    bool screen_checks_small_boxes;
 };
 
 /* What the jobs of one frame's geometry share. */
@@ -124,6 +125,7 @@ typedef struct geometry_job {
     int band_height, band_count;
     size_t binned;                 /* ids 1 .. binned go to the bands */
     luz_screen_function *screen;   /* screen.c's variant for this CPU */
+    bool screen_checks_small_boxes;
 } geometry_job;
 
 luz_geometry *luz_geometry_create(int thread_count)
@@ -131,7 +133,7 @@ luz_geometry *luz_geometry_create(int thread_count)
     luz_geometry *geometry = calloc(1, sizeof *geometry);
     if (!geometry) return NULL;
     geometry->thread_count = thread_count;
-    geometry->screen = luz_screen_for(LUZ_PACKET_ISA_BEST);
+    geometry->screen = luz_screen_for(LUZ_PACKET_ISA_BEST, &geometry->screen_checks_small_boxes);
     geometry->scratch = calloc((size_t)thread_count, sizeof *geometry->scratch);
     if (!geometry->scratch) {
         free(geometry);
@@ -168,7 +170,7 @@ void luz_geometry_destroy(luz_geometry *geometry)
 
 void luz_geometry_set_isa(luz_geometry *geometry, luz_packet_isa isa)
 {
-    geometry->screen = luz_screen_for(isa);
+    geometry->screen = luz_screen_for(isa, &geometry->screen_checks_small_boxes);
 }
 
 size_t luz_geometry_memory(const luz_geometry *geometry)
@@ -442,12 +444,13 @@ static void vertex_job(void *context, int range_index, int worker_index)
 static void set_up(geometry_batch *batch, const geometry_job *job, const luz_clip_vertex *a,
                    const luz_clip_vertex *b, const luz_clip_vertex *c,
                    const luz_window_vertex *window_a, const luz_window_vertex *window_b,
-                   const luz_window_vertex *window_c, uint32_t draw_index, uint32_t primitive)
+                   const luz_window_vertex *window_c, uint32_t draw_index, uint32_t primitive,
+                   bool small_box_checked)
 {
     luz_triangle *out = &batch->triangles[batch->count];
     luz_setup_result result =
         luz_setup_projected(a, b, c, window_a, window_b, window_c, job->width, job->height,
-                            draw_index, job->uniforms->interpolation, out);
+                            draw_index, job->uniforms->interpolation, small_box_checked, out);
     out->primitive = primitive;
     if (result == LUZ_SETUP_VISIBLE) batch->count++;
     else if (result == LUZ_SETUP_CULLED) batch->culled++;
@@ -479,7 +482,10 @@ static void one_triangle(geometry_batch *batch, const geometry_job *job, uint32_
             batch->culled++;
             return;
         }
-        set_up(batch, job, a, b, c, &window[ia], &window[ib], &window[ic], draw_index, t);
+        /* Screening saw this triangle as it is (its vertices projected,
+         * none marked): what it checked holds. */
+        set_up(batch, job, a, b, c, &window[ia], &window[ib], &window[ic], draw_index, t,
+               job->screen_checks_small_boxes);
         return;
     }
     if (code_a & code_b & code_c) return;   /* all outside one plane */
@@ -494,7 +500,8 @@ static void one_triangle(geometry_batch *batch, const geometry_job *job, uint32_
                       polygon_window, NULL);
     for (int k = 1; k + 1 < count; k++)
         set_up(batch, job, &polygon.vertices[0], &polygon.vertices[k], &polygon.vertices[k + 1],
-               &polygon_window[0], &polygon_window[k], &polygon_window[k + 1], draw_index, t);
+               &polygon_window[0], &polygon_window[k], &polygon_window[k + 1], draw_index, t,
+               false);
 }
 
 /* Triangles screened at a time: the list of those left fits the stack. */
@@ -685,6 +692,7 @@ int luz_geometry_run(luz_geometry *geometry, luz_thread_pool *pool, const luz_fr
         .band_height = band_height,
         .band_count = (framebuffer->height + band_height - 1) / band_height,
         .screen = geometry->screen,
+        .screen_checks_small_boxes = geometry->screen_checks_small_boxes,
     };
     memset(out, 0, sizeof *out);
 

@@ -281,12 +281,16 @@ void luz_setup_project(const luz_clip_vertex *vertices, uint32_t first, uint32_t
                        int height, luz_window_vertex *out, luz_fixed_vertex *fixed);
 
 /* Sets up triangle (v0, v1, v2), projected as (p0, p1, p2) by
- * luz_setup_project, for a width x height viewport. */
+ * luz_setup_project, for a width x height viewport. small_box_checked:
+ * the caller knows that if the triangle's box holds at most 2 x 2 pixel
+ * centres, one of them is covered (screening checked it, luz_screen_for),
+ * so setup does not test them again; false: setup tests. */
 luz_setup_result luz_setup_projected(const luz_clip_vertex *v0, const luz_clip_vertex *v1,
                                      const luz_clip_vertex *v2, const luz_window_vertex *p0,
                                      const luz_window_vertex *p1, const luz_window_vertex *p2,
                                      int width, int height, uint32_t draw_index,
-                                     luz_interpolation interpolation, luz_triangle *out);
+                                     luz_interpolation interpolation, bool small_box_checked,
+                                     luz_triangle *out);
 
 /* Projects, snaps and sets up triangle (v0, v1, v2) for a width x height
  * viewport: luz_setup_project and luz_setup_projected in one. With LUZ_INTERPOLATION_AFFINE the varying planes hold the
@@ -469,8 +473,11 @@ typedef size_t luz_screen_function(const uint32_t *indices, uint32_t first, uint
                                    const luz_fixed_vertex *fixed, int width, int height,
                                    uint32_t *survivors, uint32_t *culled);
 /* The variant for isa (LUZ_PACKET_ISA_BEST: the widest there is; AVX-512 is the one
- * variant that screens), asking the CPU. */
-luz_screen_function *luz_screen_for(luz_packet_isa isa);
+ * variant that screens), asking the CPU. *checks_small_boxes: whether the
+ * variant drops every triangle with valid vertices whose box of at most
+ * 2 x 2 pixel centres has none covered, so that luz_setup_projected need
+ * not test a survivor's (its small_box_checked). */
+luz_screen_function *luz_screen_for(luz_packet_isa isa, bool *checks_small_boxes);
 
 /* For the pixel probe (probe.c): the level of detail exactly as the
  * packets compute it (their polynomial logarithm included), for one

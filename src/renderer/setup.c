@@ -204,7 +204,8 @@ luz_setup_result luz_setup_projected(const luz_clip_vertex *v0, const luz_clip_v
                                      const luz_clip_vertex *v2, const luz_window_vertex *p0,
                                      const luz_window_vertex *p1, const luz_window_vertex *p2,
                                      int width, int height, uint32_t draw_index,
-                                     luz_interpolation interpolation, luz_triangle *out)
+                                     luz_interpolation interpolation, bool small_box_checked,
+                                     luz_triangle *out)
 {
     /* 3. Cull back faces and degenerate triangles (and any vertex that
      * luz_setup_project found invalid). */
@@ -245,9 +246,11 @@ luz_setup_result luz_setup_projected(const luz_clip_vertex *v0, const luz_clip_v
      * a million-triangle mesh is about a pixel in size, and half of those
      * fall between centres). Its planes would never be read: test the few
      * centres of its box with the rasteriser's own E >= 0 and drop it as
-     * if it were off screen. */
+     * if it were off screen. Screening may have tested a box of up to 2 x 2
+     * already (small_box_checked). */
+    const bool up_to_2x2 = max_x - min_x <= 1 && max_y - min_y <= 1;
     if ((max_x - min_x + 1) * (max_y - min_y + 1) <= SMALL_BOX_PIXELS &&
-        !covers_a_centre(out))
+        !(small_box_checked && up_to_2x2) && !covers_a_centre(out))
         return LUZ_SETUP_OFFSCREEN;
 
     /* 5. Planes. Snapping is for coverage only: the planes are solved from
@@ -280,7 +283,7 @@ luz_setup_result luz_setup_triangle(const luz_clip_vertex *v0, const luz_clip_ve
     for (int k = 0; k < 3; k++) vertices[k].outcode = 0;   /* project all three */
     luz_setup_project(vertices, 0, 3, width, height, window, NULL);
     return luz_setup_projected(v0, v1, v2, &window[0], &window[1], &window[2], width, height,
-                               draw_index, interpolation, out);
+                               draw_index, interpolation, false, out);
 }
 
 const char *luz_interpolation_name(luz_interpolation interpolation)
