@@ -33,9 +33,6 @@
  * and the threads, so the image does not depend on them (frame.c).
  */
 #include <math.h>
-#include <stdio.h>
-#include <time.h>
-static double now_ms(void){struct timespec t;clock_gettime(CLOCK_MONOTONIC,&t);return t.tv_sec*1e3+t.tv_nsec/1e6;}
 #include <stdlib.h>
 #include <string.h>
 
@@ -696,9 +693,7 @@ int luz_geometry_run(luz_geometry *geometry, luz_thread_pool *pool, const luz_fr
     };
     memset(out, 0, sizeof *out);
 
-    double t0 = now_ms();
     if (plan(geometry, pool, &job, error) != 0) return -1;
-    double t1 = now_ms();
     if (job.band_count > geometry->band_capacity) {
         size_t *start = realloc(geometry->band_start,
                                 ((size_t)job.band_count + 1) * sizeof *start);
@@ -711,16 +706,10 @@ int luz_geometry_run(luz_geometry *geometry, luz_thread_pool *pool, const luz_fr
                  sizeof *geometry->band_slots))
         return luz_error_set(error, "out of memory for the frame's bands");
 
-    double t2 = now_ms();
     luz_thread_pool_run(pool, (int)geometry->vertex_range_count, vertex_job, &job);
-    double t3 = now_ms();
     luz_thread_pool_run(pool, geometry->batch_count, batch_job, &job);
-    double t4 = now_ms();
     if (number(geometry, &job, triangle_limit, error) != 0) return -1;
-    double t5 = now_ms();
     luz_thread_pool_run(pool, geometry->batch_count, bin_job, &job);
-    double t6 = now_ms();
-    if (getenv("LUZ_PHASES")) fprintf(stderr, "phases plan %.2f bands %.2f vertex %.2f batches %.2f number %.2f bin %.2f\n", t1-t0, t2-t1, t3-t2, t4-t3, t5-t4, t6-t5);
 
     /* A draw out of sight was submitted; its triangles went nowhere, as
      * they would have at the clipper. */
