@@ -50,6 +50,7 @@ static luz_clip_vertex floor_vertex(luz_mat4 view_projection, float x, float z)
 {
     luz_clip_vertex vertex;
     vertex.position = luz_mat4_transform(view_projection, (luz_vec4){x, -1.0f, z, 1.0f});
+    vertex.outcode = luz_clip_outcode(vertex.position);
     const float varyings[LUZ_VARYING_COUNT] = {x, -1.0f, z, 0, 1, 0, (x + 1) / 2, (-z - 1) / 3};
     memcpy(vertex.varyings, varyings, sizeof varyings);
     return vertex;

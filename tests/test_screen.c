@@ -16,12 +16,15 @@
  * dropped triangle. Vertices outside a clip plane, or invalid, leave their
  * triangles to setup.
  */
+#define _DEFAULT_SOURCE   /* MAP_ANONYMOUS */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
+#include <unistd.h>
 
 #include <cmocka.h>
 
@@ -281,13 +284,18 @@ static void test_screening_drops_what_setup_would(void **state)
  * half on its right edge (dropped); the same upper half listed the other
  * way round is a back face (dropped, counted); the lower half with a
  * vertex outside a clip plane is left to setup (kept); a front face left
- * of the viewport, x < 0, has no centre to cover (dropped). Sixteen
- * triangles, so that the AVX-512 variant screens them all at once. */
+ * of the viewport, x < 0, has no centre to cover (dropped). Then the top
+ * edge: two front faces share the horizontal edge y = 1.5 from x = 1 to 3,
+ * through the centres of pixels (1, 1) and (2, 1); the one below it (y
+ * grows down) has it as its top edge (dx < 0) and owns both centres
+ * (kept), the one above has it as a bottom edge and covers nothing
+ * (dropped). Sixteen triangles, so that the AVX-512 variant screens them
+ * all at once. */
 static void test_screening_the_split_pixel(void **state)
 {
     (void)state;
     mesh m = mesh_create(12, 16);
-    const int32_t one = LUZ_SUBPIXEL_ONE;
+    const int32_t one = LUZ_SUBPIXEL_ONE, half = LUZ_SUBPIXEL_ONE / 2;
     set_vertex(&m, 0, 1 * one, 2 * one);
     set_vertex(&m, 1, 2 * one, 2 * one);
     set_vertex(&m, 2, 2 * one, 1 * one);
@@ -297,16 +305,31 @@ static void test_screening_the_split_pixel(void **state)
     set_vertex(&m, 5, -3 * one, 2 * one);
     set_vertex(&m, 6, -2 * one, 2 * one);
     set_vertex(&m, 7, -2 * one, 1 * one);
+    set_vertex(&m, 8, 1 * one, 1 * one + half);
+    set_vertex(&m, 9, 3 * one, 1 * one + half);
+    set_vertex(&m, 10, 2 * one, 2 * one + half);   /* below the shared edge */
+    set_vertex(&m, 11, 2 * one, 0 * one + half);   /* above it */
     const uint32_t triangles[16][3] = {
         {0, 1, 2},   /* lower half: kept */
         {3, 0, 2},   /* upper half: dropped */
         {3, 2, 0},   /* upper half, back face: dropped */
         {0, 4, 2},   /* clipped vertex: kept */
         {5, 6, 7},   /* left of the viewport: dropped */
+        {8, 10, 9},  /* below, the shared edge 9 -> 8 on top: kept */
+        {8, 9, 11},  /* above, the shared edge 8 -> 9 below: dropped */
     };
     for (uint32_t t = 0; t < 16; t++)
         for (int k = 0; k < 3; k++)
-            m.indices[3 * t + (uint32_t)k] = t < 5 ? triangles[t][k] : triangles[0][k];
+            m.indices[3 * t + (uint32_t)k] = t < 7 ? triangles[t][k] : triangles[0][k];
+    /* The definitions agree with the comments above. */
+    for (uint32_t t = 0; t < 7; t++) {
+        luz_fixed_vertex p[3];
+        for (int k = 0; k < 3; k++) p[k] = m.fixed[triangles[t][k]];
+        if (t == 3) continue;   /* its clipped vertex has no position */
+        static const int64_t covered[7] = {1, 0, 0, 0, 0, 2, 0};
+        assert_int_equal(doubled_area(p) > 0, t != 2);
+        assert_int_equal(centres_covered(p), covered[t]);
+    }
 
     for (int v = 0; v < 2; v++) {
         if (!luz_packet_isa_supported(variants[v])) continue;
@@ -319,14 +342,82 @@ static void test_screening_the_split_pixel(void **state)
             assert_int_equal(culled, 0);
             continue;
         }
-        /* 0, 3 and the eleven copies of 0 (5..15). */
-        assert_int_equal(count, 13);
+        /* 0, 3, 5 and the nine copies of 0 (7..15). */
+        assert_int_equal(count, 12);
         assert_int_equal(culled, 1);
         assert_int_equal(survivors[0], 0);
         assert_int_equal(survivors[1], 3);
-        for (uint32_t k = 2; k < 13; k++) assert_int_equal(survivors[k], k + 3);
+        assert_int_equal(survivors[2], 5);
+        for (uint32_t k = 3; k < 12; k++) assert_int_equal(survivors[k], k + 4);
+        /* And each verdict against the definitions and setup. */
+        screen_and_check(&m, v, 0, 16);
     }
     mesh_destroy(&m);
+}
+
+/* bytes ending where an unreadable, unwritable page starts: an access one
+ * element past them faults (AddressSanitizer does not check masked loads
+ * and stores; the page does). */
+static void *guarded(size_t bytes, void **mapping, size_t *mapping_size)
+{
+    const size_t page = (size_t)sysconf(_SC_PAGESIZE);
+    const size_t usable = (bytes + page - 1) / page * page;
+    *mapping_size = usable + page;
+    char *base = mmap(NULL, *mapping_size, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS,
+                      -1, 0);
+    assert_true(base != MAP_FAILED);
+    assert_int_equal(mprotect(base + usable, page, PROT_NONE), 0);
+    *mapping = base;
+    return base + usable - bytes;
+}
+
+/* TAILS AT THE EDGE: ranges of 1 to 48 triangles, starting at 0 or 7, with
+ * the index array ending and the survivors (end - first of them, as
+ * pipeline.h promises) ending at a guard page, every triangle kept or
+ * every one dropped: no index read past the range's last, no survivor
+ * written past the room promised. */
+static void test_screening_stays_within_its_arrays(void **state)
+{
+    (void)state;
+    const int32_t one = LUZ_SUBPIXEL_ONE;
+    mesh vertices = mesh_create(6, 1);
+    set_vertex(&vertices, 0, 1 * one, 1 * one);   /* front, covers (1,1) .. (4,4) */
+    set_vertex(&vertices, 1, 1 * one, 6 * one);
+    set_vertex(&vertices, 2, 6 * one, 1 * one);
+    set_vertex(&vertices, 3, -3 * one, 1 * one);   /* front, left of the viewport */
+    set_vertex(&vertices, 4, -3 * one, 2 * one);
+    set_vertex(&vertices, 5, -2 * one, 1 * one);
+    luz_fixed_vertex p[3] = {vertices.fixed[0], vertices.fixed[1], vertices.fixed[2]};
+    assert_true(doubled_area(p) > 0 && centres_covered(p) > 0);
+    for (int v = 0; v < 2; v++) {
+        if (!luz_packet_isa_supported(variants[v])) continue;
+        bool checks_small_boxes;
+        luz_screen_function *screen = luz_screen_for(variants[v], &checks_small_boxes);
+        for (uint32_t first = 0; first <= 7; first += 7)
+            for (uint32_t length = 1; length <= 48; length++)
+                for (int dropped = 0; dropped < 2; dropped++) {
+                    const uint32_t end = first + length;
+                    void *index_mapping, *survivor_mapping;
+                    size_t index_size, survivor_size;
+                    uint32_t *indices = guarded(3 * (size_t)end * sizeof *indices,
+                                                &index_mapping, &index_size);
+                    uint32_t *survivors = guarded(length * sizeof *survivors,
+                                                  &survivor_mapping, &survivor_size);
+                    for (uint32_t i = 0; i < 3 * end; i++)
+                        indices[i] = (uint32_t)(dropped ? 3 + i % 3 : i % 3);
+                    uint32_t culled = 99;
+                    const size_t count = screen(indices, first, end, vertices.fixed, WIDTH,
+                                                HEIGHT, survivors, &culled);
+                    const bool drops = dropped && variants[v] == LUZ_PACKET_ISA_AVX512;
+                    assert_int_equal(count, drops ? 0 : length);
+                    assert_int_equal(culled, 0);
+                    for (size_t k = 0; k < count; k++)
+                        assert_int_equal(survivors[k], first + k);
+                    munmap(index_mapping, index_size);
+                    munmap(survivor_mapping, survivor_size);
+                }
+    }
+    mesh_destroy(&vertices);
 }
 
 int main(void)
@@ -334,6 +425,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_screening_drops_what_setup_would),
         cmocka_unit_test(test_screening_the_split_pixel),
+        cmocka_unit_test(test_screening_stays_within_its_arrays),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -273,8 +273,9 @@ static inline bool luz_setup_front_facing(const luz_window_vertex *p0,
     return doubled_area > 0;
 }
 
-/* Projects vertices[first, end) into out[first, end) for a width x height
- * viewport; vertices with a non-zero outcode are left alone (their
+/* Projects vertices[first, end) into out[first, end) (and fixed[first,
+ * end), unless NULL) for a width x height viewport; a vertex with a
+ * non-zero outcode is only marked, fixed_x = LUZ_WINDOW_CLIPPED (its
  * triangles go to the clipper, whose polygon vertices are projected
  * afresh). */
 void luz_setup_project(const luz_clip_vertex *vertices, uint32_t first, uint32_t end, int width,
