@@ -46,6 +46,7 @@
  * band's depth and visibility rows in cache, large enough that a triangle
  * rarely spans many bands. */
 #define BAND_HEIGHT 16
+_Static_assert((BAND_HEIGHT & (BAND_HEIGHT - 1)) == 0, "luz_geometry_run bins by a shift");
 
 /* Triangles of a band's list ahead of its raster whose records are
  * prefetched: about the time a line takes to come from memory, at a few

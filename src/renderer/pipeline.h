@@ -643,7 +643,7 @@ typedef struct luz_geometry_result {
 } luz_geometry_result;
 
 /* Vertex stage, clipping, setup, numbering and binning to bands of
- * band_height rows, over the pool's threads; only the first triangle_limit
+ * band_height rows (a power of two), over the pool's threads; only the first triangle_limit
  * triangles are binned (0: all). Returns 0, or -1 with the reason (out of
  * memory, too many triangles). */
 int luz_geometry_run(luz_geometry *geometry, luz_thread_pool *pool, const luz_frame *frame,
