@@ -13,6 +13,7 @@
  *                    a record (back faces, no pixel centre), 16 at a time
  *                    luz_setup_projected: a luz_triangle per fan triangle
  *                                                        fixed-point edges, planes
+ *                    (setup_eight.c: the same for 8 triangles at a time)
  *     -> raster.c    luz_raster_triangle: depth + visibility per pixel
  *                                                        who is nearest
  *     -> fragment.c  colour per visible pixel            interpolate, sample, shade
@@ -479,6 +480,33 @@ typedef size_t luz_screen_function(const uint32_t *indices, uint32_t first, uint
  * 2 x 2 pixel centres has none covered, so that luz_setup_projected need
  * not test a survivor's (its small_box_checked). */
 luz_screen_function *luz_screen_for(luz_packet_isa isa, bool *checks_small_boxes);
+
+/* ---- setup in lanes (setup_eight.c) ------------------------------------ */
+
+/* luz_setup_projected tests a box of up to this many pixel centres for a
+ * covered one before it solves the planes. */
+#define LUZ_SETUP_SMALL_BOX_PIXELS 16
+
+/* luz_setup_projected(..., small_box_checked = true, ...) for eight
+ * triangles of one draw at once, triangles[lane] (vertex indices
+ * indices[3 t .. 3 t + 2], at vertices in clip space and window, fixed
+ * as luz_setup_project left them): result[lane] and, where VISIBLE,
+ * out[lane] (all but its primitive) are what setup gives, bit for bit.
+ * Returns the mask of lanes left to the caller (bit lane): a box of 3 to
+ * LUZ_SETUP_SMALL_BOX_PIXELS centres to test, or all eight when one has a
+ * marked vertex (the clipper's, or setup's own culling); their results
+ * and records mean nothing. Only for triangles screening let through (the small-box
+ * promise is screening's). */
+typedef unsigned luz_setup_eight_function(const uint32_t *indices, const uint32_t triangles[8],
+                                          const luz_clip_vertex *vertices,
+                                          const luz_window_vertex *window,
+                                          const luz_fixed_vertex *fixed, int width, int height,
+                                          uint32_t draw_index, luz_interpolation interpolation,
+                                          luz_triangle out[8], luz_setup_result result[8]);
+/* The variant for isa (LUZ_PACKET_ISA_BEST: the widest), asking the CPU;
+ * NULL where there is none (the caller sets up one by one). AVX-512 is the
+ * one variant, as for screening. */
+luz_setup_eight_function *luz_setup_eight_for(luz_packet_isa isa);
 
 /* For the pixel probe (probe.c): the level of detail exactly as the
  * packets compute it (their polynomial logarithm included), for one

@@ -88,9 +88,6 @@ static luz_edge make_edge(int64_t xi, int64_t yi, int64_t xj, int64_t yj)
     return edge;
 }
 
-/* Boxes of at most this many pixels are tested for a covered centre
- * before their planes are solved. */
-#define SMALL_BOX_PIXELS 16
 
 /* Whether any pixel centre of the triangle's box passes its three edge
  * functions: E(X, Y) = a X + b Y + c >= 0 at X = 256 x + 128, Y = 256 y +
@@ -249,7 +246,7 @@ luz_setup_result luz_setup_projected(const luz_clip_vertex *v0, const luz_clip_v
      * if it were off screen. Screening may have tested a box of up to 2 x 2
      * already (small_box_checked). */
     const bool up_to_2x2 = max_x - min_x <= 1 && max_y - min_y <= 1;
-    if ((max_x - min_x + 1) * (max_y - min_y + 1) <= SMALL_BOX_PIXELS &&
+    if ((max_x - min_x + 1) * (max_y - min_y + 1) <= LUZ_SETUP_SMALL_BOX_PIXELS &&
         !(small_box_checked && up_to_2x2) && !covers_a_centre(out))
         return LUZ_SETUP_OFFSCREEN;
 

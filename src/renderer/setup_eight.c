@@ -1,0 +1,330 @@
+/*
+ * setup_eight.c: triangle setup (setup.c's luz_setup_projected) for eight
+ * triangles at once, one per 64-bit lane of AVX-512 vectors.
+ *
+ * In:  eight triangles of a draw that screening let through (screen.c: so
+ *      each is a front face whose box of up to 2 x 2 pixel centres has one
+ *      covered), their vertices in clip space and as luz_setup_project
+ *      left them (window position, depth and 1/w in double, the snapped
+ *      position and its markers).
+ * Out: for each lane, setup's result and, when VISIBLE, its record, the
+ *      same bits luz_setup_projected(..., small_box_checked = true, ...)
+ *      writes; or the lane left to luz_setup_projected: a box of 3 to 16
+ *      centres, which setup tests one by one for a covered centre, or,
+ *      all eight, when one has a vertex outside a clip plane or not
+ *      projected (the clipper's or setup's own business).
+ *
+ * Why: on a mesh of a million triangles about a quarter reach setup, and
+ * one at a time setup is arithmetic, not memory (set up twice in a row,
+ * the second time from the cache, a triangle costs the same): some sixty
+ * cycles, most of them the ten planes' double-precision products, which
+ * here run eight triangles to a vector.
+ *
+ * The arithmetic is setup.c's, operation for operation: the box and the
+ * edge functions in the same integers (coordinates below 2^24, so 32 x 32
+ * -> 64-bit products are exact), the determinant, its reciprocal and each
+ * plane (make_plane) in double with the same operations in the same order
+ * and no fused multiply-add, each rounded to float as a C cast does
+ * (round to nearest even). tests/test_setup_eight.c holds every lane to
+ * luz_setup_projected, field by field, bit for bit.
+ *
+ * Instruction sets: as screen.c, src/renderer/meson.build compiles this
+ * file once for the build's target (the dispatcher alone: no variant, the
+ * caller sets up one by one) and once with AVX-512.
+ */
+#include <stddef.h>
+#include <stdint.h>
+
+#include "renderer/pipeline.h"
+
+#if defined(LUZ_SETUP_EIGHT_AVX512)
+#if !defined(__AVX512F__) || !defined(__AVX512DQ__) || !defined(__AVX512VL__)
+#error "the AVX-512 variant is compiled with -mavx512f -mavx512dq -mavx512vl ..."
+#endif
+#include <immintrin.h>
+
+_Static_assert(offsetof(luz_window_vertex, y) == 8 && offsetof(luz_window_vertex, depth) == 16 &&
+                   offsetof(luz_window_vertex, inverse_w) == 24,
+               "a window vertex begins with x, y, depth and 1/w");
+_Static_assert(LUZ_VARYING_COUNT == 8, "a clip vertex's varyings are eight floats");
+_Static_assert(offsetof(luz_triangle, edges) == 16 && sizeof(luz_edge) == 16,
+               "the box and the edges are the record's first 64 bytes");
+_Static_assert(offsetof(luz_triangle, reference_x) == 64 &&
+                   offsetof(luz_triangle, depth) == 72 &&
+                   offsetof(luz_triangle, inverse_w) == 84 &&
+                   offsetof(luz_triangle, varyings) == 96 &&
+                   offsetof(luz_triangle, draw_index) == 192,
+               "the reference point and the planes are 32 floats from byte 64");
+
+/* Element r of rows[0..7] as row r of the result: an 8 x 8 transpose. */
+static inline __attribute__((always_inline)) void transpose8(__m256 rows[8])
+{
+    const __m256 t0 = _mm256_unpacklo_ps(rows[0], rows[1]);
+    const __m256 t1 = _mm256_unpackhi_ps(rows[0], rows[1]);
+    const __m256 t2 = _mm256_unpacklo_ps(rows[2], rows[3]);
+    const __m256 t3 = _mm256_unpackhi_ps(rows[2], rows[3]);
+    const __m256 t4 = _mm256_unpacklo_ps(rows[4], rows[5]);
+    const __m256 t5 = _mm256_unpackhi_ps(rows[4], rows[5]);
+    const __m256 t6 = _mm256_unpacklo_ps(rows[6], rows[7]);
+    const __m256 t7 = _mm256_unpackhi_ps(rows[6], rows[7]);
+    const __m256 u0 = _mm256_shuffle_ps(t0, t2, 0x44), u1 = _mm256_shuffle_ps(t0, t2, 0xee);
+    const __m256 u2 = _mm256_shuffle_ps(t1, t3, 0x44), u3 = _mm256_shuffle_ps(t1, t3, 0xee);
+    const __m256 u4 = _mm256_shuffle_ps(t4, t6, 0x44), u5 = _mm256_shuffle_ps(t4, t6, 0xee);
+    const __m256 u6 = _mm256_shuffle_ps(t5, t7, 0x44), u7 = _mm256_shuffle_ps(t5, t7, 0xee);
+    rows[0] = _mm256_permute2f128_ps(u0, u4, 0x20);
+    rows[1] = _mm256_permute2f128_ps(u1, u5, 0x20);
+    rows[2] = _mm256_permute2f128_ps(u2, u6, 0x20);
+    rows[3] = _mm256_permute2f128_ps(u3, u7, 0x20);
+    rows[4] = _mm256_permute2f128_ps(u0, u4, 0x31);
+    rows[5] = _mm256_permute2f128_ps(u1, u5, 0x31);
+    rows[6] = _mm256_permute2f128_ps(u2, u6, 0x31);
+    rows[7] = _mm256_permute2f128_ps(u3, u7, 0x31);
+}
+
+/* The snapped (X, Y) of eight vertices, one 64-bit gather. */
+static inline __attribute__((always_inline)) void
+gather_fixed(__m256i vertex, const luz_fixed_vertex *fixed, __m512i *x, __m512i *y)
+{
+    const __m512i both = _mm512_i32gather_epi64(vertex, (const void *)fixed, 8);
+    *x = _mm512_srai_epi64(_mm512_slli_epi64(both, 32), 32);
+    *y = _mm512_srai_epi64(both, 32);
+}
+
+/* The corners of the edge from (xi, yi) to (xj, yj), as make_edge: a = dy,
+ * b = -dx, c = -(dy xi - dx yi), less 1 unless it is a top edge (dy = 0,
+ * dx < 0) or a left edge (dy > 0). */
+static inline __attribute__((always_inline)) void
+make_edges(__m512i xi, __m512i yi, __m512i xj, __m512i yj, __m512i *a, __m512i *b, __m512i *c)
+{
+    const __m512i zero = _mm512_setzero_si512();
+    const __m512i dx = _mm512_sub_epi64(xj, xi), dy = _mm512_sub_epi64(yj, yi);
+    const __mmask8 top_or_left =
+        (_mm512_cmpeq_epi64_mask(dy, zero) & _mm512_cmplt_epi64_mask(dx, zero)) |
+        _mm512_cmpgt_epi64_mask(dy, zero);
+    *a = dy;
+    *b = _mm512_sub_epi64(zero, dx);
+    const __m512i c0 = _mm512_sub_epi64(zero, _mm512_sub_epi64(_mm512_mul_epi32(dy, xi),
+                                                               _mm512_mul_epi32(dx, yi)));
+    *c = _mm512_mask_sub_epi64(c0, (__mmask8)~top_or_left, c0, _mm512_set1_epi64(1));
+}
+
+/* make_plane for eight triangles: the plane through (x_k, y_k, value_k),
+ * its value at (rx, ry) and its gradient, each rounded to float. The
+ * edge vectors (x1 - x0, ...) are passed in, computed once as setup.c's
+ * compiler does; the products are the same. */
+typedef struct plane_eight {
+    __m256 value, dx, dy;
+} plane_eight;
+
+static inline __attribute__((always_inline)) plane_eight
+make_plane_eight(__m512d x10, __m512d x20, __m512d y10, __m512d y20, __m512d inverse_determinant,
+                 __m512d rx0, __m512d ry0, __m512d value0, __m512d value1, __m512d value2)
+{
+    const __m512d d1 = _mm512_sub_pd(value1, value0), d2 = _mm512_sub_pd(value2, value0);
+    const __m512d dx = _mm512_mul_pd(_mm512_sub_pd(_mm512_mul_pd(d1, y20), _mm512_mul_pd(d2, y10)),
+                                     inverse_determinant);
+    const __m512d dy = _mm512_mul_pd(_mm512_sub_pd(_mm512_mul_pd(d2, x10), _mm512_mul_pd(d1, x20)),
+                                     inverse_determinant);
+    const __m512d value = _mm512_add_pd(_mm512_add_pd(value0, _mm512_mul_pd(dx, rx0)),
+                                        _mm512_mul_pd(dy, ry0));
+    return (plane_eight){_mm512_cvtpd_ps(value), _mm512_cvtpd_ps(dx), _mm512_cvtpd_ps(dy)};
+}
+
+luz_setup_eight_function luz_setup_eight_avx512;
+
+unsigned luz_setup_eight_avx512(const uint32_t *indices, const uint32_t triangles[8],
+                                const luz_clip_vertex *vertices, const luz_window_vertex *window,
+                                const luz_fixed_vertex *fixed, int width, int height,
+                                uint32_t draw_index, luz_interpolation interpolation,
+                                luz_triangle out[8], luz_setup_result result[8])
+{
+    /* The corners' vertex indices, a lane per triangle. */
+    int32_t corner[3][8];
+    for (int lane = 0; lane < 8; lane++)
+        for (int k = 0; k < 3; k++)
+            corner[k][lane] = (int32_t)indices[3 * (size_t)triangles[lane] + (size_t)k];
+    const __m256i vertex0 = _mm256_loadu_si256((const void *)corner[0]);
+    const __m256i vertex1 = _mm256_loadu_si256((const void *)corner[1]);
+    const __m256i vertex2 = _mm256_loadu_si256((const void *)corner[2]);
+
+    /* 3. The doubled area in fixed point, as luz_setup_front_facing; a
+     * marked vertex (below -2^24) leaves its triangle to setup. */
+    __m512i fx0, fy0, fx1, fy1, fx2, fy2;
+    gather_fixed(vertex0, fixed, &fx0, &fy0);
+    gather_fixed(vertex1, fixed, &fx1, &fy1);
+    gather_fixed(vertex2, fixed, &fx2, &fy2);
+    const __m512i lowest = _mm512_set1_epi64(-((int64_t)1 << 24));
+    const __mmask8 marked = _mm512_cmplt_epi64_mask(fx0, lowest) |
+                            _mm512_cmplt_epi64_mask(fx1, lowest) |
+                            _mm512_cmplt_epi64_mask(fx2, lowest);
+    /* Marked vertices come in runs (a draw across a clip plane, whose back
+     * faces screening cannot judge either): such a group is left whole. */
+    if (marked != 0) return 0xff;
+    const __m512i area = _mm512_sub_epi64(
+        _mm512_mul_epi32(_mm512_sub_epi64(fy1, fy0), _mm512_sub_epi64(fx2, fx0)),
+        _mm512_mul_epi32(_mm512_sub_epi64(fx1, fx0), _mm512_sub_epi64(fy2, fy0)));
+    const __mmask8 back = _mm512_cmple_epi64_mask(area, _mm512_setzero_si512());
+
+    /* The box of pixel centres, 256 x + 128 within [min X, max X]: x from
+     * ceil((min X - 128) / 256) = -((128 - min X) >> 8) to floor((max X -
+     * 128) / 256) = (max X - 128) >> 8 (arithmetic shifts), clamped to the
+     * viewport. */
+    const __m512i half = _mm512_set1_epi64(LUZ_SUBPIXEL_ONE / 2), zero = _mm512_setzero_si512();
+    const __m512i min_fx = _mm512_min_epi64(fx0, _mm512_min_epi64(fx1, fx2));
+    const __m512i max_fx = _mm512_max_epi64(fx0, _mm512_max_epi64(fx1, fx2));
+    const __m512i min_fy = _mm512_min_epi64(fy0, _mm512_min_epi64(fy1, fy2));
+    const __m512i max_fy = _mm512_max_epi64(fy0, _mm512_max_epi64(fy1, fy2));
+    const __m512i min_x = _mm512_max_epi64(
+        _mm512_sub_epi64(zero, _mm512_srai_epi64(_mm512_sub_epi64(half, min_fx), 8)), zero);
+    const __m512i min_y = _mm512_max_epi64(
+        _mm512_sub_epi64(zero, _mm512_srai_epi64(_mm512_sub_epi64(half, min_fy), 8)), zero);
+    const __m512i max_x = _mm512_min_epi64(_mm512_srai_epi64(_mm512_sub_epi64(max_fx, half), 8),
+                                           _mm512_set1_epi64(width - 1));
+    const __m512i max_y = _mm512_min_epi64(_mm512_srai_epi64(_mm512_sub_epi64(max_fy, half), 8),
+                                           _mm512_set1_epi64(height - 1));
+    const __mmask8 empty = _mm512_cmpgt_epi64_mask(min_x, max_x) |
+                           _mm512_cmpgt_epi64_mask(min_y, max_y);
+    /* A box of up to LUZ_SETUP_SMALL_BOX_PIXELS but more than 2 x 2:
+     * setup tests its centres, one triangle at a time. */
+    const __m512i one = _mm512_set1_epi64(1);
+    const __m512i box_width = _mm512_add_epi64(_mm512_sub_epi64(max_x, min_x), one);
+    const __m512i box_height = _mm512_add_epi64(_mm512_sub_epi64(max_y, min_y), one);
+    const __m512i two = _mm512_set1_epi64(2);
+    const __mmask8 small = _mm512_cmple_epi64_mask(_mm512_mullo_epi64(box_width, box_height),
+                                                   _mm512_set1_epi64(LUZ_SETUP_SMALL_BOX_PIXELS));
+    const __mmask8 up_to_2x2 = _mm512_cmple_epi64_mask(box_width, two) &
+                               _mm512_cmple_epi64_mask(box_height, two);
+    const __mmask8 left = (__mmask8)(~back & ~empty & small & ~up_to_2x2);
+
+    /* 4. Edge k is opposite vertex k. */
+    __m512i a[3], b[3], c[3];
+    make_edges(fx1, fy1, fx2, fy2, &a[0], &b[0], &c[0]);
+    make_edges(fx2, fy2, fx0, fy0, &a[1], &b[1], &c[1]);
+    make_edges(fx0, fy0, fx1, fy1, &a[2], &b[2], &c[2]);
+
+    /* 5. Planes, from the exact window positions, relative to the snapped
+     * vertex 0 (setup.c). Each corner's x, y, depth and 1/w are 32
+     * contiguous bytes of its window vertex, and its varyings 32 of its
+     * clip vertex: loaded a lane at a time and transposed into vectors
+     * (with a gather for each field instead, the 1M sphere's geometry
+     * took 20.7 ms a frame where one triangle at a time took 16.6, and
+     * these loads 15.6). */
+    __m512d x[3], y[3], depth[3], weight[3];
+    __m256 varying[3][8];
+    const __m512i even_pairs = _mm512_set_epi64(13, 12, 5, 4, 9, 8, 1, 0);
+    const __m512i odd_pairs = _mm512_set_epi64(15, 14, 7, 6, 11, 10, 3, 2);
+    for (int k = 0; k < 3; k++) {
+        __m512d pair[4];   /* lanes l and l + 4: x, y, depth, 1/w of each */
+        for (int lane = 0; lane < 4; lane++)
+            pair[lane] = _mm512_insertf64x4(
+                _mm512_castpd256_pd512(_mm256_loadu_pd(&window[corner[k][lane]].x)),
+                _mm256_loadu_pd(&window[corner[k][lane + 4]].x), 1);
+        /* Per 128-bit block, t0: (x, x) and (depth, depth) of lanes 0, 1
+         * then 4, 5; t1 the same of y and 1/w; t2 and t3 of lanes 2, 3
+         * and 6, 7. */
+        const __m512d t0 = _mm512_unpacklo_pd(pair[0], pair[1]);
+        const __m512d t1 = _mm512_unpackhi_pd(pair[0], pair[1]);
+        const __m512d t2 = _mm512_unpacklo_pd(pair[2], pair[3]);
+        const __m512d t3 = _mm512_unpackhi_pd(pair[2], pair[3]);
+        x[k] = _mm512_permutex2var_pd(t0, even_pairs, t2);
+        depth[k] = _mm512_permutex2var_pd(t0, odd_pairs, t2);
+        y[k] = _mm512_permutex2var_pd(t1, even_pairs, t3);
+        weight[k] = interpolation == LUZ_INTERPOLATION_AFFINE
+                        ? _mm512_set1_pd(1.0)
+                        : _mm512_permutex2var_pd(t1, odd_pairs, t3);
+        for (int lane = 0; lane < 8; lane++)
+            varying[k][lane] = _mm256_loadu_ps(vertices[corner[k][lane]].varyings);
+        transpose8(varying[k]);   /* varying[k][i]: varying i of every lane */
+    }
+    const __m512d x10 = _mm512_sub_pd(x[1], x[0]), x20 = _mm512_sub_pd(x[2], x[0]);
+    const __m512d y10 = _mm512_sub_pd(y[1], y[0]), y20 = _mm512_sub_pd(y[2], y[0]);
+    const __m512d determinant = _mm512_sub_pd(_mm512_mul_pd(x10, y20), _mm512_mul_pd(x20, y10));
+    /* setup.c: !(determinant != 0.0) || !isfinite(determinant) culls. */
+    const __mmask8 solvable =
+        _mm512_cmp_pd_mask(determinant, _mm512_setzero_pd(), _CMP_NEQ_OQ) &
+        _mm512_cmp_pd_mask(_mm512_abs_pd(determinant), _mm512_set1_pd(__builtin_inf()),
+                           _CMP_LT_OQ);
+    const __m512d inverse_determinant = _mm512_div_pd(_mm512_set1_pd(1.0), determinant);
+    /* fixed / 256: exact, a power of two. */
+    const __m512d rx = _mm512_div_pd(_mm512_cvtepi64_pd(fx0), _mm512_set1_pd(LUZ_SUBPIXEL_ONE));
+    const __m512d ry = _mm512_div_pd(_mm512_cvtepi64_pd(fy0), _mm512_set1_pd(LUZ_SUBPIXEL_ONE));
+    const __m512d rx0 = _mm512_sub_pd(rx, x[0]), ry0 = _mm512_sub_pd(ry, y[0]);
+
+    /* The record's floats from byte 64: the reference point, then depth,
+     * 1/w and each varying/w as (value, dx, dy); column j holds float j of
+     * every lane. */
+    __m256 column[32];
+    column[0] = _mm512_cvtpd_ps(rx);
+    column[1] = _mm512_cvtpd_ps(ry);
+    plane_eight plane = make_plane_eight(x10, x20, y10, y20, inverse_determinant, rx0, ry0,
+                                         depth[0], depth[1], depth[2]);
+    column[2] = plane.value, column[3] = plane.dx, column[4] = plane.dy;
+    plane = make_plane_eight(x10, x20, y10, y20, inverse_determinant, rx0, ry0, weight[0],
+                             weight[1], weight[2]);
+    column[5] = plane.value, column[6] = plane.dx, column[7] = plane.dy;
+    for (int i = 0; i < LUZ_VARYING_COUNT; i++) {
+        __m512d value[3];
+        for (int k = 0; k < 3; k++)
+            value[k] = _mm512_mul_pd(_mm512_cvtps_pd(varying[k][i]), weight[k]);
+        plane = make_plane_eight(x10, x20, y10, y20, inverse_determinant, rx0, ry0, value[0],
+                                 value[1], value[2]);
+        column[8 + 3 * i] = plane.value;
+        column[9 + 3 * i] = plane.dx;
+        column[10 + 3 * i] = plane.dy;
+    }
+
+    /* The box and edges as sixteen 32-bit words a lane: min x, min y,
+     * max x, max y, then a, b and c (low, high) of each edge. */
+    __m256 word[16];
+    word[0] = _mm256_castsi256_ps(_mm512_cvtepi64_epi32(min_x));
+    word[1] = _mm256_castsi256_ps(_mm512_cvtepi64_epi32(min_y));
+    word[2] = _mm256_castsi256_ps(_mm512_cvtepi64_epi32(max_x));
+    word[3] = _mm256_castsi256_ps(_mm512_cvtepi64_epi32(max_y));
+    for (int k = 0; k < 3; k++) {
+        word[4 + 4 * k] = _mm256_castsi256_ps(_mm512_cvtepi64_epi32(a[k]));
+        word[5 + 4 * k] = _mm256_castsi256_ps(_mm512_cvtepi64_epi32(b[k]));
+        word[6 + 4 * k] = _mm256_castsi256_ps(_mm512_cvtepi64_epi32(c[k]));
+        word[7 + 4 * k] = _mm256_castsi256_ps(_mm512_cvtepi64_epi32(_mm512_srai_epi64(c[k], 32)));
+    }
+    /* Transposed, a lane's words are its record's bytes 0-63 and 64-191. */
+    transpose8(&word[0]);
+    transpose8(&word[8]);
+    for (int q = 0; q < 4; q++) transpose8(&column[8 * q]);
+    for (int lane = 0; lane < 8; lane++) {
+        float *record = (float *)(void *)&out[lane];
+        _mm256_storeu_ps(record, word[lane]);
+        _mm256_storeu_ps(record + 8, word[8 + lane]);
+        for (int q = 0; q < 4; q++) _mm256_storeu_ps(record + 16 + 8 * q, column[8 * q + lane]);
+        out[lane].draw_index = draw_index;
+    }
+
+    /* Each lane's verdict in setup's order: culled (a back face), off
+     * screen (no centre in the box), then culled again (no plane can be
+     * solved). */
+    for (int lane = 0; lane < 8; lane++) {
+        const unsigned bit = 1u << lane;
+        result[lane] = (back & bit)       ? LUZ_SETUP_CULLED
+                       : (empty & bit)    ? LUZ_SETUP_OFFSCREEN
+                       : !(solvable & bit) ? LUZ_SETUP_CULLED
+                                           : LUZ_SETUP_VISIBLE;
+    }
+    return left;
+}
+
+#else /* the baseline variant: the dispatcher */
+
+#if defined(LUZ_SETUP_EIGHT_HAVE_AVX512)
+luz_setup_eight_function luz_setup_eight_avx512;
+#endif
+
+luz_setup_eight_function *luz_setup_eight_for(luz_packet_isa isa)
+{
+    if (isa == LUZ_PACKET_ISA_BEST) isa = LUZ_PACKET_ISA_AVX512;
+#if defined(LUZ_SETUP_EIGHT_HAVE_AVX512)
+    if (isa == LUZ_PACKET_ISA_AVX512 && luz_packet_isa_supported(isa))
+        return luz_setup_eight_avx512;
+#endif
+    return NULL;
+}
+
+#endif

@@ -1,0 +1,250 @@
+/*
+ * test_setup_eight.c: setup in lanes (src/renderer/setup_eight.c) against
+ * setup one triangle at a time (luz_setup_projected), the implementation
+ * the other setup tests derive by hand.
+ *
+ * Its contract: for each of eight triangles, either the lane is left to
+ * the caller, and then only for a reason the contract names (a marked
+ * vertex in the group, or a box of 3 to LUZ_SETUP_SMALL_BOX_PIXELS pixel
+ * centres, worked out here from the snapped corners by brute force), or its
+ * result is luz_setup_projected's with small_box_checked, and a visible
+ * triangle's record is the same bytes: box, edges, reference point and
+ * all ten planes. Random triangles, most a pixel or two across, some
+ * large, some off the viewport, some back faces, with a few vertices
+ * marked, a few whose window positions make the double-precision
+ * determinant zero or not finite, both interpolations.
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "renderer/pipeline.h"
+
+#define WIDTH 40
+#define HEIGHT 24
+
+static uint32_t next_random(uint32_t *state)
+{
+    *state = *state * 1664525u + 1013904223u;
+    return *state >> 8;
+}
+
+/* A float in [low, high). */
+static float uniform(uint32_t *state, float low, float high)
+{
+    return low + (high - low) * (float)(next_random(state) & 0xffff) / 65536.0f;
+}
+
+typedef struct mesh {
+    uint32_t vertex_count, triangle_count;
+    luz_clip_vertex *clip;
+    luz_window_vertex *window;
+    luz_fixed_vertex *fixed;
+    uint32_t *indices;
+} mesh;
+
+/* Vertex i at (X, Y) in fixed point, its exact position within half a
+ * sub-pixel unit of it (as snapping leaves it), random depth, 1/w and
+ * varyings. */
+static void set_vertex(mesh *m, uint32_t i, int32_t fixed_x, int32_t fixed_y, uint32_t *random)
+{
+    const double jitter_x = uniform(random, -0.49f, 0.49f) / LUZ_SUBPIXEL_ONE;
+    const double jitter_y = uniform(random, -0.49f, 0.49f) / LUZ_SUBPIXEL_ONE;
+    m->window[i] = (luz_window_vertex){
+        .x = fixed_x / (double)LUZ_SUBPIXEL_ONE + jitter_x,
+        .y = fixed_y / (double)LUZ_SUBPIXEL_ONE + jitter_y,
+        .depth = uniform(random, 0.0f, 1.0f),
+        .inverse_w = uniform(random, 0.05f, 10.0f),
+        .fixed_x = fixed_x,
+        .fixed_y = fixed_y};
+    m->fixed[i] = (luz_fixed_vertex){fixed_x, fixed_y};
+    m->clip[i].position = (luz_vec4){0, 0, 0, 1};
+    m->clip[i].outcode = 0;
+    for (int k = 0; k < LUZ_VARYING_COUNT; k++)
+        m->clip[i].varyings[k] = uniform(random, -100.0f, 100.0f);
+}
+
+static bool is_marker(int32_t fixed_x)
+{
+    return fixed_x == LUZ_WINDOW_CLIPPED || fixed_x == LUZ_WINDOW_INVALID;
+}
+
+/* The reason setup in lanes may leave triangle t to the caller, worked out
+ * here: a marked corner (then its whole group of eight may be left), or a
+ * front face whose box holds 3 to LUZ_SETUP_SMALL_BOX_PIXELS pixel centres
+ * of the viewport. */
+static bool may_be_left(const mesh *m, uint32_t t)
+{
+    luz_fixed_vertex p[3];
+    for (int k = 0; k < 3; k++) {
+        p[k] = m->fixed[m->indices[3 * (size_t)t + (size_t)k]];
+        if (is_marker(p[k].x)) return true;
+    }
+    const int64_t area = ((int64_t)p[1].y - p[0].y) * ((int64_t)p[2].x - p[0].x) -
+                         ((int64_t)p[1].x - p[0].x) * ((int64_t)p[2].y - p[0].y);
+    if (area <= 0) return false;
+    int columns = 0, rows = 0;
+    for (int x = 0; x < WIDTH; x++) {
+        const int64_t centre = 256 * (int64_t)x + 128;
+        int64_t lo = p[0].x, hi = p[0].x;
+        for (int k = 1; k < 3; k++) {
+            if (p[k].x < lo) lo = p[k].x;
+            if (p[k].x > hi) hi = p[k].x;
+        }
+        columns += centre >= lo && centre <= hi;
+    }
+    for (int y = 0; y < HEIGHT; y++) {
+        const int64_t centre = 256 * (int64_t)y + 128;
+        int64_t lo = p[0].y, hi = p[0].y;
+        for (int k = 1; k < 3; k++) {
+            if (p[k].y < lo) lo = p[k].y;
+            if (p[k].y > hi) hi = p[k].y;
+        }
+        rows += centre >= lo && centre <= hi;
+    }
+    const int centres = columns * rows;
+    return centres > 0 && centres <= LUZ_SETUP_SMALL_BOX_PIXELS && (columns > 2 || rows > 2);
+}
+
+typedef struct tally {
+    int left, visible, culled, offscreen;
+} tally;
+
+static tally check_groups(const mesh *m, luz_setup_eight_function *setup_eight,
+                          luz_interpolation interpolation)
+{
+    tally count = {0, 0, 0, 0};
+    for (uint32_t group = 0; group + 8 <= m->triangle_count; group += 8) {
+        uint32_t triangles[8];
+        for (int lane = 0; lane < 8; lane++)   /* not in order: any eight */
+            triangles[lane] = (group * 5 + (uint32_t)lane * 3) % m->triangle_count;
+        luz_triangle out[8];
+        luz_setup_result result[8];
+        memset(out, 0xA5, sizeof out);
+        const unsigned left = setup_eight(m->indices, triangles, m->clip, m->window, m->fixed,
+                                          WIDTH, HEIGHT, 7, interpolation, out, result);
+        bool group_marked = false;   /* then the lanes may all be left */
+        for (int lane = 0; lane < 8; lane++)
+            for (int k = 0; k < 3; k++) {
+                const uint32_t vertex = m->indices[3 * (size_t)triangles[lane] + (size_t)k];
+                group_marked = group_marked || is_marker(m->fixed[vertex].x);
+            }
+        for (int lane = 0; lane < 8; lane++) {
+            const uint32_t t = triangles[lane];
+            if (left >> lane & 1) {
+                if (!group_marked && !may_be_left(m, t))
+                    fail_msg("triangle %u left to setup for no reason", t);
+                count.left++;
+                continue;
+            }
+            const uint32_t *index = &m->indices[3 * (size_t)t];
+            if (is_marker(m->fixed[index[0]].x) || is_marker(m->fixed[index[1]].x) ||
+                is_marker(m->fixed[index[2]].x))
+                fail_msg("triangle %u has a marked vertex and was not left", t);
+            luz_triangle expected;
+            memset(&expected, 0x5A, sizeof expected);
+            const luz_setup_result one = luz_setup_projected(
+                &m->clip[index[0]], &m->clip[index[1]], &m->clip[index[2]], &m->window[index[0]],
+                &m->window[index[1]], &m->window[index[2]], WIDTH, HEIGHT, 7, interpolation, true,
+                &expected);
+            if (result[lane] != one)
+                fail_msg("triangle %u: result %d, setup says %d", t, (int)result[lane], (int)one);
+            if (one == LUZ_SETUP_VISIBLE) {
+                count.visible++;
+                /* Every byte but the primitive, which the caller sets. */
+                if (memcmp(&out[lane], &expected, offsetof(luz_triangle, primitive)) != 0)
+                    fail_msg("triangle %u: its record differs from setup's", t);
+            } else if (one == LUZ_SETUP_CULLED) {
+                count.culled++;
+            } else {
+                count.offscreen++;
+            }
+        }
+    }
+    return count;
+}
+
+/* The record's fields are whole words: comparing its bytes compares its
+ * fields (no padding to differ). */
+_Static_assert(offsetof(luz_triangle, primitive) + sizeof(uint32_t) == sizeof(luz_triangle),
+               "luz_triangle has no padding");
+
+static void test_lanes_agree_with_setup(void **state)
+{
+    (void)state;
+    luz_setup_eight_function *setup_eight = luz_setup_eight_for(LUZ_PACKET_ISA_AVX512);
+    if (setup_eight == NULL) {
+        print_message("skipped: this build or CPU has no AVX-512 (setup one by one only)\n");
+        skip();
+    }
+    assert_true(luz_setup_eight_for(LUZ_PACKET_ISA_BASELINE) == NULL);
+    const uint32_t triangle_count = 30000;
+    mesh m = {3 * triangle_count, triangle_count,
+              calloc(3 * (size_t)triangle_count, sizeof(luz_clip_vertex)),
+              calloc(3 * (size_t)triangle_count, sizeof(luz_window_vertex)),
+              calloc(3 * (size_t)triangle_count, sizeof(luz_fixed_vertex)),
+              calloc(3 * (size_t)triangle_count, sizeof(uint32_t))};
+    assert_non_null(m.clip);
+    assert_non_null(m.window);
+    assert_non_null(m.fixed);
+    assert_non_null(m.indices);
+    uint32_t random = 77;
+    for (uint32_t t = 0; t < triangle_count; t++) {
+        const uint32_t kind = next_random(&random) % 100;
+        const int32_t base_x = (int32_t)(next_random(&random) % (256 * (WIDTH + 8))) - 256 * 4;
+        const int32_t base_y = (int32_t)(next_random(&random) % (256 * (HEIGHT + 8))) - 256 * 4;
+        const int32_t reach = kind < 50 ? 256 : kind < 80 ? 640 : 256 * 12;
+        for (int k = 0; k < 3; k++) {
+            const uint32_t i = 3 * t + (uint32_t)k;
+            m.indices[i] = i;
+            const uint32_t span = (uint32_t)(2 * reach + 1);
+            int32_t x = base_x + (int32_t)(next_random(&random) % span) - reach;
+            int32_t y = base_y + (int32_t)(next_random(&random) % span) - reach;
+            if (kind == 99) {   /* huge: corners at the fixed-point limit */
+                x = (next_random(&random) & 1) ? (1 << 24) : -(1 << 24);
+                y = (next_random(&random) & 1) ? (1 << 24) : -(1 << 24);
+            }
+            set_vertex(&m, i, x, y, &random);
+            if (kind == 97 && k == 1) m.fixed[i].x = m.window[i].fixed_x = LUZ_WINDOW_CLIPPED;
+            if (kind == 98 && k == 2) m.fixed[i].x = m.window[i].fixed_x = LUZ_WINDOW_INVALID;
+        }
+        if (kind == 95) {   /* no plane to solve: the exact corners coincide */
+            for (int k = 1; k < 3; k++) {
+                m.window[3 * t + (uint32_t)k].x = m.window[3 * t].x;
+                m.window[3 * t + (uint32_t)k].y = m.window[3 * t].y;
+            }
+        }
+        if (kind == 96) m.window[3 * t + 2].x = (double)INFINITY;   /* nor here */
+    }
+    for (int mode = 0; mode < 2; mode++) {
+        const luz_interpolation interpolation =
+            mode ? LUZ_INTERPOLATION_AFFINE : LUZ_INTERPOLATION_PERSPECTIVE;
+        const tally count = check_groups(&m, setup_eight, interpolation);
+        print_message("%s: %d visible, %d culled, %d off screen, %d left to setup\n",
+                      luz_interpolation_name(interpolation), count.visible, count.culled,
+                      count.offscreen, count.left);
+        /* Each verdict is seen, often. */
+        assert_true(count.visible > 3000);
+        assert_true(count.culled > 3000);
+        assert_true(count.offscreen > 1000);
+        assert_true(count.left > 300);
+    }
+    free(m.clip);
+    free(m.window);
+    free(m.fixed);
+    free(m.indices);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_lanes_agree_with_setup),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
