@@ -3,13 +3,12 @@
  * setup one triangle at a time (luz_setup_projected), the implementation
  * the other setup tests derive by hand.
  *
- * Its contract: for each of eight triangles, either the lane is left to
- * the caller, and then only for a reason the contract names (a marked
- * vertex in the group, or a box of 3 to LUZ_SETUP_SMALL_BOX_PIXELS pixel
- * centres, worked out here from the snapped corners by brute force), or its
- * result is luz_setup_projected's with small_box_checked, and a visible
- * triangle's record is the same bytes: box, edges, reference point and
- * all ten planes. Random triangles, most a pixel or two across, some
+ * Its contract: all eight lanes are left to the caller when one of the
+ * triangles has a marked vertex (outside a clip plane, or not projected),
+ * and none otherwise; then each lane's result is luz_setup_projected's
+ * with small_box_checked (a box of 3 to LUZ_SETUP_SMALL_BOX_PIXELS
+ * centres tested for a covered one), and a visible triangle's record is
+ * the same bytes: box, edges, reference point and all ten planes. Random triangles, most a pixel or two across, some
  * large, some off the viewport, some back faces, with a few vertices
  * marked, a few whose window positions make the double-precision
  * determinant zero or not finite, both interpolations.
@@ -75,43 +74,6 @@ static bool is_marker(int32_t fixed_x)
     return fixed_x == LUZ_WINDOW_CLIPPED || fixed_x == LUZ_WINDOW_INVALID;
 }
 
-/* The reason setup in lanes may leave triangle t to the caller, worked out
- * here: a marked corner (then its whole group of eight may be left), or a
- * front face whose box holds 3 to LUZ_SETUP_SMALL_BOX_PIXELS pixel centres
- * of the viewport. */
-static bool may_be_left(const mesh *m, uint32_t t)
-{
-    luz_fixed_vertex p[3];
-    for (int k = 0; k < 3; k++) {
-        p[k] = m->fixed[m->indices[3 * (size_t)t + (size_t)k]];
-        if (is_marker(p[k].x)) return true;
-    }
-    const int64_t area = ((int64_t)p[1].y - p[0].y) * ((int64_t)p[2].x - p[0].x) -
-                         ((int64_t)p[1].x - p[0].x) * ((int64_t)p[2].y - p[0].y);
-    if (area <= 0) return false;
-    int columns = 0, rows = 0;
-    for (int x = 0; x < WIDTH; x++) {
-        const int64_t centre = 256 * (int64_t)x + 128;
-        int64_t lo = p[0].x, hi = p[0].x;
-        for (int k = 1; k < 3; k++) {
-            if (p[k].x < lo) lo = p[k].x;
-            if (p[k].x > hi) hi = p[k].x;
-        }
-        columns += centre >= lo && centre <= hi;
-    }
-    for (int y = 0; y < HEIGHT; y++) {
-        const int64_t centre = 256 * (int64_t)y + 128;
-        int64_t lo = p[0].y, hi = p[0].y;
-        for (int k = 1; k < 3; k++) {
-            if (p[k].y < lo) lo = p[k].y;
-            if (p[k].y > hi) hi = p[k].y;
-        }
-        rows += centre >= lo && centre <= hi;
-    }
-    const int centres = columns * rows;
-    return centres > 0 && centres <= LUZ_SETUP_SMALL_BOX_PIXELS && (columns > 2 || rows > 2);
-}
-
 typedef struct tally {
     int left, visible, culled, offscreen;
 } tally;
@@ -137,16 +99,15 @@ static tally check_groups(const mesh *m, luz_setup_eight_function *setup_eight,
             }
         for (int lane = 0; lane < 8; lane++) {
             const uint32_t t = triangles[lane];
-            if (left >> lane & 1) {
-                if (!group_marked && !may_be_left(m, t))
-                    fail_msg("triangle %u left to setup for no reason", t);
+            if ((left >> lane & 1) != group_marked)
+                fail_msg("triangle %u %s, its group %s a marked vertex", t,
+                         left >> lane & 1 ? "left to setup" : "set up in lanes",
+                         group_marked ? "has" : "has no");
+            if (group_marked) {
                 count.left++;
                 continue;
             }
             const uint32_t *index = &m->indices[3 * (size_t)t];
-            if (is_marker(m->fixed[index[0]].x) || is_marker(m->fixed[index[1]].x) ||
-                is_marker(m->fixed[index[2]].x))
-                fail_msg("triangle %u has a marked vertex and was not left", t);
             luz_triangle expected;
             memset(&expected, 0x5A, sizeof expected);
             const luz_setup_result one = luz_setup_projected(

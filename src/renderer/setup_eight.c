@@ -9,10 +9,9 @@
  *      position and its markers).
  * Out: for each lane, setup's result and, when VISIBLE, its record, the
  *      same bits luz_setup_projected(..., small_box_checked = true, ...)
- *      writes; or the lane left to luz_setup_projected: a box of 3 to 16
- *      centres, which setup tests one by one for a covered centre, or,
- *      all eight, when one has a vertex outside a clip plane or not
- *      projected (the clipper's or setup's own business).
+ *      writes; or, when one of the eight has a vertex outside a clip
+ *      plane or not projected (the clipper's or setup's own business),
+ *      all eight left to luz_setup_projected.
  *
  * Why: on a mesh of a million triangles about a quarter reach setup, and
  * one at a time setup is arithmetic, not memory (set up twice in a row,
@@ -194,7 +193,7 @@ unsigned luz_setup_eight_avx512(const uint32_t *indices, const uint32_t triangle
                                                    _mm512_set1_epi64(LUZ_SETUP_SMALL_BOX_PIXELS));
     const __mmask8 up_to_2x2 = _mm512_cmple_epi64_mask(box_width, two) &
                                _mm512_cmple_epi64_mask(box_height, two);
-    const __mmask8 left = (__mmask8)(~back & ~empty & small & ~up_to_2x2);
+    const __mmask8 to_test = (__mmask8)(~back & ~empty & small & ~up_to_2x2);
 
     /* 4. Edge k is opposite vertex k. */
     __m512i a[3], b[3], c[3];
@@ -299,16 +298,22 @@ unsigned luz_setup_eight_avx512(const uint32_t *indices, const uint32_t triangle
     }
 
     /* Each lane's verdict in setup's order: culled (a back face), off
-     * screen (no centre in the box), then culled again (no plane can be
-     * solved). */
+     * screen (no centre in the box, or in a box of 3 to 16 centres none
+     * covered: tested lane by lane, from the record's box and edges), then
+     * culled again (no plane can be solved). */
+    unsigned offscreen = empty;
+    for (unsigned testing = to_test; testing != 0; testing &= testing - 1) {
+        const int lane = __builtin_ctz(testing);
+        if (!luz_setup_covers_a_centre(&out[lane])) offscreen |= 1u << lane;
+    }
     for (int lane = 0; lane < 8; lane++) {
         const unsigned bit = 1u << lane;
-        result[lane] = (back & bit)       ? LUZ_SETUP_CULLED
-                       : (empty & bit)    ? LUZ_SETUP_OFFSCREEN
-                       : !(solvable & bit) ? LUZ_SETUP_CULLED
-                                           : LUZ_SETUP_VISIBLE;
+        result[lane] = (back & bit)        ? LUZ_SETUP_CULLED
+                       : (offscreen & bit) ? LUZ_SETUP_OFFSCREEN
+                       : (solvable & bit)  ? LUZ_SETUP_VISIBLE
+                                           : LUZ_SETUP_CULLED;
     }
-    return left;
+    return 0;
 }
 
 #else /* the baseline variant: the dispatcher */
