@@ -202,10 +202,52 @@ static void test_lanes_agree_with_setup(void **state)
     free(m.indices);
 }
 
+/* HAND-MADE: two slivers along the diagonal y = x from (0.4, 0.4) to (2.6,
+ * 2.6), one on each side of it, each with a 3 x 3 box of pixel centres
+ * (tested in lanes) and no centre but the three on the diagonal, exactly
+ * on an edge: for one sliver it is a left edge (dy > 0: the centres are
+ * its, VISIBLE), for the other a right edge (OFFSCREEN). */
+static void test_centres_on_an_edge(void **state)
+{
+    (void)state;
+    luz_setup_eight_function *setup_eight = luz_setup_eight_for(LUZ_PACKET_ISA_AVX512);
+    if (setup_eight == NULL) skip();
+    mesh m = {6, 8, calloc(6, sizeof(luz_clip_vertex)), calloc(6, sizeof(luz_window_vertex)),
+              calloc(6, sizeof(luz_fixed_vertex)), calloc(24, sizeof(uint32_t))};
+    assert_non_null(m.clip);
+    assert_non_null(m.window);
+    assert_non_null(m.fixed);
+    assert_non_null(m.indices);
+    uint32_t random = 5;
+    const int32_t corners[6][2] = {{102, 102}, {666, 666}, {666, 640},    /* below y = x */
+                                   {102, 102}, {666, 666}, {640, 666}};   /* above it */
+    for (uint32_t i = 0; i < 6; i++) set_vertex(&m, i, corners[i][0], corners[i][1], &random);
+    for (uint32_t t = 0; t < 8; t++) {
+        const uint32_t first = 3 * (t % 2);
+        /* Counter-clockwise on the screen's y-down axes: a front face. */
+        const luz_fixed_vertex *p = &m.fixed[first];
+        const int64_t area = ((int64_t)p[1].y - p[0].y) * ((int64_t)p[2].x - p[0].x) -
+                             ((int64_t)p[1].x - p[0].x) * ((int64_t)p[2].y - p[0].y);
+        const bool swap = area < 0;
+        m.indices[3 * t] = first;
+        m.indices[3 * t + 1] = first + (swap ? 2 : 1);
+        m.indices[3 * t + 2] = first + (swap ? 1 : 2);
+    }
+    const tally count = check_groups(&m, setup_eight, LUZ_INTERPOLATION_PERSPECTIVE);
+    assert_int_equal(count.left, 0);
+    assert_int_equal(count.visible, 4);
+    assert_int_equal(count.offscreen, 4);
+    free(m.clip);
+    free(m.window);
+    free(m.fixed);
+    free(m.indices);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_lanes_agree_with_setup),
+        cmocka_unit_test(test_centres_on_an_edge),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

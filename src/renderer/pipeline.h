@@ -487,35 +487,6 @@ luz_screen_function *luz_screen_for(luz_packet_isa isa, bool *checks_small_boxes
  * covered one before it solves the planes. */
 #define LUZ_SETUP_SMALL_BOX_PIXELS 16
 
-/* Whether any pixel centre of a set-up triangle's box passes its three
- * edge functions (setup.c and setup_eight.c test a small box so):
- * E(X, Y) = a X + b Y + c >= 0 at X = 256 x + 128, Y = 256 y + 128, as
- * raster.c tests them (the fill rule is in c). Each centre's three
- * values are computed afresh, independent multiplies: stepping them from
- * the box's first centre by 256 a and 256 b runs fewer instructions but
- * took 1.5 ms longer a frame on the 1M-triangle sphere (each step waits
- * for the one before, and most boxes find a centre at once). Not raster's
- * luz_raster_row_span: that finds a row's whole span, where this stops at
- * the first centre, and on a million-triangle mesh calling it cost 6% of
- * the frame. */
-static inline bool luz_setup_covers_a_centre(const luz_triangle *triangle)
-{
-    const int64_t half = LUZ_SUBPIXEL_ONE / 2;
-    for (int y = triangle->min_y; y <= triangle->max_y; y++) {
-        const int64_t sample_y = (int64_t)y * LUZ_SUBPIXEL_ONE + half;
-        for (int x = triangle->min_x; x <= triangle->max_x; x++) {
-            const int64_t sample_x = (int64_t)x * LUZ_SUBPIXEL_ONE + half;
-            bool inside = true;
-            for (int k = 0; k < 3; k++) {
-                const luz_edge *edge = &triangle->edges[k];
-                inside &= edge->a * sample_x + edge->b * sample_y + edge->c >= 0;
-            }
-            if (inside) return true;
-        }
-    }
-    return false;
-}
-
 /* luz_setup_projected(..., small_box_checked = true, ...) for eight
  * triangles of one draw at once, triangles[lane] (vertex indices
  * indices[3 t .. 3 t + 2], at vertices in clip space and window, fixed
@@ -523,8 +494,8 @@ static inline bool luz_setup_covers_a_centre(const luz_triangle *triangle)
  * out[lane] (all but its primitive) are what setup gives, bit for bit.
  * Returns the mask of lanes left to the caller (bit lane): all eight when
  * one has a marked vertex (the clipper's, or setup's own culling), else
- * none; the results and records of lanes left mean nothing. Only for triangles screening let through (the small-box
- * promise is screening's). */
+ * none; the results and records of lanes left mean nothing. Only for
+ * triangles screening let through (the small-box promise is screening's). */
 typedef unsigned luz_setup_eight_function(const uint32_t *indices, const uint32_t triangles[8],
                                           const luz_clip_vertex *vertices,
                                           const luz_window_vertex *window,

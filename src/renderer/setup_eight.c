@@ -129,6 +129,45 @@ make_plane_eight(__m512d x10, __m512d x20, __m512d y10, __m512d y20, __m512d inv
     return (plane_eight){_mm512_cvtpd_ps(value), _mm512_cvtpd_ps(dx), _mm512_cvtpd_ps(dy)};
 }
 
+/* setup.c's covers_a_centre for the lanes of testing: the mask of those
+ * whose box, (min_x, min_y) and box_width x box_height pixels, has a
+ * centre where the three edges' E = a X + b Y + c >= 0. The centres are
+ * visited in every lane at once, column by column and row by row from
+ * each box's corner, until each lane tested has found one or run out
+ * (|a|, |b| < 2^26 and centres below 2^23: each product fits 32 x 32 ->
+ * 64 bits, as setup.c's proof has it). */
+static inline __attribute__((always_inline)) __mmask8
+covered_lanes(__mmask8 testing, __m512i min_x, __m512i min_y, __m512i box_width,
+              __m512i box_height, const __m512i a[3], const __m512i b[3], const __m512i c[3])
+{
+    const __m512i one = _mm512_set1_epi64(1), zero = _mm512_setzero_si512();
+    const __m512i half = _mm512_set1_epi64(LUZ_SUBPIXEL_ONE / 2);
+    const __m512i centres = _mm512_mullo_epi64(box_width, box_height);
+    __m512i column = zero, row = zero, visited = zero;
+    __mmask8 covered = 0, left = testing;
+    while (left != 0) {
+        const __m512i sample_x = _mm512_add_epi64(
+            _mm512_slli_epi64(_mm512_add_epi64(min_x, column), LUZ_SUBPIXEL_BITS), half);
+        const __m512i sample_y = _mm512_add_epi64(
+            _mm512_slli_epi64(_mm512_add_epi64(min_y, row), LUZ_SUBPIXEL_BITS), half);
+        __mmask8 inside = left;
+        for (int k = 0; k < 3; k++)
+            inside &= _mm512_cmpge_epi64_mask(
+                _mm512_add_epi64(_mm512_add_epi64(_mm512_mul_epi32(a[k], sample_x),
+                                                  _mm512_mul_epi32(b[k], sample_y)),
+                                 c[k]),
+                zero);
+        covered |= inside;
+        visited = _mm512_add_epi64(visited, one);
+        left &= (__mmask8)~inside & _mm512_cmplt_epi64_mask(visited, centres);
+        column = _mm512_add_epi64(column, one);
+        const __mmask8 wrap = _mm512_cmpeq_epi64_mask(column, box_width);
+        column = _mm512_mask_mov_epi64(column, wrap, zero);
+        row = _mm512_mask_add_epi64(row, wrap, row, one);
+    }
+    return covered;
+}
+
 luz_setup_eight_function luz_setup_eight_avx512;
 
 unsigned luz_setup_eight_avx512(const uint32_t *indices, const uint32_t triangles[8],
@@ -299,13 +338,9 @@ unsigned luz_setup_eight_avx512(const uint32_t *indices, const uint32_t triangle
 
     /* Each lane's verdict in setup's order: culled (a back face), off
      * screen (no centre in the box, or in a box of 3 to 16 centres none
-     * covered: tested lane by lane, from the record's box and edges), then
-     * culled again (no plane can be solved). */
-    unsigned offscreen = empty;
-    for (unsigned testing = to_test; testing != 0; testing &= testing - 1) {
-        const int lane = __builtin_ctz(testing);
-        if (!luz_setup_covers_a_centre(&out[lane])) offscreen |= 1u << lane;
-    }
+     * covered), then culled again (no plane can be solved). */
+    const unsigned offscreen =
+        empty | (to_test & ~covered_lanes(to_test, min_x, min_y, box_width, box_height, a, b, c));
     for (int lane = 0; lane < 8; lane++) {
         const unsigned bit = 1u << lane;
         result[lane] = (back & bit)        ? LUZ_SETUP_CULLED
