@@ -112,6 +112,7 @@ struct luz_geometry {
     luz_screen_function *screen;   /* screen.c's variant for this CPU */
     bool screen_checks_small_boxes;
     luz_setup_eight_function *setup_eight;   /* setup_eight.c's, or NULL */
+    luz_vertex_project_function *vertex_project;   /* vertex_sixteen.c's, or NULL */
 };
 
 /* What the jobs of one frame's geometry share. */
@@ -125,6 +126,7 @@ typedef struct geometry_job {
     luz_screen_function *screen;   /* screen.c's variant for this CPU */
     bool screen_checks_small_boxes;
     luz_setup_eight_function *setup_eight;   /* NULL: one triangle at a time */
+    luz_vertex_project_function *vertex_project;   /* NULL: one vertex at a time */
 } geometry_job;
 
 luz_geometry *luz_geometry_create(int thread_count)
@@ -173,6 +175,7 @@ void luz_geometry_set_isa(luz_geometry *geometry, luz_packet_isa isa)
     /* Setup in lanes trusts screening's check of the small boxes. */
     geometry->setup_eight =
         geometry->screen_checks_small_boxes ? luz_setup_eight_for(isa) : NULL;
+    geometry->vertex_project = luz_vertex_project_for(isa);
 }
 
 size_t luz_geometry_memory(const luz_geometry *geometry)
@@ -435,8 +438,14 @@ static void vertex_job(void *context, int range_index, int worker_index)
     (void)worker_index;
     const geometry_job *job = context;
     const vertex_range *range = &job->geometry->vertex_ranges[range_index];
-    luz_vertex_stage_range(&job->frame->draws[range->draw], job->uniforms->view_projection,
-                           range->first, range->end, range->out);
+    const luz_draw *draw = &job->frame->draws[range->draw];
+    if (job->vertex_project != NULL) {   /* the same, sixteen vertices at a time */
+        job->vertex_project(draw, job->uniforms->view_projection, range->first, range->end,
+                            job->width, job->height, range->out, range->window, range->fixed);
+        return;
+    }
+    luz_vertex_stage_range(draw, job->uniforms->view_projection, range->first, range->end,
+                           range->out);
     luz_setup_project(range->out, range->first, range->end, job->width, job->height,
                       range->window, range->fixed);
 }
@@ -748,6 +757,7 @@ int luz_geometry_run(luz_geometry *geometry, luz_thread_pool *pool, const luz_fr
         .screen = geometry->screen,
         .screen_checks_small_boxes = geometry->screen_checks_small_boxes,
         .setup_eight = geometry->setup_eight,
+        .vertex_project = geometry->vertex_project,
     };
     memset(out, 0, sizeof *out);
 

@@ -5,6 +5,8 @@
  *   luz_draw (mesh + model + material)                   luz/frame.h
  *     -> vertex.c    luz_vertex_stage: a luz_clip_vertex per mesh vertex
  *                                                        clip space + varyings
+ *                    (vertex_sixteen.c: the same and luz_setup_project's
+ *                    projection for 16 vertices at a time)
  *     -> clip.c      luz_clip_triangle: a luz_clip_polygon per triangle that
  *                    crosses a plane (the others pass)   inside the clip volume
  *     -> setup.c     luz_setup_project: a luz_window_vertex per vertex
@@ -506,6 +508,20 @@ typedef unsigned luz_setup_eight_function(const uint32_t *indices, const uint32_
  * NULL where there is none (the caller sets up one by one). AVX-512 is the
  * one variant, as for screening. */
 luz_setup_eight_function *luz_setup_eight_for(luz_packet_isa isa);
+
+/* ---- vertices in lanes (vertex_sixteen.c) ------------------------------- */
+
+/* luz_vertex_stage_range and then luz_setup_project for vertices [first,
+ * end) of draw, sixteen at a time: the same bytes in out, in window (but
+ * for the fields of a marked vertex other than its marker, which mean
+ * nothing either way) and in fixed (unless NULL). */
+typedef void luz_vertex_project_function(const luz_draw *draw, luz_mat4 view_projection,
+                                         uint32_t first, uint32_t end, int width, int height,
+                                         luz_clip_vertex *out, luz_window_vertex *window,
+                                         luz_fixed_vertex *fixed);
+/* The variant for isa (LUZ_PACKET_ISA_BEST: the widest), asking the CPU;
+ * NULL where there is none (AVX-512 is the one variant). */
+luz_vertex_project_function *luz_vertex_project_for(luz_packet_isa isa);
 
 /* For the pixel probe (probe.c): the level of detail exactly as the
  * packets compute it (their polynomial logarithm included), for one

@@ -1,0 +1,306 @@
+/*
+ * vertex_sixteen.c: the vertex stage and the projection of its vertices
+ * (vertex.c's luz_vertex_stage_range, then setup.c's luz_setup_project)
+ * for sixteen vertices at once, one per 32-bit lane of AVX-512 vectors.
+ *
+ * In:  a draw (mesh, model matrix), the frame's projection * view, a range
+ *      of the mesh's vertices, the viewport's size.
+ * Out: for each vertex, the same bits as the two functions write: its
+ *      luz_clip_vertex (clip position, world position and normal, uv,
+ *      outcode), and, unless marked, its luz_window_vertex (window x, y,
+ *      depth, 1/w in double, snapped position) and luz_fixed_vertex. A
+ *      marked vertex (outside a clip plane, LUZ_WINDOW_CLIPPED, or not
+ *      projectable, LUZ_WINDOW_INVALID) gets its marker; its window
+ *      vertex's other fields are left meaning nothing, as setup.c's
+ *      leave them.
+ *
+ * Why: one vertex at a time, the two passes cost a 1M-triangle sphere's
+ * 500k vertices about 4 ms a frame, most of it moving each vertex's
+ * numbers in and out of registers (52 bytes of clip vertex written, read
+ * back, 48 bytes of projection written). Here sixteen vertices are read
+ * whole and transposed into lanes, transformed and projected in
+ * registers, and transposed back out once.
+ *
+ * The arithmetic is vertex.c's and setup.c's, operation for operation:
+ * each transform a[0] x + a[4] y + a[8] z + a[12] summed left to right
+ * in float (a[12] * 1.0f is a[12] exactly), the outcode's six
+ * comparisons, the divide, viewport and clamp in double, the snap rounded
+ * to nearest even as llrint does; no fused multiply-add.
+ * tests/test_vertex_sixteen.c holds every byte to the two functions.
+ *
+ * Instruction sets: as screen.c, src/renderer/meson.build compiles this
+ * file once for the build's target (the dispatcher alone) and once with
+ * AVX-512.
+ */
+#include <stddef.h>
+#include <stdint.h>
+
+#include "renderer/pipeline.h"
+
+#if defined(LUZ_VERTEX_SIXTEEN_AVX512)
+#if !defined(__AVX512F__) || !defined(__AVX512DQ__) || !defined(__AVX512VL__)
+#error "the AVX-512 variant is compiled with -mavx512f -mavx512dq -mavx512vl ..."
+#endif
+#include <immintrin.h>
+
+_Static_assert(sizeof(luz_vertex) == 8 * sizeof(float), "a mesh vertex is eight floats");
+_Static_assert(offsetof(luz_vertex, normal) == 12 && offsetof(luz_vertex, uv) == 24,
+               "position, normal, uv");
+_Static_assert(sizeof(luz_clip_vertex) == 13 * sizeof(float) &&
+                   offsetof(luz_clip_vertex, varyings) == 16 &&
+                   offsetof(luz_clip_vertex, outcode) == 48,
+               "a clip vertex is 13 words: position, varyings, outcode");
+_Static_assert(sizeof(luz_window_vertex) == 5 * sizeof(double) &&
+                   offsetof(luz_window_vertex, fixed_x) == 32,
+               "a window vertex is 5 quadwords: x, y, depth, 1/w, fixed x and y");
+
+/* Element r of rows[0..7] as row r of the result: an 8 x 8 transpose of
+ * 32-bit elements. */
+static inline __attribute__((always_inline)) void transpose8(__m256 rows[8])
+{
+    const __m256 t0 = _mm256_unpacklo_ps(rows[0], rows[1]);
+    const __m256 t1 = _mm256_unpackhi_ps(rows[0], rows[1]);
+    const __m256 t2 = _mm256_unpacklo_ps(rows[2], rows[3]);
+    const __m256 t3 = _mm256_unpackhi_ps(rows[2], rows[3]);
+    const __m256 t4 = _mm256_unpacklo_ps(rows[4], rows[5]);
+    const __m256 t5 = _mm256_unpackhi_ps(rows[4], rows[5]);
+    const __m256 t6 = _mm256_unpacklo_ps(rows[6], rows[7]);
+    const __m256 t7 = _mm256_unpackhi_ps(rows[6], rows[7]);
+    const __m256 u0 = _mm256_shuffle_ps(t0, t2, 0x44), u1 = _mm256_shuffle_ps(t0, t2, 0xee);
+    const __m256 u2 = _mm256_shuffle_ps(t1, t3, 0x44), u3 = _mm256_shuffle_ps(t1, t3, 0xee);
+    const __m256 u4 = _mm256_shuffle_ps(t4, t6, 0x44), u5 = _mm256_shuffle_ps(t4, t6, 0xee);
+    const __m256 u6 = _mm256_shuffle_ps(t5, t7, 0x44), u7 = _mm256_shuffle_ps(t5, t7, 0xee);
+    rows[0] = _mm256_permute2f128_ps(u0, u4, 0x20);
+    rows[1] = _mm256_permute2f128_ps(u1, u5, 0x20);
+    rows[2] = _mm256_permute2f128_ps(u2, u6, 0x20);
+    rows[3] = _mm256_permute2f128_ps(u3, u7, 0x20);
+    rows[4] = _mm256_permute2f128_ps(u0, u4, 0x31);
+    rows[5] = _mm256_permute2f128_ps(u1, u5, 0x31);
+    rows[6] = _mm256_permute2f128_ps(u2, u6, 0x31);
+    rows[7] = _mm256_permute2f128_ps(u3, u7, 0x31);
+}
+
+/* The same for 64-bit elements: rows[0..7] of eight quadwords each. */
+static inline __attribute__((always_inline)) void transpose8_quads(__m512i rows[8])
+{
+    __m512i t[8], u[8];
+    /* t[2j] holds, per 128-bit block b, (r2j[2b], r2j+1[2b]); t[2j + 1]
+     * the same of the odd columns. */
+    for (int k = 0; k < 8; k += 2) {
+        t[k] = _mm512_unpacklo_epi64(rows[k], rows[k + 1]);
+        t[k + 1] = _mm512_unpackhi_epi64(rows[k], rows[k + 1]);
+    }
+    /* u[c] (c < 4) holds columns c and c + 4 of rows 0-3, u[4 + c] of
+     * rows 4-7: (r0[c], r1[c]), (r0[c+4], r1[c+4]), (r2[c], r3[c]),
+     * (r2[c+4], r3[c+4]). */
+    for (int k = 0; k < 8; k += 4) {
+        u[k] = _mm512_shuffle_i64x2(t[k], t[k + 2], 0x88);
+        u[k + 1] = _mm512_shuffle_i64x2(t[k + 1], t[k + 3], 0x88);
+        u[k + 2] = _mm512_shuffle_i64x2(t[k], t[k + 2], 0xdd);
+        u[k + 3] = _mm512_shuffle_i64x2(t[k + 1], t[k + 3], 0xdd);
+    }
+    const __m512i low = _mm512_set_epi64(13, 12, 9, 8, 5, 4, 1, 0);
+    const __m512i high = _mm512_set_epi64(15, 14, 11, 10, 7, 6, 3, 2);
+    for (int c = 0; c < 4; c++) {
+        rows[c] = _mm512_permutex2var_epi64(u[c], low, u[4 + c]);
+        rows[c + 4] = _mm512_permutex2var_epi64(u[c], high, u[4 + c]);
+    }
+}
+
+/* Lanes 8 h .. 8 h + 7 of a vector (h, 0 or 1, in an immediate each way). */
+static inline __attribute__((always_inline)) __m256 half_of(__m512 v, int h)
+{
+    return h ? _mm512_extractf32x8_ps(v, 1) : _mm512_castps512_ps256(v);
+}
+
+static inline __attribute__((always_inline)) __m256i half_of_int(__m512i v, int h)
+{
+    return h ? _mm512_extracti32x8_epi32(v, 1) : _mm512_castsi512_si256(v);
+}
+
+/* a[0] x + a[4] y + a[8] z + a[12] w with w = 1 (vertex.c's transform4,
+ * row r of a column-major 4 x 4), summed left to right. */
+static inline __attribute__((always_inline)) __m512
+transform_row(const float *a, int r, __m512 x, __m512 y, __m512 z)
+{
+    return _mm512_add_ps(
+        _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(_mm512_set1_ps(a[r]), x),
+                                    _mm512_mul_ps(_mm512_set1_ps(a[4 + r]), y)),
+                      _mm512_mul_ps(_mm512_set1_ps(a[8 + r]), z)),
+        _mm512_set1_ps(a[12 + r]));
+}
+
+/* a[0] x + a[3] y + a[6] z (transform3, row r of a column-major 3 x 3). */
+static inline __attribute__((always_inline)) __m512
+transform_row3(const float *a, int r, __m512 x, __m512 y, __m512 z)
+{
+    return _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(_mm512_set1_ps(a[r]), x),
+                                       _mm512_mul_ps(_mm512_set1_ps(a[3 + r]), y)),
+                         _mm512_mul_ps(_mm512_set1_ps(a[6 + r]), z));
+}
+
+/* One bit of the outcode: set where !(value >= 0) (NaN included). */
+static inline __attribute__((always_inline)) __m512i
+outcode_bit(__m512i code, __m512 value, unsigned bit)
+{
+    const __mmask16 inside = _mm512_cmp_ps_mask(value, _mm512_setzero_ps(), _CMP_GE_OQ);
+    return _mm512_mask_or_epi32(code, (__mmask16)~inside, code, _mm512_set1_epi32((int)bit));
+}
+
+/* Half h (vertices 8 h .. 8 h + 7) of sixteen: their projection, setup.c's
+ * luz_setup_project. */
+static inline __attribute__((always_inline)) void
+project_eight(__m256 x, __m256 y, __m256 z, __m256 w, __m256i outcode, double width,
+              double height, luz_window_vertex *window, luz_fixed_vertex *fixed)
+{
+    const __m512d xd = _mm512_cvtps_pd(x), yd = _mm512_cvtps_pd(y);
+    const __m512d zd = _mm512_cvtps_pd(z), wd = _mm512_cvtps_pd(w);
+    const __m512d one = _mm512_set1_pd(1.0), half = _mm512_set1_pd(0.5);
+    const __m512d infinity = _mm512_set1_pd(__builtin_inf());
+    /* 1. Divide and viewport, then the clamp to +-2^24 sub-pixel units. */
+    const __m512d inverse_w = _mm512_div_pd(one, wd);
+    const __m512d x_ndc = _mm512_mul_pd(xd, inverse_w), y_ndc = _mm512_mul_pd(yd, inverse_w);
+    __m512d window_x = _mm512_mul_pd(_mm512_mul_pd(_mm512_add_pd(x_ndc, one), half),
+                                     _mm512_set1_pd(width));
+    __m512d window_y = _mm512_mul_pd(_mm512_mul_pd(_mm512_sub_pd(one, y_ndc), half),
+                                     _mm512_set1_pd(height));
+    const __m512d limit = _mm512_set1_pd(16777216.0 / LUZ_SUBPIXEL_ONE);
+    const __m512d lowest = _mm512_set1_pd(-16777216.0 / LUZ_SUBPIXEL_ONE);
+    /* (Unreachable for a vertex inside the guard band, as in setup.c:
+     * a bound that holds whatever the input.) */
+    window_x = _mm512_mask_mov_pd(window_x, _mm512_cmp_pd_mask(window_x, limit, _CMP_GT_OQ),
+                                  limit);
+    window_x = _mm512_mask_mov_pd(window_x, _mm512_cmp_pd_mask(window_x, lowest, _CMP_LT_OQ),
+                                  lowest);
+    window_y = _mm512_mask_mov_pd(window_y, _mm512_cmp_pd_mask(window_y, limit, _CMP_GT_OQ),
+                                  limit);
+    window_y = _mm512_mask_mov_pd(window_y, _mm512_cmp_pd_mask(window_y, lowest, _CMP_LT_OQ),
+                                  lowest);
+    const __m512d depth = _mm512_mul_pd(_mm512_add_pd(_mm512_mul_pd(zd, inverse_w), one), half);
+    /* 2. Snap: rounded to nearest even (the MXCSR's mode, llrint's). */
+    const __m512d subpixel = _mm512_set1_pd(LUZ_SUBPIXEL_ONE);
+    __m256i fixed_x = _mm512_cvtpd_epi32(_mm512_mul_pd(window_x, subpixel));
+    __m256i fixed_y = _mm512_cvtpd_epi32(_mm512_mul_pd(window_y, subpixel));
+    /* The markers: outside a clip plane, else not projectable (w not
+     * above 0, or x, y or z not finite). */
+    const __mmask8 clipped = _mm256_cmpneq_epi32_mask(outcode, _mm256_setzero_si256());
+    const __mmask8 projectable =
+        _mm512_cmp_pd_mask(wd, _mm512_setzero_pd(), _CMP_GT_OQ) &
+        _mm512_cmp_pd_mask(_mm512_abs_pd(xd), infinity, _CMP_LT_OQ) &
+        _mm512_cmp_pd_mask(_mm512_abs_pd(yd), infinity, _CMP_LT_OQ) &
+        _mm512_cmp_pd_mask(_mm512_abs_pd(zd), infinity, _CMP_LT_OQ);
+    const __mmask8 invalid = (__mmask8)(~clipped & ~projectable);
+    fixed_x = _mm256_mask_blend_epi32(clipped, fixed_x, _mm256_set1_epi32(LUZ_WINDOW_CLIPPED));
+    fixed_x = _mm256_mask_blend_epi32(invalid, fixed_x, _mm256_set1_epi32(LUZ_WINDOW_INVALID));
+    fixed_y = _mm256_maskz_mov_epi32((__mmask8)~(clipped | invalid), fixed_y);
+    const __m512i packed = _mm512_or_si512(
+        _mm512_cvtepu32_epi64(fixed_x), _mm512_slli_epi64(_mm512_cvtepu32_epi64(fixed_y), 32));
+    if (fixed != NULL) _mm512_storeu_si512((void *)fixed, packed);
+    __m512i rows[8] = {_mm512_castpd_si512(window_x),  _mm512_castpd_si512(window_y),
+                       _mm512_castpd_si512(depth),     _mm512_castpd_si512(inverse_w),
+                       packed,                         _mm512_setzero_si512(),
+                       _mm512_setzero_si512(),         _mm512_setzero_si512()};
+    transpose8_quads(rows);
+    for (int lane = 0; lane < 8; lane++)
+        _mm512_mask_storeu_epi64((void *)&window[lane], 0x1f, rows[lane]);
+}
+
+/* Vertices i .. i + 15 of the draw's mesh. */
+static inline __attribute__((always_inline)) void
+sixteen(const luz_vertex *vertices, const float *model, const float *normal_matrix,
+        const float *view_projection, uint32_t i, double width, double height,
+        luz_clip_vertex *out, luz_window_vertex *window, luz_fixed_vertex *fixed)
+{
+    /* In: each vertex's eight floats, transposed into lanes. */
+    __m256 low[8], high[8];
+    for (int k = 0; k < 8; k++) {
+        low[k] = _mm256_loadu_ps(&vertices[i + (uint32_t)k].position.x);
+        high[k] = _mm256_loadu_ps(&vertices[i + 8 + (uint32_t)k].position.x);
+    }
+    transpose8(low);
+    transpose8(high);
+    __m512 in[8];
+    for (int k = 0; k < 8; k++)
+        in[k] = _mm512_insertf32x8(_mm512_castps256_ps512(low[k]), high[k], 1);
+
+    /* vertex.c: world = model p, normal = N n, clip = VP world. */
+    const __m512 world_x = transform_row(model, 0, in[0], in[1], in[2]);
+    const __m512 world_y = transform_row(model, 1, in[0], in[1], in[2]);
+    const __m512 world_z = transform_row(model, 2, in[0], in[1], in[2]);
+    const __m512 normal_x = transform_row3(normal_matrix, 0, in[3], in[4], in[5]);
+    const __m512 normal_y = transform_row3(normal_matrix, 1, in[3], in[4], in[5]);
+    const __m512 normal_z = transform_row3(normal_matrix, 2, in[3], in[4], in[5]);
+    const __m512 clip_x = transform_row(view_projection, 0, world_x, world_y, world_z);
+    const __m512 clip_y = transform_row(view_projection, 1, world_x, world_y, world_z);
+    const __m512 clip_z = transform_row(view_projection, 2, world_x, world_y, world_z);
+    const __m512 clip_w = transform_row(view_projection, 3, world_x, world_y, world_z);
+    /* luz_clip_outcode: near, far, left, right, bottom, top. */
+    const __m512 guard_w = _mm512_mul_ps(_mm512_set1_ps(LUZ_CLIP_GUARD_BAND), clip_w);
+    __m512i outcode = _mm512_setzero_si512();
+    outcode = outcode_bit(outcode, _mm512_add_ps(clip_w, clip_z), 1u << 0);
+    outcode = outcode_bit(outcode, _mm512_sub_ps(clip_w, clip_z), 1u << 1);
+    outcode = outcode_bit(outcode, _mm512_add_ps(guard_w, clip_x), 1u << 2);
+    outcode = outcode_bit(outcode, _mm512_sub_ps(guard_w, clip_x), 1u << 3);
+    outcode = outcode_bit(outcode, _mm512_add_ps(guard_w, clip_y), 1u << 4);
+    outcode = outcode_bit(outcode, _mm512_sub_ps(guard_w, clip_y), 1u << 5);
+
+    /* Out: the clip vertices, words 0-7 and 8-12 of each, transposed back
+     * a half (eight vertices) at a time. */
+    const __m512 words[13] = {clip_x,   clip_y,   clip_z,   clip_w, world_x,
+                              world_y,  world_z,  normal_x, normal_y, normal_z,
+                              in[6],    in[7],    _mm512_castsi512_ps(outcode)};
+    for (int h = 0; h < 2; h++) {
+        const uint32_t base = i + 8 * (uint32_t)h;
+        /* setup.c: the projection of these eight, from the lanes. */
+        project_eight(half_of(clip_x, h), half_of(clip_y, h), half_of(clip_z, h),
+                      half_of(clip_w, h), half_of_int(outcode, h), width, height, &window[base],
+                      fixed != NULL ? &fixed[base] : NULL);
+        __m256 first[8], second[8];
+        for (int k = 0; k < 8; k++) {
+            first[k] = half_of(words[k], h);
+            second[k] = k < 5 ? half_of(words[8 + k], h) : _mm256_setzero_ps();
+        }
+        transpose8(first);
+        transpose8(second);
+        for (int lane = 0; lane < 8; lane++) {
+            float *record = (float *)(void *)&out[base + (uint32_t)lane];
+            _mm256_storeu_ps(record, first[lane]);
+            _mm256_mask_storeu_ps(record + 8, 0x1f, second[lane]);
+        }
+    }
+}
+
+luz_vertex_project_function luz_vertex_project_avx512;
+
+void luz_vertex_project_avx512(const luz_draw *draw, luz_mat4 view_projection, uint32_t first,
+                               uint32_t end, int width, int height, luz_clip_vertex *out,
+                               luz_window_vertex *window, luz_fixed_vertex *fixed)
+{
+    const luz_mat3 normal_matrix = luz_mat3_normal_matrix(draw->model);
+    uint32_t i = first;
+    for (; end - i >= 16; i += 16)
+        sixteen(draw->mesh->vertices, draw->model.m, normal_matrix.m, view_projection.m, i,
+                width, height, out, window, fixed);
+    if (i < end) {   /* the last few, one at a time */
+        luz_vertex_stage_range(draw, view_projection, i, end, out);
+        luz_setup_project(out, i, end, width, height, window, fixed);
+    }
+}
+
+#else /* the baseline variant: the dispatcher */
+
+#if defined(LUZ_VERTEX_SIXTEEN_HAVE_AVX512)
+luz_vertex_project_function luz_vertex_project_avx512;
+#endif
+
+luz_vertex_project_function *luz_vertex_project_for(luz_packet_isa isa)
+{
+    if (isa == LUZ_PACKET_ISA_BEST) isa = LUZ_PACKET_ISA_AVX512;
+#if defined(LUZ_VERTEX_SIXTEEN_HAVE_AVX512)
+    if (isa == LUZ_PACKET_ISA_AVX512 && luz_packet_isa_supported(isa))
+        return luz_vertex_project_avx512;
+#endif
+    return NULL;
+}
+
+#endif

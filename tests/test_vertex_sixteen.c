@@ -1,0 +1,178 @@
+/*
+ * test_vertex_sixteen.c: the vertex stage and projection in lanes
+ * (src/renderer/vertex_sixteen.c) against the same stages one vertex at a
+ * time (luz_vertex_stage_range, then luz_setup_project), the functions
+ * the other tests derive by hand.
+ *
+ * Its contract: every byte of every clip vertex the same, every snapped
+ * position (fixed) the same, and every window vertex the same but for
+ * the fields of a marked vertex other than its marker. Random meshes
+ * through random cameras and models: vertices in view, beyond the guard
+ * band, behind the camera, at the near plane, far beyond the fixed-point
+ * limit, a matrix that leaves w = 0 (not projectable), a model so large
+ * that clip coordinates are infinite or NaN; ranges that start and end
+ * anywhere (tails of 1 to 15 done one at a time), with and without the
+ * fixed array.
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "luz/mesh.h"
+#include "luz/vecmath.h"
+#include "renderer/pipeline.h"
+
+#define VERTEX_COUNT 4099   /* not a multiple of 16 */
+
+static uint32_t next_random(uint32_t *state)
+{
+    *state = *state * 1664525u + 1013904223u;
+    return *state >> 8;
+}
+
+static float uniform(uint32_t *state, float low, float high)
+{
+    return low + (high - low) * (float)(next_random(state) & 0xffff) / 65536.0f;
+}
+
+/* Compares range [first, end) of the two results. */
+static int compare(const luz_clip_vertex *clip_a, const luz_window_vertex *window_a,
+                   const luz_fixed_vertex *fixed_a, const luz_clip_vertex *clip_b,
+                   const luz_window_vertex *window_b, const luz_fixed_vertex *fixed_b,
+                   uint32_t first, uint32_t end)
+{
+    int marked = 0;
+    for (uint32_t i = first; i < end; i++) {
+        if (memcmp(&clip_a[i], &clip_b[i], sizeof clip_a[i]) != 0)
+            fail_msg("vertex %u: clip vertices differ", i);
+        if (fixed_a != NULL && memcmp(&fixed_a[i], &fixed_b[i], sizeof fixed_a[i]) != 0)
+            fail_msg("vertex %u: fixed (%d, %d), one at a time (%d, %d)", i, fixed_a[i].x,
+                     fixed_a[i].y, fixed_b[i].x, fixed_b[i].y);
+        const bool is_marked = window_b[i].fixed_x == LUZ_WINDOW_CLIPPED ||
+                               window_b[i].fixed_x == LUZ_WINDOW_INVALID;
+        if (is_marked) {
+            marked++;
+            if (window_a[i].fixed_x != window_b[i].fixed_x ||
+                window_a[i].fixed_y != window_b[i].fixed_y)
+                fail_msg("vertex %u: marker (%d, %d), one at a time (%d, %d)", i,
+                         window_a[i].fixed_x, window_a[i].fixed_y, window_b[i].fixed_x,
+                         window_b[i].fixed_y);
+        } else if (memcmp(&window_a[i], &window_b[i], sizeof window_a[i]) != 0) {
+            fail_msg("vertex %u: window vertices differ (x %.17g / %.17g, fixed %d / %d)", i,
+                     window_a[i].x, window_b[i].x, window_a[i].fixed_x, window_b[i].fixed_x);
+        }
+    }
+    return marked;
+}
+
+static void test_lanes_agree_with_one_at_a_time(void **state)
+{
+    (void)state;
+    luz_vertex_project_function *vertex_project = luz_vertex_project_for(LUZ_PACKET_ISA_AVX512);
+    if (vertex_project == NULL) {
+        print_message("skipped: this build or CPU has no AVX-512 (one vertex at a time only)\n");
+        skip();
+    }
+    assert_true(luz_vertex_project_for(LUZ_PACKET_ISA_BASELINE) == NULL);
+    luz_vertex *vertices = calloc(VERTEX_COUNT, sizeof *vertices);
+    uint32_t *indices = calloc(3, sizeof *indices);
+    luz_clip_vertex *clip_a = calloc(VERTEX_COUNT, sizeof *clip_a);
+    luz_clip_vertex *clip_b = calloc(VERTEX_COUNT, sizeof *clip_b);
+    luz_window_vertex *window_a = calloc(VERTEX_COUNT, sizeof *window_a);
+    luz_window_vertex *window_b = calloc(VERTEX_COUNT, sizeof *window_b);
+    luz_fixed_vertex *fixed_a = calloc(VERTEX_COUNT, sizeof *fixed_a);
+    luz_fixed_vertex *fixed_b = calloc(VERTEX_COUNT, sizeof *fixed_b);
+    assert_true(vertices && indices && clip_a && clip_b && window_a && window_b && fixed_a &&
+                fixed_b);
+    uint32_t random = 99;
+    for (uint32_t i = 0; i < VERTEX_COUNT; i++) {
+        const uint32_t kind = next_random(&random) % 100;
+        const float reach = kind < 70 ? 2.0f : kind < 90 ? 30.0f : 3e6f;
+        vertices[i] = (luz_vertex){
+            {uniform(&random, -reach, reach), uniform(&random, -reach, reach),
+             uniform(&random, -reach, reach)},
+            {uniform(&random, -1, 1), uniform(&random, -1, 1), uniform(&random, -1, 1)},
+            {uniform(&random, -2, 3), uniform(&random, -2, 3)}};
+    }
+    luz_error error = {{0}};
+    luz_mesh *mesh = luz_mesh_create(
+        &(luz_mesh_desc){.vertices = vertices, .vertex_count = VERTEX_COUNT,
+                         .indices = indices, .index_count = 3},
+        &error);
+    assert_non_null(mesh);
+
+    const struct {
+        int width, height;
+        bool zero_projection;   /* w = 0 for every vertex: none projectable */
+    } cases[] = {{1280, 720, false}, {321, 181, false}, {1, 1, false}, {16384, 9000, false},
+                 {640, 360, true}};
+    int marked = 0, projected = 0, non_finite = 0;
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++)
+        for (int camera = 0; camera < 4; camera++) {
+            const luz_vec3 eye = {uniform(&random, -5, 5), uniform(&random, -5, 5),
+                                  uniform(&random, -5, 5)};
+            luz_mat4 view_projection = luz_mat4_multiply(
+                luz_mat4_perspective(luz_radians(uniform(&random, 20, 100)),
+                                     (float)cases[c].width / (float)cases[c].height, 0.1f,
+                                     uniform(&random, 5, 500)),
+                luz_mat4_look_at(eye, (luz_vec3){0, 0, 0}, (luz_vec3){0, 1, 0}));
+            if (cases[c].zero_projection) memset(&view_projection, 0, sizeof view_projection);
+            int infinite = 0, nan = 0;
+            luz_draw draw = {.mesh = mesh,
+                             .model = luz_mat4_rotate(
+                                 luz_mat4_translate(luz_mat4_identity(),
+                                                    (luz_vec3){uniform(&random, -1, 1), 0, 0}),
+                                 uniform(&random, 0, 6.28f), (luz_vec3){0.6f, 0.8f, 0})};
+            if (camera == 3)   /* far beyond float's range: infinite and NaN coordinates */
+                for (int k = 0; k < 12; k++) draw.model.m[k] *= k % 2 ? 1e38f : -1e38f;
+            for (uint32_t first = 0; first < VERTEX_COUNT;) {
+                const uint32_t length = 1 + next_random(&random) % 300;
+                const uint32_t end = first + length < VERTEX_COUNT ? first + length : VERTEX_COUNT;
+                const bool with_fixed = next_random(&random) % 4 != 0;
+                memset(window_a, 0x5A, VERTEX_COUNT * sizeof *window_a);
+                vertex_project(&draw, view_projection, first, end, cases[c].width,
+                               cases[c].height, clip_a, window_a, with_fixed ? fixed_a : NULL);
+                luz_vertex_stage_range(&draw, view_projection, first, end, clip_b);
+                luz_setup_project(clip_b, first, end, cases[c].width, cases[c].height, window_b,
+                                  fixed_b);
+                const int m = compare(clip_a, window_a, with_fixed ? fixed_a : NULL, clip_b,
+                                      window_b, fixed_b, first, end);
+                for (uint32_t i = first; i < end; i++) {
+                    infinite += !isfinite(clip_b[i].position.x) || !isfinite(clip_b[i].position.w);
+                    nan += isnan(clip_b[i].position.x) || isnan(clip_b[i].position.w);
+                }
+                marked += m;
+                projected += (int)(end - first) - m;
+                first = end;
+            }
+            if (camera == 3) assert_true(infinite > 100 && nan > 100);
+            non_finite += infinite;
+        }
+    print_message("%d vertices projected, %d marked (%d with clip coordinates not finite)\n",
+                  projected, marked, non_finite);
+    assert_true(projected > 20000);
+    assert_true(marked > 20000);
+    luz_mesh_destroy(mesh);
+    free(vertices);
+    free(indices);
+    free(clip_a);
+    free(clip_b);
+    free(window_a);
+    free(window_b);
+    free(fixed_a);
+    free(fixed_b);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_lanes_agree_with_one_at_a_time),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
