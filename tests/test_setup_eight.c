@@ -8,10 +8,13 @@
  * and none otherwise; then each lane's result is luz_setup_projected's
  * with small_box_checked (a box of 3 to LUZ_SETUP_SMALL_BOX_PIXELS
  * centres tested for a covered one), and a visible triangle's record is
- * the same bytes: box, edges, reference point and all ten planes. Random triangles, most a pixel or two across, some
- * large, some off the viewport, some back faces, with a few vertices
- * marked, a few whose window positions make the double-precision
- * determinant zero or not finite, both interpolations.
+ * the same bytes: box, edges, reference point and all ten planes. Random
+ * triangles, most a pixel or two across, some large, some off the
+ * viewport, some back faces, with a few vertices marked, a few whose
+ * window positions make the double-precision determinant zero or not
+ * finite, both interpolations. Then triangles whose planes' values at
+ * the reference point cancel to almost nothing, where the order of each
+ * plane's operations shows through the rounding to float.
  */
 #include <math.h>
 #include <setjmp.h>
@@ -243,11 +246,83 @@ static void test_centres_on_an_edge(void **state)
     free(m.indices);
 }
 
+/* CANCELLATION: varyings sampled from steep planes f = A (x - rx) + B (y -
+ * ry) through each triangle's reference point (its snapped vertex 0), so
+ * that setup's value there, v0 + dx (rx - x0) + dy (ry - y0), is the
+ * rounding left of terms thousands of times larger: summed in another
+ * order, or with a fused multiply-add, it comes out different. */
+static void test_planes_that_cancel(void **state)
+{
+    (void)state;
+    luz_setup_eight_function *setup_eight = luz_setup_eight_for(LUZ_PACKET_ISA_AVX512);
+    if (setup_eight == NULL) skip();
+    const uint32_t triangle_count = 4000;
+    mesh m = {3 * triangle_count, triangle_count,
+              calloc(3 * (size_t)triangle_count, sizeof(luz_clip_vertex)),
+              calloc(3 * (size_t)triangle_count, sizeof(luz_window_vertex)),
+              calloc(3 * (size_t)triangle_count, sizeof(luz_fixed_vertex)),
+              calloc(3 * (size_t)triangle_count, sizeof(uint32_t))};
+    assert_true(m.clip && m.window && m.fixed && m.indices);
+    uint32_t random = 4242;
+    for (uint32_t t = 0; t < triangle_count; t++) {
+        /* A front face a pixel or two across, inside the viewport. */
+        const int32_t x0 = 256 * 5 + (int32_t)(next_random(&random) % (256 * 30));
+        const int32_t y0 = 256 * 5 + (int32_t)(next_random(&random) % (256 * 14));
+        const int32_t long_side = 200 + (int32_t)(next_random(&random) % 300);
+        const int32_t short_side = (int32_t)(next_random(&random) % 100);
+        const int32_t corner[3][2] = {{x0, y0},
+                                      {x0 + long_side, y0 + short_side},
+                                      {x0 + short_side, y0 + long_side}};
+        const uint32_t order[3] = {0, 2, 1};   /* counter-clockwise, y down */
+        for (int k = 0; k < 3; k++) {
+            const uint32_t i = 3 * t + (uint32_t)k;
+            m.indices[i] = i;
+            set_vertex(&m, i, corner[order[k]][0], corner[order[k]][1], &random);
+            m.window[i].inverse_w = 1.0;
+        }
+        const double rx = m.fixed[3 * t].x / (double)LUZ_SUBPIXEL_ONE;
+        const double ry = m.fixed[3 * t].y / (double)LUZ_SUBPIXEL_ONE;
+        for (int v = 0; v < LUZ_VARYING_COUNT; v++) {
+            const double a = uniform(&random, 1000.0f, 30000.0f);
+            const double b = uniform(&random, -30000.0f, 30000.0f);
+            for (int k = 0; k < 3; k++) {
+                const luz_window_vertex *w = &m.window[3 * t + (uint32_t)k];
+                m.clip[3 * t + (uint32_t)k].varyings[v] =
+                    (float)(a * (w->x - rx) + b * (w->y - ry));
+            }
+        }
+    }
+    const tally count = check_groups(&m, setup_eight, LUZ_INTERPOLATION_PERSPECTIVE);
+    assert_true(count.visible > 3000);
+    /* The cancellation happened: values far below their terms. */
+    int tiny = 0, planes = 0;
+    for (uint32_t t = 0; t < triangle_count; t++) {
+        luz_triangle triangle;
+        const uint32_t *index = &m.indices[3 * (size_t)t];
+        if (luz_setup_projected(&m.clip[index[0]], &m.clip[index[1]], &m.clip[index[2]],
+                                &m.window[index[0]], &m.window[index[1]], &m.window[index[2]],
+                                WIDTH, HEIGHT, 7, LUZ_INTERPOLATION_PERSPECTIVE, true,
+                                &triangle) != LUZ_SETUP_VISIBLE)
+            continue;
+        planes += LUZ_VARYING_COUNT;
+        for (int v = 0; v < LUZ_VARYING_COUNT; v++)
+            tiny += fabsf(triangle.varyings[v].value) < 1e-3f &&
+                    fabsf(triangle.varyings[v].dx) > 500.0f;
+    }
+    print_message("%d of %d planes' values cancel to below 1e-3\n", tiny, planes);
+    assert_true(tiny > 1000);
+    free(m.clip);
+    free(m.window);
+    free(m.fixed);
+    free(m.indices);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_lanes_agree_with_setup),
         cmocka_unit_test(test_centres_on_an_edge),
+        cmocka_unit_test(test_planes_that_cancel),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

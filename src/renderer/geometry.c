@@ -538,9 +538,9 @@ static void eight_triangles(geometry_batch *batch, const geometry_job *job, uint
     const unsigned left = job->setup_eight(indices, survivors, vertices, window, fixed,
                                            job->width, job->height, draw_index,
                                            job->uniforms->interpolation, out, result);
-    unsigned visible = 0;
+    unsigned visible = 0;   /* of the lanes not left (whose results mean nothing) */
     for (int lane = 0; lane < 8; lane++)
-        visible |= (unsigned)(result[lane] == LUZ_SETUP_VISIBLE) << lane;
+        if (!(left >> lane & 1)) visible |= (unsigned)(result[lane] == LUZ_SETUP_VISIBLE) << lane;
     if (left == 0 && visible == 0xff) {   /* the usual case: all eight in place */
         for (int lane = 0; lane < 8; lane++) out[lane].primitive = survivors[lane];
         batch->count += 8;

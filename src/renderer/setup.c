@@ -88,7 +88,6 @@ static luz_edge make_edge(int64_t xi, int64_t yi, int64_t xj, int64_t yj)
     return edge;
 }
 
-
 /* Whether any pixel centre of the triangle's box passes its three edge
  * functions: E(X, Y) = a X + b Y + c >= 0 at X = 256 x + 128, Y = 256 y +
  * 128, as raster.c tests them (the fill rule is in c; setup_eight.c's

@@ -31,6 +31,7 @@
  * file once for the build's target (the dispatcher alone: no variant, the
  * caller sets up one by one) and once with AVX-512.
  */
+#include <math.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -46,6 +47,8 @@ _Static_assert(offsetof(luz_window_vertex, y) == 8 && offsetof(luz_window_vertex
                    offsetof(luz_window_vertex, inverse_w) == 24,
                "a window vertex begins with x, y, depth and 1/w");
 _Static_assert(LUZ_VARYING_COUNT == 8, "a clip vertex's varyings are eight floats");
+/* Gathers and the corner arrays take signed 32-bit indices. */
+_Static_assert(LUZ_MESH_MAX_VERTICES <= (1u << 30), "vertex indices fit an int32");
 _Static_assert(offsetof(luz_triangle, edges) == 16 && sizeof(luz_edge) == 16,
                "the box and the edges are the record's first 64 bytes");
 _Static_assert(offsetof(luz_triangle, reference_x) == 64 &&
@@ -89,11 +92,11 @@ gather_fixed(__m256i vertex, const luz_fixed_vertex *fixed, __m512i *x, __m512i 
     *y = _mm512_srai_epi64(both, 32);
 }
 
-/* The corners of the edge from (xi, yi) to (xj, yj), as make_edge: a = dy,
- * b = -dx, c = -(dy xi - dx yi), less 1 unless it is a top edge (dy = 0,
- * dx < 0) or a left edge (dy > 0). */
+/* The coefficients of the edge from (xi, yi) to (xj, yj), as make_edge:
+ * a = dy, b = -dx, c = -(dy xi - dx yi), less 1 unless it is a top edge
+ * (dy = 0, dx < 0) or a left edge (dy > 0). */
 static inline __attribute__((always_inline)) void
-make_edges(__m512i xi, __m512i yi, __m512i xj, __m512i yj, __m512i *a, __m512i *b, __m512i *c)
+make_edge_lanes(__m512i xi, __m512i yi, __m512i xj, __m512i yj, __m512i *a, __m512i *b, __m512i *c)
 {
     const __m512i zero = _mm512_setzero_si512();
     const __m512i dx = _mm512_sub_epi64(xj, xi), dy = _mm512_sub_epi64(yj, yi);
@@ -223,7 +226,7 @@ unsigned luz_setup_eight_avx512(const uint32_t *indices, const uint32_t triangle
     const __mmask8 empty = _mm512_cmpgt_epi64_mask(min_x, max_x) |
                            _mm512_cmpgt_epi64_mask(min_y, max_y);
     /* A box of up to LUZ_SETUP_SMALL_BOX_PIXELS but more than 2 x 2:
-     * setup tests its centres, one triangle at a time. */
+     * its centres are tested below (covered_lanes). */
     const __m512i one = _mm512_set1_epi64(1);
     const __m512i box_width = _mm512_add_epi64(_mm512_sub_epi64(max_x, min_x), one);
     const __m512i box_height = _mm512_add_epi64(_mm512_sub_epi64(max_y, min_y), one);
@@ -236,9 +239,9 @@ unsigned luz_setup_eight_avx512(const uint32_t *indices, const uint32_t triangle
 
     /* 4. Edge k is opposite vertex k. */
     __m512i a[3], b[3], c[3];
-    make_edges(fx1, fy1, fx2, fy2, &a[0], &b[0], &c[0]);
-    make_edges(fx2, fy2, fx0, fy0, &a[1], &b[1], &c[1]);
-    make_edges(fx0, fy0, fx1, fy1, &a[2], &b[2], &c[2]);
+    make_edge_lanes(fx1, fy1, fx2, fy2, &a[0], &b[0], &c[0]);
+    make_edge_lanes(fx2, fy2, fx0, fy0, &a[1], &b[1], &c[1]);
+    make_edge_lanes(fx0, fy0, fx1, fy1, &a[2], &b[2], &c[2]);
 
     /* 5. Planes, from the exact window positions, relative to the snapped
      * vertex 0 (setup.c). Each corner's x, y, depth and 1/w are 32
@@ -280,7 +283,7 @@ unsigned luz_setup_eight_avx512(const uint32_t *indices, const uint32_t triangle
     /* setup.c: !(determinant != 0.0) || !isfinite(determinant) culls. */
     const __mmask8 solvable =
         _mm512_cmp_pd_mask(determinant, _mm512_setzero_pd(), _CMP_NEQ_OQ) &
-        _mm512_cmp_pd_mask(_mm512_abs_pd(determinant), _mm512_set1_pd(__builtin_inf()),
+        _mm512_cmp_pd_mask(_mm512_abs_pd(determinant), _mm512_set1_pd(INFINITY),
                            _CMP_LT_OQ);
     const __m512d inverse_determinant = _mm512_div_pd(_mm512_set1_pd(1.0), determinant);
     /* fixed / 256: exact, a power of two. */

@@ -32,6 +32,7 @@
  * file once for the build's target (the dispatcher alone) and once with
  * AVX-512.
  */
+#include <math.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -156,7 +157,7 @@ project_eight(__m256 x, __m256 y, __m256 z, __m256 w, __m256i outcode, double wi
     const __m512d xd = _mm512_cvtps_pd(x), yd = _mm512_cvtps_pd(y);
     const __m512d zd = _mm512_cvtps_pd(z), wd = _mm512_cvtps_pd(w);
     const __m512d one = _mm512_set1_pd(1.0), half = _mm512_set1_pd(0.5);
-    const __m512d infinity = _mm512_set1_pd(__builtin_inf());
+    const __m512d infinity = _mm512_set1_pd(INFINITY);
     /* 1. Divide and viewport, then the clamp to +-2^24 sub-pixel units. */
     const __m512d inverse_w = _mm512_div_pd(one, wd);
     const __m512d x_ndc = _mm512_mul_pd(xd, inverse_w), y_ndc = _mm512_mul_pd(yd, inverse_w);
