@@ -297,9 +297,10 @@ luz_setup_result luz_setup_projected(const luz_clip_vertex *v0, const luz_clip_v
                                      luz_triangle *out);
 
 /* Projects, snaps and sets up triangle (v0, v1, v2) for a width x height
- * viewport: luz_setup_project and luz_setup_projected in one. With LUZ_INTERPOLATION_AFFINE the varying planes hold the
- * varyings themselves and inverse_w is the constant 1 (the teaching
- * toggle); the fragment stages read both kinds the same way. */
+ * viewport: luz_setup_project and luz_setup_projected in one. With
+ * LUZ_INTERPOLATION_AFFINE the varying planes hold the varyings
+ * themselves and inverse_w is the constant 1 (the teaching toggle); the
+ * fragment stages read both kinds the same way. */
 luz_setup_result luz_setup_triangle(const luz_clip_vertex *v0, const luz_clip_vertex *v1,
                                     const luz_clip_vertex *v2, int width, int height,
                                     uint32_t draw_index, luz_interpolation interpolation,
@@ -686,9 +687,9 @@ typedef struct luz_geometry_result {
 } luz_geometry_result;
 
 /* Vertex stage, clipping, setup, numbering and binning to bands of
- * band_height rows (a power of two), over the pool's threads; only the first triangle_limit
- * triangles are binned (0: all). Returns 0, or -1 with the reason (out of
- * memory, too many triangles). */
+ * band_height rows (a power of two), over the pool's threads; only the
+ * first triangle_limit triangles are binned (0: all). Returns 0, or -1
+ * with the reason (out of memory, too many triangles). */
 int luz_geometry_run(luz_geometry *geometry, luz_thread_pool *pool, const luz_frame *frame,
                      const luz_uniforms *uniforms, const luz_framebuffer *framebuffer,
                      int band_height, uint32_t triangle_limit, luz_geometry_result *out,

@@ -1,0 +1,186 @@
+/*
+ * test_geometry_isa.c: phase 1 (geometry.c's luz_geometry_run) with its
+ * AVX-512 parts, screening (screen.c), vertices in lanes
+ * (vertex_sixteen.c) and setup in lanes (setup_eight.c), against the
+ * build's baseline, where each vertex and each triangle goes alone.
+ *
+ * The baseline is the plain pipeline the other tests derive by hand; the
+ * wide parts promise to change nothing but the time: every triangle the
+ * same id, every record the same bytes, every band the same list, every
+ * counter (submitted, clipped, culled, draws culled) the same, for any
+ * thread count. A frame of big draws: a wavy grid of 64,800 triangles
+ * filling the view, the same grid crossing the near plane and the guard
+ * band (clipped triangles among the screened ones), and one wholly
+ * behind the camera.
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "luz/luz.h"
+#include "renderer/pipeline.h"
+
+#define WIDTH 321
+#define HEIGHT 181
+#define COLUMNS 240
+#define ROWS 135
+
+/* What a run handed on, copied out of the geometry's buffers. */
+typedef struct snapshot {
+    size_t total, count;
+    luz_triangle *records;   /* by id, 1 .. total */
+    int band_count;
+    size_t *band_start;
+    uint32_t *band_ids;
+    uint64_t submitted, clipped, culled, draws_culled;
+} snapshot;
+
+static snapshot run(const luz_frame *frame, luz_packet_isa isa, int thread_count)
+{
+    luz_error error = {{0}};
+    luz_framebuffer *framebuffer = luz_framebuffer_create(WIDTH, HEIGHT, &error);
+    luz_geometry *geometry = luz_geometry_create(thread_count);
+    luz_thread_pool *pool = luz_thread_pool_create(thread_count);
+    assert_true(framebuffer && geometry && pool);
+    luz_geometry_set_isa(geometry, isa);
+    const luz_uniforms uniforms = luz_uniforms_of(frame, NULL);
+    luz_geometry_result result;
+    assert_int_equal(luz_geometry_run(geometry, pool, frame, &uniforms, framebuffer, 16, 0,
+                                      &result, &error),
+                     0);
+    snapshot s = {result.triangle_total, result.triangle_count,
+                  malloc((result.triangle_total + 1) * sizeof(luz_triangle)), result.band_count,
+                  malloc(((size_t)result.band_count + 1) * sizeof(size_t)), NULL,
+                  result.triangles_submitted, result.triangles_clipped,
+                  result.triangles_culled, result.draws_culled};
+    assert_true(s.records && s.band_start);
+    for (size_t id = 1; id <= s.total; id++) s.records[id] = *result.by_id[id];
+    memcpy(s.band_start, result.band_start, ((size_t)s.band_count + 1) * sizeof(size_t));
+    const size_t listed = s.band_start[s.band_count];
+    s.band_ids = malloc((listed + 1) * sizeof(uint32_t));
+    assert_non_null(s.band_ids);
+    memcpy(s.band_ids, result.band_ids, listed * sizeof(uint32_t));
+    luz_thread_pool_destroy(pool);
+    luz_geometry_destroy(geometry);
+    luz_framebuffer_destroy(framebuffer);
+    return s;
+}
+
+static void assert_same(const snapshot *a, const snapshot *b, const char *what)
+{
+    if (a->total != b->total || a->count != b->count || a->submitted != b->submitted ||
+        a->clipped != b->clipped || a->culled != b->culled || a->draws_culled != b->draws_culled)
+        fail_msg("%s: %zu/%zu triangles, %llu/%llu submitted, %llu/%llu clipped, %llu/%llu "
+                 "culled, %llu/%llu draws culled",
+                 what, a->total, b->total, (unsigned long long)a->submitted,
+                 (unsigned long long)b->submitted, (unsigned long long)a->clipped,
+                 (unsigned long long)b->clipped, (unsigned long long)a->culled,
+                 (unsigned long long)b->culled, (unsigned long long)a->draws_culled,
+                 (unsigned long long)b->draws_culled);
+    for (size_t id = 1; id <= a->total; id++)
+        if (memcmp(&a->records[id], &b->records[id], sizeof(luz_triangle)) != 0)
+            fail_msg("%s: triangle %zu differs", what, id);
+    assert_int_equal(a->band_count, b->band_count);
+    assert_memory_equal(a->band_start, b->band_start, ((size_t)a->band_count + 1) * sizeof(size_t));
+    assert_memory_equal(a->band_ids, b->band_ids, a->band_start[a->band_count] * sizeof(uint32_t));
+}
+
+static void snapshot_free(snapshot *s)
+{
+    free(s->records);
+    free(s->band_start);
+    free(s->band_ids);
+}
+
+static void test_same_phase_one_with_and_without_avx512(void **state)
+{
+    (void)state;
+    if (!luz_packet_isa_supported(LUZ_PACKET_ISA_AVX512)) {
+        print_message("skipped: this build or CPU has no AVX-512 (nothing to compare)\n");
+        skip();
+    }
+    /* The grid: z = 0.3 sin(9u) cos(7v) over [-2, 2] x [-1.2, 1.2]. */
+    luz_vertex *vertices = calloc((size_t)(COLUMNS + 1) * (ROWS + 1), sizeof *vertices);
+    uint32_t *indices = calloc((size_t)COLUMNS * ROWS * 6, sizeof *indices);
+    assert_true(vertices && indices);
+    for (int row = 0; row <= ROWS; row++)
+        for (int column = 0; column <= COLUMNS; column++) {
+            const float u = (float)column / COLUMNS, v = (float)row / ROWS;
+            vertices[row * (COLUMNS + 1) + column] = (luz_vertex){
+                {4.0f * u - 2.0f, 1.2f - 2.4f * v, 0.3f * sinf(9.0f * u) * cosf(7.0f * v)},
+                {sinf(9.0f * u), cosf(7.0f * v), 1.0f},
+                {4.0f * u, 3.0f * v}};
+        }
+    size_t count = 0;
+    for (int row = 0; row < ROWS; row++)
+        for (int column = 0; column < COLUMNS; column++) {
+            const uint32_t a = (uint32_t)(row * (COLUMNS + 1) + column), b = a + 1,
+                           c = a + COLUMNS + 1, d = c + 1;
+            const uint32_t quad[6] = {a, c, d, a, d, b};
+            memcpy(&indices[count], quad, sizeof quad);
+            count += 6;
+        }
+    luz_error error = {{0}};
+    luz_mesh *mesh = luz_mesh_create(
+        &(luz_mesh_desc){.vertices = vertices, .vertex_count = (COLUMNS + 1) * (ROWS + 1),
+                         .indices = indices, .index_count = (uint32_t)count},
+        &error);
+    assert_non_null(mesh);
+    free(vertices);
+    free(indices);
+
+    luz_frame frame = {0};
+    frame.eye = (luz_vec3){0, 0, 3};
+    frame.view = luz_mat4_look_at(frame.eye, (luz_vec3){0, 0, 0}, (luz_vec3){0, 1, 0});
+    frame.projection =
+        luz_mat4_perspective(luz_radians(45.0f), (float)WIDTH / HEIGHT, 0.1f, 100.0f);
+    const luz_mat4 models[3] = {
+        luz_mat4_identity(),
+        /* tilted through the near plane and out past the guard band */
+        luz_mat4_rotate(luz_mat4_translate(luz_mat4_identity(), (luz_vec3){0.3f, 0, 2.6f}),
+                        1.2f, (luz_vec3){1, 0.3f, 0}),
+        /* wholly behind the camera */
+        luz_mat4_translate(luz_mat4_identity(), (luz_vec3){0, 0, 8}),
+    };
+    for (int k = 0; k < 3; k++) {
+        luz_draw draw = {.mesh = mesh, .model = models[k]};
+        draw.material.colour = (luz_vec3){1, 1, 1};
+        assert_int_equal(luz_frame_add_draw(&frame, &draw, &error), 0);
+    }
+
+    snapshot baseline = run(&frame, LUZ_PACKET_ISA_BASELINE, 1);
+    print_message("%zu triangles set up of %llu submitted, %llu clipped, %llu culled, %llu "
+                  "draws culled\n",
+                  baseline.total, (unsigned long long)baseline.submitted,
+                  (unsigned long long)baseline.clipped, (unsigned long long)baseline.culled,
+                  (unsigned long long)baseline.draws_culled);
+    /* The frame is what it is meant to be. */
+    assert_true(baseline.total > 20000);
+    assert_true(baseline.clipped > 100);
+    assert_true(baseline.culled > 5000);
+    assert_int_equal(baseline.draws_culled, 1);
+    const int thread_counts[] = {1, 3};
+    for (size_t k = 0; k < sizeof thread_counts / sizeof thread_counts[0]; k++) {
+        snapshot wide = run(&frame, LUZ_PACKET_ISA_AVX512, thread_counts[k]);
+        assert_same(&wide, &baseline, thread_counts[k] == 1 ? "AVX-512, 1 thread"
+                                                            : "AVX-512, 3 threads");
+        snapshot_free(&wide);
+    }
+    snapshot_free(&baseline);
+    luz_frame_free(&frame);
+    luz_mesh_destroy(mesh);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_same_phase_one_with_and_without_avx512),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
