@@ -136,8 +136,31 @@ static void test_lanes_agree_with_one_at_a_time(void **state)
                 const uint32_t end = first + length < VERTEX_COUNT ? first + length : VERTEX_COUNT;
                 const bool with_fixed = next_random(&random) % 4 != 0;
                 memset(window_a, 0x5A, VERTEX_COUNT * sizeof *window_a);
+                memset(clip_a, 0x5A, VERTEX_COUNT * sizeof *clip_a);
+                memset(fixed_a, 0x5A, VERTEX_COUNT * sizeof *fixed_a);
                 vertex_project(&draw, view_projection, first, end, cases[c].width,
                                cases[c].height, clip_a, window_a, with_fixed ? fixed_a : NULL);
+                /* Nothing written outside the range (the stores of whole
+                 * rows that overlap the next vertex stay within it). */
+                for (size_t byte = 0; byte < VERTEX_COUNT * sizeof *clip_a; byte++) {
+                    const size_t vertex = byte / sizeof *clip_a;
+                    const bool outside = vertex < first || vertex >= end;
+                    if (outside && ((unsigned char *)clip_a)[byte] != 0x5A)
+                        fail_msg("clip vertex %zu, outside [%u, %u), written", vertex, first, end);
+                }
+                for (size_t byte = 0; byte < VERTEX_COUNT * sizeof *window_a; byte++) {
+                    const size_t vertex = byte / sizeof *window_a;
+                    const bool outside = vertex < first || vertex >= end;
+                    if (outside && ((unsigned char *)window_a)[byte] != 0x5A)
+                        fail_msg("window vertex %zu, outside [%u, %u), written", vertex, first,
+                                 end);
+                }
+                for (size_t byte = 0; byte < VERTEX_COUNT * sizeof *fixed_a; byte++) {
+                    const size_t vertex = byte / sizeof *fixed_a;
+                    if ((vertex < first || vertex >= end || !with_fixed) &&
+                        ((unsigned char *)fixed_a)[byte] != 0x5A)
+                        fail_msg("fixed vertex %zu written (range [%u, %u))", vertex, first, end);
+                }
                 luz_vertex_stage_range(&draw, view_projection, first, end, clip_b);
                 luz_setup_project(clip_b, first, end, cases[c].width, cases[c].height, window_b,
                                   fixed_b);

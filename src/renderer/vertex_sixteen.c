@@ -203,8 +203,13 @@ project_eight(__m256 x, __m256 y, __m256 z, __m256 w, __m256i outcode, double wi
                        packed,                         _mm512_setzero_si512(),
                        _mm512_setzero_si512(),         _mm512_setzero_si512()};
     transpose8_quads(rows);
-    for (int lane = 0; lane < 8; lane++)
-        _mm512_mask_storeu_epi64((void *)&window[lane], 0x1f, rows[lane]);
+    /* Each row is five quadwords of eight: stored whole, its last three
+     * land on the next vertex's first three, which that vertex's own
+     * store then overwrites; only the eighth is masked, the next vertex
+     * not being ours (AMD's Zen runs a masked store slower than a plain
+     * one). */
+    for (int lane = 0; lane < 7; lane++) _mm512_storeu_si512((void *)&window[lane], rows[lane]);
+    _mm512_mask_storeu_epi64((void *)&window[7], 0x1f, rows[7]);
 }
 
 /* Vertices i .. i + 15 of the draw's mesh. */
@@ -264,10 +269,14 @@ sixteen(const luz_vertex *vertices, const float *model, const float *normal_matr
         }
         transpose8(first);
         transpose8(second);
+        /* Words 8-12 stored whole as well, over the next vertex's first
+         * three, which its own first store overwrites (as in
+         * project_eight); the last vertex's masked. */
         for (int lane = 0; lane < 8; lane++) {
             float *record = (float *)(void *)&out[base + (uint32_t)lane];
             _mm256_storeu_ps(record, first[lane]);
-            _mm256_mask_storeu_ps(record + 8, 0x1f, second[lane]);
+            if (lane < 7 || h == 0) _mm256_storeu_ps(record + 8, second[lane]);
+            else _mm256_mask_storeu_ps(record + 8, 0x1f, second[lane]);
         }
     }
 }
