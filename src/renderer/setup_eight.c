@@ -43,6 +43,8 @@
 #endif
 #include <immintrin.h>
 
+#include "renderer/transpose_avx512.h"
+
 _Static_assert(offsetof(luz_window_vertex, y) == 8 && offsetof(luz_window_vertex, depth) == 16 &&
                    offsetof(luz_window_vertex, inverse_w) == 24,
                "a window vertex begins with x, y, depth and 1/w");
@@ -58,30 +60,6 @@ _Static_assert(offsetof(luz_triangle, reference_x) == 64 &&
                    offsetof(luz_triangle, draw_index) == 192,
                "the reference point and the planes are 32 floats from byte 64");
 
-/* Element r of rows[0..7] as row r of the result: an 8 x 8 transpose. */
-static inline __attribute__((always_inline)) void transpose8(__m256 rows[8])
-{
-    const __m256 t0 = _mm256_unpacklo_ps(rows[0], rows[1]);
-    const __m256 t1 = _mm256_unpackhi_ps(rows[0], rows[1]);
-    const __m256 t2 = _mm256_unpacklo_ps(rows[2], rows[3]);
-    const __m256 t3 = _mm256_unpackhi_ps(rows[2], rows[3]);
-    const __m256 t4 = _mm256_unpacklo_ps(rows[4], rows[5]);
-    const __m256 t5 = _mm256_unpackhi_ps(rows[4], rows[5]);
-    const __m256 t6 = _mm256_unpacklo_ps(rows[6], rows[7]);
-    const __m256 t7 = _mm256_unpackhi_ps(rows[6], rows[7]);
-    const __m256 u0 = _mm256_shuffle_ps(t0, t2, 0x44), u1 = _mm256_shuffle_ps(t0, t2, 0xee);
-    const __m256 u2 = _mm256_shuffle_ps(t1, t3, 0x44), u3 = _mm256_shuffle_ps(t1, t3, 0xee);
-    const __m256 u4 = _mm256_shuffle_ps(t4, t6, 0x44), u5 = _mm256_shuffle_ps(t4, t6, 0xee);
-    const __m256 u6 = _mm256_shuffle_ps(t5, t7, 0x44), u7 = _mm256_shuffle_ps(t5, t7, 0xee);
-    rows[0] = _mm256_permute2f128_ps(u0, u4, 0x20);
-    rows[1] = _mm256_permute2f128_ps(u1, u5, 0x20);
-    rows[2] = _mm256_permute2f128_ps(u2, u6, 0x20);
-    rows[3] = _mm256_permute2f128_ps(u3, u7, 0x20);
-    rows[4] = _mm256_permute2f128_ps(u0, u4, 0x31);
-    rows[5] = _mm256_permute2f128_ps(u1, u5, 0x31);
-    rows[6] = _mm256_permute2f128_ps(u2, u6, 0x31);
-    rows[7] = _mm256_permute2f128_ps(u3, u7, 0x31);
-}
 
 /* The snapped (X, Y) of eight vertices, one 64-bit gather. */
 static inline __attribute__((always_inline)) void
@@ -275,7 +253,7 @@ unsigned luz_setup_eight_avx512(const uint32_t *indices, const uint32_t triangle
                         : _mm512_permutex2var_pd(t1, odd_pairs, t3);
         for (int lane = 0; lane < 8; lane++)
             varying[k][lane] = _mm256_loadu_ps(vertices[corner[k][lane]].varyings);
-        transpose8(varying[k]);   /* varying[k][i]: varying i of every lane */
+        luz_transpose8(varying[k]);   /* varying[k][i]: varying i of every lane */
     }
     const __m512d x10 = _mm512_sub_pd(x[1], x[0]), x20 = _mm512_sub_pd(x[2], x[0]);
     const __m512d y10 = _mm512_sub_pd(y[1], y[0]), y20 = _mm512_sub_pd(y[2], y[0]);
@@ -328,9 +306,9 @@ unsigned luz_setup_eight_avx512(const uint32_t *indices, const uint32_t triangle
         word[7 + 4 * k] = _mm256_castsi256_ps(_mm512_cvtepi64_epi32(_mm512_srai_epi64(c[k], 32)));
     }
     /* Transposed, a lane's words are its record's bytes 0-63 and 64-191. */
-    transpose8(&word[0]);
-    transpose8(&word[8]);
-    for (int q = 0; q < 4; q++) transpose8(&column[8 * q]);
+    luz_transpose8(&word[0]);
+    luz_transpose8(&word[8]);
+    for (int q = 0; q < 4; q++) luz_transpose8(&column[8 * q]);
     for (int lane = 0; lane < 8; lane++) {
         float *record = (float *)(void *)&out[lane];
         _mm256_storeu_ps(record, word[lane]);

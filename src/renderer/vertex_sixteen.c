@@ -45,6 +45,8 @@
 #endif
 #include <immintrin.h>
 
+#include "renderer/transpose_avx512.h"
+
 _Static_assert(sizeof(luz_vertex) == 8 * sizeof(float), "a mesh vertex is eight floats");
 _Static_assert(offsetof(luz_vertex, normal) == 12 && offsetof(luz_vertex, uv) == 24,
                "position, normal, uv");
@@ -56,58 +58,7 @@ _Static_assert(sizeof(luz_window_vertex) == 5 * sizeof(double) &&
                    offsetof(luz_window_vertex, fixed_x) == 32,
                "a window vertex is 5 quadwords: x, y, depth, 1/w, fixed x and y");
 
-/* Element r of rows[0..7] as row r of the result: an 8 x 8 transpose of
- * 32-bit elements. */
-static inline __attribute__((always_inline)) void transpose8(__m256 rows[8])
-{
-    const __m256 t0 = _mm256_unpacklo_ps(rows[0], rows[1]);
-    const __m256 t1 = _mm256_unpackhi_ps(rows[0], rows[1]);
-    const __m256 t2 = _mm256_unpacklo_ps(rows[2], rows[3]);
-    const __m256 t3 = _mm256_unpackhi_ps(rows[2], rows[3]);
-    const __m256 t4 = _mm256_unpacklo_ps(rows[4], rows[5]);
-    const __m256 t5 = _mm256_unpackhi_ps(rows[4], rows[5]);
-    const __m256 t6 = _mm256_unpacklo_ps(rows[6], rows[7]);
-    const __m256 t7 = _mm256_unpackhi_ps(rows[6], rows[7]);
-    const __m256 u0 = _mm256_shuffle_ps(t0, t2, 0x44), u1 = _mm256_shuffle_ps(t0, t2, 0xee);
-    const __m256 u2 = _mm256_shuffle_ps(t1, t3, 0x44), u3 = _mm256_shuffle_ps(t1, t3, 0xee);
-    const __m256 u4 = _mm256_shuffle_ps(t4, t6, 0x44), u5 = _mm256_shuffle_ps(t4, t6, 0xee);
-    const __m256 u6 = _mm256_shuffle_ps(t5, t7, 0x44), u7 = _mm256_shuffle_ps(t5, t7, 0xee);
-    rows[0] = _mm256_permute2f128_ps(u0, u4, 0x20);
-    rows[1] = _mm256_permute2f128_ps(u1, u5, 0x20);
-    rows[2] = _mm256_permute2f128_ps(u2, u6, 0x20);
-    rows[3] = _mm256_permute2f128_ps(u3, u7, 0x20);
-    rows[4] = _mm256_permute2f128_ps(u0, u4, 0x31);
-    rows[5] = _mm256_permute2f128_ps(u1, u5, 0x31);
-    rows[6] = _mm256_permute2f128_ps(u2, u6, 0x31);
-    rows[7] = _mm256_permute2f128_ps(u3, u7, 0x31);
-}
 
-/* The same for 64-bit elements: rows[0..7] of eight quadwords each. */
-static inline __attribute__((always_inline)) void transpose8_quads(__m512i rows[8])
-{
-    __m512i t[8], u[8];
-    /* t[2j] holds, per 128-bit block b, (r2j[2b], r2j+1[2b]); t[2j + 1]
-     * the same of the odd columns. */
-    for (int k = 0; k < 8; k += 2) {
-        t[k] = _mm512_unpacklo_epi64(rows[k], rows[k + 1]);
-        t[k + 1] = _mm512_unpackhi_epi64(rows[k], rows[k + 1]);
-    }
-    /* u[c] (c < 4) holds columns c and c + 4 of rows 0-3, u[4 + c] of
-     * rows 4-7: (r0[c], r1[c]), (r0[c+4], r1[c+4]), (r2[c], r3[c]),
-     * (r2[c+4], r3[c+4]). */
-    for (int k = 0; k < 8; k += 4) {
-        u[k] = _mm512_shuffle_i64x2(t[k], t[k + 2], 0x88);
-        u[k + 1] = _mm512_shuffle_i64x2(t[k + 1], t[k + 3], 0x88);
-        u[k + 2] = _mm512_shuffle_i64x2(t[k], t[k + 2], 0xdd);
-        u[k + 3] = _mm512_shuffle_i64x2(t[k + 1], t[k + 3], 0xdd);
-    }
-    const __m512i low = _mm512_set_epi64(13, 12, 9, 8, 5, 4, 1, 0);
-    const __m512i high = _mm512_set_epi64(15, 14, 11, 10, 7, 6, 3, 2);
-    for (int c = 0; c < 4; c++) {
-        rows[c] = _mm512_permutex2var_epi64(u[c], low, u[4 + c]);
-        rows[c + 4] = _mm512_permutex2var_epi64(u[c], high, u[4 + c]);
-    }
-}
 
 /* Lanes 8 h .. 8 h + 7 of a vector (h, 0 or 1, in an immediate each way). */
 static inline __attribute__((always_inline)) __m256 half_of(__m512 v, int h)
@@ -202,7 +153,7 @@ project_eight(__m256 x, __m256 y, __m256 z, __m256 w, __m256i outcode, double wi
                        _mm512_castpd_si512(depth),     _mm512_castpd_si512(inverse_w),
                        packed,                         _mm512_setzero_si512(),
                        _mm512_setzero_si512(),         _mm512_setzero_si512()};
-    transpose8_quads(rows);
+    luz_transpose8_quads(rows);
     /* Each row is five quadwords of eight: stored whole, its last three
      * land on the next vertex's first three, which that vertex's own
      * store then overwrites; only the eighth is masked, the next vertex
@@ -224,8 +175,8 @@ sixteen(const luz_vertex *vertices, const float *model, const float *normal_matr
         low[k] = _mm256_loadu_ps(&vertices[i + (uint32_t)k].position.x);
         high[k] = _mm256_loadu_ps(&vertices[i + 8 + (uint32_t)k].position.x);
     }
-    transpose8(low);
-    transpose8(high);
+    luz_transpose8(low);
+    luz_transpose8(high);
     __m512 in[8];
     for (int k = 0; k < 8; k++)
         in[k] = _mm512_insertf32x8(_mm512_castps256_ps512(low[k]), high[k], 1);
@@ -267,8 +218,8 @@ sixteen(const luz_vertex *vertices, const float *model, const float *normal_matr
             first[k] = half_of(words[k], h);
             second[k] = k < 5 ? half_of(words[8 + k], h) : _mm256_setzero_ps();
         }
-        transpose8(first);
-        transpose8(second);
+        luz_transpose8(first);
+        luz_transpose8(second);
         /* Words 8-12 stored whole as well, over the next vertex's first
          * three, which its own first store overwrites (as in
          * project_eight); the last vertex's masked. */

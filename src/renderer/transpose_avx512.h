@@ -1,0 +1,65 @@
+/*
+ * transpose_avx512.h: the 8 x 8 transposes that the AVX-512 variants
+ * (setup_eight.c, vertex_sixteen.c) use to turn structures of a vertex or
+ * a triangle each into vectors of one field each (lanes), and back.
+ * Included only where the file is compiled with -mavx512f and the rest.
+ */
+#ifndef LUZ_TRANSPOSE_AVX512_H
+#define LUZ_TRANSPOSE_AVX512_H
+
+#include <immintrin.h>
+
+/* Element r of rows[0..7] as row r of the result: an 8 x 8 transpose of
+ * 32-bit elements (rows[k][r] becomes rows[r][k]). */
+static inline __attribute__((always_inline)) void luz_transpose8(__m256 rows[8])
+{
+    const __m256 t0 = _mm256_unpacklo_ps(rows[0], rows[1]);
+    const __m256 t1 = _mm256_unpackhi_ps(rows[0], rows[1]);
+    const __m256 t2 = _mm256_unpacklo_ps(rows[2], rows[3]);
+    const __m256 t3 = _mm256_unpackhi_ps(rows[2], rows[3]);
+    const __m256 t4 = _mm256_unpacklo_ps(rows[4], rows[5]);
+    const __m256 t5 = _mm256_unpackhi_ps(rows[4], rows[5]);
+    const __m256 t6 = _mm256_unpacklo_ps(rows[6], rows[7]);
+    const __m256 t7 = _mm256_unpackhi_ps(rows[6], rows[7]);
+    const __m256 u0 = _mm256_shuffle_ps(t0, t2, 0x44), u1 = _mm256_shuffle_ps(t0, t2, 0xee);
+    const __m256 u2 = _mm256_shuffle_ps(t1, t3, 0x44), u3 = _mm256_shuffle_ps(t1, t3, 0xee);
+    const __m256 u4 = _mm256_shuffle_ps(t4, t6, 0x44), u5 = _mm256_shuffle_ps(t4, t6, 0xee);
+    const __m256 u6 = _mm256_shuffle_ps(t5, t7, 0x44), u7 = _mm256_shuffle_ps(t5, t7, 0xee);
+    rows[0] = _mm256_permute2f128_ps(u0, u4, 0x20);
+    rows[1] = _mm256_permute2f128_ps(u1, u5, 0x20);
+    rows[2] = _mm256_permute2f128_ps(u2, u6, 0x20);
+    rows[3] = _mm256_permute2f128_ps(u3, u7, 0x20);
+    rows[4] = _mm256_permute2f128_ps(u0, u4, 0x31);
+    rows[5] = _mm256_permute2f128_ps(u1, u5, 0x31);
+    rows[6] = _mm256_permute2f128_ps(u2, u6, 0x31);
+    rows[7] = _mm256_permute2f128_ps(u3, u7, 0x31);
+}
+
+/* The same for 64-bit elements: rows[0..7] of eight quadwords each. */
+static inline __attribute__((always_inline)) void luz_transpose8_quads(__m512i rows[8])
+{
+    __m512i t[8], u[8];
+    /* t[2j] holds, per 128-bit block b, (r2j[2b], r2j+1[2b]); t[2j + 1]
+     * the same of the odd columns. */
+    for (int k = 0; k < 8; k += 2) {
+        t[k] = _mm512_unpacklo_epi64(rows[k], rows[k + 1]);
+        t[k + 1] = _mm512_unpackhi_epi64(rows[k], rows[k + 1]);
+    }
+    /* u[c] (c < 4) holds columns c and c + 4 of rows 0-3, u[4 + c] of
+     * rows 4-7: (r0[c], r1[c]), (r0[c+4], r1[c+4]), (r2[c], r3[c]),
+     * (r2[c+4], r3[c+4]). */
+    for (int k = 0; k < 8; k += 4) {
+        u[k] = _mm512_shuffle_i64x2(t[k], t[k + 2], 0x88);
+        u[k + 1] = _mm512_shuffle_i64x2(t[k + 1], t[k + 3], 0x88);
+        u[k + 2] = _mm512_shuffle_i64x2(t[k], t[k + 2], 0xdd);
+        u[k + 3] = _mm512_shuffle_i64x2(t[k + 1], t[k + 3], 0xdd);
+    }
+    const __m512i low = _mm512_set_epi64(13, 12, 9, 8, 5, 4, 1, 0);
+    const __m512i high = _mm512_set_epi64(15, 14, 11, 10, 7, 6, 3, 2);
+    for (int c = 0; c < 4; c++) {
+        rows[c] = _mm512_permutex2var_epi64(u[c], low, u[4 + c]);
+        rows[c + 4] = _mm512_permutex2var_epi64(u[c], high, u[4 + c]);
+    }
+}
+
+#endif
