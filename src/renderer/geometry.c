@@ -538,16 +538,28 @@ static void eight_triangles(geometry_batch *batch, const geometry_job *job, uint
     const unsigned left = job->setup_eight(indices, survivors, vertices, window, fixed,
                                            job->width, job->height, draw_index,
                                            job->uniforms->interpolation, out, result);
-    unsigned visible = 0;   /* of the lanes not left (whose results mean nothing) */
-    for (int lane = 0; lane < 8; lane++)
-        if (!(left >> lane & 1)) visible |= (unsigned)(result[lane] == LUZ_SETUP_VISIBLE) << lane;
-    if (left == 0 && visible == 0xff) {   /* the usual case: all eight in place */
-        for (int lane = 0; lane < 8; lane++) out[lane].primitive = survivors[lane];
-        batch->count += 8;
+    if (left == 0) {
+        /* The usual case: each visible record moved down over those of
+         * the lanes before it that are not (a record only ever moves to
+         * a lower place, so in order nothing is overwritten before it is
+         * read; all eight visible, nothing moves). */
+        size_t count = batch->count;
+        for (int lane = 0; lane < 8; lane++) {
+            if (result[lane] == LUZ_SETUP_VISIBLE) {
+                if (count != batch->count + (size_t)lane) batch->triangles[count] = out[lane];
+                batch->triangles[count++].primitive = survivors[lane];
+            } else if (result[lane] == LUZ_SETUP_CULLED) {
+                batch->culled++;
+            }
+        }
+        batch->count = count;
         return;
     }
     /* Otherwise lane by lane, from a copy (one_triangle may move the
      * array). */
+    unsigned visible = 0;   /* of the lanes not left (whose results mean nothing) */
+    for (int lane = 0; lane < 8; lane++)
+        if (!(left >> lane & 1)) visible |= (unsigned)(result[lane] == LUZ_SETUP_VISIBLE) << lane;
     luz_triangle set_up_eight[8];
     if (left != 0xff) memcpy(set_up_eight, out, sizeof set_up_eight);
     for (int lane = 0; lane < 8 && !batch->out_of_memory; lane++) {
