@@ -515,7 +515,8 @@ luz_setup_eight_function *luz_setup_eight_for(luz_packet_isa isa);
 /* luz_vertex_stage_range and then luz_setup_project for vertices [first,
  * end) of draw, sixteen at a time: the same bytes in out, in window (but
  * for the fields of a marked vertex other than its marker, which mean
- * nothing either way) and in fixed (unless NULL). */
+ * nothing either way) and in fixed (unless NULL), up to the sign of a
+ * NaN that NaN normals, uv or matrix entries make (vertex_sixteen.c). */
 typedef void luz_vertex_project_function(const luz_draw *draw, luz_mat4 view_projection,
                                          uint32_t first, uint32_t end, int width, int height,
                                          luz_clip_vertex *out, luz_window_vertex *window,

@@ -8,7 +8,11 @@
  * Out: for each vertex, the same bits as the two functions write: its
  *      luz_clip_vertex (clip position, world position and normal, uv,
  *      outcode), and, unless marked, its luz_window_vertex (window x, y,
- *      depth, 1/w in double, snapped position) and luz_fixed_vertex. A
+ *      depth, 1/w in double, snapped position) and luz_fixed_vertex; but
+ *      where two NaNs of different signs meet (NaN normals, uv or matrix
+ *      entries, which no check keeps out), the NaN that comes out may have
+ *      the other sign (x86 keeps one operand's, and the compiler orders
+ *      the operands of each loop its own way). A
  *      marked vertex (outside a clip plane, LUZ_WINDOW_CLIPPED, or not
  *      projectable, LUZ_WINDOW_INVALID) gets its marker; its window
  *      vertex's other fields are left meaning nothing, as setup.c's
@@ -238,6 +242,7 @@ void luz_vertex_project_avx512(const luz_draw *draw, luz_mat4 view_projection, u
                                uint32_t end, int width, int height, luz_clip_vertex *out,
                                luz_window_vertex *window, luz_fixed_vertex *fixed)
 {
+    if (first >= end) return;   /* as the two functions: nothing to do */
     const luz_mat3 normal_matrix = luz_mat3_normal_matrix(draw->model);
     uint32_t i = first;
     for (; end - i >= 16; i += 16)
