@@ -249,6 +249,11 @@ typedef struct luz_fixed_vertex {
     int32_t x, y;
 } luz_fixed_vertex;
 
+/* Window coordinates are clamped to +-2^24 sub-pixel units (setup.c,
+ * vertex_sixteen.c): beyond the guard band, a bound that rounding can't
+ * leave and that keeps setup.c's proof true for any input. */
+#define LUZ_COORDINATE_LIMIT 16777216.0
+
 /* fixed_x of a vertex with w <= 0 (or NaN) or an x, y or z that is not
  * finite: setup culls its triangles. (An infinite w passes, as it always
  * did: 1/w is 0.) */

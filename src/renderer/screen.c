@@ -54,6 +54,8 @@ _Static_assert(LUZ_MESH_MAX_VERTICES <= (1u << 30), "vertex indices fit a gather
 #endif
 #include <immintrin.h>
 
+#include "renderer/lanes_avx512.h"
+
 /* Lanes 0..15: element j of the result is indices[3 j + corner] of the
  * sixteen triangles' 48 indices, loaded as three vectors of 16. The first
  * permute takes what lies in the first 32 (from_two[j] = 3 j + corner),
@@ -75,16 +77,6 @@ static __m512i corner_indices(__m512i first, __m512i second, __m512i third, int 
     const __m512i two = _mm512_permutex2var_epi32(first, _mm512_loadu_si512(from_two[corner]),
                                                   second);
     return _mm512_permutex2var_epi32(two, _mm512_loadu_si512(from_third[corner]), third);
-}
-
-/* The snapped (X, Y) of eight vertices, one 64-bit load each. */
-static inline __attribute__((always_inline)) void
-gather_corners(__m256i vertex_index, const luz_fixed_vertex *fixed, __m512i *x, __m512i *y)
-{
-    _Static_assert(sizeof(luz_fixed_vertex) == 8, "a vertex's x and y are one 64-bit load");
-    const __m512i both = _mm512_i32gather_epi64(vertex_index, (const void *)fixed, 8);
-    *x = _mm512_srai_epi64(_mm512_slli_epi64(both, 32), 32);
-    *y = _mm512_srai_epi64(both, 32);
 }
 
 /* E >= 0 at the centres (X, Y), (X + 256, Y), (X, Y + 256), (X + 256,
@@ -117,9 +109,9 @@ static inline __attribute__((always_inline)) void screen_eight(__m256i a, __m256
                          int width, int height, __mmask8 *culled, __mmask8 *offscreen)
 {
     __m512i x0, y0, x1, y1, x2, y2;
-    gather_corners(a, fixed, &x0, &y0);
-    gather_corners(b, fixed, &x1, &y1);
-    gather_corners(c, fixed, &x2, &y2);
+    luz_gather_fixed(a, fixed, &x0, &y0);
+    luz_gather_fixed(b, fixed, &x1, &y1);
+    luz_gather_fixed(c, fixed, &x2, &y2);
 
     /* A marker (LUZ_WINDOW_INVALID, LUZ_WINDOW_CLIPPED) is below every
      * snapped coordinate, -2^24: such a triangle is left to setup. */

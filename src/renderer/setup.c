@@ -56,14 +56,10 @@
 
 #include "renderer/pipeline.h"
 
-/* 2^24 sub-pixel units: beyond the guard band, a bound that rounding can't
- * leave and that keeps the proof above true for any input. */
-#define COORDINATE_LIMIT 16777216.0
-
 /* Keeps a window coordinate within +-2^24 sub-pixel units. */
 static double clamp_to_limit(double window_coordinate)
 {
-    const double limit = COORDINATE_LIMIT / LUZ_SUBPIXEL_ONE;
+    const double limit = LUZ_COORDINATE_LIMIT / LUZ_SUBPIXEL_ONE;
     if (window_coordinate > limit) return limit;
     if (window_coordinate < -limit) return -limit;
     return window_coordinate;

@@ -43,7 +43,7 @@
 #endif
 #include <immintrin.h>
 
-#include "renderer/transpose_avx512.h"
+#include "renderer/lanes_avx512.h"
 
 _Static_assert(offsetof(luz_window_vertex, y) == 8 && offsetof(luz_window_vertex, depth) == 16 &&
                    offsetof(luz_window_vertex, inverse_w) == 24,
@@ -59,16 +59,6 @@ _Static_assert(offsetof(luz_triangle, reference_x) == 64 &&
                    offsetof(luz_triangle, varyings) == 96 &&
                    offsetof(luz_triangle, draw_index) == 192,
                "the reference point and the planes are 32 floats from byte 64");
-
-
-/* The snapped (X, Y) of eight vertices, one 64-bit gather. */
-static inline __attribute__((always_inline)) void
-gather_fixed(__m256i vertex, const luz_fixed_vertex *fixed, __m512i *x, __m512i *y)
-{
-    const __m512i both = _mm512_i32gather_epi64(vertex, (const void *)fixed, 8);
-    *x = _mm512_srai_epi64(_mm512_slli_epi64(both, 32), 32);
-    *y = _mm512_srai_epi64(both, 32);
-}
 
 /* The coefficients of the edge from (xi, yi) to (xj, yj), as make_edge:
  * a = dy, b = -dx, c = -(dy xi - dx yi), less 1 unless it is a top edge
@@ -169,9 +159,9 @@ unsigned luz_setup_eight_avx512(const uint32_t *indices, const uint32_t triangle
     /* 3. The doubled area in fixed point, as luz_setup_front_facing; a
      * marked vertex (below -2^24) leaves its triangle to setup. */
     __m512i fx0, fy0, fx1, fy1, fx2, fy2;
-    gather_fixed(vertex0, fixed, &fx0, &fy0);
-    gather_fixed(vertex1, fixed, &fx1, &fy1);
-    gather_fixed(vertex2, fixed, &fx2, &fy2);
+    luz_gather_fixed(vertex0, fixed, &fx0, &fy0);
+    luz_gather_fixed(vertex1, fixed, &fx1, &fy1);
+    luz_gather_fixed(vertex2, fixed, &fx2, &fy2);
     const __m512i lowest = _mm512_set1_epi64(-((int64_t)1 << 24));
     const __mmask8 marked = _mm512_cmplt_epi64_mask(fx0, lowest) |
                             _mm512_cmplt_epi64_mask(fx1, lowest) |

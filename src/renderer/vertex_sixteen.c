@@ -49,7 +49,7 @@
 #endif
 #include <immintrin.h>
 
-#include "renderer/transpose_avx512.h"
+#include "renderer/lanes_avx512.h"
 
 _Static_assert(sizeof(luz_vertex) == 8 * sizeof(float), "a mesh vertex is eight floats");
 _Static_assert(offsetof(luz_vertex, normal) == 12 && offsetof(luz_vertex, uv) == 24,
@@ -61,8 +61,6 @@ _Static_assert(sizeof(luz_clip_vertex) == 13 * sizeof(float) &&
 _Static_assert(sizeof(luz_window_vertex) == 5 * sizeof(double) &&
                    offsetof(luz_window_vertex, fixed_x) == 32,
                "a window vertex is 5 quadwords: x, y, depth, 1/w, fixed x and y");
-
-
 
 /* Lanes 8 h .. 8 h + 7 of a vector (h, 0 or 1, in an immediate each way). */
 static inline __attribute__((always_inline)) __m256 half_of(__m512 v, int h)
@@ -121,8 +119,8 @@ project_eight(__m256 x, __m256 y, __m256 z, __m256 w, __m256i outcode, double wi
                                      _mm512_set1_pd(width));
     __m512d window_y = _mm512_mul_pd(_mm512_mul_pd(_mm512_sub_pd(one, y_ndc), half),
                                      _mm512_set1_pd(height));
-    const __m512d limit = _mm512_set1_pd(16777216.0 / LUZ_SUBPIXEL_ONE);
-    const __m512d lowest = _mm512_set1_pd(-16777216.0 / LUZ_SUBPIXEL_ONE);
+    const __m512d limit = _mm512_set1_pd(LUZ_COORDINATE_LIMIT / LUZ_SUBPIXEL_ONE);
+    const __m512d lowest = _mm512_set1_pd(-LUZ_COORDINATE_LIMIT / LUZ_SUBPIXEL_ONE);
     /* (Unreachable for a vertex inside the guard band, as in setup.c:
      * a bound that holds whatever the input.) */
     window_x = _mm512_mask_mov_pd(window_x, _mm512_cmp_pd_mask(window_x, limit, _CMP_GT_OQ),

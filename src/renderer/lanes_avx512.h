@@ -1,13 +1,27 @@
 /*
- * transpose_avx512.h: the 8 x 8 transposes that the AVX-512 variants
- * (setup_eight.c, vertex_sixteen.c) use to turn structures of a vertex or
- * a triangle each into vectors of one field each (lanes), and back.
- * Included only where the file is compiled with -mavx512f and the rest.
+ * lanes_avx512.h: what the AVX-512 variants (screen.c, setup_eight.c,
+ * vertex_sixteen.c) share to turn arrays of structures, one vertex or
+ * triangle each, into vectors of one field each (lanes), and back: the
+ * gather of snapped positions and the 8 x 8 transposes. Included only
+ * where the file is compiled with -mavx512f and the rest.
  */
-#ifndef LUZ_TRANSPOSE_AVX512_H
-#define LUZ_TRANSPOSE_AVX512_H
+#ifndef LUZ_LANES_AVX512_H
+#define LUZ_LANES_AVX512_H
 
 #include <immintrin.h>
+
+#include "renderer/pipeline.h"
+
+/* The snapped (X, Y) of eight vertices, one 64-bit load each (a gather),
+ * sign-extended to 64-bit lanes. */
+static inline __attribute__((always_inline)) void
+luz_gather_fixed(__m256i vertex_index, const luz_fixed_vertex *fixed, __m512i *x, __m512i *y)
+{
+    _Static_assert(sizeof(luz_fixed_vertex) == 8, "a vertex's x and y are one 64-bit load");
+    const __m512i both = _mm512_i32gather_epi64(vertex_index, (const void *)fixed, 8);
+    *x = _mm512_srai_epi64(_mm512_slli_epi64(both, 32), 32);
+    *y = _mm512_srai_epi64(both, 32);
+}
 
 /* Element r of rows[0..7] as row r of the result: an 8 x 8 transpose of
  * 32-bit elements (rows[k][r] becomes rows[r][k]). */
