@@ -92,24 +92,23 @@ static tally check_groups(const mesh *m, luz_setup_eight_function *setup_eight,
         luz_triangle out[8];
         luz_setup_result result[8];
         memset(out, 0xA5, sizeof out);
-        const unsigned left = setup_eight(m->indices, triangles, m->clip, m->window, m->fixed,
-                                          WIDTH, HEIGHT, 7, interpolation, out, result);
-        bool group_marked = false;   /* then the lanes may all be left */
+        const bool left = setup_eight(m->indices, triangles, m->clip, m->window, m->fixed, WIDTH,
+                                      HEIGHT, 7, interpolation, out, result);
+        bool group_marked = false;   /* then the eight are left, else none */
         for (int lane = 0; lane < 8; lane++)
             for (int k = 0; k < 3; k++) {
                 const uint32_t vertex = m->indices[3 * (size_t)triangles[lane] + (size_t)k];
                 group_marked = group_marked || is_marker(m->fixed[vertex].x);
             }
+        if (left != group_marked)
+            fail_msg("triangles %u.. %s, their group %s a marked vertex", triangles[0],
+                     left ? "left to setup" : "set up in lanes", group_marked ? "has" : "has no");
+        if (left) {
+            count.left += 8;
+            continue;
+        }
         for (int lane = 0; lane < 8; lane++) {
             const uint32_t t = triangles[lane];
-            if ((left >> lane & 1) != group_marked)
-                fail_msg("triangle %u %s, its group %s a marked vertex", t,
-                         left >> lane & 1 ? "left to setup" : "set up in lanes",
-                         group_marked ? "has" : "has no");
-            if (group_marked) {
-                count.left++;
-                continue;
-            }
             const uint32_t *index = &m->indices[3 * (size_t)t];
             luz_triangle expected;
             memset(&expected, 0x5A, sizeof expected);

@@ -468,12 +468,10 @@ static void set_up(geometry_batch *batch, const geometry_job *job, const luz_cli
 }
 
 /* Clips and sets up triangle t of draw draw_index, whose clip-space
- * vertices are at vertices, and projected at window. Inlined in both its
- * callers: a call per triangle cost the 100,000 cubes 2% of a frame. */
-static inline __attribute__((always_inline)) void
-one_triangle(geometry_batch *batch, const geometry_job *job, uint32_t draw_index,
-             const uint32_t *indices, const luz_clip_vertex *vertices,
-             const luz_window_vertex *window, uint32_t t)
+ * vertices are at vertices, and projected at window. */
+static void one_triangle(geometry_batch *batch, const geometry_job *job, uint32_t draw_index,
+                         const uint32_t *indices, const luz_clip_vertex *vertices,
+                         const luz_window_vertex *window, uint32_t t)
 {
     const uint32_t ia = indices[3 * (size_t)t], ib = indices[3 * (size_t)t + 1],
                    ic = indices[3 * (size_t)t + 2];
@@ -520,9 +518,10 @@ one_triangle(geometry_batch *batch, const geometry_job *job, uint32_t draw_index
 /* Triangles screened at a time: the list of those left fits the stack. */
 #define SCREEN_CHUNK 1024
 
-/* Sets up survivors[0..7] of draw draw_index in lanes (setup_eight.c),
- * each lane it leaves alone through one_triangle, in order: the records
- * come out as one triangle at a time would make them. */
+/* Sets up survivors[0..7] of draw draw_index in lanes (setup_eight.c), or,
+ * when setup in lanes leaves them (a marked vertex among them), each
+ * through one_triangle: the records come out in order, as one triangle at
+ * a time would make them. */
 static void eight_triangles(geometry_batch *batch, const geometry_job *job, uint32_t draw_index,
                             const uint32_t *indices, const luz_clip_vertex *vertices,
                             const luz_window_vertex *window, const luz_fixed_vertex *fixed,
@@ -535,43 +534,26 @@ static void eight_triangles(geometry_batch *batch, const geometry_job *job, uint
     }
     luz_triangle *out = &batch->triangles[batch->count];
     luz_setup_result result[8];
-    const unsigned left = job->setup_eight(indices, survivors, vertices, window, fixed,
-                                           job->width, job->height, draw_index,
-                                           job->uniforms->interpolation, out, result);
-    if (left == 0) {
-        /* The usual case: each visible record moved down over those of
-         * the lanes before it that are not (a record only ever moves to
-         * a lower place, so in order nothing is overwritten before it is
-         * read; all eight visible, nothing moves). */
-        size_t count = batch->count;
-        for (int lane = 0; lane < 8; lane++) {
-            if (result[lane] == LUZ_SETUP_VISIBLE) {
-                if (count != batch->count + (size_t)lane) batch->triangles[count] = out[lane];
-                batch->triangles[count++].primitive = survivors[lane];
-            } else if (result[lane] == LUZ_SETUP_CULLED) {
-                batch->culled++;
-            }
-        }
-        batch->count = count;
+    if (job->setup_eight(indices, survivors, vertices, window, fixed, job->width, job->height,
+                         draw_index, job->uniforms->interpolation, out, result)) {
+        for (int lane = 0; lane < 8 && !batch->out_of_memory; lane++)
+            one_triangle(batch, job, draw_index, indices, vertices, window, survivors[lane]);
         return;
     }
-    /* Otherwise lane by lane, from a copy (one_triangle may move the
-     * array). */
-    unsigned visible = 0;   /* of the lanes not left (whose results mean nothing) */
-    for (int lane = 0; lane < 8; lane++)
-        if (!(left >> lane & 1)) visible |= (unsigned)(result[lane] == LUZ_SETUP_VISIBLE) << lane;
-    luz_triangle set_up_eight[8];
-    if (left != 0xff) memcpy(set_up_eight, out, sizeof set_up_eight);
-    for (int lane = 0; lane < 8 && !batch->out_of_memory; lane++) {
-        if (left >> lane & 1) {
-            one_triangle(batch, job, draw_index, indices, vertices, window, survivors[lane]);
-        } else if (visible >> lane & 1) {
-            batch->triangles[batch->count] = set_up_eight[lane];
-            batch->triangles[batch->count++].primitive = survivors[lane];
+    /* Each visible record moved down over those of the lanes before it
+     * that are not (a record only ever moves to a lower place, so in
+     * order nothing is overwritten before it is read; all eight visible,
+     * the usual case, nothing moves). */
+    size_t count = batch->count;
+    for (int lane = 0; lane < 8; lane++) {
+        if (result[lane] == LUZ_SETUP_VISIBLE) {
+            if (count != batch->count + (size_t)lane) batch->triangles[count] = out[lane];
+            batch->triangles[count++].primitive = survivors[lane];
         } else if (result[lane] == LUZ_SETUP_CULLED) {
             batch->culled++;
         }
     }
+    batch->count = count;
 }
 
 /* Clips and sets up triangles [first, end) of draw draw_index: screening

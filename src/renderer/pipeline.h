@@ -500,11 +500,11 @@ luz_screen_function *luz_screen_for(luz_packet_isa isa, bool *checks_small_boxes
  * indices[3 t .. 3 t + 2], at vertices in clip space and window, fixed
  * as luz_setup_project left them): result[lane] and, where VISIBLE,
  * out[lane] (all but its primitive) are what setup gives, bit for bit.
- * Returns the mask of lanes left to the caller (bit lane): all eight when
- * one has a marked vertex (the clipper's, or setup's own culling), else
- * none; the results and records of lanes left mean nothing. Only for
- * triangles screening let through (the small-box promise is screening's). */
-typedef unsigned luz_setup_eight_function(const uint32_t *indices, const uint32_t triangles[8],
+ * Returns true, and then the results and records mean nothing, when it
+ * leaves all eight to the caller: one has a marked vertex (the clipper's,
+ * or setup's own culling). Only for triangles screening let through (the
+ * small-box promise is screening's). */
+typedef bool luz_setup_eight_function(const uint32_t *indices, const uint32_t triangles[8],
                                           const luz_clip_vertex *vertices,
                                           const luz_window_vertex *window,
                                           const luz_fixed_vertex *fixed, int width, int height,
@@ -672,8 +672,10 @@ typedef struct luz_geometry luz_geometry;
 
 luz_geometry *luz_geometry_create(int thread_count);
 void luz_geometry_destroy(luz_geometry *geometry);
-/* Which screening variant (screen.c) its batches run: isa's, as
- * luz_screen_for picks it (LUZ_PACKET_ISA_BEST when it is made). */
+/* Which variants its passes run: isa's screening (screen.c, as
+ * luz_screen_for picks it), vertices in lanes (vertex_sixteen.c) and setup
+ * in lanes (setup_eight.c, only with screening that checks small boxes);
+ * LUZ_PACKET_ISA_BEST when it is made. */
 void luz_geometry_set_isa(luz_geometry *geometry, luz_packet_isa isa);
 /* The bytes its buffers hold. */
 size_t luz_geometry_memory(const luz_geometry *geometry);

@@ -141,11 +141,11 @@ covered_lanes(__mmask8 testing, __m512i min_x, __m512i min_y, __m512i box_width,
 
 luz_setup_eight_function luz_setup_eight_avx512;
 
-unsigned luz_setup_eight_avx512(const uint32_t *indices, const uint32_t triangles[8],
-                                const luz_clip_vertex *vertices, const luz_window_vertex *window,
-                                const luz_fixed_vertex *fixed, int width, int height,
-                                uint32_t draw_index, luz_interpolation interpolation,
-                                luz_triangle out[8], luz_setup_result result[8])
+bool luz_setup_eight_avx512(const uint32_t *indices, const uint32_t triangles[8],
+                            const luz_clip_vertex *vertices, const luz_window_vertex *window,
+                            const luz_fixed_vertex *fixed, int width, int height,
+                            uint32_t draw_index, luz_interpolation interpolation,
+                            luz_triangle out[8], luz_setup_result result[8])
 {
     /* The corners' vertex indices, a lane per triangle. */
     int32_t corner[3][8];
@@ -157,7 +157,7 @@ unsigned luz_setup_eight_avx512(const uint32_t *indices, const uint32_t triangle
     const __m256i vertex2 = _mm256_loadu_si256((const void *)corner[2]);
 
     /* 3. The doubled area in fixed point, as luz_setup_front_facing; a
-     * marked vertex (below -2^24) leaves its triangle to setup. */
+     * marked vertex (below -2^24) leaves the eight to the caller. */
     __m512i fx0, fy0, fx1, fy1, fx2, fy2;
     luz_gather_fixed(vertex0, fixed, &fx0, &fy0);
     luz_gather_fixed(vertex1, fixed, &fx1, &fy1);
@@ -168,7 +168,7 @@ unsigned luz_setup_eight_avx512(const uint32_t *indices, const uint32_t triangle
                             _mm512_cmplt_epi64_mask(fx2, lowest);
     /* Marked vertices come in runs (a draw across a clip plane, whose back
      * faces screening cannot judge either): such a group is left whole. */
-    if (marked != 0) return 0xff;
+    if (marked != 0) return true;
     const __m512i area = _mm512_sub_epi64(
         _mm512_mul_epi32(_mm512_sub_epi64(fy1, fy0), _mm512_sub_epi64(fx2, fx0)),
         _mm512_mul_epi32(_mm512_sub_epi64(fx1, fx0), _mm512_sub_epi64(fy2, fy0)));
@@ -319,7 +319,7 @@ unsigned luz_setup_eight_avx512(const uint32_t *indices, const uint32_t triangle
                        : (solvable & bit)  ? LUZ_SETUP_VISIBLE
                                            : LUZ_SETUP_CULLED;
     }
-    return 0;
+    return false;
 }
 
 #else /* the baseline variant: the dispatcher */
