@@ -51,6 +51,24 @@ typedef struct mesh {
     uint32_t *indices;
 } mesh;
 
+static mesh mesh_create(uint32_t vertex_count, uint32_t triangle_count)
+{
+    mesh m = {vertex_count, triangle_count, calloc(vertex_count, sizeof(luz_clip_vertex)),
+              calloc(vertex_count, sizeof(luz_window_vertex)),
+              calloc(vertex_count, sizeof(luz_fixed_vertex)),
+              calloc(3 * (size_t)triangle_count, sizeof(uint32_t))};
+    assert_true(m.clip && m.window && m.fixed && m.indices);
+    return m;
+}
+
+static void mesh_destroy(mesh *m)
+{
+    free(m->clip);
+    free(m->window);
+    free(m->fixed);
+    free(m->indices);
+}
+
 /* Vertex i at (X, Y) in fixed point, its exact position within half a
  * sub-pixel unit of it (as snapping leaves it), random depth, 1/w and
  * varyings. */
@@ -148,15 +166,7 @@ static void test_lanes_agree_with_setup(void **state)
     }
     assert_true(luz_setup_eight_for(LUZ_PACKET_ISA_BASELINE) == NULL);
     const uint32_t triangle_count = 30000;
-    mesh m = {3 * triangle_count, triangle_count,
-              calloc(3 * (size_t)triangle_count, sizeof(luz_clip_vertex)),
-              calloc(3 * (size_t)triangle_count, sizeof(luz_window_vertex)),
-              calloc(3 * (size_t)triangle_count, sizeof(luz_fixed_vertex)),
-              calloc(3 * (size_t)triangle_count, sizeof(uint32_t))};
-    assert_non_null(m.clip);
-    assert_non_null(m.window);
-    assert_non_null(m.fixed);
-    assert_non_null(m.indices);
+    mesh m = mesh_create(3 * triangle_count, triangle_count);
     uint32_t random = 77;
     for (uint32_t t = 0; t < triangle_count; t++) {
         const uint32_t kind = next_random(&random) % 100;
@@ -198,10 +208,7 @@ static void test_lanes_agree_with_setup(void **state)
         assert_true(count.offscreen > 1000);
         assert_true(count.left > 300);
     }
-    free(m.clip);
-    free(m.window);
-    free(m.fixed);
-    free(m.indices);
+    mesh_destroy(&m);
 }
 
 /* HAND-MADE: two slivers along the diagonal y = x from (0.4, 0.4) to (2.6,
@@ -214,12 +221,7 @@ static void test_centres_on_an_edge(void **state)
     (void)state;
     luz_setup_eight_function *setup_eight = luz_setup_eight_for(LUZ_PACKET_ISA_AVX512);
     if (setup_eight == NULL) skip();
-    mesh m = {6, 8, calloc(6, sizeof(luz_clip_vertex)), calloc(6, sizeof(luz_window_vertex)),
-              calloc(6, sizeof(luz_fixed_vertex)), calloc(24, sizeof(uint32_t))};
-    assert_non_null(m.clip);
-    assert_non_null(m.window);
-    assert_non_null(m.fixed);
-    assert_non_null(m.indices);
+    mesh m = mesh_create(6, 8);
     uint32_t random = 5;
     const int32_t corners[6][2] = {{102, 102}, {666, 666}, {666, 640},    /* below y = x */
                                    {102, 102}, {666, 666}, {640, 666}};   /* above it */
@@ -239,10 +241,7 @@ static void test_centres_on_an_edge(void **state)
     assert_int_equal(count.left, 0);
     assert_int_equal(count.visible, 4);
     assert_int_equal(count.offscreen, 4);
-    free(m.clip);
-    free(m.window);
-    free(m.fixed);
-    free(m.indices);
+    mesh_destroy(&m);
 }
 
 /* CANCELLATION: varyings sampled from steep planes f = A (x - rx) + B (y -
@@ -256,12 +255,7 @@ static void test_planes_that_cancel(void **state)
     luz_setup_eight_function *setup_eight = luz_setup_eight_for(LUZ_PACKET_ISA_AVX512);
     if (setup_eight == NULL) skip();
     const uint32_t triangle_count = 4000;
-    mesh m = {3 * triangle_count, triangle_count,
-              calloc(3 * (size_t)triangle_count, sizeof(luz_clip_vertex)),
-              calloc(3 * (size_t)triangle_count, sizeof(luz_window_vertex)),
-              calloc(3 * (size_t)triangle_count, sizeof(luz_fixed_vertex)),
-              calloc(3 * (size_t)triangle_count, sizeof(uint32_t))};
-    assert_true(m.clip && m.window && m.fixed && m.indices);
+    mesh m = mesh_create(3 * triangle_count, triangle_count);
     uint32_t random = 4242;
     for (uint32_t t = 0; t < triangle_count; t++) {
         /* A front face a pixel or two across, inside the viewport. */
@@ -310,10 +304,7 @@ static void test_planes_that_cancel(void **state)
     }
     print_message("%d of %d planes' values cancel to below 1e-3\n", tiny, planes);
     assert_true(tiny > 1000);
-    free(m.clip);
-    free(m.window);
-    free(m.fixed);
-    free(m.indices);
+    mesh_destroy(&m);
 }
 
 int main(void)
