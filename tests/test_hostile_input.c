@@ -1098,8 +1098,9 @@ static void assert_render_refuses_either(const sandbox *box, const char *const *
     const bool has_other = other == NULL || strstr(result.err, other) != NULL ||
                            (alternative != NULL && strstr(result.err, alternative) != NULL);
     if (strstr(result.err, needle) == NULL || !has_other)
-        fail_msg("'%s' lacks '%s' or '%s'%s%s", result.err, needle, other ? other : "",
-                 alternative ? " (or '" : "", alternative ? alternative : "");
+        fail_msg("'%s' lacks '%s' or '%s'%s%s%s", result.err, needle, other ? other : "",
+                 alternative ? " (or '" : "", alternative ? alternative : "",
+                 alternative ? "')" : "");
     list_tree(box->work, "", after, sizeof after);
     assert_string_equal(before, after);
     free(result.err);
