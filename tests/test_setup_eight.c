@@ -8,13 +8,18 @@
  * and none otherwise; then each lane's result is luz_setup_projected's
  * with small_box_checked (a box of 3 to LUZ_SETUP_SMALL_BOX_PIXELS
  * centres tested for a covered one), and a visible triangle's record is
- * the same bytes: box, edges, reference point and all ten planes. Random
- * triangles, most a pixel or two across, some large, some off the
- * viewport, some back faces, with a few vertices marked, a few whose
- * window positions make the double-precision determinant zero or not
- * finite, both interpolations. Then triangles whose planes' values at
- * the reference point cancel to almost nothing, where the order of each
- * plane's operations shows through the rounding to float.
+ * the same bytes: box, edges, reference point and all ten planes, where
+ * setup in lanes projects each corner from its clip position itself and
+ * luz_setup_projected reads the window vertex luz_setup_project made of
+ * it. Random triangles, most a pixel or two across, some large, some off
+ * the viewport, some back faces, with a few vertices marked, a few whose
+ * exact window positions lie on a line while their snapped ones do not
+ * (a front face whose double-precision determinant is zero), both
+ * interpolations. (A determinant that is not finite cannot come from
+ * projected corners, clamped to 2^16 pixels: setup's check for it is
+ * defensive, and so is the lanes'.) Then triangles whose planes' values
+ * at the reference point cancel to almost nothing, where the order of
+ * each plane's operations shows through the rounding to float.
  */
 #include <math.h>
 #include <setjmp.h>
@@ -69,25 +74,72 @@ static void mesh_destroy(mesh *m)
     free(m->indices);
 }
 
-/* Vertex i at (X, Y) in fixed point, its exact position within half a
- * sub-pixel unit of it (as snapping leaves it), random depth, 1/w and
- * varyings. */
-static void set_vertex(mesh *m, uint32_t i, int32_t fixed_x, int32_t fixed_y, uint32_t *random)
+/* Vertex i's window and snapped positions, as the vertex pass leaves
+ * them: luz_setup_project of its clip vertex. */
+static void project(mesh *m, uint32_t i)
 {
-    const double jitter_x = uniform(random, -0.49f, 0.49f) / LUZ_SUBPIXEL_ONE;
-    const double jitter_y = uniform(random, -0.49f, 0.49f) / LUZ_SUBPIXEL_ONE;
-    m->window[i] = (luz_window_vertex){
-        .x = fixed_x / (double)LUZ_SUBPIXEL_ONE + jitter_x,
-        .y = fixed_y / (double)LUZ_SUBPIXEL_ONE + jitter_y,
-        .depth = uniform(random, 0.0f, 1.0f),
-        .inverse_w = uniform(random, 0.05f, 10.0f),
-        .fixed_x = fixed_x,
-        .fixed_y = fixed_y};
-    m->fixed[i] = (luz_fixed_vertex){fixed_x, fixed_y};
-    m->clip[i].position = (luz_vec4){0, 0, 0, 1};
+    m->window[i] = luz_setup_project_vertex(&m->clip[i], WIDTH, HEIGHT);
+    m->fixed[i] = (luz_fixed_vertex){m->window[i].fixed_x, m->window[i].fixed_y};
+}
+
+/* Vertex i at clip w (the window position divides by it), placed so that
+ * it projects to within a sub-pixel unit or so of (X, Y) in fixed point
+ * (float clip coordinates round it), at a random depth, with random
+ * varyings. */
+static void set_vertex_at(mesh *m, uint32_t i, int32_t fixed_x, int32_t fixed_y, float w,
+                          uint32_t *random)
+{
+    const double x_ndc = 2.0 * fixed_x / (LUZ_SUBPIXEL_ONE * (double)WIDTH) - 1.0;
+    const double y_ndc = 1.0 - 2.0 * fixed_y / (LUZ_SUBPIXEL_ONE * (double)HEIGHT);
+    m->clip[i].position = (luz_vec4){(float)(x_ndc * w), (float)(y_ndc * w),
+                                     uniform(random, -1.0f, 1.0f) * w, w};
     m->clip[i].outcode = 0;
     for (int k = 0; k < LUZ_VARYING_COUNT; k++)
         m->clip[i].varyings[k] = uniform(random, -100.0f, 100.0f);
+    project(m, i);
+}
+
+/* The same at a random w, 1/w from 0.05 to 10. */
+static void set_vertex(mesh *m, uint32_t i, int32_t fixed_x, int32_t fixed_y, uint32_t *random)
+{
+    set_vertex_at(m, i, fixed_x, fixed_y, 1.0f / uniform(random, 0.05f, 10.0f), random);
+}
+
+/* Triangle t as a front face whose window corners lie exactly on a line,
+ * so that setup's determinant (x1 - x0) (y2 - y0) - (x2 - x0) (y1 - y0)
+ * is 0 in double, while their snapped positions make a triangle with a
+ * pixel centre in its box: setup gets as far as the planes and culls it
+ * there. At w = 1 the window position is 20 (x_ndc + 1) and 12 (1 -
+ * y_ndc), exact in double, so clip x and y in steps of 2^-13 and 2^-12
+ * (0.625 and 0.75 sub-pixel units) keep the corners exactly in line, and
+ * snapping rounds them off it. Returns whether a try found one. */
+static bool set_collinear_front_face(mesh *m, uint32_t t, uint32_t *random)
+{
+    const int32_t centre_x = 256 * (int32_t)(2 + next_random(random) % (WIDTH - 4)) + 128;
+    const int32_t centre_y = 256 * (int32_t)(2 + next_random(random) % (HEIGHT - 4)) + 128;
+    const float step_x = (next_random(random) & 1) ? 0x1p-13f : -0x1p-13f;
+    const float step_y = (next_random(random) & 1) ? 0x1p-12f : -0x1p-12f;
+    const uint32_t i = 3 * t;
+    set_vertex_at(m, i, centre_x, centre_y, 1.0f, random);
+    for (uint32_t k = 1; k < 3; k++) {
+        m->clip[i + k] = m->clip[i];
+        m->clip[i + k].position.x += (float)k * step_x;
+        m->clip[i + k].position.y += (float)k * step_y;
+        for (int v = 0; v < LUZ_VARYING_COUNT; v++)
+            m->clip[i + k].varyings[v] = uniform(random, -100.0f, 100.0f);
+        project(m, i + k);
+    }
+    const luz_window_vertex *w = &m->window[i];
+    const double determinant =
+        (w[1].x - w[0].x) * (w[2].y - w[0].y) - (w[2].x - w[0].x) * (w[1].y - w[0].y);
+    const int64_t area = ((int64_t)w[1].fixed_y - w[0].fixed_y) * (w[2].fixed_x - w[0].fixed_x) -
+                         ((int64_t)w[1].fixed_x - w[0].fixed_x) * (w[2].fixed_y - w[0].fixed_y);
+    if (determinant != 0.0 || area == 0) return false;
+    if (area < 0) {   /* the other way round: a front face */
+        m->indices[i + 1] = i + 2;
+        m->indices[i + 2] = i + 1;
+    }
+    return true;
 }
 
 static bool is_marker(int32_t fixed_x)
@@ -110,8 +162,8 @@ static tally check_groups(const mesh *m, luz_setup_eight_function *setup_eight,
         luz_triangle out[8];
         luz_setup_result result[8];
         memset(out, 0xA5, sizeof out);
-        const bool left = setup_eight(m->indices, triangles, m->clip, m->window, m->fixed, WIDTH,
-                                      HEIGHT, 7, interpolation, out, result);
+        const bool left = setup_eight(m->indices, triangles, m->clip, m->fixed, WIDTH, HEIGHT, 7,
+                                      interpolation, out, result);
         bool group_marked = false;   /* then the eight are left, else none */
         for (int lane = 0; lane < 8; lane++)
             for (int k = 0; k < 3; k++) {
@@ -184,16 +236,17 @@ static void test_lanes_agree_with_setup(void **state)
                 y = (next_random(&random) & 1) ? (1 << 24) : -(1 << 24);
             }
             set_vertex(&m, i, x, y, &random);
-            if (kind == 97 && k == 1) m.fixed[i].x = m.window[i].fixed_x = LUZ_WINDOW_CLIPPED;
-            if (kind == 98 && k == 2) m.fixed[i].x = m.window[i].fixed_x = LUZ_WINDOW_INVALID;
-        }
-        if (kind == 95) {   /* no plane to solve: the exact corners coincide */
-            for (int k = 1; k < 3; k++) {
-                m.window[3 * t + (uint32_t)k].x = m.window[3 * t].x;
-                m.window[3 * t + (uint32_t)k].y = m.window[3 * t].y;
+            if (kind == 97 && k == 1) {   /* outside a clip plane */
+                m.clip[i].outcode = 1;
+                project(&m, i);
+            }
+            if (kind == 98 && k == 2) {   /* not projectable */
+                m.clip[i].position.w = -1.0f;
+                project(&m, i);
             }
         }
-        if (kind == 96) m.window[3 * t + 2].x = (double)INFINITY;   /* nor here */
+        if (kind >= 95 && kind <= 96)   /* no plane to solve */
+            while (!set_collinear_front_face(&m, t, &random)) continue;
     }
     for (int mode = 0; mode < 2; mode++) {
         const luz_interpolation interpolation =
@@ -208,6 +261,27 @@ static void test_lanes_agree_with_setup(void **state)
         assert_true(count.offscreen > 1000);
         assert_true(count.left > 300);
     }
+    /* The collinear front faces reached the determinant: setup culls each
+     * there, not before (some are in groups left to setup). */
+    int collinear_culled = 0;
+    for (uint32_t t = 0; t < triangle_count; t++) {
+        const luz_window_vertex *w = &m.window[3 * t];
+        const bool in_line =
+            (w[1].x - w[0].x) * (w[2].y - w[0].y) - (w[2].x - w[0].x) * (w[1].y - w[0].y) == 0.0;
+        luz_triangle record;
+        if (in_line && luz_setup_projected(&m.clip[m.indices[3 * t]], &m.clip[m.indices[3 * t + 1]],
+                                           &m.clip[m.indices[3 * t + 2]],
+                                           &m.window[m.indices[3 * t]],
+                                           &m.window[m.indices[3 * t + 1]],
+                                           &m.window[m.indices[3 * t + 2]], WIDTH, HEIGHT, 7,
+                                           LUZ_INTERPOLATION_PERSPECTIVE, true,
+                                           &record) == LUZ_SETUP_CULLED &&
+            luz_setup_front_facing(&m.window[m.indices[3 * t]], &m.window[m.indices[3 * t + 1]],
+                                   &m.window[m.indices[3 * t + 2]]))
+            collinear_culled++;
+    }
+    print_message("%d front faces culled for a zero determinant\n", collinear_culled);
+    assert_true(collinear_culled > 300);
     mesh_destroy(&m);
 }
 
@@ -270,8 +344,7 @@ static void test_planes_that_cancel(void **state)
         for (int k = 0; k < 3; k++) {
             const uint32_t i = 3 * t + (uint32_t)k;
             m.indices[i] = i;
-            set_vertex(&m, i, corner[order[k]][0], corner[order[k]][1], &random);
-            m.window[i].inverse_w = 1.0;
+            set_vertex_at(&m, i, corner[order[k]][0], corner[order[k]][1], 1.0f, &random);
         }
         const double rx = m.fixed[3 * t].x / (double)LUZ_SUBPIXEL_ONE;
         const double ry = m.fixed[3 * t].y / (double)LUZ_SUBPIXEL_ONE;

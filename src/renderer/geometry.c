@@ -20,7 +20,10 @@
  *                triangles, and its vertices get a place in the frame's
  *                vertex arena
  *   vertex pass  (parallel) the big draws' vertices, in ranges: the vertex
- *                stage, then setup's per-vertex projection
+ *                stage, then setup's per-vertex projection (kept whole
+ *                when setup runs one triangle at a time; with setup in
+ *                lanes only the snapped positions, for screening: the
+ *                lanes project the corners again beside their varyings)
  *   batches      (parallel) each small draw's vertex stage and projection
  *                (into the thread's scratch), then clipping and setup of the batch's
  *                triangles; the batch counts its triangles per band
@@ -57,7 +60,9 @@ typedef struct geometry_batch {
     uint32_t triangle_first, triangle_end;
     bool whole_draws;
     const luz_clip_vertex *vertices;
-    const luz_window_vertex *window;   /* the same vertices, projected */
+    const luz_window_vertex *window;   /* the same vertices, projected (NULL
+                                          with setup in lanes, which projects
+                                          its corners itself) */
     const luz_fixed_vertex *fixed;     /* and their snapped positions alone */
     /* What it made, reused from frame to frame. */
     luz_triangle *triangles;
@@ -74,7 +79,7 @@ typedef struct geometry_batch {
 typedef struct vertex_range {
     uint32_t draw, first, end;
     luz_clip_vertex *out;          /* the draw's vertex 0 in the arena */
-    luz_window_vertex *window;     /* the same, projected */
+    luz_window_vertex *window;     /* the same, projected (or NULL) */
     luz_fixed_vertex *fixed;       /* and snapped */
 } vertex_range;
 
@@ -93,7 +98,8 @@ struct luz_geometry {
     size_t vertex_range_count, vertex_range_capacity;
     luz_clip_vertex *arena;        /* the big draws' vertices */
     size_t arena_capacity;
-    luz_window_vertex *window_arena;   /* the same, projected */
+    luz_window_vertex *window_arena;   /* the same, projected (only when
+                                          setup is one triangle at a time) */
     size_t window_arena_capacity;
     luz_fixed_vertex *fixed_arena;     /* and their snapped positions */
     size_t fixed_arena_capacity;
@@ -352,10 +358,14 @@ static int plan(luz_geometry *geometry, luz_thread_pool *pool, geometry_job *job
         else if (is_big(draw))
             arena_vertices += draw->mesh->vertex_count;
     }
+    /* Setup in lanes projects each corner again from its clip vertex:
+     * then the big draws keep no window vertices (40 bytes a vertex). */
+    const bool keep_window = job->setup_eight == NULL;
     if (!reserve((void **)&geometry->arena, &geometry->arena_capacity, arena_vertices,
                  sizeof *geometry->arena) ||
-        !reserve((void **)&geometry->window_arena, &geometry->window_arena_capacity,
-                 arena_vertices, sizeof *geometry->window_arena) ||
+        (keep_window &&
+         !reserve((void **)&geometry->window_arena, &geometry->window_arena_capacity,
+                  arena_vertices, sizeof *geometry->window_arena)) ||
         !reserve((void **)&geometry->fixed_arena, &geometry->fixed_arena_capacity,
                  arena_vertices, sizeof *geometry->fixed_arena))
         return luz_error_set(error, "out of memory for the frame's %zu vertices",
@@ -383,7 +393,7 @@ static int plan(luz_geometry *geometry, luz_thread_pool *pool, geometry_job *job
         }
         open = NULL;
         luz_clip_vertex *vertices = geometry->arena + arena_used;
-        luz_window_vertex *window = geometry->window_arena + arena_used;
+        luz_window_vertex *window = keep_window ? geometry->window_arena + arena_used : NULL;
         luz_fixed_vertex *fixed = geometry->fixed_arena + arena_used;
         const uint32_t vertex_count = draw->mesh->vertex_count;
         arena_used += vertex_count;
@@ -468,7 +478,9 @@ static void set_up(geometry_batch *batch, const geometry_job *job, const luz_cli
 }
 
 /* Clips and sets up triangle t of draw draw_index, whose clip-space
- * vertices are at vertices, and projected at window. */
+ * vertices are at vertices, and projected at window (NULL: the vertex
+ * pass kept no window vertices, and the three corners are projected
+ * here). */
 static void one_triangle(geometry_batch *batch, const geometry_job *job, uint32_t draw_index,
                          const uint32_t *indices, const luz_clip_vertex *vertices,
                          const luz_window_vertex *window, uint32_t t)
@@ -476,6 +488,16 @@ static void one_triangle(geometry_batch *batch, const geometry_job *job, uint32_
     const uint32_t ia = indices[3 * (size_t)t], ib = indices[3 * (size_t)t + 1],
                    ic = indices[3 * (size_t)t + 2];
     const luz_clip_vertex *a = &vertices[ia], *b = &vertices[ib], *c = &vertices[ic];
+    luz_window_vertex corners[3];
+    const luz_window_vertex *window_a, *window_b, *window_c;
+    if (window != NULL) {
+        window_a = &window[ia], window_b = &window[ib], window_c = &window[ic];
+    } else {
+        corners[0] = luz_setup_project_vertex(a, job->width, job->height);
+        corners[1] = luz_setup_project_vertex(b, job->width, job->height);
+        corners[2] = luz_setup_project_vertex(c, job->width, job->height);
+        window_a = &corners[0], window_b = &corners[1], window_c = &corners[2];
+    }
     /* A fan of a clipped triangle has at most this many triangles. */
     if (!reserve((void **)&batch->triangles, &batch->capacity,
                  batch->count + LUZ_CLIP_MAX_VERTICES - 2, sizeof *batch->triangles)) {
@@ -489,13 +511,13 @@ static void one_triangle(geometry_batch *batch, const geometry_job *job, uint32_
     if ((code_a | code_b | code_c) == 0) {
         /* Half the triangles of a closed mesh face away: drop them here,
          * as setup would. */
-        if (!luz_setup_front_facing(&window[ia], &window[ib], &window[ic])) {
+        if (!luz_setup_front_facing(window_a, window_b, window_c)) {
             batch->culled++;
             return;
         }
         /* Screening saw this triangle as it is (its vertices projected,
          * none marked): what it checked holds. */
-        set_up(batch, job, a, b, c, &window[ia], &window[ib], &window[ic], draw_index, t,
+        set_up(batch, job, a, b, c, window_a, window_b, window_c, draw_index, t,
                job->screen_checks_small_boxes);
         return;
     }
@@ -534,7 +556,7 @@ static void eight_triangles(geometry_batch *batch, const geometry_job *job, uint
     }
     luz_triangle *out = &batch->triangles[batch->count];
     luz_setup_result result[8];
-    if (job->setup_eight(indices, survivors, vertices, window, fixed, job->width, job->height,
+    if (job->setup_eight(indices, survivors, vertices, fixed, job->width, job->height,
                          draw_index, job->uniforms->interpolation, out, result)) {
         for (int lane = 0; lane < 8 && !batch->out_of_memory; lane++)
             one_triangle(batch, job, draw_index, indices, vertices, window, survivors[lane]);

@@ -23,6 +23,42 @@ luz_gather_fixed(__m256i vertex_index, const luz_fixed_vertex *fixed, __m512i *x
     *y = _mm512_srai_epi64(both, 32);
 }
 
+/* setup.c's luz_setup_project for eight vertices of clip position (x, y,
+ * z, w), one per lane, in the same double operations: 1/w, the window
+ * position clamped to +-2^24 sub-pixel units, the depth. The markers (a
+ * vertex outside a clip plane, or w not above 0) are the caller's. */
+typedef struct luz_window_lanes {
+    __m512d x, y, depth, inverse_w;
+} luz_window_lanes;
+
+static inline __attribute__((always_inline)) luz_window_lanes
+luz_project_lanes(__m512d x, __m512d y, __m512d z, __m512d w, double width, double height)
+{
+    const __m512d one = _mm512_set1_pd(1.0), half = _mm512_set1_pd(0.5);
+    luz_window_lanes window;
+    window.inverse_w = _mm512_div_pd(one, w);
+    const __m512d x_ndc = _mm512_mul_pd(x, window.inverse_w);
+    const __m512d y_ndc = _mm512_mul_pd(y, window.inverse_w);
+    window.x = _mm512_mul_pd(_mm512_mul_pd(_mm512_add_pd(x_ndc, one), half),
+                             _mm512_set1_pd(width));
+    window.y = _mm512_mul_pd(_mm512_mul_pd(_mm512_sub_pd(one, y_ndc), half),
+                             _mm512_set1_pd(height));
+    const __m512d limit = _mm512_set1_pd(LUZ_COORDINATE_LIMIT / LUZ_SUBPIXEL_ONE);
+    const __m512d lowest = _mm512_set1_pd(-LUZ_COORDINATE_LIMIT / LUZ_SUBPIXEL_ONE);
+    /* (Unreachable for a vertex inside the guard band, as in setup.c:
+     * a bound that holds whatever the input.) */
+    window.x = _mm512_mask_mov_pd(window.x, _mm512_cmp_pd_mask(window.x, limit, _CMP_GT_OQ),
+                                  limit);
+    window.x = _mm512_mask_mov_pd(window.x, _mm512_cmp_pd_mask(window.x, lowest, _CMP_LT_OQ),
+                                  lowest);
+    window.y = _mm512_mask_mov_pd(window.y, _mm512_cmp_pd_mask(window.y, limit, _CMP_GT_OQ),
+                                  limit);
+    window.y = _mm512_mask_mov_pd(window.y, _mm512_cmp_pd_mask(window.y, lowest, _CMP_LT_OQ),
+                                  lowest);
+    window.depth = _mm512_mul_pd(_mm512_add_pd(_mm512_mul_pd(z, window.inverse_w), one), half);
+    return window;
+}
+
 /* Element r of rows[0..7] as row r of the result: an 8 x 8 transpose of
  * 32-bit elements (rows[k][r] becomes rows[r][k]). */
 static inline __attribute__((always_inline)) void luz_transpose8(__m256 rows[8])

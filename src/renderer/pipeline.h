@@ -281,11 +281,14 @@ static inline bool luz_setup_front_facing(const luz_window_vertex *p0,
     return doubled_area > 0;
 }
 
-/* Projects vertices[first, end) into out[first, end) (and fixed[first,
- * end), unless NULL) for a width x height viewport; a vertex with a
- * non-zero outcode is only marked, fixed_x = LUZ_WINDOW_CLIPPED (its
- * triangles go to the clipper, whose polygon vertices are projected
- * afresh). */
+/* Projects one vertex for a width x height viewport (setup's steps 1
+ * and 2: divide, viewport, snap); a vertex with a non-zero outcode is
+ * only marked, fixed_x = LUZ_WINDOW_CLIPPED (its triangles go to the
+ * clipper, whose polygon vertices are projected afresh), one that cannot
+ * be projected LUZ_WINDOW_INVALID; a marked vertex's other fields are 0. */
+luz_window_vertex luz_setup_project_vertex(const luz_clip_vertex *vertex, int width, int height);
+/* The same for vertices[first, end): into out[first, end) and its snapped
+ * positions into fixed[first, end), each unless NULL. */
 void luz_setup_project(const luz_clip_vertex *vertices, uint32_t first, uint32_t end, int width,
                        int height, luz_window_vertex *out, luz_fixed_vertex *fixed);
 
@@ -497,16 +500,17 @@ luz_screen_function *luz_screen_for(luz_packet_isa isa, bool *checks_small_boxes
 
 /* luz_setup_projected(..., small_box_checked = true, ...) for eight
  * triangles of one draw at once, triangles[lane] (vertex indices
- * indices[3 t .. 3 t + 2], at vertices in clip space and window, fixed
- * as luz_setup_project left them): result[lane] and, where VISIBLE,
- * out[lane] (all but its primitive) are what setup gives, bit for bit.
+ * indices[3 t .. 3 t + 2], at vertices in clip space, fixed as
+ * luz_setup_project left them): result[lane] and, where VISIBLE,
+ * out[lane] (all but its primitive) are what setup gives from the
+ * corners' luz_setup_project_vertex, bit for bit (it projects them
+ * itself: no window vertex is read).
  * Returns true, and then the results and records mean nothing, when it
  * leaves all eight to the caller: one has a marked vertex (the clipper's,
  * or setup's own culling). Only for triangles screening let through (the
  * small-box promise is screening's). */
 typedef bool luz_setup_eight_function(const uint32_t *indices, const uint32_t triangles[8],
                                           const luz_clip_vertex *vertices,
-                                          const luz_window_vertex *window,
                                           const luz_fixed_vertex *fixed, int width, int height,
                                           uint32_t draw_index, luz_interpolation interpolation,
                                           luz_triangle out[8], luz_setup_result result[8]);

@@ -160,36 +160,36 @@ static LUZ_CLONES void solve_planes(const double x[3], const double y[3],
     }
 }
 
+luz_window_vertex luz_setup_project_vertex(const luz_clip_vertex *vertex, int width, int height)
+{
+    const luz_vec4 p = vertex->position;
+    luz_window_vertex window = {0};
+    if (vertex->outcode != 0) {   /* only the clipper reads it */
+        window.fixed_x = LUZ_WINDOW_CLIPPED;
+        return window;
+    }
+    if (!(p.w > 0.0f) || !isfinite(p.x) || !isfinite(p.y) || !isfinite(p.z)) {
+        window.fixed_x = LUZ_WINDOW_INVALID;   /* unreachable unless NaN */
+        return window;
+    }
+    /* 1-2. Divide, viewport, snap. */
+    window.inverse_w = 1.0 / p.w;
+    double x_ndc = p.x * window.inverse_w, y_ndc = p.y * window.inverse_w;
+    window.x = clamp_to_limit((x_ndc + 1.0) * 0.5 * width);
+    window.y = clamp_to_limit((1.0 - y_ndc) * 0.5 * height);
+    window.fixed_x = (int32_t)snap(window.x);
+    window.fixed_y = (int32_t)snap(window.y);
+    window.depth = (p.z * window.inverse_w + 1.0) * 0.5;
+    return window;
+}
+
 void luz_setup_project(const luz_clip_vertex *vertices, uint32_t first, uint32_t end, int width,
                        int height, luz_window_vertex *out, luz_fixed_vertex *fixed)
 {
     for (uint32_t i = first; i < end; i++) {
-        const luz_vec4 p = vertices[i].position;
-        luz_window_vertex *window = &out[i];
-        if (vertices[i].outcode != 0) {   /* only the clipper reads it */
-            window->fixed_x = LUZ_WINDOW_CLIPPED;
-            window->fixed_y = 0;
-            continue;
-        }
-        if (!(p.w > 0.0f) || !isfinite(p.x) || !isfinite(p.y) || !isfinite(p.z)) {
-            window->fixed_x = LUZ_WINDOW_INVALID;   /* unreachable unless NaN */
-            window->fixed_y = 0;
-            continue;
-        }
-        /* 1-2. Divide, viewport, snap. */
-        window->inverse_w = 1.0 / p.w;
-        double x_ndc = p.x * window->inverse_w, y_ndc = p.y * window->inverse_w;
-        window->x = clamp_to_limit((x_ndc + 1.0) * 0.5 * width);
-        window->y = clamp_to_limit((1.0 - y_ndc) * 0.5 * height);
-        window->fixed_x = (int32_t)snap(window->x);
-        window->fixed_y = (int32_t)snap(window->y);
-        window->depth = (p.z * window->inverse_w + 1.0) * 0.5;
-    }
-    if (fixed != NULL) {
-        for (uint32_t i = first; i < end; i++) {
-            fixed[i].x = out[i].fixed_x;
-            fixed[i].y = out[i].fixed_y;
-        }
+        const luz_window_vertex window = luz_setup_project_vertex(&vertices[i], width, height);
+        if (out != NULL) out[i] = window;
+        if (fixed != NULL) fixed[i] = (luz_fixed_vertex){window.fixed_x, window.fixed_y};
     }
 }
 

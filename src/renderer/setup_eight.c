@@ -4,9 +4,8 @@
  *
  * In:  eight triangles of a draw that screening let through (screen.c: so
  *      each is a front face whose box of up to 2 x 2 pixel centres has one
- *      covered), their vertices in clip space and as luz_setup_project
- *      left them (window position, depth and 1/w in double, the snapped
- *      position and its markers).
+ *      covered), their vertices in clip space and their snapped positions
+ *      (with the markers) as luz_setup_project left them.
  * Out: for each lane, setup's result and, when VISIBLE, its record, the
  *      same bits luz_setup_projected(..., small_box_checked = true, ...)
  *      writes; or, when one of the eight has a vertex outside a clip
@@ -18,9 +17,14 @@
  * the second time from the cache, a triangle costs the same): some sixty
  * cycles of integer and double-precision work, which here runs eight
  * triangles to a vector (the sphere's geometry 16.8 -> 15.3 ms a frame).
+ * Each corner is projected here again (setup.c's luz_setup_project_vertex
+ * in lanes, luz_project_lanes) from its clip position, which lies beside
+ * its varyings: reading a window vertex from the vertex pass instead took
+ * a second scattered load a corner and 40 bytes a vertex of memory (the
+ * sphere's geometry 12.5 -> 12.0 ms a frame without it).
  *
- * The arithmetic is setup.c's, operation for operation: the box and the
- * edge functions in the same integers (coordinates below 2^24, so 32 x 32
+ * The arithmetic is setup.c's, operation for operation: the projection
+ * in double, the box and the edge functions in the same integers (coordinates below 2^24, so 32 x 32
  * -> 64-bit products are exact), the determinant, its reciprocal and each
  * plane (make_plane) in double with the same operations in the same order
  * and no fused multiply-add, each rounded to float as a C cast does
@@ -142,8 +146,8 @@ covered_lanes(__mmask8 testing, __m512i min_x, __m512i min_y, __m512i box_width,
 luz_setup_eight_function luz_setup_eight_avx512;
 
 bool luz_setup_eight_avx512(const uint32_t *indices, const uint32_t triangles[8],
-                            const luz_clip_vertex *vertices, const luz_window_vertex *window,
-                            const luz_fixed_vertex *fixed, int width, int height,
+                            const luz_clip_vertex *vertices, const luz_fixed_vertex *fixed,
+                            int width, int height,
                             uint32_t draw_index, luz_interpolation interpolation,
                             luz_triangle out[8], luz_setup_result result[8])
 {
@@ -211,36 +215,41 @@ bool luz_setup_eight_avx512(const uint32_t *indices, const uint32_t triangles[8]
     make_edge_lanes(fx2, fy2, fx0, fy0, &a[1], &b[1], &c[1]);
     make_edge_lanes(fx0, fy0, fx1, fy1, &a[2], &b[2], &c[2]);
 
-    /* 5. Planes, from the exact window positions, relative to the snapped
-     * vertex 0 (setup.c). Each corner's x, y, depth and 1/w are 32
-     * contiguous bytes of its window vertex, and its varyings 32 of its
-     * clip vertex: loaded a lane at a time and transposed into vectors
-     * (with a gather for each field instead, the 1M sphere's geometry
-     * took 20.7 ms a frame where one triangle at a time took 16.6, and
-     * these loads 15.6). */
+    /* 1-2 again, then 5. Planes, from the exact window positions,
+     * relative to the snapped vertex 0 (setup.c). Each corner's clip
+     * position and varyings are 16 and 32 contiguous bytes of its clip
+     * vertex: loaded a lane at a time and transposed into vectors (with a
+     * gather for each field instead, the 1M sphere's geometry took 20.7
+     * ms a frame where one triangle at a time took 16.6, and these loads
+     * 15.6). */
     __m512d x[3], y[3], depth[3], weight[3];
     __m256 varying[3][8];
-    const __m512i even_pairs = _mm512_set_epi64(13, 12, 5, 4, 9, 8, 1, 0);
-    const __m512i odd_pairs = _mm512_set_epi64(15, 14, 7, 6, 11, 10, 3, 2);
     for (int k = 0; k < 3; k++) {
-        __m512d pair[4];   /* lanes l and l + 4: x, y, depth, 1/w of each */
+        /* Clip positions: pair[l] holds lanes l and l + 4, (x, y, z, w)
+         * each; unpacked and shuffled, as a 4 x 4 transpose in each
+         * 128-bit half. */
+        __m256 pair[4];
         for (int lane = 0; lane < 4; lane++)
-            pair[lane] = _mm512_insertf64x4(
-                _mm512_castpd256_pd512(_mm256_loadu_pd(&window[corner[k][lane]].x)),
-                _mm256_loadu_pd(&window[corner[k][lane + 4]].x), 1);
-        /* Per 128-bit block, t0: (x, x) and (depth, depth) of lanes 0, 1
-         * then 4, 5; t1 the same of y and 1/w; t2 and t3 of lanes 2, 3
-         * and 6, 7. */
-        const __m512d t0 = _mm512_unpacklo_pd(pair[0], pair[1]);
-        const __m512d t1 = _mm512_unpackhi_pd(pair[0], pair[1]);
-        const __m512d t2 = _mm512_unpacklo_pd(pair[2], pair[3]);
-        const __m512d t3 = _mm512_unpackhi_pd(pair[2], pair[3]);
-        x[k] = _mm512_permutex2var_pd(t0, even_pairs, t2);
-        depth[k] = _mm512_permutex2var_pd(t0, odd_pairs, t2);
-        y[k] = _mm512_permutex2var_pd(t1, even_pairs, t3);
-        weight[k] = interpolation == LUZ_INTERPOLATION_AFFINE
-                        ? _mm512_set1_pd(1.0)
-                        : _mm512_permutex2var_pd(t1, odd_pairs, t3);
+            pair[lane] = _mm256_insertf128_ps(
+                _mm256_castps128_ps256(_mm_loadu_ps(&vertices[corner[k][lane]].position.x)),
+                _mm_loadu_ps(&vertices[corner[k][lane + 4]].position.x), 1);
+        const __m256 t0 = _mm256_unpacklo_ps(pair[0], pair[1]);   /* x0 x1 y0 y1 | x4 x5 y4 y5 */
+        const __m256 t1 = _mm256_unpackhi_ps(pair[0], pair[1]);   /* z0 z1 w0 w1 | ... */
+        const __m256 t2 = _mm256_unpacklo_ps(pair[2], pair[3]);
+        const __m256 t3 = _mm256_unpackhi_ps(pair[2], pair[3]);
+        const __m512d clip_x = _mm512_cvtps_pd(_mm256_shuffle_ps(t0, t2, 0x44));
+        const __m512d clip_y = _mm512_cvtps_pd(_mm256_shuffle_ps(t0, t2, 0xee));
+        const __m512d clip_z = _mm512_cvtps_pd(_mm256_shuffle_ps(t1, t3, 0x44));
+        const __m512d clip_w = _mm512_cvtps_pd(_mm256_shuffle_ps(t1, t3, 0xee));
+        /* Lanes in the order 0 1 2 3 4 5 6 7: each shuffle keeps lanes
+         * 0-3 in its low half and 4-7 in its high half. */
+        const luz_window_lanes projected =
+            luz_project_lanes(clip_x, clip_y, clip_z, clip_w, width, height);
+        x[k] = projected.x;
+        y[k] = projected.y;
+        depth[k] = projected.depth;
+        weight[k] = interpolation == LUZ_INTERPOLATION_AFFINE ? _mm512_set1_pd(1.0)
+                                                               : projected.inverse_w;
         for (int lane = 0; lane < 8; lane++)
             varying[k][lane] = _mm256_loadu_ps(vertices[corner[k][lane]].varyings);
         luz_transpose8(varying[k]);   /* varying[k][i]: varying i of every lane */

@@ -8,7 +8,8 @@
  * Out: for each vertex, the same bits as the two functions write: its
  *      luz_clip_vertex (clip position, world position and normal, uv,
  *      outcode), and, unless marked, its luz_window_vertex (window x, y,
- *      depth, 1/w in double, snapped position) and luz_fixed_vertex; but
+ *      depth, 1/w in double, snapped position; unless window is NULL)
+ *      and luz_fixed_vertex (unless fixed is NULL); but
  *      where two NaNs of different signs meet (NaN normals, uv or matrix
  *      entries, which no check keeps out), the NaN that comes out may have
  *      the other sign (x86 keeps one operand's, and the compiler orders
@@ -110,28 +111,11 @@ project_eight(__m256 x, __m256 y, __m256 z, __m256 w, __m256i outcode, double wi
 {
     const __m512d xd = _mm512_cvtps_pd(x), yd = _mm512_cvtps_pd(y);
     const __m512d zd = _mm512_cvtps_pd(z), wd = _mm512_cvtps_pd(w);
-    const __m512d one = _mm512_set1_pd(1.0), half = _mm512_set1_pd(0.5);
     const __m512d infinity = _mm512_set1_pd(INFINITY);
     /* 1. Divide and viewport, then the clamp to +-2^24 sub-pixel units. */
-    const __m512d inverse_w = _mm512_div_pd(one, wd);
-    const __m512d x_ndc = _mm512_mul_pd(xd, inverse_w), y_ndc = _mm512_mul_pd(yd, inverse_w);
-    __m512d window_x = _mm512_mul_pd(_mm512_mul_pd(_mm512_add_pd(x_ndc, one), half),
-                                     _mm512_set1_pd(width));
-    __m512d window_y = _mm512_mul_pd(_mm512_mul_pd(_mm512_sub_pd(one, y_ndc), half),
-                                     _mm512_set1_pd(height));
-    const __m512d limit = _mm512_set1_pd(LUZ_COORDINATE_LIMIT / LUZ_SUBPIXEL_ONE);
-    const __m512d lowest = _mm512_set1_pd(-LUZ_COORDINATE_LIMIT / LUZ_SUBPIXEL_ONE);
-    /* (Unreachable for a vertex inside the guard band, as in setup.c:
-     * a bound that holds whatever the input.) */
-    window_x = _mm512_mask_mov_pd(window_x, _mm512_cmp_pd_mask(window_x, limit, _CMP_GT_OQ),
-                                  limit);
-    window_x = _mm512_mask_mov_pd(window_x, _mm512_cmp_pd_mask(window_x, lowest, _CMP_LT_OQ),
-                                  lowest);
-    window_y = _mm512_mask_mov_pd(window_y, _mm512_cmp_pd_mask(window_y, limit, _CMP_GT_OQ),
-                                  limit);
-    window_y = _mm512_mask_mov_pd(window_y, _mm512_cmp_pd_mask(window_y, lowest, _CMP_LT_OQ),
-                                  lowest);
-    const __m512d depth = _mm512_mul_pd(_mm512_add_pd(_mm512_mul_pd(zd, inverse_w), one), half);
+    const luz_window_lanes projected = luz_project_lanes(xd, yd, zd, wd, width, height);
+    const __m512d window_x = projected.x, window_y = projected.y;
+    const __m512d depth = projected.depth, inverse_w = projected.inverse_w;
     /* 2. Snap: rounded to nearest even (the MXCSR's mode, llrint's). */
     const __m512d subpixel = _mm512_set1_pd(LUZ_SUBPIXEL_ONE);
     __m256i fixed_x = _mm512_cvtpd_epi32(_mm512_mul_pd(window_x, subpixel));
@@ -151,6 +135,7 @@ project_eight(__m256 x, __m256 y, __m256 z, __m256 w, __m256i outcode, double wi
     const __m512i packed = _mm512_or_si512(
         _mm512_cvtepu32_epi64(fixed_x), _mm512_slli_epi64(_mm512_cvtepu32_epi64(fixed_y), 32));
     if (fixed != NULL) _mm512_storeu_si512((void *)fixed, packed);
+    if (window == NULL) return;
     __m512i rows[8] = {_mm512_castpd_si512(window_x),  _mm512_castpd_si512(window_y),
                        _mm512_castpd_si512(depth),     _mm512_castpd_si512(inverse_w),
                        packed,                         _mm512_setzero_si512(),
@@ -213,7 +198,8 @@ sixteen(const luz_vertex *vertices, const float *model, const float *normal_matr
         const uint32_t base = i + 8 * (uint32_t)h;
         /* setup.c: the projection of these eight, from the lanes. */
         project_eight(half_of(clip_x, h), half_of(clip_y, h), half_of(clip_z, h),
-                      half_of(clip_w, h), half_of_int(outcode, h), width, height, &window[base],
+                      half_of(clip_w, h), half_of_int(outcode, h), width, height,
+                      window != NULL ? &window[base] : NULL,
                       fixed != NULL ? &fixed[base] : NULL);
         __m256 first[8], second[8];
         for (int k = 0; k < 8; k++) {
