@@ -48,55 +48,91 @@ static float uniform(uint32_t *state, float low, float high)
     return low + (high - low) * (float)(next_random(state) & 0xffff) / 65536.0f;
 }
 
+/* A draw: its mesh vertices in object space and its transforms, as
+ * setup in lanes reads them, and what the vertex stage and projection
+ * make of each vertex one at a time (clip, window, fixed), as setup one
+ * at a time reads them. */
 typedef struct mesh {
     uint32_t vertex_count, triangle_count;
+    luz_vertex *vertices;
+    luz_draw_transform transform;
     luz_clip_vertex *clip;
     luz_window_vertex *window;
     luz_fixed_vertex *fixed;
     uint32_t *indices;
 } mesh;
 
+/* A projection * view that takes world (x, y, z) to clip (x, y, z - 0.1,
+ * z) exactly (ones and zeros: each sum is x, y or z): a vertex's world z
+ * is its clip w, so a test places it on the screen, and its depth (1 -
+ * 0.1 / w + 1) / 2 varies with w. */
+static luz_mat4 w_from_z(void)
+{
+    luz_mat4 m = {{0}};
+    m.m[0] = 1.0f;            /* column 0: x -> clip x */
+    m.m[5] = 1.0f;            /* column 1: y -> clip y */
+    m.m[10] = 1.0f;           /* column 2: z -> clip z and clip w */
+    m.m[11] = 1.0f;
+    m.m[14] = -0.1f;          /* column 3: the translation of clip z */
+    return m;
+}
+
 static mesh mesh_create(uint32_t vertex_count, uint32_t triangle_count)
 {
-    mesh m = {vertex_count, triangle_count, calloc(vertex_count, sizeof(luz_clip_vertex)),
+    mesh m = {vertex_count,
+              triangle_count,
+              calloc(vertex_count, sizeof(luz_vertex)),
+              {0},
+              calloc(vertex_count, sizeof(luz_clip_vertex)),
               calloc(vertex_count, sizeof(luz_window_vertex)),
               calloc(vertex_count, sizeof(luz_fixed_vertex)),
               calloc(3 * (size_t)triangle_count, sizeof(uint32_t))};
-    assert_true(m.clip && m.window && m.fixed && m.indices);
+    assert_true(m.vertices && m.clip && m.window && m.fixed && m.indices);
+    m.transform = (luz_draw_transform){m.vertices, luz_mat4_identity(),
+                                       luz_mat3_normal_matrix(luz_mat4_identity()), w_from_z()};
     return m;
 }
 
 static void mesh_destroy(mesh *m)
 {
+    free(m->vertices);
     free(m->clip);
     free(m->window);
     free(m->fixed);
     free(m->indices);
 }
 
-/* Vertex i's window and snapped positions, as the vertex pass leaves
- * them: luz_setup_project of its clip vertex. */
-static void project(mesh *m, uint32_t i)
+/* How the vertex pass sees vertex i: its clip vertex (the vertex stage's,
+ * but for the outcode, which a test may set: 0 keeps a vertex beyond the
+ * guard band, -1 leaves the stage's), window and snapped positions. */
+static void project_with(mesh *m, uint32_t i, int outcode)
 {
+    m->clip[i] = luz_vertex_stage_one(&m->transform, i);
+    if (outcode >= 0) m->clip[i].outcode = (unsigned)outcode;
     m->window[i] = luz_setup_project_vertex(&m->clip[i], WIDTH, HEIGHT);
     m->fixed[i] = (luz_fixed_vertex){m->window[i].fixed_x, m->window[i].fixed_y};
 }
 
-/* Vertex i at clip w (the window position divides by it), placed so that
- * it projects to within a sub-pixel unit or so of (X, Y) in fixed point
- * (float clip coordinates round it), at a random depth, with random
- * varyings. */
+static void project(mesh *m, uint32_t i)
+{
+    project_with(m, i, -1);
+}
+
+/* Vertex i at clip w (the window position divides by it), placed so that,
+ * with the identity model, it projects to within a sub-pixel unit or so
+ * of (X, Y) in fixed point (float clip coordinates round it), with a
+ * random normal and uv. Inside the guard band or not, it is not marked
+ * (as if the clipper had made it). */
 static void set_vertex_at(mesh *m, uint32_t i, int32_t fixed_x, int32_t fixed_y, float w,
                           uint32_t *random)
 {
     const double x_ndc = 2.0 * fixed_x / (LUZ_SUBPIXEL_ONE * (double)WIDTH) - 1.0;
     const double y_ndc = 1.0 - 2.0 * fixed_y / (LUZ_SUBPIXEL_ONE * (double)HEIGHT);
-    m->clip[i].position = (luz_vec4){(float)(x_ndc * w), (float)(y_ndc * w),
-                                     uniform(random, -1.0f, 1.0f) * w, w};
-    m->clip[i].outcode = 0;
-    for (int k = 0; k < LUZ_VARYING_COUNT; k++)
-        m->clip[i].varyings[k] = uniform(random, -100.0f, 100.0f);
-    project(m, i);
+    m->vertices[i] = (luz_vertex){
+        {(float)(x_ndc * w), (float)(y_ndc * w), w},
+        {uniform(random, -1.0f, 1.0f), uniform(random, -1.0f, 1.0f), uniform(random, -1.0f, 1.0f)},
+        {uniform(random, -4.0f, 4.0f), uniform(random, -4.0f, 4.0f)}};
+    project_with(m, i, 0);
 }
 
 /* The same at a random w, 1/w from 0.05 to 10. */
@@ -122,12 +158,10 @@ static bool set_collinear_front_face(mesh *m, uint32_t t, uint32_t *random)
     const uint32_t i = 3 * t;
     set_vertex_at(m, i, centre_x, centre_y, 1.0f, random);
     for (uint32_t k = 1; k < 3; k++) {
-        m->clip[i + k] = m->clip[i];
-        m->clip[i + k].position.x += (float)k * step_x;
-        m->clip[i + k].position.y += (float)k * step_y;
-        for (int v = 0; v < LUZ_VARYING_COUNT; v++)
-            m->clip[i + k].varyings[v] = uniform(random, -100.0f, 100.0f);
-        project(m, i + k);
+        set_vertex_at(m, i + k, centre_x, centre_y, 1.0f, random);   /* its normal and uv */
+        m->vertices[i + k].position.x = m->vertices[i].position.x + (float)k * step_x;
+        m->vertices[i + k].position.y = m->vertices[i].position.y + (float)k * step_y;
+        project_with(m, i + k, 0);
     }
     const luz_window_vertex *w = &m->window[i];
     const double determinant =
@@ -162,8 +196,8 @@ static tally check_groups(const mesh *m, luz_setup_eight_function *setup_eight,
         luz_triangle out[8];
         luz_setup_result result[8];
         memset(out, 0xA5, sizeof out);
-        const bool left = setup_eight(m->indices, triangles, m->clip, m->fixed, WIDTH, HEIGHT, 7,
-                                      interpolation, out, result);
+        const bool left = setup_eight(m->indices, triangles, &m->transform, m->fixed, WIDTH,
+                                      HEIGHT, 7, interpolation, out, result);
         bool group_marked = false;   /* then the eight are left, else none */
         for (int lane = 0; lane < 8; lane++)
             for (int k = 0; k < 3; k++) {
@@ -236,13 +270,10 @@ static void test_lanes_agree_with_setup(void **state)
                 y = (next_random(&random) & 1) ? (1 << 24) : -(1 << 24);
             }
             set_vertex(&m, i, x, y, &random);
-            if (kind == 97 && k == 1) {   /* outside a clip plane */
-                m.clip[i].outcode = 1;
-                project(&m, i);
-            }
+            if (kind == 97 && k == 1) project_with(&m, i, 1);   /* outside a clip plane */
             if (kind == 98 && k == 2) {   /* not projectable */
-                m.clip[i].position.w = -1.0f;
-                project(&m, i);
+                m.vertices[i].position.z = -1.0f;   /* w */
+                project_with(&m, i, 0);
             }
         }
         if (kind >= 95 && kind <= 96)   /* no plane to solve */
@@ -282,6 +313,24 @@ static void test_lanes_agree_with_setup(void **state)
     }
     print_message("%d front faces culled for a zero determinant\n", collinear_culled);
     assert_true(collinear_culled > 300);
+    /* The same triangles under a model matrix that turns and moves them
+     * (and a normal matrix that is not the identity), the outcodes now
+     * the vertex stage's own: a transform done differently in lanes
+     * shows here. */
+    m.transform.model = luz_mat4_rotate(luz_mat4_translate(luz_mat4_identity(),
+                                                           (luz_vec3){0.3f, -0.2f, 0.05f}),
+                                        0.3f, (luz_vec3){0.1f, 0.2f, 0.97f});
+    m.transform.normal_matrix = luz_mat3_normal_matrix(m.transform.model);
+    for (uint32_t i = 0; i < m.vertex_count; i++) project(&m, i);
+    for (int mode = 0; mode < 2; mode++) {
+        const luz_interpolation interpolation =
+            mode ? LUZ_INTERPOLATION_AFFINE : LUZ_INTERPOLATION_PERSPECTIVE;
+        const tally count = check_groups(&m, setup_eight, interpolation);
+        print_message("turned, %s: %d visible, %d culled, %d off screen, %d left to setup\n",
+                      luz_interpolation_name(interpolation), count.visible, count.culled,
+                      count.offscreen, count.left);
+        assert_true(count.visible > 3000);
+    }
     mesh_destroy(&m);
 }
 
@@ -348,15 +397,22 @@ static void test_planes_that_cancel(void **state)
         }
         const double rx = m.fixed[3 * t].x / (double)LUZ_SUBPIXEL_ONE;
         const double ry = m.fixed[3 * t].y / (double)LUZ_SUBPIXEL_ONE;
-        for (int v = 0; v < LUZ_VARYING_COUNT; v++) {
+        /* The normal and uv are the varyings a mesh vertex sets (with
+         * the identity model, the varyings are these floats); the world
+         * position is where the vertex is. */
+        for (int v = 0; v < 5; v++) {
             const double a = uniform(&random, 1000.0f, 30000.0f);
             const double b = uniform(&random, -30000.0f, 30000.0f);
             for (int k = 0; k < 3; k++) {
-                const luz_window_vertex *w = &m.window[3 * t + (uint32_t)k];
-                m.clip[3 * t + (uint32_t)k].varyings[v] =
-                    (float)(a * (w->x - rx) + b * (w->y - ry));
+                const uint32_t i = 3 * t + (uint32_t)k;
+                const luz_window_vertex *w = &m.window[i];
+                float *free_floats[5] = {&m.vertices[i].normal.x, &m.vertices[i].normal.y,
+                                         &m.vertices[i].normal.z, &m.vertices[i].uv.x,
+                                         &m.vertices[i].uv.y};
+                *free_floats[v] = (float)(a * (w->x - rx) + b * (w->y - ry));
             }
         }
+        for (uint32_t k = 0; k < 3; k++) project_with(&m, 3 * t + k, 0);
     }
     const tally count = check_groups(&m, setup_eight, LUZ_INTERPOLATION_PERSPECTIVE);
     assert_true(count.visible > 3000);

@@ -59,10 +59,10 @@ typedef struct geometry_batch {
     uint32_t draw_first, draw_end;
     uint32_t triangle_first, triangle_end;
     bool whole_draws;
-    const luz_clip_vertex *vertices;
-    const luz_window_vertex *window;   /* the same vertices, projected (NULL
-                                          with setup in lanes, which projects
-                                          its corners itself) */
+    const luz_clip_vertex *vertices;   /* NULL with setup in lanes, which
+                                          shades its corners itself */
+    const luz_window_vertex *window;   /* the same vertices, projected (or
+                                          NULL likewise) */
     const luz_fixed_vertex *fixed;     /* and their snapped positions alone */
     /* What it made, reused from frame to frame. */
     luz_triangle *triangles;
@@ -78,7 +78,8 @@ typedef struct geometry_batch {
 
 typedef struct vertex_range {
     uint32_t draw, first, end;
-    luz_clip_vertex *out;          /* the draw's vertex 0 in the arena */
+    luz_clip_vertex *out;          /* the draw's vertex 0 in the arena (or
+                                      NULL: positions alone) */
     luz_window_vertex *window;     /* the same, projected (or NULL) */
     luz_fixed_vertex *fixed;       /* and snapped */
 } vertex_range;
@@ -96,7 +97,8 @@ struct luz_geometry {
     int batch_count, batch_capacity;
     vertex_range *vertex_ranges;
     size_t vertex_range_count, vertex_range_capacity;
-    luz_clip_vertex *arena;        /* the big draws' vertices */
+    luz_clip_vertex *arena;        /* the big draws' vertices (only when
+                                      setup is one triangle at a time) */
     size_t arena_capacity;
     luz_window_vertex *window_arena;   /* the same, projected (only when
                                           setup is one triangle at a time) */
@@ -358,14 +360,16 @@ static int plan(luz_geometry *geometry, luz_thread_pool *pool, geometry_job *job
         else if (is_big(draw))
             arena_vertices += draw->mesh->vertex_count;
     }
-    /* Setup in lanes projects each corner again from its clip vertex:
-     * then the big draws keep no window vertices (40 bytes a vertex). */
-    const bool keep_window = job->setup_eight == NULL;
-    if (!reserve((void **)&geometry->arena, &geometry->arena_capacity, arena_vertices,
-                 sizeof *geometry->arena) ||
-        (keep_window &&
-         !reserve((void **)&geometry->window_arena, &geometry->window_arena_capacity,
-                  arena_vertices, sizeof *geometry->window_arena)) ||
+    /* Setup in lanes shades and projects each corner again from the
+     * mesh (position-only shading, setup_eight.c): then the big draws'
+     * vertex pass, in lanes too, shades positions alone and keeps their
+     * snapped positions, 8 bytes a vertex, not 100. */
+    const bool keep_vertices = job->setup_eight == NULL || job->vertex_project == NULL;
+    if ((keep_vertices &&
+         (!reserve((void **)&geometry->arena, &geometry->arena_capacity, arena_vertices,
+                   sizeof *geometry->arena) ||
+          !reserve((void **)&geometry->window_arena, &geometry->window_arena_capacity,
+                   arena_vertices, sizeof *geometry->window_arena))) ||
         !reserve((void **)&geometry->fixed_arena, &geometry->fixed_arena_capacity,
                  arena_vertices, sizeof *geometry->fixed_arena))
         return luz_error_set(error, "out of memory for the frame's %zu vertices",
@@ -392,8 +396,8 @@ static int plan(luz_geometry *geometry, luz_thread_pool *pool, geometry_job *job
             continue;
         }
         open = NULL;
-        luz_clip_vertex *vertices = geometry->arena + arena_used;
-        luz_window_vertex *window = keep_window ? geometry->window_arena + arena_used : NULL;
+        luz_clip_vertex *vertices = keep_vertices ? geometry->arena + arena_used : NULL;
+        luz_window_vertex *window = keep_vertices ? geometry->window_arena + arena_used : NULL;
         luz_fixed_vertex *fixed = geometry->fixed_arena + arena_used;
         const uint32_t vertex_count = draw->mesh->vertex_count;
         arena_used += vertex_count;
@@ -452,12 +456,12 @@ static void vertex_job(void *context, int range_index, int worker_index)
     if (job->vertex_project != NULL) {   /* the same, sixteen vertices at a time */
         job->vertex_project(draw, job->uniforms->view_projection, range->first, range->end,
                             job->width, job->height, range->out, range->window, range->fixed);
-        return;
+    } else {   /* (the arena is whole: plan) */
+        luz_vertex_stage_range(draw, job->uniforms->view_projection, range->first, range->end,
+                               range->out);
+        luz_setup_project(range->out, range->first, range->end, job->width, job->height,
+                          range->window, range->fixed);
     }
-    luz_vertex_stage_range(draw, job->uniforms->view_projection, range->first, range->end,
-                           range->out);
-    luz_setup_project(range->out, range->first, range->end, job->width, job->height,
-                      range->window, range->fixed);
 }
 
 /* ---- batches: clipping and setup --------------------------------------- */
@@ -478,19 +482,30 @@ static void set_up(geometry_batch *batch, const geometry_job *job, const luz_cli
 }
 
 /* Clips and sets up triangle t of draw draw_index, whose clip-space
- * vertices are at vertices, and projected at window (NULL: the vertex
- * pass kept no window vertices, and the three corners are projected
- * here). */
+ * vertices are at vertices, and projected at window; either NULL where
+ * the vertex pass kept only snapped positions (position-only shading,
+ * setup_eight.c): then the three corners go through the vertex stage
+ * (transform) and are projected here. */
 static void one_triangle(geometry_batch *batch, const geometry_job *job, uint32_t draw_index,
                          const uint32_t *indices, const luz_clip_vertex *vertices,
-                         const luz_window_vertex *window, uint32_t t)
+                         const luz_window_vertex *window, const luz_draw_transform *transform,
+                         uint32_t t)
 {
     const uint32_t ia = indices[3 * (size_t)t], ib = indices[3 * (size_t)t + 1],
                    ic = indices[3 * (size_t)t + 2];
-    const luz_clip_vertex *a = &vertices[ia], *b = &vertices[ib], *c = &vertices[ic];
+    luz_clip_vertex shaded[3];
+    const luz_clip_vertex *a, *b, *c;
+    if (vertices != NULL) {
+        a = &vertices[ia], b = &vertices[ib], c = &vertices[ic];
+    } else {
+        shaded[0] = luz_vertex_stage_one(transform, ia);
+        shaded[1] = luz_vertex_stage_one(transform, ib);
+        shaded[2] = luz_vertex_stage_one(transform, ic);
+        a = &shaded[0], b = &shaded[1], c = &shaded[2];
+    }
     luz_window_vertex corners[3];
     const luz_window_vertex *window_a, *window_b, *window_c;
-    if (window != NULL) {
+    if (window != NULL && vertices != NULL) {
         window_a = &window[ia], window_b = &window[ib], window_c = &window[ic];
     } else {
         corners[0] = luz_setup_project_vertex(a, job->width, job->height);
@@ -547,7 +562,7 @@ static void one_triangle(geometry_batch *batch, const geometry_job *job, uint32_
 static void eight_triangles(geometry_batch *batch, const geometry_job *job, uint32_t draw_index,
                             const uint32_t *indices, const luz_clip_vertex *vertices,
                             const luz_window_vertex *window, const luz_fixed_vertex *fixed,
-                            const uint32_t survivors[8])
+                            const luz_draw_transform *transform, const uint32_t survivors[8])
 {
     if (!reserve((void **)&batch->triangles, &batch->capacity, batch->count + 8,
                  sizeof *batch->triangles)) {
@@ -556,10 +571,11 @@ static void eight_triangles(geometry_batch *batch, const geometry_job *job, uint
     }
     luz_triangle *out = &batch->triangles[batch->count];
     luz_setup_result result[8];
-    if (job->setup_eight(indices, survivors, vertices, fixed, job->width, job->height,
+    if (job->setup_eight(indices, survivors, transform, fixed, job->width, job->height,
                          draw_index, job->uniforms->interpolation, out, result)) {
         for (int lane = 0; lane < 8 && !batch->out_of_memory; lane++)
-            one_triangle(batch, job, draw_index, indices, vertices, window, survivors[lane]);
+            one_triangle(batch, job, draw_index, indices, vertices, window, transform,
+                         survivors[lane]);
         return;
     }
     /* Each visible record moved down over those of the lanes before it
@@ -581,13 +597,20 @@ static void eight_triangles(geometry_batch *batch, const geometry_job *job, uint
 /* Clips and sets up triangles [first, end) of draw draw_index: screening
  * first drops, many at a time, the back faces and the triangles that
  * cover no pixel centre (screen.c), then those left are set up eight at a
- * time where the CPU can (setup_eight.c), else each alone. */
+ * time where the CPU can (setup_eight.c), else each alone. vertices and
+ * window: the draw's, or NULL (position-only shading: the corners are
+ * shaded from the mesh). */
 static void triangles_of_draw(geometry_batch *batch, const geometry_job *job,
                               uint32_t draw_index, const luz_clip_vertex *vertices,
                               const luz_window_vertex *window, const luz_fixed_vertex *fixed,
                               uint32_t first, uint32_t end)
 {
-    const uint32_t *indices = job->frame->draws[draw_index].mesh->indices;
+    const luz_draw *draw = &job->frame->draws[draw_index];
+    const uint32_t *indices = draw->mesh->indices;
+    /* The draw's transforms (its normal matrix an inverse), worked out
+     * only when a corner is shaded here: a cube of the lab never is. */
+    luz_draw_transform transform;
+    bool have_transform = false;
     uint32_t survivors[SCREEN_CHUNK];
     for (uint32_t chunk = first; chunk < end && !batch->out_of_memory; chunk += SCREEN_CHUNK) {
         const uint32_t chunk_end = end - chunk > SCREEN_CHUNK ? chunk + SCREEN_CHUNK : end;
@@ -596,13 +619,19 @@ static void triangles_of_draw(geometry_batch *batch, const geometry_job *job,
                                          job->height, survivors, &culled);
         batch->submitted += chunk_end - chunk;
         batch->culled += culled;
+        if (!have_transform && (vertices == NULL || (job->setup_eight != NULL && count >= 8))) {
+            transform = luz_draw_transform_of(draw, job->uniforms->view_projection);
+            have_transform = true;
+        }
+        const luz_draw_transform *shading = have_transform ? &transform : NULL;
         size_t k = 0;
         if (job->setup_eight != NULL)
             for (; k + 8 <= count && !batch->out_of_memory; k += 8)
                 eight_triangles(batch, job, draw_index, indices, vertices, window, fixed,
-                                &survivors[k]);
+                                shading, &survivors[k]);
         for (; k < count && !batch->out_of_memory; k++)
-            one_triangle(batch, job, draw_index, indices, vertices, window, survivors[k]);
+            one_triangle(batch, job, draw_index, indices, vertices, window, shading,
+                         survivors[k]);
     }
 }
 

@@ -138,6 +138,23 @@ void luz_vertex_stage(const luz_draw *draw, luz_mat4 view_projection, luz_clip_v
 void luz_vertex_stage_range(const luz_draw *draw, luz_mat4 view_projection, uint32_t first,
                             uint32_t end, luz_clip_vertex *out);
 
+/* What the vertex stage applies to a draw's vertices: its mesh, model
+ * matrix and normal matrix (worked out once), and the frame's
+ * projection * view. */
+typedef struct luz_draw_transform {
+    const luz_vertex *vertices;   /* the mesh's */
+    luz_mat4 model;
+    luz_mat3 normal_matrix;
+    luz_mat4 view_projection;
+} luz_draw_transform;
+
+luz_draw_transform luz_draw_transform_of(const luz_draw *draw, luz_mat4 view_projection);
+/* Mesh vertex i through the vertex stage: the luz_clip_vertex that
+ * luz_vertex_stage gives it, for a stage that needs a few vertices, not
+ * the draw's (setup of the corners a big draw's vertex pass did not keep,
+ * geometry.c). */
+luz_clip_vertex luz_vertex_stage_one(const luz_draw_transform *transform, uint32_t i);
+
 /* ---- clipping ---------------------------------------------------------- */
 
 /* x and y are clipped to a guard band GUARD times wider than the viewport,
@@ -500,17 +517,17 @@ luz_screen_function *luz_screen_for(luz_packet_isa isa, bool *checks_small_boxes
 
 /* luz_setup_projected(..., small_box_checked = true, ...) for eight
  * triangles of one draw at once, triangles[lane] (vertex indices
- * indices[3 t .. 3 t + 2], at vertices in clip space, fixed as
+ * indices[3 t .. 3 t + 2] of transform's mesh, fixed as
  * luz_setup_project left them): result[lane] and, where VISIBLE,
- * out[lane] (all but its primitive) are what setup gives from the
- * corners' luz_setup_project_vertex, bit for bit (it projects them
- * itself: no window vertex is read).
+ * out[lane] (all but its primitive) are what setup gives for the corners'
+ * luz_vertex_stage_one and luz_setup_project_vertex, bit for bit (it runs
+ * both itself: no clip or window vertex is read).
  * Returns true, and then the results and records mean nothing, when it
  * leaves all eight to the caller: one has a marked vertex (the clipper's,
  * or setup's own culling). Only for triangles screening let through (the
  * small-box promise is screening's). */
 typedef bool luz_setup_eight_function(const uint32_t *indices, const uint32_t triangles[8],
-                                          const luz_clip_vertex *vertices,
+                                          const luz_draw_transform *transform,
                                           const luz_fixed_vertex *fixed, int width, int height,
                                           uint32_t draw_index, luz_interpolation interpolation,
                                           luz_triangle out[8], luz_setup_result result[8]);
@@ -524,7 +541,7 @@ luz_setup_eight_function *luz_setup_eight_for(luz_packet_isa isa);
 /* luz_vertex_stage_range and then luz_setup_project for vertices [first,
  * end) of draw, sixteen at a time: the same bytes in out, in window (but
  * for the fields of a marked vertex other than its marker, which mean
- * nothing either way) and in fixed (unless NULL), up to the sign of a
+ * nothing either way) and in fixed, each unless NULL, up to the sign of a
  * NaN that NaN normals, uv or matrix entries make (vertex_sixteen.c). */
 typedef void luz_vertex_project_function(const luz_draw *draw, luz_mat4 view_projection,
                                          uint32_t first, uint32_t end, int width, int height,

@@ -1,31 +1,44 @@
 /*
- * setup_eight.c: triangle setup (setup.c's luz_setup_projected) for eight
- * triangles at once, one per 64-bit lane of AVX-512 vectors.
+ * setup_eight.c: the vertex stage of a triangle's corners and triangle
+ * setup (vertex.c, then setup.c's luz_setup_project_vertex and
+ * luz_setup_projected) for eight triangles at once, one per lane of
+ * AVX-512 vectors.
  *
  * In:  eight triangles of a draw that screening let through (screen.c: so
  *      each is a front face whose box of up to 2 x 2 pixel centres has one
- *      covered), their vertices in clip space and their snapped positions
- *      (with the markers) as luz_setup_project left them.
+ *      covered), the draw's mesh and transforms (luz_draw_transform), and
+ *      its vertices' snapped positions (with the markers) as
+ *      luz_setup_project left them.
  * Out: for each lane, setup's result and, when VISIBLE, its record, the
  *      same bits luz_setup_projected(..., small_box_checked = true, ...)
- *      writes; or, when one of the eight has a vertex outside a clip
- *      plane or not projected (the clipper's or setup's own business),
- *      all eight left to luz_setup_projected.
+ *      writes for the corners' clip vertices (luz_vertex_stage_one) and
+ *      their projection; or, when one of the eight has a vertex outside a
+ *      clip plane or not projected (the clipper's or setup's own
+ *      business), all eight left to luz_setup_projected.
  *
  * Why: on a mesh of a million triangles about a quarter reach setup, and
  * one at a time setup is arithmetic, not memory (set up twice in a row,
  * the second time from the cache, a triangle costs the same): some sixty
  * cycles of integer and double-precision work, which here runs eight
  * triangles to a vector (the sphere's geometry 16.8 -> 15.3 ms a frame).
- * Each corner is projected here again (setup.c's luz_setup_project_vertex
- * in lanes, luz_project_lanes) from its clip position, which lies beside
- * its varyings: reading a window vertex from the vertex pass instead took
- * a second scattered load a corner and 40 bytes a vertex of memory (the
- * sphere's geometry 12.5 -> 12.0 ms a frame without it).
  *
- * The arithmetic is setup.c's, operation for operation: the projection
- * in double, the box and the edge functions in the same integers (coordinates below 2^24, so 32 x 32
- * -> 64-bit products are exact), the determinant, its reciprocal and each
+ * Position-only shading: with setup in lanes, a big draw's vertex pass
+ * transforms positions alone and keeps only their snapped positions,
+ * which screening reads (8 bytes a vertex); each corner that reaches
+ * setup goes through the vertex stage and the projection again here,
+ * from the mesh (as tile-based GPUs shade positions first and the rest
+ * of a vertex only for triangles that survive culling: ARM Mali's
+ * IDVS). A closed mesh's corners are a quarter of its triangles' three,
+ * so that is less work than it looks, and it saves the memory: the
+ * sphere's vertex pass wrote 100 bytes a vertex (clip vertex, window
+ * vertex, snapped position) that setup read back scattered, where now it
+ * writes 8 (geometry 12.4 -> 11.2 ms a frame).
+ *
+ * The arithmetic is vertex.c's and setup.c's, operation for operation:
+ * the transforms in float, summed left to right, the projection in
+ * double, the box and the edge functions in the same integers
+ * (coordinates below 2^24, so 32 x 32 -> 64-bit products are exact), the
+ * determinant, its reciprocal and each
  * plane (make_plane) in double with the same operations in the same order
  * and no fused multiply-add, each rounded to float as a C cast does
  * (round to nearest even). tests/test_setup_eight.c holds every lane to
@@ -52,7 +65,12 @@
 _Static_assert(offsetof(luz_window_vertex, y) == 8 && offsetof(luz_window_vertex, depth) == 16 &&
                    offsetof(luz_window_vertex, inverse_w) == 24,
                "a window vertex begins with x, y, depth and 1/w");
-_Static_assert(LUZ_VARYING_COUNT == 8, "a clip vertex's varyings are eight floats");
+_Static_assert(LUZ_VARYING_COUNT == 8 && LUZ_VARYING_POSITION == 0 && LUZ_VARYING_NORMAL == 3 &&
+                   LUZ_VARYING_UV == 6,
+               "the varyings are world position, normal and uv: eight floats");
+_Static_assert(sizeof(luz_vertex) == 8 * sizeof(float) && offsetof(luz_vertex, normal) == 12 &&
+                   offsetof(luz_vertex, uv) == 24,
+               "a mesh vertex is eight floats: position, normal, uv");
 /* Gathers and the corner arrays take signed 32-bit indices. */
 _Static_assert(LUZ_MESH_MAX_VERTICES <= (1u << 30), "vertex indices fit an int32");
 _Static_assert(offsetof(luz_triangle, edges) == 16 && sizeof(luz_edge) == 16,
@@ -80,6 +98,28 @@ make_edge_lanes(__m512i xi, __m512i yi, __m512i xj, __m512i yj, __m512i *a, __m5
     const __m512i c0 = _mm512_sub_epi64(zero, _mm512_sub_epi64(_mm512_mul_epi32(dy, xi),
                                                                _mm512_mul_epi32(dx, yi)));
     *c = _mm512_mask_sub_epi64(c0, (__mmask8)~top_or_left, c0, _mm512_set1_epi64(1));
+}
+
+/* vertex.c's transform4 with w = 1, row r of a column-major 4 x 4: a[r]
+ * x + a[4 + r] y + a[8 + r] z + a[12 + r], summed left to right in float
+ * (a[12 + r] * 1.0f is a[12 + r] exactly)... */
+static inline __attribute__((always_inline)) __m256
+transform_row(const float *a, int r, __m256 x, __m256 y, __m256 z)
+{
+    return _mm256_add_ps(
+        _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(a[r]), x),
+                                    _mm256_mul_ps(_mm256_set1_ps(a[4 + r]), y)),
+                      _mm256_mul_ps(_mm256_set1_ps(a[8 + r]), z)),
+        _mm256_set1_ps(a[12 + r]));
+}
+
+/* ... and its transform3, row r of a column-major 3 x 3. */
+static inline __attribute__((always_inline)) __m256
+transform_row3(const float *a, int r, __m256 x, __m256 y, __m256 z)
+{
+    return _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(a[r]), x),
+                                       _mm256_mul_ps(_mm256_set1_ps(a[3 + r]), y)),
+                         _mm256_mul_ps(_mm256_set1_ps(a[6 + r]), z));
 }
 
 /* make_plane for eight triangles: the plane through (x_k, y_k, value_k),
@@ -146,8 +186,8 @@ covered_lanes(__mmask8 testing, __m512i min_x, __m512i min_y, __m512i box_width,
 luz_setup_eight_function luz_setup_eight_avx512;
 
 bool luz_setup_eight_avx512(const uint32_t *indices, const uint32_t triangles[8],
-                            const luz_clip_vertex *vertices, const luz_fixed_vertex *fixed,
-                            int width, int height,
+                            const luz_draw_transform *transform,
+                            const luz_fixed_vertex *fixed, int width, int height,
                             uint32_t draw_index, luz_interpolation interpolation,
                             luz_triangle out[8], luz_setup_result result[8])
 {
@@ -215,44 +255,48 @@ bool luz_setup_eight_avx512(const uint32_t *indices, const uint32_t triangles[8]
     make_edge_lanes(fx2, fy2, fx0, fy0, &a[1], &b[1], &c[1]);
     make_edge_lanes(fx0, fy0, fx1, fy1, &a[2], &b[2], &c[2]);
 
-    /* 1-2 again, then 5. Planes, from the exact window positions,
-     * relative to the snapped vertex 0 (setup.c). Each corner's clip
-     * position and varyings are 16 and 32 contiguous bytes of its clip
-     * vertex: loaded a lane at a time and transposed into vectors (with a
-     * gather for each field instead, the 1M sphere's geometry took 20.7
-     * ms a frame where one triangle at a time took 16.6, and these loads
-     * 15.6). */
+    /* The vertex stage and steps 1-2 again, then 5. Planes, from the
+     * exact window positions, relative to the snapped vertex 0 (setup.c).
+     * Each corner's mesh vertex is 32 contiguous bytes: loaded a lane at
+     * a time and transposed into vectors (with a gather for each field
+     * instead, the 1M sphere's geometry took 20.7 ms a frame where one
+     * triangle at a time took 16.6, and these loads 15.6). */
     __m512d x[3], y[3], depth[3], weight[3];
     __m256 varying[3][8];
+    const float *model = transform->model.m, *normal_matrix = transform->normal_matrix.m;
+    const float *view_projection = transform->view_projection.m;
     for (int k = 0; k < 3; k++) {
-        /* Clip positions: pair[l] holds lanes l and l + 4, (x, y, z, w)
-         * each; unpacked and shuffled, as a 4 x 4 transpose in each
-         * 128-bit half. */
-        __m256 pair[4];
-        for (int lane = 0; lane < 4; lane++)
-            pair[lane] = _mm256_insertf128_ps(
-                _mm256_castps128_ps256(_mm_loadu_ps(&vertices[corner[k][lane]].position.x)),
-                _mm_loadu_ps(&vertices[corner[k][lane + 4]].position.x), 1);
-        const __m256 t0 = _mm256_unpacklo_ps(pair[0], pair[1]);   /* x0 x1 y0 y1 | x4 x5 y4 y5 */
-        const __m256 t1 = _mm256_unpackhi_ps(pair[0], pair[1]);   /* z0 z1 w0 w1 | ... */
-        const __m256 t2 = _mm256_unpacklo_ps(pair[2], pair[3]);
-        const __m256 t3 = _mm256_unpackhi_ps(pair[2], pair[3]);
-        const __m512d clip_x = _mm512_cvtps_pd(_mm256_shuffle_ps(t0, t2, 0x44));
-        const __m512d clip_y = _mm512_cvtps_pd(_mm256_shuffle_ps(t0, t2, 0xee));
-        const __m512d clip_z = _mm512_cvtps_pd(_mm256_shuffle_ps(t1, t3, 0x44));
-        const __m512d clip_w = _mm512_cvtps_pd(_mm256_shuffle_ps(t1, t3, 0xee));
-        /* Lanes in the order 0 1 2 3 4 5 6 7: each shuffle keeps lanes
-         * 0-3 in its low half and 4-7 in its high half. */
-        const luz_window_lanes projected =
-            luz_project_lanes(clip_x, clip_y, clip_z, clip_w, width, height);
+        /* Each corner's mesh vertex, eight floats (position, normal, uv),
+         * transposed into lanes. */
+        __m256 in[8];
+        for (int lane = 0; lane < 8; lane++)
+            in[lane] = _mm256_loadu_ps(&transform->vertices[corner[k][lane]].position.x);
+        luz_transpose8(in);
+        /* vertex.c: world = model p, normal = N n, clip = VP world; the
+         * varyings are world, normal and uv. */
+        const __m256 world_x = transform_row(model, 0, in[0], in[1], in[2]);
+        const __m256 world_y = transform_row(model, 1, in[0], in[1], in[2]);
+        const __m256 world_z = transform_row(model, 2, in[0], in[1], in[2]);
+        varying[k][LUZ_VARYING_POSITION + 0] = world_x;
+        varying[k][LUZ_VARYING_POSITION + 1] = world_y;
+        varying[k][LUZ_VARYING_POSITION + 2] = world_z;
+        for (int r = 0; r < 3; r++)
+            varying[k][LUZ_VARYING_NORMAL + r] =
+                transform_row3(normal_matrix, r, in[3], in[4], in[5]);
+        varying[k][LUZ_VARYING_UV + 0] = in[6];
+        varying[k][LUZ_VARYING_UV + 1] = in[7];
+        /* setup.c: divide, viewport (the snap is fixed's, read above). */
+        const luz_window_lanes projected = luz_project_lanes(
+            _mm512_cvtps_pd(transform_row(view_projection, 0, world_x, world_y, world_z)),
+            _mm512_cvtps_pd(transform_row(view_projection, 1, world_x, world_y, world_z)),
+            _mm512_cvtps_pd(transform_row(view_projection, 2, world_x, world_y, world_z)),
+            _mm512_cvtps_pd(transform_row(view_projection, 3, world_x, world_y, world_z)),
+            width, height);
         x[k] = projected.x;
         y[k] = projected.y;
         depth[k] = projected.depth;
         weight[k] = interpolation == LUZ_INTERPOLATION_AFFINE ? _mm512_set1_pd(1.0)
                                                                : projected.inverse_w;
-        for (int lane = 0; lane < 8; lane++)
-            varying[k][lane] = _mm256_loadu_ps(vertices[corner[k][lane]].varyings);
-        luz_transpose8(varying[k]);   /* varying[k][i]: varying i of every lane */
     }
     const __m512d x10 = _mm512_sub_pd(x[1], x[0]), x20 = _mm512_sub_pd(x[2], x[0]);
     const __m512d y10 = _mm512_sub_pd(y[1], y[0]), y20 = _mm512_sub_pd(y[2], y[0]);

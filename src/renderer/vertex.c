@@ -41,6 +41,30 @@ static inline luz_vec3 transform3(const luz_mat3 *m, luz_vec3 v)
     };
 }
 
+/* One vertex: world position and normal, clip position and outcode. */
+static inline luz_clip_vertex shade_vertex(const luz_vertex *vertex, const luz_mat4 *model,
+                                           const luz_mat3 *normal_matrix,
+                                           const luz_mat4 *view_projection)
+{
+    const luz_vec4 world4 =
+        transform4(model, vertex->position.x, vertex->position.y, vertex->position.z, 1.0f);
+    const luz_vec3 world = {world4.x, world4.y, world4.z};
+    const luz_vec3 normal = transform3(normal_matrix, vertex->normal);
+    luz_clip_vertex out;
+    out.position = transform4(view_projection, world.x, world.y, world.z, 1.0f);
+    out.outcode = luz_clip_outcode(out.position);
+    float *varying = out.varyings;
+    varying[LUZ_VARYING_POSITION + 0] = world.x;
+    varying[LUZ_VARYING_POSITION + 1] = world.y;
+    varying[LUZ_VARYING_POSITION + 2] = world.z;
+    varying[LUZ_VARYING_NORMAL + 0] = normal.x;
+    varying[LUZ_VARYING_NORMAL + 1] = normal.y;
+    varying[LUZ_VARYING_NORMAL + 2] = normal.z;
+    varying[LUZ_VARYING_UV + 0] = vertex->uv.x;
+    varying[LUZ_VARYING_UV + 1] = vertex->uv.y;
+    return out;
+}
+
 void luz_vertex_stage(const luz_draw *draw, luz_mat4 view_projection, luz_clip_vertex *out)
 {
     luz_vertex_stage_range(draw, view_projection, 0, draw->mesh->vertex_count, out);
@@ -53,25 +77,8 @@ static LUZ_CLONES void transform_vertices(const luz_mesh *mesh, const luz_mat4 *
                                           const luz_mat4 *view_projection, uint32_t first,
                                           uint32_t end, luz_clip_vertex *out)
 {
-    for (uint32_t i = first; i < end; i++) {
-        const luz_vertex *vertex = &mesh->vertices[i];
-        const luz_vec4 world4 = transform4(model, vertex->position.x, vertex->position.y,
-                                           vertex->position.z, 1.0f);
-        const luz_vec3 world = {world4.x, world4.y, world4.z};
-        const luz_vec3 normal = transform3(normal_matrix, vertex->normal);
-
-        out[i].position = transform4(view_projection, world.x, world.y, world.z, 1.0f);
-        out[i].outcode = luz_clip_outcode(out[i].position);
-        float *varying = out[i].varyings;
-        varying[LUZ_VARYING_POSITION + 0] = world.x;
-        varying[LUZ_VARYING_POSITION + 1] = world.y;
-        varying[LUZ_VARYING_POSITION + 2] = world.z;
-        varying[LUZ_VARYING_NORMAL + 0] = normal.x;
-        varying[LUZ_VARYING_NORMAL + 1] = normal.y;
-        varying[LUZ_VARYING_NORMAL + 2] = normal.z;
-        varying[LUZ_VARYING_UV + 0] = vertex->uv.x;
-        varying[LUZ_VARYING_UV + 1] = vertex->uv.y;
-    }
+    for (uint32_t i = first; i < end; i++)
+        out[i] = shade_vertex(&mesh->vertices[i], model, normal_matrix, view_projection);
 }
 
 void luz_vertex_stage_range(const luz_draw *draw, luz_mat4 view_projection, uint32_t first,
@@ -80,4 +87,16 @@ void luz_vertex_stage_range(const luz_draw *draw, luz_mat4 view_projection, uint
     const luz_mat3 normal_matrix = luz_mat3_normal_matrix(draw->model);
     transform_vertices(draw->mesh, &draw->model, &normal_matrix, &view_projection, first, end,
                        out);
+}
+
+luz_draw_transform luz_draw_transform_of(const luz_draw *draw, luz_mat4 view_projection)
+{
+    return (luz_draw_transform){draw->mesh->vertices, draw->model,
+                                luz_mat3_normal_matrix(draw->model), view_projection};
+}
+
+luz_clip_vertex luz_vertex_stage_one(const luz_draw_transform *transform, uint32_t i)
+{
+    return shade_vertex(&transform->vertices[i], &transform->model, &transform->normal_matrix,
+                        &transform->view_projection);
 }

@@ -7,7 +7,9 @@
  *      of the mesh's vertices, the viewport's size.
  * Out: for each vertex, the same bits as the two functions write: its
  *      luz_clip_vertex (clip position, world position and normal, uv,
- *      outcode), and, unless marked, its luz_window_vertex (window x, y,
+ *      outcode; unless out is NULL, when only positions are transformed:
+ *      position-only shading, for a pass that keeps the snapped positions
+ *      alone), and, unless marked, its luz_window_vertex (window x, y,
  *      depth, 1/w in double, snapped position; unless window is NULL)
  *      and luz_fixed_vertex (unless fixed is NULL); but
  *      where two NaNs of different signs meet (NaN normals, uv or matrix
@@ -150,7 +152,9 @@ project_eight(__m256 x, __m256 y, __m256 z, __m256 w, __m256i outcode, double wi
     _mm512_mask_storeu_epi64((void *)&window[7], 0x1f, rows[7]);
 }
 
-/* Vertices i .. i + 15 of the draw's mesh. */
+/* Vertices i .. i + 15 of the draw's mesh; with out NULL (a constant
+ * where this is inlined), their positions alone: no normal, no clip
+ * vertex. */
 static inline __attribute__((always_inline)) void
 sixteen(const luz_vertex *vertices, const float *model, const float *normal_matrix,
         const float *view_projection, uint32_t i, double width, double height,
@@ -206,6 +210,7 @@ sixteen(const luz_vertex *vertices, const float *model, const float *normal_matr
             first[k] = half_of(words[k], h);
             second[k] = k < 5 ? half_of(words[8 + k], h) : _mm256_setzero_ps();
         }
+        if (out == NULL) continue;
         luz_transpose8(first);
         luz_transpose8(second);
         /* Words 8-12 stored whole as well, over the next vertex's first
@@ -229,12 +234,25 @@ void luz_vertex_project_avx512(const luz_draw *draw, luz_mat4 view_projection, u
     if (first >= end) return;   /* as the two functions: nothing to do */
     const luz_mat3 normal_matrix = luz_mat3_normal_matrix(draw->model);
     uint32_t i = first;
-    for (; end - i >= 16; i += 16)
-        sixteen(draw->mesh->vertices, draw->model.m, normal_matrix.m, view_projection.m, i,
-                width, height, out, window, fixed);
-    if (i < end) {   /* the last few, one at a time */
+    if (out != NULL)
+        for (; end - i >= 16; i += 16)
+            sixteen(draw->mesh->vertices, draw->model.m, normal_matrix.m, view_projection.m, i,
+                    width, height, out, window, fixed);
+    else
+        for (; end - i >= 16; i += 16)
+            sixteen(draw->mesh->vertices, draw->model.m, normal_matrix.m, view_projection.m, i,
+                    width, height, NULL, window, fixed);
+    if (i < end && out != NULL) {   /* the last few, one at a time */
         luz_vertex_stage_range(draw, view_projection, i, end, out);
         luz_setup_project(out, i, end, width, height, window, fixed);
+    } else if (i < end) {
+        const luz_draw_transform transform = luz_draw_transform_of(draw, view_projection);
+        for (; i < end; i++) {
+            const luz_clip_vertex vertex = luz_vertex_stage_one(&transform, i);
+            const luz_window_vertex projected = luz_setup_project_vertex(&vertex, width, height);
+            if (window != NULL) window[i] = projected;
+            if (fixed != NULL) fixed[i] = (luz_fixed_vertex){projected.fixed_x, projected.fixed_y};
+        }
     }
 }
 
