@@ -84,7 +84,8 @@ struct luz_pixel_probe {
     int draw;               /* index into the frame's draws */
     int primitive;          /* the triangle of the draw's mesh it comes from:
                                indices 3 primitive .. 3 primitive + 2; -1 if
-                               it could not be told (out of memory) */
+                               it could not be told (never expected: the
+                               probe's setup gave another triangle) */
     uint32_t vertices[3];   /* those indices */
     luz_vec4 corner_clip[3];   /* those vertices in clip space, as the vertex
                                   stage gives them: projection x view x

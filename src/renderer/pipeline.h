@@ -6,7 +6,8 @@
  *     -> vertex.c    luz_vertex_stage: a luz_clip_vertex per mesh vertex
  *                                                        clip space + varyings
  *                    (vertex_sixteen.c: the same and luz_setup_project's
- *                    projection for 16 vertices at a time)
+ *                    projection for 16 vertices at a time, or positions
+ *                    alone: setup_eight.c shades the corners it sets up)
  *     -> clip.c      luz_clip_triangle: a luz_clip_polygon per triangle that
  *                    crosses a plane (the others pass)   inside the clip volume
  *     -> setup.c     luz_setup_project: a luz_window_vertex per vertex

@@ -46,7 +46,6 @@
  *                before the caller's hook can draw over the pixel.
  */
 #include <math.h>
-#include <stdlib.h>
 #include <string.h>
 
 #include "renderer/pipeline.h"
@@ -187,8 +186,8 @@ static void window_corners(const luz_triangle *triangle, luz_vec3 out[3])
  * its three vertices through the vertex stage (whose clip-space positions
  * the probe keeps), the clipper and setup again, to find which triangle of
  * a clipped fan won and to carry the barycentric coordinates through the
- * same clip, setup and interpolation as varyings. Leaves primitive at -1 if memory runs out or (never
- * expected) setup does not give the pipeline's triangle again. */
+ * same clip, setup and interpolation as varyings. Leaves primitive at -1
+ * if (never expected) setup does not give the pipeline's triangle again. */
 static void find_primitive(luz_pixel_probe *probe, const luz_uniforms *uniforms,
                            const luz_draw *draw, const luz_triangle *winner,
                            const luz_framebuffer *framebuffer)
@@ -196,16 +195,11 @@ static void find_primitive(luz_pixel_probe *probe, const luz_uniforms *uniforms,
     probe->primitive = -1;
     const luz_mesh *mesh = draw->mesh;
     const uint32_t i = 3 * winner->primitive;
-    /* The vertex stage writes vertex k at out[k]: room for the mesh, of
-     * which only the three corners are computed (and touched). */
-    luz_clip_vertex *vertices = malloc((size_t)mesh->vertex_count * sizeof *vertices);
-    if (vertices == NULL) return;
-    for (int k = 0; k < 3; k++)
-        luz_vertex_stage_range(draw, uniforms->view_projection, mesh->indices[i + k],
-                               mesh->indices[i + k] + 1, vertices);
-    const luz_clip_vertex *corners[3] = {&vertices[mesh->indices[i]],
-                                         &vertices[mesh->indices[i + 1]],
-                                         &vertices[mesh->indices[i + 2]]};
+    /* The three corners through the vertex stage. */
+    const luz_draw_transform transform = luz_draw_transform_of(draw, uniforms->view_projection);
+    luz_clip_vertex shaded[3];
+    for (int k = 0; k < 3; k++) shaded[k] = luz_vertex_stage_one(&transform, mesh->indices[i + k]);
+    const luz_clip_vertex *corners[3] = {&shaded[0], &shaded[1], &shaded[2]};
 
     luz_clip_polygon polygon;
     int pieces = 1;
@@ -247,7 +241,6 @@ static void find_primitive(luz_pixel_probe *probe, const luz_uniforms *uniforms,
         probe->barycentric = fragment.position;
         break;
     }
-    free(vertices);
 }
 
 /* ---- the winner's shading ----------------------------------------------- */
