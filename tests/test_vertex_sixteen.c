@@ -10,9 +10,11 @@
  * through random cameras and models: vertices in view, beyond the guard
  * band, behind the camera, at the near plane, far beyond the fixed-point
  * limit, a matrix that leaves w = 0 (not projectable), a model so large
- * that clip coordinates are infinite or NaN; ranges that start and end
- * anywhere (tails of 1 to 15 done one at a time), with and without the
- * fixed array.
+ * that clip coordinates are infinite or NaN; vertices exactly on the
+ * clip planes (whole coordinates through identity matrices: x = 4 w is
+ * the guard band's edge, z = w the far plane) and at w = -0; ranges that
+ * start and end anywhere (tails of 1 to 15 done one at a time), with and
+ * without the fixed, window and clip arrays.
  */
 #include <math.h>
 #include <setjmp.h>
@@ -101,6 +103,9 @@ static void test_lanes_agree_with_one_at_a_time(void **state)
              uniform(&random, -reach, reach)},
             {uniform(&random, -1, 1), uniform(&random, -1, 1), uniform(&random, -1, 1)},
             {uniform(&random, -2, 3), uniform(&random, -2, 3)}};
+        if (kind >= 85)   /* whole coordinates from -5 to 5: on planes, below */
+            for (int k = 0; k < 3; k++)
+                (&vertices[i].position.x)[k] = (float)((int)(next_random(&random) % 11) - 5);
     }
     luz_error error = {{0}};
     luz_mesh *mesh = luz_mesh_create(
@@ -109,11 +114,19 @@ static void test_lanes_agree_with_one_at_a_time(void **state)
         &error);
     assert_non_null(mesh);
 
+    enum { CAMERA, ZERO, IDENTITY, NEGATIVE_ZERO_W };
     const struct {
         int width, height;
-        bool zero_projection;   /* w = 0 for every vertex: none projectable */
-    } cases[] = {{1280, 720, false}, {321, 181, false}, {1, 1, false}, {16384, 9000, false},
-                 {640, 360, true}};
+        int projection;   /* CAMERA: a random camera's; ZERO: w = 0 for every
+                             vertex, none projectable; IDENTITY: clip = (x, y,
+                             z, 1) under the identity model, so whole
+                             coordinates lie on the clip planes;
+                             NEGATIVE_ZERO_W: the same with w's row -0, so
+                             that w = -0 where x, y and z are not negative */
+    } cases[] = {{1280, 720, CAMERA},   {321, 181, CAMERA}, {1, 1, CAMERA},
+                 {16384, 9000, CAMERA}, {640, 360, ZERO},   {640, 360, IDENTITY},
+                 {640, 360, NEGATIVE_ZERO_W}};
+    int on_plane = 0, negative_zero_w = 0;
     int marked = 0, projected = 0, non_finite = 0;
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++)
         for (int camera = 0; camera < 4; camera++) {
@@ -124,14 +137,18 @@ static void test_lanes_agree_with_one_at_a_time(void **state)
                                      (float)cases[c].width / (float)cases[c].height, 0.1f,
                                      uniform(&random, 5, 500)),
                 luz_mat4_look_at(eye, (luz_vec3){0, 0, 0}, (luz_vec3){0, 1, 0}));
-            if (cases[c].zero_projection) memset(&view_projection, 0, sizeof view_projection);
+            if (cases[c].projection == ZERO) memset(&view_projection, 0, sizeof view_projection);
+            if (cases[c].projection >= IDENTITY) view_projection = luz_mat4_identity();
+            if (cases[c].projection == NEGATIVE_ZERO_W)
+                for (int k = 3; k < 16; k += 4) view_projection.m[k] = -0.0f;
             int infinite = 0, nan = 0;
             luz_draw draw = {.mesh = mesh,
                              .model = luz_mat4_rotate(
                                  luz_mat4_translate(luz_mat4_identity(),
                                                     (luz_vec3){uniform(&random, -1, 1), 0, 0}),
                                  uniform(&random, 0, 6.28f), (luz_vec3){0.6f, 0.8f, 0})};
-            if (camera == 3)   /* far beyond float's range: infinite and NaN coordinates */
+            if (cases[c].projection >= IDENTITY) draw.model = luz_mat4_identity();
+            else if (camera == 3)   /* far beyond float's range: infinite and NaN coordinates */
                 for (int k = 0; k < 12; k++) draw.model.m[k] *= k % 2 ? 1e38f : -1e38f;
             for (uint32_t first = 0; first < VERTEX_COUNT;) {
                 const uint32_t length = 1 + next_random(&random) % 300;
@@ -178,18 +195,24 @@ static void test_lanes_agree_with_one_at_a_time(void **state)
                                       with_fixed ? fixed_a : NULL, clip_b, window_b, fixed_b,
                                       first, end);
                 for (uint32_t i = first; i < end; i++) {
-                    infinite += !isfinite(clip_b[i].position.x) || !isfinite(clip_b[i].position.w);
-                    nan += isnan(clip_b[i].position.x) || isnan(clip_b[i].position.w);
+                    const luz_vec4 p = clip_b[i].position;
+                    infinite += !isfinite(p.x) || !isfinite(p.w);
+                    nan += isnan(p.x) || isnan(p.w);
+                    on_plane += p.w == 1.0f && (fabsf(p.x) == 4.0f || fabsf(p.z) == 1.0f);
+                    negative_zero_w += p.w == 0.0f && signbit(p.w);
                 }
                 marked += m;
                 projected += (int)(end - first) - m;
                 first = end;
             }
-            if (camera == 3) assert_true(infinite > 100 && nan > 100);
+            if (camera == 3 && cases[c].projection == CAMERA)
+                assert_true(infinite > 100 && nan > 100);
             non_finite += infinite;
         }
     print_message("%d vertices projected, %d marked (%d with clip coordinates not finite)\n",
                   projected, marked, non_finite);
+    print_message("%d vertices on a clip plane, %d at w = -0\n", on_plane, negative_zero_w);
+    assert_true(on_plane > 500 && negative_zero_w > 500);
     assert_true(projected > 20000);
     assert_true(marked > 20000);
     luz_mesh_destroy(mesh);
