@@ -217,6 +217,11 @@ static const char nomtl_obj[] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
 static const char quad_obj[] = "v 0 0 0\nv 2 0 0\nv 2 1 0\nv 0 1 0\nf 1 2 3 4\n";
 static const char lines_obj[] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\nl 2 3\n";
 static const char nan_obj[] = "v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n";
+/* A quad whose one normal is NaN (of both signs): positions are checked,
+ * normals are the file's business; it renders, and is probed. */
+static const char nan_normal_obj[] = "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n"
+                                     "vn nan -nan 1\n"
+                                     "f 1//1 2//1 3//1\nf 1//1 3//1 4//1\n";
 static const char inf_obj[] = "v 0 0 0\nv 1 0 0\nv 0 1 -inf\nf 1 2 3\n";
 static const char zero_obj[] = "v 1 1 1\nv 1 1 1\nv 1 1 1\nf 1 2 3\n";
 /* Corners on one line: (1, 2, 3) = -(-1, -2, -3). And the same triangle
@@ -348,6 +353,7 @@ static int setup_files(void **state)
     write_text("models/quad.obj", quad_obj);
     write_text("models/lines.obj", lines_obj);
     write_text("models/nan.obj", nan_obj);
+    write_text("models/nan-normal.obj", nan_normal_obj);
     write_text("models/inf.obj", inf_obj);
     write_text("models/zero.obj", zero_obj);
     write_text("models/range.obj", range_obj);
@@ -1388,6 +1394,25 @@ static int pixels_differing(const image *a, const image *b)
  * by hand). The probe names the file, each mesh and its material, and the
  * texture as the material names it, Windows path and all; bytes= is the
  * PNG's pixel. */
+/* --probe on a pixel whose normal is NaN: the probe prints "nan" where
+ * its numbers would be (it crashed writing NaN as digits) and still finds
+ * the mesh triangle: the quad's upper-left half (its second, 1 3 4) at
+ * the pixel left of and above the centre of the 64x36 image. */
+static void test_probe_of_nan_normals(void **state)
+{
+    (void)state;
+    REQUIRE_MODELS();
+    run_result result = run_render(ARGS("--model", "models/nan-normal.obj", "--size", "64x36",
+                                        "--textures", "none", "--probe", "28,16", "-o",
+                                        "nan-probe.png"));
+    if (result.status != 0 || result.err[0] != '\0')
+        fail_msg("luz-render exited %d: %s", result.status, result.err);
+    char value[256];
+    assert_string_equal(key_value(result.out, "N", value, sizeof value), "nan,nan,nan");
+    assert_string_equal(key_value(result.out, "primitive", value, sizeof value), "1");
+    run_result_free(&result);
+}
+
 static void test_probe_names_a_model(void **state)
 {
     (void)state;
@@ -1602,6 +1627,7 @@ int main(void)
         cmocka_unit_test(test_output_is_never_a_model_input),
         cmocka_unit_test(test_views_on_a_model),
         cmocka_unit_test(test_probe_names_a_model),
+        cmocka_unit_test(test_probe_of_nan_normals),
         cmocka_unit_test(test_options_on_a_model),
     };
     return cmocka_run_group_tests(tests, setup_files, teardown_files);

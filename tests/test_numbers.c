@@ -38,6 +38,7 @@
 
 #include <cmocka.h>
 
+#include "app/option_text.h"
 #include "app/options.h"
 
 /* Significant digits of a decimal text: from the first non-zero digit to
@@ -213,6 +214,21 @@ static void test_known_texts(void **state)
         assert_string_equal(text, cases[i].text);
         luz_options_free(&options);
         check_float(cases[i].value);
+    }
+    /* Not finite (never a setting: a probed pixel's value can be): a
+     * word, not digits, and not something the reader takes back. */
+    const struct {
+        float value;
+        const char *text;
+    } words[] = {{NAN, "nan"}, {-NAN, "nan"}, {INFINITY, "inf"}, {-INFINITY, "-inf"}};
+    for (size_t i = 0; i < sizeof words / sizeof words[0]; i++) {
+        char text[OPTION_NUMBER_SIZE];
+        option_format_float(text, sizeof text, words[i].value);
+        assert_string_equal(text, words[i].text);
+        option_format_double(text, sizeof text, (double)words[i].value);
+        assert_string_equal(text, words[i].text);
+        double number;
+        assert_int_not_equal(option_read_numbers(text, &number, 1, true), OPTION_PARSE_OK);
     }
     /* 0.98999995 is not 0.99f: the test above would mean nothing else. */
     assert_true(0.98999995f != 0.99f);

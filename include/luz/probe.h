@@ -85,7 +85,8 @@ struct luz_pixel_probe {
     int primitive;          /* the triangle of the draw's mesh it comes from:
                                indices 3 primitive .. 3 primitive + 2; -1 if
                                it could not be told (never expected: the
-                               probe's setup gave another triangle) */
+                               probe's setup did not find the pipeline's
+                               record again) */
     uint32_t vertices[3];   /* those indices */
     luz_vec4 corner_clip[3];   /* those vertices in clip space, as the vertex
                                   stage gives them: projection x view x

@@ -84,6 +84,10 @@ static void expand(double magnitude, char digits[42], int *exponent)
 
 static void format_shortest(char *buffer, size_t size, double value, bool single_precision)
 {
+    if (!isfinite(value)) {   /* a probed pixel's NaN normal, say: no digits to find */
+        snprintf(buffer, size, "%s", isnan(value) ? "nan" : value < 0.0 ? "-inf" : "inf");
+        return;
+    }
     if (value == 0.0) {
         snprintf(buffer, size, "%s", signbit(value) ? "-0" : "0");
         return;

@@ -93,6 +93,8 @@ static inline option_parse_result option_read_numbers(const char *text, double *
  * never more significant digits than some decimal that does read back.
  * Written as a person writes numbers, "-90" and "0.0015", with an exponent
  * only below 1e-4 and from 1e15 on ("6.711322e-17", "3.4028235e+38").
+ * A value that is not finite (a probed pixel's, from NaN normals, say)
+ * is written "nan", "inf" or "-inf", which the reader refuses.
  * buffer holds at least OPTION_NUMBER_SIZE bytes. (option_text.c) */
 #define OPTION_NUMBER_SIZE 32
 void option_format_float(char *buffer, size_t size, float value);

@@ -117,9 +117,16 @@ static void record_history(luz_pixel_probe *probe, const luz_triangle *const *by
 
 /* ---- where the winner comes from -------------------------------------- */
 
+/* Equal, or both NaN: a mesh's NaN normals make NaN planes, whose sign
+ * and payload setup in lanes need not keep (setup_eight.c). */
+static bool same_float(float a, float b)
+{
+    return a == b || (isnan(a) && isnan(b));
+}
+
 static bool same_plane(luz_plane a, luz_plane b)
 {
-    return a.value == b.value && a.dx == b.dx && a.dy == b.dy;
+    return same_float(a.value, b.value) && same_float(a.dx, b.dx) && same_float(a.dy, b.dy);
 }
 
 /* Field by field: a struct's padding may hold anything. */
