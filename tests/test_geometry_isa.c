@@ -10,8 +10,9 @@
  * counter (submitted, clipped, culled, draws culled) the same, for any
  * thread count. A frame of big draws: a wavy grid of 64,800 triangles
  * filling the view, the same grid crossing the near plane and the guard
- * band (clipped triangles among the screened ones), and one wholly
- * behind the camera.
+ * band (clipped triangles among the screened ones), one wholly behind
+ * the camera, and one so far away that each thousand of its triangles
+ * leave fewer than eight to set up.
  */
 #include <math.h>
 #include <setjmp.h>
@@ -140,15 +141,18 @@ static void test_same_phase_one_with_and_without_avx512(void **state)
     frame.view = luz_mat4_look_at(frame.eye, (luz_vec3){0, 0, 0}, (luz_vec3){0, 1, 0});
     frame.projection =
         luz_mat4_perspective(luz_radians(45.0f), (float)WIDTH / HEIGHT, 0.1f, 100.0f);
-    const luz_mat4 models[3] = {
+    const luz_mat4 models[4] = {
         luz_mat4_identity(),
         /* tilted through the near plane and out past the guard band */
         luz_mat4_rotate(luz_mat4_translate(luz_mat4_identity(), (luz_vec3){0.3f, 0, 2.6f}),
                         1.2f, (luz_vec3){1, 0.3f, 0}),
         /* wholly behind the camera */
         luz_mat4_translate(luz_mat4_identity(), (luz_vec3){0, 0, 8}),
+        /* far away, some 24 x 14 pixels: a few of each thousand triangles
+         * cover a centre, fewer than eight, so they are set up alone */
+        luz_mat4_translate(luz_mat4_identity(), (luz_vec3){0, 0, -60}),
     };
-    for (int k = 0; k < 3; k++) {
+    for (int k = 0; k < 4; k++) {
         luz_draw draw = {.mesh = mesh, .model = models[k]};
         draw.material.colour = (luz_vec3){1, 1, 1};
         assert_int_equal(luz_frame_add_draw(&frame, &draw, &error), 0);

@@ -9,9 +9,9 @@
  * with small_box_checked (a box of 3 to LUZ_SETUP_SMALL_BOX_PIXELS
  * centres tested for a covered one), and a visible triangle's record is
  * the same bytes: box, edges, reference point and all ten planes, where
- * setup in lanes projects each corner from its clip position itself and
- * luz_setup_projected reads the window vertex luz_setup_project made of
- * it. Random triangles, most a pixel or two across, some large, some off
+ * setup in lanes shades and projects each corner from its mesh vertex
+ * itself and luz_setup_projected reads the clip and window vertices
+ * luz_vertex_stage_one and luz_setup_project_vertex made of it. Random triangles, most a pixel or two across, some large, some off
  * the viewport, some back faces, with a few vertices marked, a few whose
  * exact window positions lie on a line while their snapped ones do not
  * (a front face whose double-precision determinant is zero), both
@@ -314,13 +314,16 @@ static void test_lanes_agree_with_setup(void **state)
     print_message("%d front faces culled for a zero determinant\n", collinear_culled);
     assert_true(collinear_culled > 300);
     /* The same triangles under a model matrix that turns and moves them
-     * (and a normal matrix that is not the identity), the outcodes now
-     * the vertex stage's own: a transform done differently in lanes
-     * shows here. */
+     * (and a normal matrix that is not the identity) and a camera turned
+     * a little (a projection * view with no zero to hide a term), the
+     * outcodes now the vertex stage's own: a transform done differently
+     * in lanes, a sum taken in another order, shows here. */
     m.transform.model = luz_mat4_rotate(luz_mat4_translate(luz_mat4_identity(),
                                                            (luz_vec3){0.3f, -0.2f, 0.05f}),
                                         0.3f, (luz_vec3){0.1f, 0.2f, 0.97f});
     m.transform.normal_matrix = luz_mat3_normal_matrix(m.transform.model);
+    m.transform.view_projection = luz_mat4_multiply(
+        w_from_z(), luz_mat4_rotate(luz_mat4_identity(), 0.05f, (luz_vec3){0.3f, 0.5f, 0.81f}));
     for (uint32_t i = 0; i < m.vertex_count; i++) project(&m, i);
     for (int mode = 0; mode < 2; mode++) {
         const luz_interpolation interpolation =

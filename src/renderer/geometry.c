@@ -55,7 +55,9 @@
 typedef struct geometry_batch {
     /* What the batch covers: whole draws [draw_first, draw_end), or
      * triangles [triangle_first, triangle_end) of the big draw draw_first,
-     * whose clip-space vertices the vertex pass leaves at vertices. */
+     * whose snapped positions the vertex pass leaves at fixed (and, when
+     * setup is one triangle at a time, its clip-space vertices at vertices
+     * and their projection at window). */
     uint32_t draw_first, draw_end;
     uint32_t triangle_first, triangle_end;
     bool whole_draws;

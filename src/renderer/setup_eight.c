@@ -35,7 +35,10 @@
  * writes 8 (geometry 12.1 -> 10.3 ms a frame, the whole frame 20.0 ->
  * 17.8).
  *
- * The arithmetic is vertex.c's and setup.c's, operation for operation:
+ * The arithmetic is vertex.c's and setup.c's, operation for operation
+ * (but where NaN normals or uv, which no check keeps out, meet NaNs of
+ * another sign, the NaN that comes out may have the other sign, as
+ * vertex_sixteen.c says):
  * the transforms in float, summed left to right, the projection in
  * double, the box and the edge functions in the same integers
  * (coordinates below 2^24, so 32 x 32 -> 64-bit products are exact), the
