@@ -237,6 +237,20 @@ static tally check_groups(const mesh *m, luz_setup_eight_function *setup_eight,
     return count;
 }
 
+/* check_groups in interpolation mode 0 (perspective) or 1 (affine), its
+ * tally printed after label. */
+static tally check_mode(const mesh *m, luz_setup_eight_function *setup_eight, int mode,
+                        const char *label)
+{
+    const luz_interpolation interpolation =
+        mode ? LUZ_INTERPOLATION_AFFINE : LUZ_INTERPOLATION_PERSPECTIVE;
+    const tally count = check_groups(m, setup_eight, interpolation);
+    print_message("%s%s: %d visible, %d culled, %d off screen, %d left to setup\n", label,
+                  luz_interpolation_name(interpolation), count.visible, count.culled,
+                  count.offscreen, count.left);
+    return count;
+}
+
 /* The record's fields are whole words: comparing its bytes compares its
  * fields (no padding to differ). */
 _Static_assert(offsetof(luz_triangle, primitive) + sizeof(uint32_t) == sizeof(luz_triangle),
@@ -280,12 +294,7 @@ static void test_lanes_agree_with_setup(void **state)
             while (!set_collinear_front_face(&m, t, &random)) continue;
     }
     for (int mode = 0; mode < 2; mode++) {
-        const luz_interpolation interpolation =
-            mode ? LUZ_INTERPOLATION_AFFINE : LUZ_INTERPOLATION_PERSPECTIVE;
-        const tally count = check_groups(&m, setup_eight, interpolation);
-        print_message("%s: %d visible, %d culled, %d off screen, %d left to setup\n",
-                      luz_interpolation_name(interpolation), count.visible, count.culled,
-                      count.offscreen, count.left);
+        const tally count = check_mode(&m, setup_eight, mode, "");
         /* Each verdict is seen, often. */
         assert_true(count.visible > 3000);
         assert_true(count.culled > 3000);
@@ -325,15 +334,8 @@ static void test_lanes_agree_with_setup(void **state)
     m.transform.view_projection = luz_mat4_multiply(
         w_from_z(), luz_mat4_rotate(luz_mat4_identity(), 0.05f, (luz_vec3){0.3f, 0.5f, 0.81f}));
     for (uint32_t i = 0; i < m.vertex_count; i++) project(&m, i);
-    for (int mode = 0; mode < 2; mode++) {
-        const luz_interpolation interpolation =
-            mode ? LUZ_INTERPOLATION_AFFINE : LUZ_INTERPOLATION_PERSPECTIVE;
-        const tally count = check_groups(&m, setup_eight, interpolation);
-        print_message("turned, %s: %d visible, %d culled, %d off screen, %d left to setup\n",
-                      luz_interpolation_name(interpolation), count.visible, count.culled,
-                      count.offscreen, count.left);
-        assert_true(count.visible > 3000);
-    }
+    for (int mode = 0; mode < 2; mode++)
+        assert_true(check_mode(&m, setup_eight, mode, "turned, ").visible > 3000);
     mesh_destroy(&m);
 }
 
