@@ -11,11 +11,16 @@
  * the same bytes: box, edges, reference point and all ten planes, where
  * setup in lanes shades and projects each corner from its mesh vertex
  * itself and luz_setup_projected reads the clip and window vertices
- * luz_vertex_stage_one and luz_setup_project_vertex made of it. Random triangles, most a pixel or two across, some large, some off
- * the viewport, some back faces, with a few vertices marked, a few whose
+ * luz_vertex_stage_one and luz_setup_project_vertex made of it. Random
+ * triangles, most a pixel or two across, some large, some off the
+ * viewport, some back faces, with a few vertices marked, a few whose
  * exact window positions lie on a line while their snapped ones do not
  * (a front face whose double-precision determinant is zero), both
- * interpolations. (A determinant that is not finite cannot come from
+ * interpolations; the first pass under an identity model and a
+ * projection of ones and zeros (which place each vertex), the second
+ * under a turned model and camera, where a term summed in another order
+ * or taken from the wrong row shows. (A determinant that is not finite
+ * cannot come from
  * projected corners, clamped to 2^16 pixels: setup's check for it is
  * defensive, and so is the lanes'.) Then triangles whose planes' values
  * at the reference point cancel to almost nothing, where the order of

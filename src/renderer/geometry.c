@@ -20,10 +20,11 @@
  *                triangles, and its vertices get a place in the frame's
  *                vertex arena
  *   vertex pass  (parallel) the big draws' vertices, in ranges: the vertex
- *                stage, then setup's per-vertex projection (kept whole
- *                when setup runs one triangle at a time; with setup in
- *                lanes only the snapped positions, for screening: the
- *                lanes project the corners again beside their varyings)
+ *                stage, then setup's per-vertex projection, all kept; or,
+ *                where setup and this pass both run in lanes (AVX-512),
+ *                positions alone, of which only the snapped positions
+ *                are kept, for screening: position-only shading, the
+ *                corners that reach setup shaded there from the mesh
  *   batches      (parallel) each small draw's vertex stage and projection
  *                (into the thread's scratch), then clipping and setup of the batch's
  *                triangles; the batch counts its triangles per band
@@ -55,14 +56,14 @@
 typedef struct geometry_batch {
     /* What the batch covers: whole draws [draw_first, draw_end), or
      * triangles [triangle_first, triangle_end) of the big draw draw_first,
-     * whose snapped positions the vertex pass leaves at fixed (and, when
-     * setup is one triangle at a time, its clip-space vertices at vertices
-     * and their projection at window). */
+     * whose snapped positions the vertex pass leaves at fixed (and,
+     * unless it shades positions alone, its clip-space vertices at
+     * vertices and their projection at window). */
     uint32_t draw_first, draw_end;
     uint32_t triangle_first, triangle_end;
     bool whole_draws;
-    const luz_clip_vertex *vertices;   /* NULL with setup in lanes, which
-                                          shades its corners itself */
+    const luz_clip_vertex *vertices;   /* NULL with position-only shading:
+                                          setup shades its corners itself */
     const luz_window_vertex *window;   /* the same vertices, projected (or
                                           NULL likewise) */
     const luz_fixed_vertex *fixed;     /* and their snapped positions alone */
@@ -99,11 +100,10 @@ struct luz_geometry {
     int batch_count, batch_capacity;
     vertex_range *vertex_ranges;
     size_t vertex_range_count, vertex_range_capacity;
-    luz_clip_vertex *arena;        /* the big draws' vertices (only when
-                                      setup is one triangle at a time) */
+    luz_clip_vertex *arena;        /* the big draws' vertices (not with
+                                      position-only shading) */
     size_t arena_capacity;
-    luz_window_vertex *window_arena;   /* the same, projected (only when
-                                          setup is one triangle at a time) */
+    luz_window_vertex *window_arena;   /* the same, projected (likewise) */
     size_t window_arena_capacity;
     luz_fixed_vertex *fixed_arena;     /* and their snapped positions */
     size_t fixed_arena_capacity;
@@ -458,7 +458,7 @@ static void vertex_job(void *context, int range_index, int worker_index)
     if (job->vertex_project != NULL) {   /* the same, sixteen vertices at a time */
         job->vertex_project(draw, job->uniforms->view_projection, range->first, range->end,
                             job->width, job->height, range->out, range->window, range->fixed);
-    } else {   /* (the arena is whole: plan) */
+    } else {   /* (then plan kept the arena whole: keep_vertices) */
         luz_vertex_stage_range(draw, job->uniforms->view_projection, range->first, range->end,
                                range->out);
         luz_setup_project(range->out, range->first, range->end, job->width, job->height,
@@ -484,8 +484,8 @@ static void set_up(geometry_batch *batch, const geometry_job *job, const luz_cli
 }
 
 /* Clips and sets up triangle t of draw draw_index, whose clip-space
- * vertices are at vertices, and projected at window; either NULL where
- * the vertex pass kept only snapped positions (position-only shading,
+ * vertices are at vertices, and projected at window; both NULL where the
+ * vertex pass kept only snapped positions (position-only shading,
  * setup_eight.c): then the three corners go through the vertex stage
  * (transform) and are projected here. */
 static void one_triangle(geometry_batch *batch, const geometry_job *job, uint32_t draw_index,
@@ -507,7 +507,7 @@ static void one_triangle(geometry_batch *batch, const geometry_job *job, uint32_
     }
     luz_window_vertex corners[3];
     const luz_window_vertex *window_a, *window_b, *window_c;
-    if (window != NULL && vertices != NULL) {
+    if (vertices != NULL) {
         window_a = &window[ia], window_b = &window[ib], window_c = &window[ic];
     } else {
         corners[0] = luz_setup_project_vertex(a, job->width, job->height);
@@ -610,7 +610,11 @@ static void triangles_of_draw(geometry_batch *batch, const geometry_job *job,
     const luz_draw *draw = &job->frame->draws[draw_index];
     const uint32_t *indices = draw->mesh->indices;
     /* The draw's transforms (its normal matrix an inverse), worked out
-     * only when a corner is shaded here: a cube of the lab never is. */
+     * only when a corner is shaded here: by setup in lanes, which reads
+     * one kind of vertex, the mesh's, so it shades its corners again even
+     * for a small draw whose vertex stage ran whole (one with eight
+     * survivors in a chunk: a cube of the lab never has them), or for a
+     * big draw shaded position-only. */
     luz_draw_transform transform;
     bool have_transform = false;
     uint32_t survivors[SCREEN_CHUNK];

@@ -2,7 +2,8 @@
  * lanes_avx512.h: what the AVX-512 variants (screen.c, setup_eight.c,
  * vertex_sixteen.c) share to turn arrays of structures, one vertex or
  * triangle each, into vectors of one field each (lanes), and back: the
- * gather of snapped positions and the 8 x 8 transposes. Included only
+ * gather of snapped positions and the 8 x 8 transposes; and what two of
+ * them compute alike in lanes, the projection of a vertex. Included only
  * where the file is compiled with -mavx512f and the rest.
  */
 #ifndef LUZ_LANES_AVX512_H
@@ -23,7 +24,7 @@ luz_gather_fixed(__m256i vertex_index, const luz_fixed_vertex *fixed, __m512i *x
     *y = _mm512_srai_epi64(both, 32);
 }
 
-/* setup.c's luz_setup_project for eight vertices of clip position (x, y,
+/* setup.c's luz_setup_project_vertex for eight vertices of clip position (x, y,
  * z, w), one per lane, in the same double operations: 1/w, the window
  * position clamped to +-2^24 sub-pixel units, the depth. The markers (a
  * vertex outside a clip plane, or w not above 0) are the caller's. */

@@ -523,7 +523,7 @@ luz_screen_function *luz_screen_for(luz_packet_isa isa, bool *checks_small_boxes
  * out[lane] (all but its primitive) are what setup gives for the corners'
  * luz_vertex_stage_one and luz_setup_project_vertex, bit for bit (it runs
  * both itself: no clip or window vertex is read), up to the sign of a NaN
- * that NaN normals or uv make (setup_eight.c).
+ * that NaN normals, uv or matrix entries make (setup_eight.c).
  * Returns true, and then the results and records mean nothing, when it
  * leaves all eight to the caller: one has a marked vertex (the clipper's,
  * or setup's own culling). Only for triangles screening let through (the

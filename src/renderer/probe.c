@@ -117,8 +117,9 @@ static void record_history(luz_pixel_probe *probe, const luz_triangle *const *by
 
 /* ---- where the winner comes from -------------------------------------- */
 
-/* Equal, or both NaN: a mesh's NaN normals make NaN planes, whose sign
- * and payload setup in lanes need not keep (setup_eight.c). */
+/* Equal, or both NaN: a mesh's NaN normals make NaN planes, and a NaN
+ * compares unequal even to itself (nor need its sign and payload be
+ * setup's: setup in lanes may give the other sign, setup_eight.c). */
 static bool same_float(float a, float b)
 {
     return a == b || (isnan(a) && isnan(b));

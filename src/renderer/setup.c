@@ -4,9 +4,11 @@
  *
  * In:  clip-space vertices (already clipped, so w > 0); luz_setup_project
  *      divides, maps and snaps each vertex once (steps 1-2, a
- *      luz_window_vertex; setup in lanes does it again for the corners it
- *      sets up, setup_eight.c), luz_setup_projected sets up a triangle of
- *      three of them (steps 3-5).
+ *      luz_window_vertex; where a big draw's vertex pass keeps only
+ *      snapped positions, setup in lanes, setup_eight.c, and geometry.c's
+ *      one_triangle do it again for the corners they set up),
+ *      luz_setup_projected sets up a triangle of three of them (steps
+ *      3-5).
  * Out: a luz_triangle: the pixel bounding box, three fixed-point edge
  *      functions with the fill rule folded in, and screen-space planes for
  *      depth, 1/w and every varying/w (for affine interpolation: 1 and

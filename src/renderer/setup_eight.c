@@ -28,17 +28,19 @@
  * setup goes through the vertex stage and the projection again here,
  * from the mesh (as tile-based GPUs shade positions first and the rest
  * of a vertex only for triangles that survive culling: ARM Mali's
- * IDVS). A closed mesh's corners are a quarter of its triangles' three,
- * so that is less work than it looks, and it saves the memory: the
- * sphere's vertex pass wrote 100 bytes a vertex (clip vertex, window
- * vertex, snapped position) that setup read back scattered, where now it
- * writes 8 (geometry 12.1 -> 10.3 ms a frame, the whole frame 20.0 ->
- * 17.8).
+ * IDVS). That shades more corners than the mesh has vertices (the 1M
+ * sphere: 750k corners of the 250k triangles that reach setup, against
+ * 500k vertices), but the arithmetic is cheap beside the memory it
+ * saves: the sphere's vertex pass wrote 60 bytes a vertex (its clip
+ * vertex and snapped position; 100 with the window vertex, until setup
+ * projected its corners itself) that setup read back scattered, where
+ * now it writes 8 (geometry 12.1 -> 10.3 ms a frame, the whole frame
+ * 20.0 -> 17.8).
  *
  * The arithmetic is vertex.c's and setup.c's, operation for operation
- * (but where NaN normals or uv, which no check keeps out, meet NaNs of
- * another sign, the NaN that comes out may have the other sign, as
- * vertex_sixteen.c says):
+ * (but where NaN normals, uv or matrix entries, which no check keeps
+ * out, meet NaNs of another sign, the NaN that comes out may have the
+ * other sign, as vertex_sixteen.c says):
  * the transforms in float, summed left to right, the projection in
  * double, the box and the edge functions in the same integers
  * (coordinates below 2^24, so 32 x 32 -> 64-bit products are exact), the
@@ -66,9 +68,6 @@
 
 #include "renderer/lanes_avx512.h"
 
-_Static_assert(offsetof(luz_window_vertex, y) == 8 && offsetof(luz_window_vertex, depth) == 16 &&
-                   offsetof(luz_window_vertex, inverse_w) == 24,
-               "a window vertex begins with x, y, depth and 1/w");
 _Static_assert(LUZ_VARYING_COUNT == 8 && LUZ_VARYING_POSITION == 0 && LUZ_VARYING_NORMAL == 3 &&
                    LUZ_VARYING_UV == 6,
                "the varyings are world position, normal and uv: eight floats");
@@ -262,9 +261,10 @@ bool luz_setup_eight_avx512(const uint32_t *indices, const uint32_t triangles[8]
     /* The vertex stage and steps 1-2 again, then 5. Planes, from the
      * exact window positions, relative to the snapped vertex 0 (setup.c).
      * Each corner's mesh vertex is 32 contiguous bytes: loaded a lane at
-     * a time and transposed into vectors (with a gather for each field
-     * instead, the 1M sphere's geometry took 20.7 ms a frame where one
-     * triangle at a time took 16.6, and these loads 15.6). */
+     * a time and transposed into vectors (when setup read window and clip
+     * vertices, a gather for each field instead made the 1M sphere's
+     * geometry 20.7 ms a frame where one triangle at a time took 16.6,
+     * and loads and transposes 15.6). */
     __m512d x[3], y[3], depth[3], weight[3];
     __m256 varying[3][8];
     const float *model = transform->model.m, *normal_matrix = transform->normal_matrix.m;

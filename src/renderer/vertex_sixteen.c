@@ -27,7 +27,8 @@
  * of projection written. Here sixteen vertices are read whole and
  * transposed into lanes, transformed and projected in registers, and
  * transposed back out once (the sphere's geometry 14.9 -> 14.0 ms a
- * frame: the stores remain).
+ * frame: the stores remained, until position-only shading, setup_eight.c,
+ * left 8 bytes a vertex to store).
  *
  * The arithmetic is vertex.c's and setup.c's, operation for operation:
  * each transform a[0] x + a[4] y + a[8] z + a[12] summed left to right
@@ -232,7 +233,9 @@ void luz_vertex_project_avx512(const luz_draw *draw, luz_mat4 view_projection, u
                                luz_window_vertex *window, luz_fixed_vertex *fixed)
 {
     if (first >= end) return;   /* as the two functions: nothing to do */
-    const luz_mat3 normal_matrix = luz_mat3_normal_matrix(draw->model);
+    /* (Positions alone need no normal matrix, an inverse.) */
+    const luz_mat3 normal_matrix =
+        out != NULL ? luz_mat3_normal_matrix(draw->model) : (luz_mat3){{0}};
     uint32_t i = first;
     if (out != NULL)
         for (; end - i >= 16; i += 16)
