@@ -496,24 +496,20 @@ static void one_triangle(geometry_batch *batch, const geometry_job *job, uint32_
     const uint32_t ia = indices[3 * (size_t)t], ib = indices[3 * (size_t)t + 1],
                    ic = indices[3 * (size_t)t + 2];
     luz_clip_vertex shaded[3];
+    luz_window_vertex projected[3];
     const luz_clip_vertex *a, *b, *c;
-    if (vertices != NULL) {
-        a = &vertices[ia], b = &vertices[ib], c = &vertices[ic];
-    } else {
-        shaded[0] = luz_vertex_stage_one(transform, ia);
-        shaded[1] = luz_vertex_stage_one(transform, ib);
-        shaded[2] = luz_vertex_stage_one(transform, ic);
-        a = &shaded[0], b = &shaded[1], c = &shaded[2];
-    }
-    luz_window_vertex corners[3];
     const luz_window_vertex *window_a, *window_b, *window_c;
     if (vertices != NULL) {
+        a = &vertices[ia], b = &vertices[ib], c = &vertices[ic];
         window_a = &window[ia], window_b = &window[ib], window_c = &window[ic];
     } else {
-        corners[0] = luz_setup_project_vertex(a, job->width, job->height);
-        corners[1] = luz_setup_project_vertex(b, job->width, job->height);
-        corners[2] = luz_setup_project_vertex(c, job->width, job->height);
-        window_a = &corners[0], window_b = &corners[1], window_c = &corners[2];
+        const uint32_t corner[3] = {ia, ib, ic};
+        for (int k = 0; k < 3; k++) {
+            shaded[k] = luz_vertex_stage_one(transform, corner[k]);
+            projected[k] = luz_setup_project_vertex(&shaded[k], job->width, job->height);
+        }
+        a = &shaded[0], b = &shaded[1], c = &shaded[2];
+        window_a = &projected[0], window_b = &projected[1], window_c = &projected[2];
     }
     /* A fan of a clipped triangle has at most this many triangles. */
     if (!reserve((void **)&batch->triangles, &batch->capacity,

@@ -233,29 +233,24 @@ void luz_vertex_project_avx512(const luz_draw *draw, luz_mat4 view_projection, u
                                luz_window_vertex *window, luz_fixed_vertex *fixed)
 {
     if (first >= end) return;   /* as the two functions: nothing to do */
-    /* (Positions alone need no normal matrix, an inverse.) */
-    const luz_mat3 normal_matrix =
-        out != NULL ? luz_mat3_normal_matrix(draw->model) : (luz_mat3){{0}};
+    const luz_draw_transform transform = luz_draw_transform_of(draw, view_projection);
+    const float *model = transform.model.m, *normal_matrix = transform.normal_matrix.m;
     uint32_t i = first;
+    /* Two loops, so that each inlined sixteen knows whether out is NULL. */
     if (out != NULL)
         for (; end - i >= 16; i += 16)
-            sixteen(draw->mesh->vertices, draw->model.m, normal_matrix.m, view_projection.m, i,
-                    width, height, out, window, fixed);
+            sixteen(transform.vertices, model, normal_matrix, view_projection.m, i, width,
+                    height, out, window, fixed);
     else
         for (; end - i >= 16; i += 16)
-            sixteen(draw->mesh->vertices, draw->model.m, normal_matrix.m, view_projection.m, i,
-                    width, height, NULL, window, fixed);
-    if (i < end && out != NULL) {   /* the last few, one at a time */
-        luz_vertex_stage_range(draw, view_projection, i, end, out);
-        luz_setup_project(out, i, end, width, height, window, fixed);
-    } else if (i < end) {
-        const luz_draw_transform transform = luz_draw_transform_of(draw, view_projection);
-        for (; i < end; i++) {
-            const luz_clip_vertex vertex = luz_vertex_stage_one(&transform, i);
-            const luz_window_vertex projected = luz_setup_project_vertex(&vertex, width, height);
-            if (window != NULL) window[i] = projected;
-            if (fixed != NULL) fixed[i] = (luz_fixed_vertex){projected.fixed_x, projected.fixed_y};
-        }
+            sixteen(transform.vertices, model, normal_matrix, view_projection.m, i, width,
+                    height, NULL, window, fixed);
+    for (; i < end; i++) {   /* the last few, one at a time */
+        const luz_clip_vertex vertex = luz_vertex_stage_one(&transform, i);
+        const luz_window_vertex projected = luz_setup_project_vertex(&vertex, width, height);
+        if (out != NULL) out[i] = vertex;
+        if (window != NULL) window[i] = projected;
+        if (fixed != NULL) fixed[i] = (luz_fixed_vertex){projected.fixed_x, projected.fixed_y};
     }
 }
 
