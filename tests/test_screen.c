@@ -28,6 +28,8 @@
 
 #include <cmocka.h>
 
+#include "test_support.h"
+
 #include "renderer/pipeline.h"
 
 #define WIDTH 40
@@ -197,12 +199,6 @@ static tally screen_and_check(const mesh *m, int v, uint32_t first, uint32_t end
     return result;
 }
 
-static uint32_t next_random(uint32_t *state)
-{
-    *state = *state * 1664525u + 1013904223u;
-    return *state >> 8;
-}
-
 /* RANDOM TRIANGLES, most a pixel or two across, around and beyond a 40 x
  * 24 viewport, in shuffled vertex order; a few with a vertex marked
  * outside a clip plane or invalid, a few degenerate, a few huge (corners
@@ -217,23 +213,23 @@ static void test_screening_drops_what_setup_would(void **state)
     assert_non_null(order);
     for (uint32_t i = 0; i < m.vertex_count; i++) order[i] = i;
     for (uint32_t i = m.vertex_count - 1; i > 0; i--) {
-        const uint32_t j = next_random(&random) % (i + 1), swap = order[i];
+        const uint32_t j = test_random(&random) % (i + 1), swap = order[i];
         order[i] = order[j];
         order[j] = swap;
     }
     for (uint32_t t = 0; t < triangle_count; t++) {
-        const uint32_t kind = next_random(&random) % 100;
-        const int32_t base_x = (int32_t)(next_random(&random) % (256 * (WIDTH + 8))) - 256 * 4;
-        const int32_t base_y = (int32_t)(next_random(&random) % (256 * (HEIGHT + 8))) - 256 * 4;
+        const uint32_t kind = test_random(&random) % 100;
+        const int32_t base_x = (int32_t)(test_random(&random) % (256 * (WIDTH + 8))) - 256 * 4;
+        const int32_t base_y = (int32_t)(test_random(&random) % (256 * (HEIGHT + 8))) - 256 * 4;
         const int32_t reach = kind < 60 ? 256 : kind < 90 ? 768 : 256 * 12;
         for (int k = 0; k < 3; k++) {
             const uint32_t i = order[3 * t + (uint32_t)k];
             m.indices[3 * (size_t)t + (size_t)k] = i;
-            int32_t x = base_x + (int32_t)(next_random(&random) % (uint32_t)(2 * reach + 1)) - reach;
-            int32_t y = base_y + (int32_t)(next_random(&random) % (uint32_t)(2 * reach + 1)) - reach;
+            int32_t x = base_x + (int32_t)(test_random(&random) % (uint32_t)(2 * reach + 1)) - reach;
+            int32_t y = base_y + (int32_t)(test_random(&random) % (uint32_t)(2 * reach + 1)) - reach;
             if (kind == 99) {   /* huge: corners at the limit */
-                x = (next_random(&random) & 1) ? (1 << 24) : -(1 << 24);
-                y = (next_random(&random) & 1) ? (1 << 24) : -(1 << 24);
+                x = (test_random(&random) & 1) ? (1 << 24) : -(1 << 24);
+                y = (test_random(&random) & 1) ? (1 << 24) : -(1 << 24);
             }
             set_vertex(&m, i, x, y);
             if (kind == 97 && k == 1) m.fixed[i].x = m.window[i].fixed_x = LUZ_WINDOW_CLIPPED;
@@ -252,7 +248,7 @@ static void test_screening_drops_what_setup_would(void **state)
         tally whole = screen_and_check(&m, v, 0, triangle_count);
         tally pieces = {0, 0, 0};
         for (uint32_t first = 0; first < triangle_count;) {
-            const uint32_t end = first + 1 + next_random(&random) % 70;
+            const uint32_t end = first + 1 + test_random(&random) % 70;
             const tally piece = screen_and_check(&m, v, first,
                                                  end < triangle_count ? end : triangle_count);
             pieces.dropped_back += piece.dropped_back;

@@ -36,22 +36,12 @@
 
 #include <cmocka.h>
 
+#include "test_support.h"
+
 #include "renderer/pipeline.h"
 
 #define WIDTH 40
 #define HEIGHT 24
-
-static uint32_t next_random(uint32_t *state)
-{
-    *state = *state * 1664525u + 1013904223u;
-    return *state >> 8;
-}
-
-/* A float in [low, high). */
-static float uniform(uint32_t *state, float low, float high)
-{
-    return low + (high - low) * (float)(next_random(state) & 0xffff) / 65536.0f;
-}
 
 /* A draw: its mesh vertices in object space and its transforms, as
  * setup in lanes reads them, and what the vertex stage and projection
@@ -135,15 +125,15 @@ static void set_vertex_at(mesh *m, uint32_t i, int32_t fixed_x, int32_t fixed_y,
     const double y_ndc = 1.0 - 2.0 * fixed_y / (LUZ_SUBPIXEL_ONE * (double)HEIGHT);
     m->vertices[i] = (luz_vertex){
         {(float)(x_ndc * w), (float)(y_ndc * w), w},
-        {uniform(random, -1.0f, 1.0f), uniform(random, -1.0f, 1.0f), uniform(random, -1.0f, 1.0f)},
-        {uniform(random, -4.0f, 4.0f), uniform(random, -4.0f, 4.0f)}};
+        {test_uniform(random, -1.0f, 1.0f), test_uniform(random, -1.0f, 1.0f), test_uniform(random, -1.0f, 1.0f)},
+        {test_uniform(random, -4.0f, 4.0f), test_uniform(random, -4.0f, 4.0f)}};
     project_with(m, i, 0);
 }
 
 /* The same at a random w, 1/w from 0.05 to 10. */
 static void set_vertex(mesh *m, uint32_t i, int32_t fixed_x, int32_t fixed_y, uint32_t *random)
 {
-    set_vertex_at(m, i, fixed_x, fixed_y, 1.0f / uniform(random, 0.05f, 10.0f), random);
+    set_vertex_at(m, i, fixed_x, fixed_y, 1.0f / test_uniform(random, 0.05f, 10.0f), random);
 }
 
 /* Triangle t as a front face whose window corners lie exactly on a line,
@@ -156,10 +146,10 @@ static void set_vertex(mesh *m, uint32_t i, int32_t fixed_x, int32_t fixed_y, ui
  * snapping rounds them off it. Returns whether a try found one. */
 static bool set_collinear_front_face(mesh *m, uint32_t t, uint32_t *random)
 {
-    const int32_t centre_x = 256 * (int32_t)(2 + next_random(random) % (WIDTH - 4)) + 128;
-    const int32_t centre_y = 256 * (int32_t)(2 + next_random(random) % (HEIGHT - 4)) + 128;
-    const float step_x = (next_random(random) & 1) ? 0x1p-13f : -0x1p-13f;
-    const float step_y = (next_random(random) & 1) ? 0x1p-12f : -0x1p-12f;
+    const int32_t centre_x = 256 * (int32_t)(2 + test_random(random) % (WIDTH - 4)) + 128;
+    const int32_t centre_y = 256 * (int32_t)(2 + test_random(random) % (HEIGHT - 4)) + 128;
+    const float step_x = (test_random(random) & 1) ? 0x1p-13f : -0x1p-13f;
+    const float step_y = (test_random(random) & 1) ? 0x1p-12f : -0x1p-12f;
     const uint32_t i = 3 * t;
     set_vertex_at(m, i, centre_x, centre_y, 1.0f, random);
     for (uint32_t k = 1; k < 3; k++) {
@@ -274,19 +264,19 @@ static void test_lanes_agree_with_setup(void **state)
     mesh m = mesh_create(3 * triangle_count, triangle_count);
     uint32_t random = 77;
     for (uint32_t t = 0; t < triangle_count; t++) {
-        const uint32_t kind = next_random(&random) % 100;
-        const int32_t base_x = (int32_t)(next_random(&random) % (256 * (WIDTH + 8))) - 256 * 4;
-        const int32_t base_y = (int32_t)(next_random(&random) % (256 * (HEIGHT + 8))) - 256 * 4;
+        const uint32_t kind = test_random(&random) % 100;
+        const int32_t base_x = (int32_t)(test_random(&random) % (256 * (WIDTH + 8))) - 256 * 4;
+        const int32_t base_y = (int32_t)(test_random(&random) % (256 * (HEIGHT + 8))) - 256 * 4;
         const int32_t reach = kind < 50 ? 256 : kind < 80 ? 640 : 256 * 12;
         for (int k = 0; k < 3; k++) {
             const uint32_t i = 3 * t + (uint32_t)k;
             m.indices[i] = i;
             const uint32_t span = (uint32_t)(2 * reach + 1);
-            int32_t x = base_x + (int32_t)(next_random(&random) % span) - reach;
-            int32_t y = base_y + (int32_t)(next_random(&random) % span) - reach;
+            int32_t x = base_x + (int32_t)(test_random(&random) % span) - reach;
+            int32_t y = base_y + (int32_t)(test_random(&random) % span) - reach;
             if (kind == 99) {   /* huge: corners at the fixed-point limit */
-                x = (next_random(&random) & 1) ? (1 << 24) : -(1 << 24);
-                y = (next_random(&random) & 1) ? (1 << 24) : -(1 << 24);
+                x = (test_random(&random) & 1) ? (1 << 24) : -(1 << 24);
+                y = (test_random(&random) & 1) ? (1 << 24) : -(1 << 24);
             }
             set_vertex(&m, i, x, y, &random);
             if (kind == 97 && k == 1) project_with(&m, i, 1);   /* outside a clip plane */
@@ -392,10 +382,10 @@ static void test_planes_that_cancel(void **state)
     uint32_t random = 4242;
     for (uint32_t t = 0; t < triangle_count; t++) {
         /* A front face a pixel or two across, inside the viewport. */
-        const int32_t x0 = 256 * 5 + (int32_t)(next_random(&random) % (256 * 30));
-        const int32_t y0 = 256 * 5 + (int32_t)(next_random(&random) % (256 * 14));
-        const int32_t long_side = 200 + (int32_t)(next_random(&random) % 300);
-        const int32_t short_side = (int32_t)(next_random(&random) % 100);
+        const int32_t x0 = 256 * 5 + (int32_t)(test_random(&random) % (256 * 30));
+        const int32_t y0 = 256 * 5 + (int32_t)(test_random(&random) % (256 * 14));
+        const int32_t long_side = 200 + (int32_t)(test_random(&random) % 300);
+        const int32_t short_side = (int32_t)(test_random(&random) % 100);
         const int32_t corner[3][2] = {{x0, y0},
                                       {x0 + long_side, y0 + short_side},
                                       {x0 + short_side, y0 + long_side}};
@@ -411,8 +401,8 @@ static void test_planes_that_cancel(void **state)
          * the identity model, the varyings are these floats); the world
          * position is where the vertex is. */
         for (int v = 0; v < 5; v++) {
-            const double a = uniform(&random, 1000.0f, 30000.0f);
-            const double b = uniform(&random, -30000.0f, 30000.0f);
+            const double a = test_uniform(&random, 1000.0f, 30000.0f);
+            const double b = test_uniform(&random, -30000.0f, 30000.0f);
             for (int k = 0; k < 3; k++) {
                 const uint32_t i = 3 * t + (uint32_t)k;
                 const luz_window_vertex *w = &m.window[i];

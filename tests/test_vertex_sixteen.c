@@ -26,22 +26,13 @@
 
 #include <cmocka.h>
 
+#include "test_support.h"
+
 #include "luz/mesh.h"
 #include "luz/vecmath.h"
 #include "renderer/pipeline.h"
 
 #define VERTEX_COUNT 4099   /* not a multiple of 16 */
-
-static uint32_t next_random(uint32_t *state)
-{
-    *state = *state * 1664525u + 1013904223u;
-    return *state >> 8;
-}
-
-static float uniform(uint32_t *state, float low, float high)
-{
-    return low + (high - low) * (float)(next_random(state) & 0xffff) / 65536.0f;
-}
 
 /* Compares range [first, end) of the two results (clip_a, window_a and
  * fixed_a: NULL where the lanes were asked for none). */
@@ -96,16 +87,16 @@ static void test_lanes_agree_with_one_at_a_time(void **state)
                 fixed_b);
     uint32_t random = 99;
     for (uint32_t i = 0; i < VERTEX_COUNT; i++) {
-        const uint32_t kind = next_random(&random) % 100;
+        const uint32_t kind = test_random(&random) % 100;
         const float reach = kind < 70 ? 2.0f : kind < 90 ? 30.0f : 3e6f;
         vertices[i] = (luz_vertex){
-            {uniform(&random, -reach, reach), uniform(&random, -reach, reach),
-             uniform(&random, -reach, reach)},
-            {uniform(&random, -1, 1), uniform(&random, -1, 1), uniform(&random, -1, 1)},
-            {uniform(&random, -2, 3), uniform(&random, -2, 3)}};
+            {test_uniform(&random, -reach, reach), test_uniform(&random, -reach, reach),
+             test_uniform(&random, -reach, reach)},
+            {test_uniform(&random, -1, 1), test_uniform(&random, -1, 1), test_uniform(&random, -1, 1)},
+            {test_uniform(&random, -2, 3), test_uniform(&random, -2, 3)}};
         if (kind >= 85)   /* whole coordinates from -5 to 5: on planes, below */
             for (int k = 0; k < 3; k++)
-                (&vertices[i].position.x)[k] = (float)((int)(next_random(&random) % 11) - 5);
+                (&vertices[i].position.x)[k] = (float)((int)(test_random(&random) % 11) - 5);
     }
     luz_error error = {{0}};
     luz_mesh *mesh = luz_mesh_create(
@@ -130,12 +121,12 @@ static void test_lanes_agree_with_one_at_a_time(void **state)
     int marked = 0, projected = 0, non_finite = 0;
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++)
         for (int camera = 0; camera < 4; camera++) {
-            const luz_vec3 eye = {uniform(&random, -5, 5), uniform(&random, -5, 5),
-                                  uniform(&random, -5, 5)};
+            const luz_vec3 eye = {test_uniform(&random, -5, 5), test_uniform(&random, -5, 5),
+                                  test_uniform(&random, -5, 5)};
             luz_mat4 view_projection = luz_mat4_multiply(
-                luz_mat4_perspective(luz_radians(uniform(&random, 20, 100)),
+                luz_mat4_perspective(luz_radians(test_uniform(&random, 20, 100)),
                                      (float)cases[c].width / (float)cases[c].height, 0.1f,
-                                     uniform(&random, 5, 500)),
+                                     test_uniform(&random, 5, 500)),
                 luz_mat4_look_at(eye, (luz_vec3){0, 0, 0}, (luz_vec3){0, 1, 0}));
             if (cases[c].projection == ZERO) memset(&view_projection, 0, sizeof view_projection);
             if (cases[c].projection >= IDENTITY) view_projection = luz_mat4_identity();
@@ -145,21 +136,21 @@ static void test_lanes_agree_with_one_at_a_time(void **state)
             luz_draw draw = {.mesh = mesh,
                              .model = luz_mat4_rotate(
                                  luz_mat4_translate(luz_mat4_identity(),
-                                                    (luz_vec3){uniform(&random, -1, 1), 0, 0}),
-                                 uniform(&random, 0, 6.28f), (luz_vec3){0.6f, 0.8f, 0})};
+                                                    (luz_vec3){test_uniform(&random, -1, 1), 0, 0}),
+                                 test_uniform(&random, 0, 6.28f), (luz_vec3){0.6f, 0.8f, 0})};
             if (cases[c].projection >= IDENTITY) draw.model = luz_mat4_identity();
             else if (camera == 3)   /* far beyond float's range: infinite and NaN coordinates */
                 for (int k = 0; k < 12; k++) draw.model.m[k] *= k % 2 ? 1e38f : -1e38f;
             for (uint32_t first = 0; first < VERTEX_COUNT;) {
-                const uint32_t length = 1 + next_random(&random) % 300;
+                const uint32_t length = 1 + test_random(&random) % 300;
                 const uint32_t end = first + length < VERTEX_COUNT ? first + length : VERTEX_COUNT;
-                const bool with_fixed = next_random(&random) % 4 != 0;
+                const bool with_fixed = test_random(&random) % 4 != 0;
                 /* Setup in lanes projects corners itself: the vertex
                  * pass then keeps no window vertices. */
-                const bool with_window = next_random(&random) % 4 != 0;
+                const bool with_window = test_random(&random) % 4 != 0;
                 /* Position-only shading (setup in lanes shades corners
                  * itself): no clip vertices either. */
-                const bool with_clip = with_window || next_random(&random) % 2 != 0;
+                const bool with_clip = with_window || test_random(&random) % 2 != 0;
                 memset(window_a, 0x5A, VERTEX_COUNT * sizeof *window_a);
                 memset(clip_a, 0x5A, VERTEX_COUNT * sizeof *clip_a);
                 memset(fixed_a, 0x5A, VERTEX_COUNT * sizeof *fixed_a);
