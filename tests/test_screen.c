@@ -225,8 +225,9 @@ static void test_screening_drops_what_setup_would(void **state)
         for (int k = 0; k < 3; k++) {
             const uint32_t i = order[3 * t + (uint32_t)k];
             m.indices[3 * (size_t)t + (size_t)k] = i;
-            int32_t x = base_x + (int32_t)(test_random(&random) % (uint32_t)(2 * reach + 1)) - reach;
-            int32_t y = base_y + (int32_t)(test_random(&random) % (uint32_t)(2 * reach + 1)) - reach;
+            const uint32_t span = (uint32_t)(2 * reach + 1);
+            int32_t x = base_x + (int32_t)(test_random(&random) % span) - reach;
+            int32_t y = base_y + (int32_t)(test_random(&random) % span) - reach;
             if (kind == 99) {   /* huge: corners at the limit */
                 x = (test_random(&random) & 1) ? (1 << 24) : -(1 << 24);
                 y = (test_random(&random) & 1) ? (1 << 24) : -(1 << 24);

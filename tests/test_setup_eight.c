@@ -125,7 +125,8 @@ static void set_vertex_at(mesh *m, uint32_t i, int32_t fixed_x, int32_t fixed_y,
     const double y_ndc = 1.0 - 2.0 * fixed_y / (LUZ_SUBPIXEL_ONE * (double)HEIGHT);
     m->vertices[i] = (luz_vertex){
         {(float)(x_ndc * w), (float)(y_ndc * w), w},
-        {test_uniform(random, -1.0f, 1.0f), test_uniform(random, -1.0f, 1.0f), test_uniform(random, -1.0f, 1.0f)},
+        {test_uniform(random, -1.0f, 1.0f), test_uniform(random, -1.0f, 1.0f),
+         test_uniform(random, -1.0f, 1.0f)},
         {test_uniform(random, -4.0f, 4.0f), test_uniform(random, -4.0f, 4.0f)}};
     project_with(m, i, 0);
 }

@@ -92,7 +92,8 @@ static void test_lanes_agree_with_one_at_a_time(void **state)
         vertices[i] = (luz_vertex){
             {test_uniform(&random, -reach, reach), test_uniform(&random, -reach, reach),
              test_uniform(&random, -reach, reach)},
-            {test_uniform(&random, -1, 1), test_uniform(&random, -1, 1), test_uniform(&random, -1, 1)},
+            {test_uniform(&random, -1, 1), test_uniform(&random, -1, 1),
+             test_uniform(&random, -1, 1)},
             {test_uniform(&random, -2, 3), test_uniform(&random, -2, 3)}};
         if (kind >= 85)   /* whole coordinates from -5 to 5: on planes, below */
             for (int k = 0; k < 3; k++)
