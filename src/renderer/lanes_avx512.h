@@ -3,7 +3,8 @@
  * vertex_sixteen.c) share to turn arrays of structures, one vertex or
  * triangle each, into vectors of one field each (lanes), and back: the
  * gather of snapped positions and the 8 x 8 transposes; and what two of
- * them compute alike in lanes, the projection of a vertex. Included only
+ * them compute alike in lanes: a triangle's doubled area and box of
+ * pixel centres, the projection of a vertex. Included only
  * where the file is compiled with -mavx512f and the rest.
  */
 #ifndef LUZ_LANES_AVX512_H
@@ -22,6 +23,47 @@ luz_gather_fixed(__m256i vertex_index, const luz_fixed_vertex *fixed, __m512i *x
     const __m512i both = _mm512_i32gather_epi64(vertex_index, (const void *)fixed, 8);
     *x = _mm512_srai_epi64(_mm512_slli_epi64(both, 32), 32);
     *y = _mm512_srai_epi64(both, 32);
+}
+
+/* luz_setup_front_facing's doubled area of eight triangles of snapped
+ * corners (x0, y0), (x1, y1), (x2, y2), one per 64-bit lane: differences
+ * below 2^25, so each 32 x 32 -> 64-bit product is exact. A front face's
+ * is above 0. */
+static inline __attribute__((always_inline)) __m512i
+luz_doubled_area_lanes(__m512i x0, __m512i y0, __m512i x1, __m512i y1, __m512i x2, __m512i y2)
+{
+    return _mm512_sub_epi64(
+        _mm512_mul_epi32(_mm512_sub_epi64(y1, y0), _mm512_sub_epi64(x2, x0)),
+        _mm512_mul_epi32(_mm512_sub_epi64(x1, x0), _mm512_sub_epi64(y2, y0)));
+}
+
+/* luz_setup_projected's box of pixel centres of the same eight: the x
+ * whose centre 256 x + 128 lies within [min X, max X], from
+ * ceil((min X - 128) / 256) = -((128 - min X) >> 8) to floor((max X -
+ * 128) / 256) = (max X - 128) >> 8 (arithmetic shifts: floors), clamped
+ * to the viewport; likewise y. Empty where min > max. */
+static inline __attribute__((always_inline)) void
+luz_centre_box_lanes(__m512i x0, __m512i y0, __m512i x1, __m512i y1, __m512i x2, __m512i y2,
+                     int width, int height, __m512i *min_x, __m512i *min_y, __m512i *max_x,
+                     __m512i *max_y)
+{
+    const __m512i half = _mm512_set1_epi64(LUZ_SUBPIXEL_ONE / 2), zero = _mm512_setzero_si512();
+    const __m512i min_fx = _mm512_min_epi64(x0, _mm512_min_epi64(x1, x2));
+    const __m512i max_fx = _mm512_max_epi64(x0, _mm512_max_epi64(x1, x2));
+    const __m512i min_fy = _mm512_min_epi64(y0, _mm512_min_epi64(y1, y2));
+    const __m512i max_fy = _mm512_max_epi64(y0, _mm512_max_epi64(y1, y2));
+    *min_x = _mm512_max_epi64(
+        _mm512_sub_epi64(zero, _mm512_srai_epi64(_mm512_sub_epi64(half, min_fx),
+                                                 LUZ_SUBPIXEL_BITS)),
+        zero);
+    *min_y = _mm512_max_epi64(
+        _mm512_sub_epi64(zero, _mm512_srai_epi64(_mm512_sub_epi64(half, min_fy),
+                                                 LUZ_SUBPIXEL_BITS)),
+        zero);
+    *max_x = _mm512_min_epi64(_mm512_srai_epi64(_mm512_sub_epi64(max_fx, half), LUZ_SUBPIXEL_BITS),
+                              _mm512_set1_epi64(width - 1));
+    *max_y = _mm512_min_epi64(_mm512_srai_epi64(_mm512_sub_epi64(max_fy, half), LUZ_SUBPIXEL_BITS),
+                              _mm512_set1_epi64(height - 1));
 }
 
 /* setup.c's luz_setup_project_vertex for eight vertices of clip position (x, y,

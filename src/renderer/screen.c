@@ -121,30 +121,12 @@ static inline __attribute__((always_inline)) void screen_eight(__m256i a, __m256
                               _mm512_cmpge_epi64_mask(x2, lowest);
 
     /* Step 3: the doubled area, as luz_setup_front_facing. */
-    const __m512i area = _mm512_sub_epi64(
-        _mm512_mul_epi32(_mm512_sub_epi64(y1, y0), _mm512_sub_epi64(x2, x0)),
-        _mm512_mul_epi32(_mm512_sub_epi64(x1, x0), _mm512_sub_epi64(y2, y0)));
-    const __mmask8 front = _mm512_cmpgt_epi64_mask(area, _mm512_setzero_si512());
+    const __mmask8 front = _mm512_cmpgt_epi64_mask(luz_doubled_area_lanes(x0, y0, x1, y1, x2, y2),
+                                                   _mm512_setzero_si512());
 
-    /* The box of pixel centres: ceil((min X - 128) / 256) = -((128 - min
-     * X) >> 8) and floor((max X - 128) / 256) = (max X - 128) >> 8, the
-     * shifts arithmetic (floors), clamped to the viewport. */
-    const __m512i half = _mm512_set1_epi64(LUZ_SUBPIXEL_ONE / 2);
-    const __m512i zero = _mm512_setzero_si512();
-    const __m512i min_fx = _mm512_min_epi64(_mm512_min_epi64(x0, x1), x2);
-    const __m512i max_fx = _mm512_max_epi64(_mm512_max_epi64(x0, x1), x2);
-    const __m512i min_fy = _mm512_min_epi64(_mm512_min_epi64(y0, y1), y2);
-    const __m512i max_fy = _mm512_max_epi64(_mm512_max_epi64(y0, y1), y2);
-    __m512i min_x = _mm512_sub_epi64(zero, _mm512_srai_epi64(_mm512_sub_epi64(half, min_fx),
-                                                             LUZ_SUBPIXEL_BITS));
-    __m512i max_x = _mm512_srai_epi64(_mm512_sub_epi64(max_fx, half), LUZ_SUBPIXEL_BITS);
-    __m512i min_y = _mm512_sub_epi64(zero, _mm512_srai_epi64(_mm512_sub_epi64(half, min_fy),
-                                                             LUZ_SUBPIXEL_BITS));
-    __m512i max_y = _mm512_srai_epi64(_mm512_sub_epi64(max_fy, half), LUZ_SUBPIXEL_BITS);
-    min_x = _mm512_max_epi64(min_x, zero);
-    min_y = _mm512_max_epi64(min_y, zero);
-    max_x = _mm512_min_epi64(max_x, _mm512_set1_epi64(width - 1));
-    max_y = _mm512_min_epi64(max_y, _mm512_set1_epi64(height - 1));
+    /* The box of pixel centres, as setup's. */
+    __m512i min_x, min_y, max_x, max_y;
+    luz_centre_box_lanes(x0, y0, x1, y1, x2, y2, width, height, &min_x, &min_y, &max_x, &max_y);
     const __mmask8 empty = _mm512_cmpgt_epi64_mask(min_x, max_x) |
                            _mm512_cmpgt_epi64_mask(min_y, max_y);
     const __m512i one = _mm512_set1_epi64(1);
@@ -156,6 +138,7 @@ static inline __attribute__((always_inline)) void screen_eight(__m256i a, __m256
 
     /* The box's first centre, X = 256 x + 128, and its (up to) three
      * neighbours; a centre counts where it lies in the box. */
+    const __m512i half = _mm512_set1_epi64(LUZ_SUBPIXEL_ONE / 2);
     const __m512i sample_x = _mm512_add_epi64(_mm512_slli_epi64(min_x, LUZ_SUBPIXEL_BITS), half);
     const __m512i sample_y = _mm512_add_epi64(_mm512_slli_epi64(min_y, LUZ_SUBPIXEL_BITS), half);
     __mmask8 inside[4] = {0xff, second_column, second_row, second_column & second_row};

@@ -216,28 +216,13 @@ bool luz_setup_eight_avx512(const uint32_t *indices, const uint32_t triangles[8]
     /* Marked vertices come in runs (a draw across a clip plane, whose back
      * faces screening cannot judge either): such a group is left whole. */
     if (marked != 0) return true;
-    const __m512i area = _mm512_sub_epi64(
-        _mm512_mul_epi32(_mm512_sub_epi64(fy1, fy0), _mm512_sub_epi64(fx2, fx0)),
-        _mm512_mul_epi32(_mm512_sub_epi64(fx1, fx0), _mm512_sub_epi64(fy2, fy0)));
-    const __mmask8 back = _mm512_cmple_epi64_mask(area, _mm512_setzero_si512());
+    const __mmask8 back = _mm512_cmple_epi64_mask(
+        luz_doubled_area_lanes(fx0, fy0, fx1, fy1, fx2, fy2), _mm512_setzero_si512());
 
-    /* The box of pixel centres, 256 x + 128 within [min X, max X]: x from
-     * ceil((min X - 128) / 256) = -((128 - min X) >> 8) to floor((max X -
-     * 128) / 256) = (max X - 128) >> 8 (arithmetic shifts), clamped to the
-     * viewport. */
-    const __m512i half = _mm512_set1_epi64(LUZ_SUBPIXEL_ONE / 2), zero = _mm512_setzero_si512();
-    const __m512i min_fx = _mm512_min_epi64(fx0, _mm512_min_epi64(fx1, fx2));
-    const __m512i max_fx = _mm512_max_epi64(fx0, _mm512_max_epi64(fx1, fx2));
-    const __m512i min_fy = _mm512_min_epi64(fy0, _mm512_min_epi64(fy1, fy2));
-    const __m512i max_fy = _mm512_max_epi64(fy0, _mm512_max_epi64(fy1, fy2));
-    const __m512i min_x = _mm512_max_epi64(
-        _mm512_sub_epi64(zero, _mm512_srai_epi64(_mm512_sub_epi64(half, min_fx), 8)), zero);
-    const __m512i min_y = _mm512_max_epi64(
-        _mm512_sub_epi64(zero, _mm512_srai_epi64(_mm512_sub_epi64(half, min_fy), 8)), zero);
-    const __m512i max_x = _mm512_min_epi64(_mm512_srai_epi64(_mm512_sub_epi64(max_fx, half), 8),
-                                           _mm512_set1_epi64(width - 1));
-    const __m512i max_y = _mm512_min_epi64(_mm512_srai_epi64(_mm512_sub_epi64(max_fy, half), 8),
-                                           _mm512_set1_epi64(height - 1));
+    /* The box of pixel centres, as setup's. */
+    __m512i min_x, min_y, max_x, max_y;
+    luz_centre_box_lanes(fx0, fy0, fx1, fy1, fx2, fy2, width, height, &min_x, &min_y, &max_x,
+                         &max_y);
     const __mmask8 empty = _mm512_cmpgt_epi64_mask(min_x, max_x) |
                            _mm512_cmpgt_epi64_mask(min_y, max_y);
     /* A box of up to LUZ_SETUP_SMALL_BOX_PIXELS but more than 2 x 2:
