@@ -237,6 +237,31 @@ static const char texture_obj_format[] = "mtllib %s.mtl\n"
                                          "vt 0 0\nvt 1 0\nvt 0 1\n"
                                          "usemtl m\nf 1/1 2/2 3/3\n";
 
+/* Two quads side by side facing the camera, with texture coordinates,
+ * whose materials name a texture that is not there and one that is not a
+ * PNG (twobad); its twin names none (twoplain), and a third names the
+ * missing one from both materials (samegone). The same colours: drawn with
+ * T = 1, the three give the same pixels. */
+static const char two_quads_format[] = "mtllib %s.mtl\n"
+                                       "v -1 -0.5 0\nv 0 -0.5 0\nv 0 0.5 0\nv -1 0.5 0\n"
+                                       "v 0 -0.5 0\nv 1 -0.5 0\nv 1 0.5 0\nv 0 0.5 0\n"
+                                       "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 0 1\n"
+                                       "o left\nusemtl m1\nf 1/1/1 2/2/1 3/3/1 4/4/1\n"
+                                       "o right\nusemtl m2\nf 5/1/1 6/2/1 7/3/1 8/4/1\n";
+static const char two_quads_mtl_format[] = "newmtl m1\nKd 0.5 0.25 1\n%s\n"
+                                           "newmtl m2\nKd 0.25 0.75 0.5\n%s\n";
+
+static void write_two_quads(const char *stem, const char *first_map, const char *second_map)
+{
+    char name[64], text[1024];
+    snprintf(name, sizeof name, "models/%s.obj", stem);
+    snprintf(text, sizeof text, two_quads_format, stem);
+    write_text(name, text);
+    snprintf(name, sizeof name, "models/%s.mtl", stem);
+    snprintf(text, sizeof text, two_quads_mtl_format, first_map, second_map);
+    write_text(name, text);
+}
+
 /* A quad and a triangle in ASCII PLY: three triangles, bounds
  * (0, 0, 0)-(2, 1, 4). */
 static const char ply_text[] = "ply\nformat ascii 1.0\n"
@@ -369,6 +394,10 @@ static int setup_files(void **state)
     unsigned char *png = png_bytes(2, 2, texture_a, &png_length);
     write_texture_model("cuttex", "map_Kd tex/cut.png");
     write_bytes("models/tex/cut.png", png, 40);   /* the signature, IHDR, and no more */
+
+    write_two_quads("twobad", "map_Kd tex/gone.png", "map_Kd tex/bad.png");
+    write_two_quads("twoplain", "", "");
+    write_two_quads("samegone", "map_Kd tex/gone.png", "map_Kd tex/gone.png");
 
     const float triangle[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
     write_gltf("models/embedded.gltf", triangle, png, (size_t)png_length);
@@ -676,15 +705,68 @@ static void test_load_refusals(void **state)
     assert_load_refused("models/zero.obj", "zero size", NULL);
     assert_load_refused("models/flat.obj", "no triangle has an area", NULL);
     assert_load_refused("models/range.obj", NULL, NULL);
-    assert_load_refused("models/missingtex.obj", "tex/nothere.png", NULL);
-    assert_load_refused("models/badtex.obj", "tex/bad.png", "not a PNG file");
-    assert_load_refused("models/cuttex.obj", "tex/cut.png", "truncated PNG");
-    assert_load_refused("models/badembed.gltf", "texture '*0'", NULL);
     assert_load_refused("models/noise.obj", NULL, NULL);
     assert_load_refused("models/noise.xyz", NULL, NULL);
     assert_load_refused("models/folder.obj", "not a regular file", NULL);
     assert_load_refused("models/fifo.obj", "not a regular file", NULL);
     assert_load_refused("models/nothere.obj", "No such file", NULL);
+}
+
+/* A texture the model names that is missing or corrupt does not stop it
+ * (SCENE.md, "Models"): the part has no texture (T = 1), and the model one
+ * warning, one line naming the model, the texture and why. */
+static void assert_loads_with_warning(const char *name, const char *texture, const char *why)
+{
+    char path[1024];
+    work_path(name, path, sizeof path);
+    luz_model model;
+    luz_error error = {{0}};
+    if (luz_model_load(&model, path, NULL, &error) != 0) fail_msg("%s: %s", name, error.message);
+    assert_int_equal(model.part_count, 1);
+    assert_true(model.parts[0].has_uvs);
+    assert_null(model.parts[0].texture);
+    assert_int_equal(model.texture_count, 0);
+    assert_int_equal(model.texture_file_count, 0);
+    assert_int_equal(model.warning_count, 1);
+    assert_contains(model.warnings[0], path);
+    assert_contains(model.warnings[0], texture);
+    assert_contains(model.warnings[0], why);
+    assert_contains(model.warnings[0], "T = 1");
+    assert_null(strchr(model.warnings[0], '\n'));
+    luz_model_free(&model);
+}
+
+static void test_missing_or_corrupt_texture_is_a_warning(void **state)
+{
+    (void)state;
+    REQUIRE_MODELS();
+    assert_loads_with_warning("models/missingtex.obj", "'tex/nothere.png'", "No such file");
+    assert_loads_with_warning("models/badtex.obj", "'tex/bad.png'", "not a PNG file");
+    assert_loads_with_warning("models/cuttex.obj", "'tex/cut.png'", "truncated PNG");
+    assert_loads_with_warning("models/badembed.gltf", "texture '*0'", "PNG");
+
+    /* two parts naming the same missing file: one warning, both untextured */
+    luz_model model;
+    load_model("models/samegone.obj", &model);
+    assert_int_equal(model.part_count, 2);
+    assert_null(model.parts[0].texture);
+    assert_null(model.parts[1].texture);
+    assert_int_equal(model.warning_count, 1);
+    assert_contains(model.warnings[0], "'tex/gone.png'");
+    luz_model_free(&model);
+
+    /* one missing, one corrupt: a warning each, in the parts' order */
+    load_model("models/twobad.obj", &model);
+    assert_int_equal(model.part_count, 2);
+    assert_null(model.parts[0].texture);
+    assert_null(model.parts[1].texture);
+    assert_int_equal(model.warning_count, 2);
+    assert_contains(model.warnings[0], "'tex/gone.png'");
+    assert_contains(model.warnings[1], "'tex/bad.png'");
+    /* the colours stay the materials' */
+    assert_vec3_near(model.parts[0].colour, 0.5, 0.25, 1, 0);
+    assert_vec3_near(model.parts[1].colour, 0.25, 0.75, 0.5, 0);
+    luz_model_free(&model);
 }
 
 /* ---- the lab's placement ------------------------------------------------------------------ */
@@ -1201,10 +1283,6 @@ static const refusal_case refusal_cases[] = {
     {"index out of range", "models/range.obj", NULL, {"@"}},
     {"zero size", "models/zero.obj", NULL, {"@", "zero size"}},
     {"no triangle with an area", "models/flat.obj", NULL, {"@", "no triangle has an area"}},
-    {"missing texture", "models/missingtex.obj", NULL, {"@", "tex/nothere.png"}},
-    {"corrupt texture", "models/badtex.obj", NULL, {"@", "tex/bad.png"}},
-    {"truncated texture", "models/cuttex.obj", NULL, {"@", "tex/cut.png"}},
-    {"corrupt embedded texture", "models/badembed.gltf", NULL, {"@", "'*0'"}},
     /* model lines: FILE:LINE, and for a file that will not load the file too */
     {"scene: bad model file", NULL, "# models\nsize = 96x64\nmodel = models/zero.obj\n",
      {"refusal.luz:3: model", "models/zero.obj", "zero size"}},
@@ -1282,6 +1360,155 @@ static void test_refusals_through_luz_render(void **state)
     char path[1024];
     work_path("refusal.luz", path, sizeof path);
     unlink(path);
+}
+
+/* ---- missing and corrupt textures through luz-render (issue 27) ------------------------------ */
+
+/* The lines of text, each ending in '\n', counted; 0 if the text does not
+ * end in one. */
+static int count_lines(const char *text)
+{
+    int lines = 0;
+    for (const char *c = text; *c; c++) lines += *c == '\n';
+    return text[0] && text[strlen(text) - 1] != '\n' ? 0 : lines;
+}
+
+/* The bytes of work/name (which must exist), for comparing two images. */
+static char *work_file(const char *name, size_t *length)
+{
+    char path[1024];
+    work_path(name, path, sizeof path);
+    char *bytes = read_file(path, length);
+    if (bytes == NULL) fail_msg("%s: not written", name);
+    return bytes;
+}
+
+static void assert_same_files(const char *a, const char *b)
+{
+    size_t length_a, length_b;
+    char *bytes_a = work_file(a, &length_a), *bytes_b = work_file(b, &length_b);
+    if (length_a != length_b || memcmp(bytes_a, bytes_b, length_a) != 0)
+        fail_msg("%s and %s differ", a, b);
+    free(bytes_a);
+    free(bytes_b);
+}
+
+static void remove_work_file(const char *name)
+{
+    char path[1024];
+    work_path(name, path, sizeof path);
+    unlink(path);
+}
+
+/* twobad.obj names a texture that is not there and one that is not a PNG:
+ * exit 0, one warning line for each naming the model and the texture,
+ * and the same image as its twin that names no texture (both quads drawn
+ * with T = 1 in their materials' colours). A `colour` or `texture` on a
+ * scene file's model line applies to it as to the twin, and with a
+ * texture of the line's own there is nothing to warn about. */
+static void test_missing_textures_through_luz_render(void **state)
+{
+    (void)state;
+    REQUIRE_MODELS();
+    char model[1024];
+    work_path("models/twobad.obj", model, sizeof model);
+    run_result bad = run_render(ARGS("--model", "models/twobad.obj", "--size", "64x48", "-o",
+                                     "twobad.png"));
+    run_result plain = run_render(ARGS("--model", "models/twoplain.obj", "--size", "64x48",
+                                       "-o", "twoplain.png"));
+    print_message("%s", bad.err);
+    assert_int_equal(bad.status, 0);
+    assert_int_equal(plain.status, 0);
+    assert_string_equal(plain.err, "");
+    assert_int_equal(count_lines(bad.err), 2);
+    const char *second = strchr(bad.err, '\n') + 1;
+    assert_true(strncmp(bad.err, "luz: warning: ", 14) == 0);
+    assert_true(strncmp(second, "luz: warning: ", 14) == 0);
+    assert_contains(bad.err, model);
+    assert_contains(second, model);
+    assert_true(strstr(bad.err, "'tex/gone.png'") < second);   /* the first line's */
+    assert_contains(second, "'tex/bad.png'");
+    assert_same_files("twobad.png", "twoplain.png");
+    /* the quads are in the picture: its centre row is not all clear colour */
+    int width, height, channels;
+    char path[1024];
+    work_path("twobad.png", path, sizeof path);
+    unsigned char *pixels = stbi_load(path, &width, &height, &channels, 4);
+    assert_non_null(pixels);
+    int clear = 0;
+    for (int x = 0; x < width; x++) {
+        const unsigned char *p = pixels + ((size_t)(height / 2) * width + x) * 4;
+        clear += p[0] == pixels[0] && p[1] == pixels[1] && p[2] == pixels[2];
+    }
+    assert_true(clear < width / 2);
+    stbi_image_free(pixels);
+    run_result_free(&bad);
+    run_result_free(&plain);
+
+    static const char *const lines[] = {"colour 0.9, 0.1, 0.2", "texture w.png"};
+    for (size_t l = 0; l < sizeof lines / sizeof lines[0]; l++) {
+        char text[256];
+        snprintf(text, sizeof text, "size = 64x48\nmodel = models/twobad.obj %s\n", lines[l]);
+        write_text("bad.luz", text);
+        snprintf(text, sizeof text, "size = 64x48\nmodel = models/twoplain.obj %s\n", lines[l]);
+        write_text("plain.luz", text);
+        bad = run_render(ARGS("--scene", "bad.luz", "--textures", "cubetex", "-o", "bad.png"));
+        plain = run_render(ARGS("--scene", "plain.luz", "--textures", "cubetex", "-o",
+                                "plain.png"));
+        assert_int_equal(bad.status, 0);
+        assert_int_equal(plain.status, 0);
+        assert_int_equal(count_lines(bad.err), l == 0 ? 2 : 0);
+        assert_same_files("bad.png", "plain.png");
+        /* and the line changed the picture */
+        size_t length_a, length_b;
+        char *a = work_file("bad.png", &length_a), *b = work_file("twoplain.png", &length_b);
+        assert_false(length_a == length_b && memcmp(a, b, length_a) == 0);
+        free(a);
+        free(b);
+        run_result_free(&bad);
+        run_result_free(&plain);
+    }
+    static const char *const made[] = {"twobad.png", "twoplain.png", "bad.png", "plain.png",
+                                       "bad.luz", "plain.luz"};
+    for (size_t i = 0; i < sizeof made / sizeof made[0]; i++) remove_work_file(made[i]);
+}
+
+/* Debian's assimp-testmodels: files that name their author's disk
+ * (spider.fbx: D:\projects\...\drkwood2.jpg and three more) or a
+ * texture not shipped beside them (cube_with_diffuse_texture.3DS:
+ * TEST.PNG) are drawn, with a warning naming each texture once. */
+static void test_corpus_files_with_missing_textures(void **state)
+{
+    (void)state;
+    REQUIRE_MODELS();
+    static const struct {
+        const char *file, *texture;
+        int warnings;
+    } cases[] = {
+        {"/usr/share/assimp/models/FBX/spider.fbx", "drkwood2.jpg'", 4},
+        {"/usr/share/assimp/models/3DS/cube_with_diffuse_texture.3DS", "'TEST.PNG'", 1},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        if (access(cases[c].file, R_OK) != 0) {
+            print_message("skipped: %s is not installed (Debian's assimp-testmodels)\n",
+                          cases[c].file);
+            continue;
+        }
+        run_result result = run_render(ARGS("--model", cases[c].file, "--size", "64x48", "-o",
+                                            "corpus.png"));
+        print_message("%s", result.err);
+        assert_int_equal(result.status, 0);
+        assert_int_equal(count_lines(result.err), cases[c].warnings);
+        for (const char *line = result.err; *line; line = strchr(line, '\n') + 1) {
+            assert_true(strncmp(line, "luz: warning: ", 14) == 0);
+            assert_true(strncmp(line + 14, cases[c].file, strlen(cases[c].file)) == 0);
+        }
+        assert_contains(result.err, cases[c].texture);
+        size_t length;
+        free(work_file("corpus.png", &length));
+        remove_work_file("corpus.png");
+        run_result_free(&result);
+    }
 }
 
 /* -o naming a model or a texture file it read is refused (exit 2, one
@@ -1615,6 +1842,7 @@ int main(void)
         cmocka_unit_test(test_gltf_embedded_texture),
         cmocka_unit_test(test_glb_embedded_texture),
         cmocka_unit_test(test_load_refusals),
+        cmocka_unit_test(test_missing_or_corrupt_texture_is_a_warning),
         cmocka_unit_test(test_normalisation),
         cmocka_unit_test(test_model_matrix),
         cmocka_unit_test(test_colour_precedence),
@@ -1625,6 +1853,8 @@ int main(void)
         cmocka_unit_test(test_refusals_through_luz_render),
         cmocka_unit_test(test_unreadable_model),
         cmocka_unit_test(test_output_is_never_a_model_input),
+        cmocka_unit_test(test_missing_textures_through_luz_render),
+        cmocka_unit_test(test_corpus_files_with_missing_textures),
         cmocka_unit_test(test_views_on_a_model),
         cmocka_unit_test(test_probe_names_a_model),
         cmocka_unit_test(test_probe_of_nan_normals),

@@ -145,6 +145,19 @@ static int find_model(const luz_model_set *set, const char *path)
     return -1;
 }
 
+/* Whether every object that places the model at path names a texture of
+ * its own (its `texture NAME`). */
+static bool each_gives_a_texture(const luz_options *options, const char *path)
+{
+    for (int i = 0; i < options->scene.object_count; i++) {
+        const luz_object_source *source = &options->object_sources[i];
+        if (source->model_path != NULL && strcmp(source->model_path, path) == 0 &&
+            source->texture_name == NULL)
+            return false;
+    }
+    return true;
+}
+
 int luz_options_load_models(luz_options *options, luz_model_set *set,
                             luz_texture_budget *budget, luz_error *error)
 {
@@ -182,9 +195,19 @@ int luz_options_load_models(luz_options *options, luz_model_set *set,
             return -1;
         }
         set->count++;
+        /* What does not stop the model (a texture it names that is
+         * missing or corrupt) is said once, as it is read: one line each,
+         * control characters shown as '?'; not when every object placing
+         * it gives a texture of its own, which replaces the material's. */
+        const luz_model *model = &set->models[set->count - 1];
+        const int warnings = each_gives_a_texture(options, model->path) ? 0 : model->warning_count;
+        for (int k = 0; k < warnings; k++) {
+            char line[LUZ_ERROR_MESSAGE_SIZE + 16];
+            snprintf(line, sizeof line, "warning: %s", model->warnings[k]);
+            luz_error_print("luz", line);
+        }
         /* The model and the texture files it read are inputs that no
          * output may replace. */
-        const luz_model *model = &set->models[set->count - 1];
         status = luz_input_files_add(&options->inputs, model->path, "a model", error);
         for (int k = 0; k < model->texture_file_count && status == 0; k++)
             status = luz_input_files_add(&options->inputs, model->texture_files[k],

@@ -216,7 +216,9 @@ typedef struct luz_model_set {
  * each model object at its view; their textures are charged to *budget
  * (the run's, shared with the cube textures; NULL: one of their own). A
  * file that takes more than a second to read is announced on stderr when
- * that is a terminal. Returns 0, or LUZ_BAD_INPUT (-1) or
+ * that is a terminal. A model's warnings (a texture it names that is
+ * missing or corrupt: drawn with T = 1) are printed on stderr, one line
+ * each, "luz: warning: ...", once per run. Returns 0, or LUZ_BAD_INPUT (-1) or
  * LUZ_MACHINE_FAILED (io/input_file.h) with a message naming the file (and
  * FILE:LINE of the scene file's model line). */
 int luz_options_load_models(luz_options *options, luz_model_set *set,

@@ -50,6 +50,11 @@ typedef struct luz_model {
                                      model (not embedded), as opened: inputs
                                      that no output may replace */
     int texture_file_count;
+    char **warnings;              /* one line each, for the user: a texture
+                                     the file names that is missing or
+                                     corrupt, drawn with T = 1 (once per
+                                     texture name) */
+    int warning_count;
     luz_bounds bounds;            /* around every part's vertices */
     uint64_t triangle_count;
 } luz_model;
@@ -71,10 +76,12 @@ bool luz_models_supported(void);
  * LUZ_BAD_INPUT (-1) with one line naming the file and what is wrong: not
  * a regular file (it, or a file it names), unreadable, a format assimp
  * does not know, no triangles, a position that is not finite, an index out
- * of range, zero size, a texture it names that is missing, corrupt or over
- * the budget, assimp crashing or going over a limit on it; or
+ * of range, zero size, assimp crashing or going over a limit on it; or
  * LUZ_MACHINE_FAILED when memory runs out here, or no child process could
- * be made, or the system killed it. */
+ * be made, or the system killed it. A texture the file names that is
+ * missing, corrupt or over the budget does not stop the model: its parts
+ * get no texture (T = 1) and model->warnings one line naming the model
+ * and the texture (SCENE.md, "Models"). */
 int luz_model_load(luz_model *model, const char *path, luz_texture_budget *budget,
                    luz_error *error);
 

@@ -46,6 +46,8 @@ void luz_model_free(luz_model *model)
     free(model->textures);
     for (int i = 0; i < model->texture_file_count; i++) free(model->texture_files[i]);
     free(model->texture_files);
+    for (int i = 0; i < model->warning_count; i++) free(model->warnings[i]);
+    free(model->warnings);
     free(model->path);
     free(model->name);
     memset(model, 0, sizeof *model);
@@ -110,28 +112,57 @@ typedef struct model_reading {
     bool from_memory;
     luz_texture_budget *budget;
     char **texture_keys;
+    const luz_texture **keyed_textures;   /* one per key; NULL for a texture
+                                             that could not be read (warned
+                                             about once) */
     int texture_key_count;
 } model_reading;
 
+/* Remembers what the name key gave: a texture (then the model owns it),
+ * or NULL for one that is missing or corrupt, so that the parts naming
+ * it again neither read it nor warn again. */
 static int remember_texture(model_reading *reading, const char *key, luz_texture *texture,
                             luz_error *error)
 {
     luz_model *model = reading->model;
     luz_texture **textures =
-        realloc(model->textures, (size_t)(model->texture_count + 1) * sizeof *textures);
+        texture ? realloc(model->textures, (size_t)(model->texture_count + 1) * sizeof *textures)
+                : model->textures;
     if (textures) model->textures = textures;
-    char **keys =
-        realloc(reading->texture_keys, (size_t)(reading->texture_key_count + 1) * sizeof *keys);
+    const int count = reading->texture_key_count;
+    char **keys = realloc(reading->texture_keys, (size_t)(count + 1) * sizeof *keys);
     if (keys) reading->texture_keys = keys;
+    const luz_texture **keyed =
+        realloc(reading->keyed_textures, (size_t)(count + 1) * sizeof *keyed);
+    if (keyed) reading->keyed_textures = keyed;
     char *copy = copy_text(key);
-    if (!textures || !keys || !copy) {
+    if ((texture && !textures) || !keys || !keyed || !copy) {
         free(copy);
         luz_texture_destroy(texture);
         luz_error_set(error, "%s: out of memory for its textures", model->path);
         return LUZ_MACHINE_FAILED;
     }
-    model->textures[model->texture_count++] = texture;
-    reading->texture_keys[reading->texture_key_count++] = copy;
+    if (texture) model->textures[model->texture_count++] = texture;
+    reading->texture_keys[count] = copy;
+    reading->keyed_textures[count] = texture;
+    reading->texture_key_count = count + 1;
+    return 0;
+}
+
+/* A warning for the user, kept on the model (the programs print them
+ * once, after loading): one line. */
+static int add_warning(luz_model *model, const char *text, luz_error *error)
+{
+    char **warnings =
+        realloc(model->warnings, (size_t)(model->warning_count + 1) * sizeof *warnings);
+    if (warnings) model->warnings = warnings;
+    char *copy = copy_text(text);
+    if (!warnings || !copy) {
+        free(copy);
+        luz_error_set(error, "%s: out of memory for its warnings", model->path);
+        return LUZ_MACHINE_FAILED;
+    }
+    model->warnings[model->warning_count++] = copy;
     return 0;
 }
 
@@ -190,14 +221,18 @@ static int decode_embedded(const luz_described_texture *embedded, const char *na
 /* The texture a material names, decoded once: embedded in the file (the
  * import found it, as "*N" or by the embedded texture's own file name),
  * else a file relative to the model's directory, a backslash read as a
- * slash (files written on Windows say `.\tex\a.jpg`). */
+ * slash (files written on Windows say `.\tex\a.jpg`). One that is
+ * missing or corrupt gives *out = NULL (T = 1) and one warning on the
+ * model (SCENE.md, "Models": files from the web often name textures on
+ * their author's disk); only running out of memory is an error. */
 static int load_texture(model_reading *reading, const char *name, int32_t embedded,
                         const luz_texture **out, luz_error *error)
 {
     luz_model *model = reading->model;
+    *out = NULL;
     for (int i = 0; i < reading->texture_key_count; i++) {
         if (strcmp(reading->texture_keys[i], name) == 0) {
-            *out = model->textures[i];
+            *out = reading->keyed_textures[i];
             return 0;
         }
     }
@@ -234,9 +269,17 @@ static int load_texture(model_reading *reading, const char *name, int32_t embedd
             }
         }
     }
-    if (status != 0) {
+    if (status == LUZ_MACHINE_FAILED) {
         luz_error_set(error, "%s: texture '%s': %s", model->path, name, inner.message);
-        return status == LUZ_MACHINE_FAILED ? status : LUZ_BAD_INPUT;
+        return status;
+    }
+    if (status != 0) {
+        luz_error warning;
+        luz_error_set(&warning, "%s: texture '%s': %s; drawn without it (T = 1)", model->path,
+                      name, inner.message);
+        status = add_warning(model, warning.message, error);
+        if (status != 0) return status;
+        texture = NULL;
     }
     status = remember_texture(reading, name, texture, error);
     if (status != 0) return status;
@@ -367,6 +410,7 @@ static int build_model(luz_model *model, const luz_model_description *descriptio
     }
     for (int i = 0; i < reading.texture_key_count; i++) free(reading.texture_keys[i]);
     free(reading.texture_keys);
+    free(reading.keyed_textures);
     if (status != 0) return status;
 
     if (model->part_count == 0)
