@@ -9,6 +9,8 @@
  *
  *   glref --size 640x360 --time 2 -o gl.png
  *   glref --bench 20 --threads 1          (llvmpipe's LP_NUM_THREADS=1)
+ *   glref --samples 4 --model cow.ply     (4x MSAA; neutral at EV -1)
+ *   glref --check-samples                 (llvmpipe's 4 sample positions)
  *
  * What it shares with luz, and what it deliberately does not:
  *
@@ -39,6 +41,15 @@
  *     row, as luz's v = 0), every mip level from luz's chain with its own
  *     glTexImage2D (glGenerateMipmap's filter is not SCENE.md's), as GL_RGBA8
  *     (no sRGB decoding).
+ *   - Four samples (SCENE.md, "Anti-aliasing"): multisample RGBA8 and
+ *     depth24 renderbuffers, drawn, then resolved by glBlitFramebuffer into
+ *     a single-sample renderbuffer that is read back. GL shades once per
+ *     pixel and primitive at the pixel centre (no sample shading), as the
+ *     contract does. glGetMultisamplefv gives llvmpipe's positions relative
+ *     to GL's window, y up; with y mirrored in clip space that y is the
+ *     image's (down), so they are SCENE.md's as reported (--check-samples).
+ *   - Exposure and tone map (SCENE.md, "Output") are the fragment shader's
+ *     last lines, the marker's colour and the clear colour untouched.
  *   - llvmpipe's default texture path filters with 8-bit weights and takes
  *     an approximate log2 for the level of detail; GALLIVM_PERF=no_aos_sampling
  *     makes it filter in float. tools/conformance shows the difference.
@@ -94,6 +105,116 @@ enum {
 };
 
 #define PI 3.14159265358979323846
+
+/* ---- what glref reads beside luz's options ------------------------------------------ */
+
+/* SCENE.md's "Up axis": which of a model's own axes points up. */
+typedef enum up_axis { UP_Y, UP_Z, UP_X, UP_MINUS_Y, UP_MINUS_Z, UP_MINUS_X, UP_AXIS_COUNT } up_axis;
+static const char *const up_axis_names[UP_AXIS_COUNT] = {"y", "z", "x", "-y", "-z", "-x"};
+
+/* The frame's sample count (SCENE.md, "Anti-aliasing: four samples a
+ * pixel"), the output of lit fragments ("Output: exposure and tone map")
+ * and a --model's up axis ("Up axis"), once resolved: given, or the
+ * contract's defaults. */
+typedef struct glref_settings {
+    int samples;              /* 1 or 4 */
+    bool has_exposure;        /* given; else 0, or -1 with a model */
+    double exposure;          /* EV: lit colours are multiplied by 2^EV */
+    bool has_tonemap;         /* given; else clamp, or neutral with a model */
+    bool neutral;             /* the Khronos PBR Neutral tone map, else clamp */
+    bool has_up;
+    up_axis up;               /* of the object --model places */
+    bool check_samples;       /* --check-samples: print llvmpipe's positions */
+} glref_settings;
+
+/* Object i's up axis: --up for the object --model places (it has no
+ * scene-file line), y for the rest. */
+static up_axis object_up(const luz_options *options, const glref_settings *settings, int i)
+{
+    const luz_object_source *source = &options->object_sources[i];
+    return source->model_path != NULL && source->line == 0 && settings->has_up ? settings->up
+                                                                              : UP_Y;
+}
+
+/* Whether the scene draws a model: SCENE.md's defaults of the output
+ * change with it. */
+static bool scene_has_model(const luz_options *options)
+{
+    const int count = options->scene.objects ? options->scene.object_count : 0;
+    for (int i = 0; i < count; i++)
+        if (options->object_sources[i].model_path != NULL) return true;
+    return false;
+}
+
+/* The value of option `name` at argv[*index] ("--name VALUE" or
+ * "--name=VALUE"), or NULL if argv[*index] is another argument. Moves
+ * *index past what it read. */
+static const char *take_value(int argc, char **argv, int *index, const char *name, bool *missing)
+{
+    const char *text = argv[*index];
+    size_t length = strlen(name);
+    if (strncmp(text, "--", 2) != 0 || strncmp(text + 2, name, length) != 0) return NULL;
+    const char *rest = text + 2 + length;
+    if (*rest == '=') {
+        (*index)++;
+        *missing = rest[1] == '\0';
+        return rest + 1;
+    }
+    if (*rest != '\0') return NULL;
+    (*index)++;
+    *missing = *index >= argc || argv[*index][0] == '\0';
+    return *index < argc ? argv[(*index)++] : "";
+}
+
+/* Takes glref's own options out of argv (--check-samples, and until luz's
+ * parser reads them, --samples, --exposure, --tonemap and --up), checked
+ * as luz-render checks them; what is left goes to luz's parser. Returns 0,
+ * or -1 with one line naming the option. */
+static int take_own_options(int *argc, char **argv, glref_settings *settings, luz_error *error)
+{
+    int kept = 1;
+    for (int index = 1; index < *argc;) {
+        bool missing = false;
+        const char *value;
+        if (strcmp(argv[index], "--check-samples") == 0) {
+            settings->check_samples = true;
+            index++;
+        } else if ((value = take_value(*argc, argv, &index, "samples", &missing)) != NULL) {
+            if (missing || (strcmp(value, "1") != 0 && strcmp(value, "4") != 0))
+                return luz_error_set(error, "--samples: expected 1 or 4, got '%s'", value);
+            settings->samples = value[0] - '0';
+        } else if ((value = take_value(*argc, argv, &index, "exposure", &missing)) != NULL) {
+            char *end;
+            errno = 0;
+            double ev = missing ? NAN : strtod(value, &end);
+            if (missing || errno != 0 || end == value || *end != '\0' || !isfinite(ev) ||
+                ev < -10.0 || ev > 10.0)
+                return luz_error_set(error, "--exposure: expected a number of stops in "
+                                            "[-10, 10], got '%s'", value);
+            settings->has_exposure = true;
+            settings->exposure = ev;
+        } else if ((value = take_value(*argc, argv, &index, "tonemap", &missing)) != NULL) {
+            if (strcmp(value, "clamp") != 0 && strcmp(value, "neutral") != 0)
+                return luz_error_set(error, "--tonemap: expected clamp or neutral, got '%s'",
+                                     value);
+            settings->has_tonemap = true;
+            settings->neutral = strcmp(value, "neutral") == 0;
+        } else if ((value = take_value(*argc, argv, &index, "up", &missing)) != NULL) {
+            int axis = 0;
+            while (axis < UP_AXIS_COUNT && strcmp(value, up_axis_names[axis]) != 0) axis++;
+            if (axis == UP_AXIS_COUNT)
+                return luz_error_set(error, "--up: expected y, z, x, -y, -z or -x, got '%s'",
+                                     value);
+            settings->has_up = true;
+            settings->up = (up_axis)axis;
+        } else {
+            argv[kept++] = argv[index++];
+        }
+    }
+    *argc = kept;
+    argv[kept] = NULL;
+    return 0;
+}
 
 /* ---- the cube of SCENE.md, copied from its table ------------------------------------ */
 
@@ -226,6 +347,33 @@ static void normal_matrix(matrix a, float out[9])
         for (int c = 0; c < 3; c++) out[c * 3 + r] = (float)(cofactor[r][c] / determinant);
 }
 
+/* Up: the turn that makes the named axis +Y, written from SCENE.md's maps
+ * of (x, y, z) (each row is one output coordinate). */
+static matrix up_matrix(up_axis up)
+{
+    matrix a = matrix_identity();
+    if (up == UP_Y) return a;
+    M(a, 0, 0) = M(a, 1, 1) = M(a, 2, 2) = 0.0;
+    switch (up) {
+    case UP_Z:         /* (x, z, -y): -90 degrees about X */
+        M(a, 0, 0) = 1.0; M(a, 1, 2) = 1.0; M(a, 2, 1) = -1.0;
+        break;
+    case UP_MINUS_Z:   /* (x, -z, y): +90 degrees about X */
+        M(a, 0, 0) = 1.0; M(a, 1, 2) = -1.0; M(a, 2, 1) = 1.0;
+        break;
+    case UP_X:         /* (-y, x, z): +90 degrees about Z */
+        M(a, 0, 1) = -1.0; M(a, 1, 0) = 1.0; M(a, 2, 2) = 1.0;
+        break;
+    case UP_MINUS_X:   /* (y, -x, z): -90 degrees about Z */
+        M(a, 0, 1) = 1.0; M(a, 1, 0) = -1.0; M(a, 2, 2) = 1.0;
+        break;
+    default:           /* -y: (-x, -y, z), 180 degrees about Z */
+        M(a, 0, 0) = -1.0; M(a, 1, 1) = -1.0; M(a, 2, 2) = 1.0;
+        break;
+    }
+    return a;
+}
+
 static void matrix_to_floats(matrix a, float out[16])
 {
     for (int k = 0; k < 16; k++) out[k] = (float)a.m[k];
@@ -269,6 +417,22 @@ static const char *const fragment_shader_source =
     "uniform vec3 object_colour;\n"
     "uniform int unlit, textured;\n"
     "uniform sampler2D image;\n"
+    "uniform float exposure_scale;\n"
+    "uniform int neutral;\n"
+    "// The Khronos PBR Neutral tone mapper, line by line as SCENE.md writes it.\n"
+    "vec3 pbr_neutral(vec3 c)\n"
+    "{\n"
+    "    float x = min(c.r, min(c.g, c.b));\n"
+    "    float offset = x < 0.08 ? x - 6.25 * x * x : 0.04;\n"
+    "    c -= offset;\n"
+    "    float peak = max(c.r, max(c.g, c.b));\n"
+    "    if (peak < 0.76) return c;\n"
+    "    float d = 0.24;   // 1 - 0.76\n"
+    "    float new_peak = 1.0 - d * d / (peak + d - 0.76);\n"
+    "    c *= new_peak / peak;\n"
+    "    float g = 1.0 - 1.0 / (0.15 * (peak - new_peak) + 1.0);\n"
+    "    return mix(c, new_peak * vec3(1.0, 1.0, 1.0), g);\n"
+    "}\n"
     "void main()\n"
     "{\n"
     "    if (unlit != 0) {          // the point light's marker: Pt.rgb as it is\n"
@@ -307,6 +471,9 @@ static const char *const fragment_shader_source =
     "    vec3 spot = Sp.rgb * f_dir * f_dist;\n"
     "    vec3 directional = max(dot(N, normalize(-sun_direction)), 0.0) * Dl.rgb * Dl.a;\n"
     "    vec3 colour = (ambient + diffuse + specular + point + spot + directional) * C * T;\n"
+    "    // SCENE.md, Output: the exposure, then the tone map\n"
+    "    colour *= exposure_scale;   // 2^EV, worked out in double on the CPU\n"
+    "    if (neutral != 0) colour = pbr_neutral(colour);\n"
     "    fragment_colour = vec4(colour, 1.0);   // GL clamps and rounds to 8 bits\n"
     "}\n";
 
@@ -317,6 +484,7 @@ typedef struct uniform_locations {
     GLint lights[LUZ_TERM_COUNT];
     GLint shininess, camera_position, camera_front, point_position, sun_direction;
     GLint cos_inner, cos_outer, reach, object_colour, unlit, textured, image;
+    GLint exposure_scale, neutral;
 } uniform_locations;
 
 /* One triangle mesh of a model file, in GL buffers (uploaded once), with
@@ -333,19 +501,25 @@ typedef struct gl_model_mesh {
 /* One model file, read once however many objects place it. */
 typedef struct gl_model {
     const char *path;     /* the options' absolute path */
+    up_axis up;           /* the same file turned another way is another model */
     gl_model_mesh *meshes;
     int mesh_count;
     GLuint *textures;     /* every texture its materials name, once */
     char **texture_names;
     int texture_count;
-    matrix normalisation; /* Norm = Scale(2 / s) * Translate(-c) */
+    matrix normalisation; /* Norm = Scale(2 / s) * Translate(-c) * Up */
     uint64_t triangle_count;
 } gl_model;
 
 typedef struct gl_reference {
     EGLDisplay display;
     EGLContext context;
+    /* What the frame is drawn into: single-sample, or with 4 samples
+     * multisample renderbuffers that glBlitFramebuffer resolves into
+     * resolve_framebuffer's single-sample colour, which is read back. */
     GLuint framebuffer, colour_buffer, depth_buffer;
+    GLuint resolve_framebuffer, resolve_buffer;   /* 0 with one sample */
+    int samples;
     GLuint program, vertex_array, vertex_buffer, index_buffer;   /* the cube */
     GLuint *textures;   /* one per texture in the set */
     int texture_count;
@@ -476,6 +650,8 @@ static int build_program(gl_reference *gl, luz_error *error)
     u->unlit = glGetUniformLocation(p, "unlit");
     u->textured = glGetUniformLocation(p, "textured");
     u->image = glGetUniformLocation(p, "image");
+    u->exposure_scale = glGetUniformLocation(p, "exposure_scale");
+    u->neutral = glGetUniformLocation(p, "neutral");
     glUniform1i(u->image, 0);
     return 0;
 }
@@ -576,9 +752,11 @@ static void free_model(gl_model *model)
 
 #if !defined(GLREF_HAVE_ASSIMP)
 
-static int load_model(gl_model *model, const char *path, luz_filter filter, luz_error *error)
+static int load_model(gl_model *model, const char *path, up_axis up, luz_filter filter,
+                      luz_error *error)
 {
     (void)model;
+    (void)up;
     (void)filter;
     return luz_error_set(error, "%s: this glref was built without assimp (libassimp-dev), "
                                 "so it draws no models", path);
@@ -643,7 +821,9 @@ static luz_texture *decode_embedded(const struct aiTexture *embedded, const char
 
 /* The texture a material names, as a GL texture, decoded and uploaded once
  * per model: embedded in the file, else a file relative to the model's
- * directory with backslashes read as slashes. */
+ * directory with backslashes read as slashes. One that is missing or
+ * corrupt is *out = 0 (T = 1) with one warning line naming the model and
+ * the texture (SCENE.md, "Models"); remembered, so warned about once. */
 static int model_texture(gl_model *model, const struct aiScene *scene, const char *name,
                          luz_filter filter, GLuint *out, luz_error *error)
 {
@@ -679,8 +859,14 @@ static int model_texture(gl_model *model, const struct aiScene *scene, const cha
         else
             luz_texture_load(joined, NULL, &texture, &inner);
     }
-    if (texture == NULL)
-        return luz_error_set(error, "%s: texture '%s': %s", model->path, name, inner.message);
+    if (texture == NULL) {
+        char safe[sizeof inner.message];
+        snprintf(safe, sizeof safe, "%s", inner.message);
+        for (char *c = safe; *c != '\0'; c++)
+            if ((unsigned char)*c < 0x20 || *c == 0x7f) *c = '?';
+        fprintf(stderr, "glref: warning: %s: texture '%s': %s; drawn untextured (T = 1)\n",
+                model->path, name, safe);
+    }
 
     GLuint *textures = realloc(model->textures, (size_t)(model->texture_count + 1) *
                                                     sizeof *textures);
@@ -691,14 +877,16 @@ static int model_texture(gl_model *model, const struct aiScene *scene, const cha
     char *copy = malloc(strlen(name) + 1);
     if (textures == NULL || names == NULL || copy == NULL) {
         free(copy);
-        luz_texture_destroy(texture);
+        if (texture != NULL) luz_texture_destroy(texture);
         return luz_error_set(error, "%s: out of memory for its textures", model->path);
     }
     strcpy(copy, name);
-    GLuint gl_name;
-    glGenTextures(1, &gl_name);
-    upload_texture(gl_name, texture, filter);
-    luz_texture_destroy(texture);
+    GLuint gl_name = 0;   /* 0: missing or corrupt, T = 1 */
+    if (texture != NULL) {
+        glGenTextures(1, &gl_name);
+        upload_texture(gl_name, texture, filter);
+        luz_texture_destroy(texture);
+    }
     model->textures[model->texture_count] = gl_name;
     model->texture_names[model->texture_count++] = copy;
     *out = gl_name;
@@ -726,7 +914,8 @@ static bool material_colour(const struct aiMaterial *material, float colour[3])
 /* One mesh of the file with its triangles (faces of 3 indices; points and
  * lines dropped): its vertices and 32-bit indices into GL buffers, its
  * colour and texture. *kept is false for a mesh with no triangles. bounds
- * grows by its vertices (min x, y, z, then max). */
+ * grows by its vertices turned by the model's up axis (min x, y, z, then
+ * max); the buffers keep them as the file has them. */
 static int load_mesh(gl_model *model, const struct aiScene *scene, unsigned index,
                      luz_filter filter, bool *kept, double bounds[6], luz_error *error)
 {
@@ -752,7 +941,10 @@ static int load_mesh(gl_model *model, const struct aiScene *scene, unsigned inde
             return luz_error_set(error, "%s: mesh %u: vertex %u is not finite", model->path,
                                  index, v);
         }
-        const double position[3] = {p.x, p.y, p.z};
+        const matrix up = up_matrix(model->up);
+        double position[3];
+        for (int k = 0; k < 3; k++) position[k] = M(up, k, 0) * p.x + M(up, k, 1) * p.y +
+                                                  M(up, k, 2) * p.z;
         for (int k = 0; k < 3; k++) {
             bounds[k] = fmin(bounds[k], position[k]);
             bounds[3 + k] = fmax(bounds[3 + k], position[k]);
@@ -826,12 +1018,14 @@ static int load_mesh(gl_model *model, const struct aiScene *scene, unsigned inde
 }
 
 /* Reads the model file at path (absolute, from the options) into GL
- * buffers and textures, and computes its normalisation. Returns 0, or -1
- * with a message naming the file. */
-static int load_model(gl_model *model, const char *path, luz_filter filter, luz_error *error)
+ * buffers and textures, and computes its normalisation with the up axis.
+ * Returns 0, or -1 with a message naming the file. */
+static int load_model(gl_model *model, const char *path, up_axis up, luz_filter filter,
+                      luz_error *error)
 {
     memset(model, 0, sizeof *model);
     model->path = path;
+    model->up = up;
     const struct aiScene *scene = aiImportFile(path, model_steps);
     if (scene == NULL)
         return luz_error_set(error, "%s: assimp cannot read it (%s)", path, aiGetErrorString());
@@ -848,7 +1042,8 @@ static int load_model(gl_model *model, const char *path, luz_filter filter, luz_
     if (glGetError() != GL_NO_ERROR)
         return luz_error_set(error, "%s: OpenGL refused its buffers or textures", path);
 
-    /* Norm = Scale(2 / s) * Translate(-c): c the box's centre, s its largest side. */
+    /* Norm = Scale(2 / s) * Translate(-c) * Up: c the centre of the turned
+     * vertices' box, s its largest side. */
     double centre[3], side = 0.0;
     for (int k = 0; k < 3; k++) {
         centre[k] = (bounds[k] + bounds[3 + k]) / 2.0;
@@ -860,15 +1055,16 @@ static int load_model(gl_model *model, const char *path, luz_filter filter, luz_
         M(norm, k, k) = 2.0 / side;
         M(norm, k, 3) = -centre[k] * (2.0 / side);
     }
-    model->normalisation = norm;
+    model->normalisation = matrix_multiply(norm, up_matrix(up));
     return 0;
 }
 
 #endif
 
-/* Every model file the objects name, each read once; object_models[i] is
- * object i's model (an index into gl->models), or -1 for a cube. */
-static int load_models(gl_reference *gl, const luz_options *options, luz_filter filter,
+/* Every model file the objects name, each read once per up axis;
+ * object_models[i] is object i's model (an index into gl->models), or -1
+ * for a cube. */
+static int load_models(gl_reference *gl, const luz_options *options, const glref_settings *settings,
                        int *object_models, luz_error *error)
 {
     const int count = options->scene.objects ? options->scene.object_count : 0;
@@ -876,14 +1072,16 @@ static int load_models(gl_reference *gl, const luz_options *options, luz_filter 
         const char *path = options->object_sources[i].model_path;
         object_models[i] = -1;
         if (path == NULL) continue;
+        up_axis up = object_up(options, settings, i);
         for (int m = 0; m < gl->model_count && object_models[i] < 0; m++)
-            if (strcmp(gl->models[m].path, path) == 0) object_models[i] = m;
+            if (strcmp(gl->models[m].path, path) == 0 && gl->models[m].up == up)
+                object_models[i] = m;
         if (object_models[i] >= 0) continue;
         gl_model *models = realloc(gl->models, (size_t)(gl->model_count + 1) * sizeof *models);
         if (models == NULL) return luz_error_set(error, "out of memory for the models");
         gl->models = models;
         gl_model *model = &gl->models[gl->model_count++];
-        if (load_model(model, path, filter, error) != 0) {
+        if (load_model(model, path, up, options->scene.filter, error) != 0) {
             const luz_object_source *source = &options->object_sources[i];
             if (source->line > 0 && options->scene_path != NULL) {
                 luz_error inner = *error;
@@ -897,7 +1095,24 @@ static int load_models(gl_reference *gl, const luz_options *options, luz_filter 
     return 0;
 }
 
-static int create_framebuffer(gl_reference *gl, int width, int height, luz_error *error)
+/* An RGBA8 renderbuffer, or a depth24 one, with `samples` samples (1: an
+ * ordinary one). */
+static GLuint create_renderbuffer(GLenum format, int samples, int width, int height)
+{
+    GLuint name;
+    glGenRenderbuffers(1, &name);
+    glBindRenderbuffer(GL_RENDERBUFFER, name);
+    if (samples > 1)
+        glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, format, width, height);
+    else
+        glRenderbufferStorage(GL_RENDERBUFFER, format, width, height);
+    return name;
+}
+
+/* The frame's framebuffer: RGBA8 and depth24 with one sample, or with
+ * `samples` (4) and a single-sample RGBA8 one to resolve them into. */
+static int create_framebuffer(gl_reference *gl, int width, int height, int samples,
+                              luz_error *error)
 {
     GLint limit = 0, viewport[2] = {0, 0};
     glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &limit);
@@ -908,12 +1123,24 @@ static int create_framebuffer(gl_reference *gl, int width, int height, luz_error
                              viewport[1] < limit ? viewport[1] : limit);
     gl->width = width;
     gl->height = height;
-    glGenRenderbuffers(1, &gl->colour_buffer);
-    glBindRenderbuffer(GL_RENDERBUFFER, gl->colour_buffer);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
-    glGenRenderbuffers(1, &gl->depth_buffer);
-    glBindRenderbuffer(GL_RENDERBUFFER, gl->depth_buffer);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
+    gl->samples = samples;
+    if (samples > 1) {
+        GLint most = 0;
+        glGetIntegerv(GL_MAX_SAMPLES, &most);
+        if (most < samples)
+            return luz_error_set(error, "--samples: llvmpipe offers at most %d samples, not %d",
+                                 most, samples);
+        gl->resolve_buffer = create_renderbuffer(GL_RGBA8, 1, width, height);
+        glGenFramebuffers(1, &gl->resolve_framebuffer);
+        glBindFramebuffer(GL_FRAMEBUFFER, gl->resolve_framebuffer);
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
+                                  gl->resolve_buffer);
+        if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+            return luz_error_set(error, "cannot make a %dx%d RGBA8 framebuffer to resolve "
+                                        "into", width, height);
+    }
+    gl->colour_buffer = create_renderbuffer(GL_RGBA8, samples, width, height);
+    gl->depth_buffer = create_renderbuffer(GL_DEPTH_COMPONENT24, samples, width, height);
     glGenFramebuffers(1, &gl->framebuffer);
     glBindFramebuffer(GL_FRAMEBUFFER, gl->framebuffer);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
@@ -921,8 +1148,17 @@ static int create_framebuffer(gl_reference *gl, int width, int height, luz_error
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
                               gl->depth_buffer);
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-        return luz_error_set(error, "cannot make a %dx%d RGBA8 + depth24 framebuffer", width,
-                             height);
+        return luz_error_set(error, "cannot make a %dx%d RGBA8 + depth24 framebuffer with %d "
+                                    "sample%s", width, height, samples, samples > 1 ? "s" : "");
+    if (samples > 1) {
+        /* The driver may round the count up: SCENE.md asks for exactly 4. */
+        GLint granted = 0;
+        glBindRenderbuffer(GL_RENDERBUFFER, gl->colour_buffer);
+        glGetRenderbufferParameteriv(GL_RENDERBUFFER, GL_RENDERBUFFER_SAMPLES, &granted);
+        if (granted != samples)
+            return luz_error_set(error, "--samples: llvmpipe made %d samples a pixel, not %d",
+                                 granted, samples);
+    }
     glViewport(0, 0, width, height);
 
     /* SCENE.md's fixed state: depth LESS cleared to 1, back faces culled
@@ -935,6 +1171,35 @@ static int create_framebuffer(gl_reference *gl, int width, int height, luz_error
     glFrontFace(GL_CW);
     glClearColor(0.1f, 0.1f, 0.1f, 1.0f);
     return 0;
+}
+
+/* --check-samples: the positions of the bound 4-sample framebuffer as
+ * llvmpipe reports them (glGetMultisamplefv), against SCENE.md's pattern.
+ * GL gives each relative to the pixel's corner with y counting up GL's
+ * window; glref mirrors y in clip space so that GL's row 0 is the image's
+ * top row, so in glref's frames GL's y is the image's y (down), and the
+ * reported pair is the image position as it is. Prints them; returns 0
+ * when all four are SCENE.md's, else 1. */
+static int check_sample_positions(const gl_reference *gl)
+{
+    static const float expected[4][2] = {
+        {0.375f, 0.125f}, {0.875f, 0.375f}, {0.125f, 0.625f}, {0.625f, 0.875f},
+    };
+    int status = 0;
+    printf("llvmpipe's %d sample positions (glGetMultisamplefv; in glref's frames, image "
+           "coordinates, y down):\n", gl->samples);
+    for (int k = 0; k < gl->samples; k++) {
+        GLfloat position[2] = {-1.0f, -1.0f};
+        glGetMultisamplefv(GL_SAMPLE_POSITION, (GLuint)k, position);
+        bool same = k < 4 && position[0] == expected[k][0] && position[1] == expected[k][1];
+        printf("  sample %d: (%.4f, %.4f)%s\n", k, position[0], position[1],
+               same ? "" : "  differs from SCENE.md's");
+        if (!same) status = 1;
+    }
+    printf("%s\n", status == 0 ? "SCENE.md's pattern: (0.375, 0.125), (0.875, 0.375), "
+                                 "(0.125, 0.625), (0.625, 0.875)"
+                               : "NOT SCENE.md's pattern");
+    return status;
 }
 
 static void close_reference(gl_reference *gl)
@@ -950,6 +1215,8 @@ static void close_reference(gl_reference *gl)
         glDeleteFramebuffers(1, &gl->framebuffer);
         glDeleteRenderbuffers(1, &gl->colour_buffer);
         glDeleteRenderbuffers(1, &gl->depth_buffer);
+        glDeleteFramebuffers(1, &gl->resolve_framebuffer);
+        glDeleteRenderbuffers(1, &gl->resolve_buffer);
         eglMakeCurrent(gl->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         eglDestroyContext(gl->display, gl->context);
     }
@@ -962,6 +1229,7 @@ static void close_reference(gl_reference *gl)
 
 typedef struct scene_data {
     const luz_options *options;
+    const glref_settings *settings;
     luz_vec3 *colours;   /* objectColor per object index (the seed's) */
     int object_count;    /* cubes and models */
     int *object_models;  /* per object: index into gl->models, -1 a cube */
@@ -1026,6 +1294,8 @@ static void draw_frame(gl_reference *gl, const scene_data *data, double t, frame
     glUniform1f(u->cos_outer, (float)cos(lights->spot_outer_degrees * (PI / 180.0)));
     glUniform1f(u->reach, lights->spot_reach);
     glUniform1i(u->unlit, 0);
+    glUniform1f(u->exposure_scale, (float)exp2(data->settings->exposure));
+    glUniform1i(u->neutral, data->settings->neutral);
 
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 
@@ -1107,6 +1377,16 @@ static void draw_frame(gl_reference *gl, const scene_data *data, double t, frame
         glDrawElements(GL_TRIANGLES, 36, GL_UNSIGNED_SHORT, NULL);
     }
 
+    /* Four samples: the resolve, the average of each pixel's samples
+     * (SCENE.md writes it floor((s0 + s1 + s2 + s3 + 2) / 4)). */
+    if (gl->samples > 1) {
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, gl->framebuffer);
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gl->resolve_framebuffer);
+        glBlitFramebuffer(0, 0, gl->width, gl->height, 0, 0, gl->width, gl->height,
+                          GL_COLOR_BUFFER_BIT, GL_NEAREST);
+        glBindFramebuffer(GL_FRAMEBUFFER, gl->framebuffer);
+    }
+
     double submitted = luz_wall_ms();
     glFinish();
     if (times != NULL) {
@@ -1119,9 +1399,12 @@ static void draw_frame(gl_reference *gl, const scene_data *data, double t, frame
 
 static int write_frame(gl_reference *gl, uint8_t *pixels, const char *path, luz_error *error)
 {
-    /* GL's row 0 is luz's row 0 (y is mirrored in clip space). */
+    /* GL's row 0 is luz's row 0 (y is mirrored in clip space); with four
+     * samples, the pixels are the resolved ones. */
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    if (gl->samples > 1) glBindFramebuffer(GL_READ_FRAMEBUFFER, gl->resolve_framebuffer);
     glReadPixels(0, 0, gl->width, gl->height, GL_RGBA, GL_UNSIGNED_BYTE, pixels);
+    if (gl->samples > 1) glBindFramebuffer(GL_READ_FRAMEBUFFER, gl->framebuffer);
     if (glGetError() != GL_NO_ERROR) return luz_error_set(error, "glReadPixels failed");
     return luz_png_write(path, gl->width, gl->height, pixels, error);
 }
@@ -1218,6 +1501,16 @@ static void print_usage(FILE *out)
             "Render SCENE.md's scene through OpenGL 3.3 core on Mesa's llvmpipe (headless,\n"
             "EGL surfaceless), the reference luz is compared with. The options are\n"
             "luz-render's; --threads N sets llvmpipe's LP_NUM_THREADS.\n"
+            "\n"
+            "  --samples 1|4                samples a pixel (4: multisample renderbuffers\n"
+            "                               resolved by glBlitFramebuffer) (default: 1)\n"
+            "  --exposure EV                lit colours times 2^EV, EV in [-10, 10]\n"
+            "                               (default: 0; -1 when the scene has a model)\n"
+            "  --tonemap clamp|neutral      the output (default: clamp; neutral, the\n"
+            "                               Khronos PBR Neutral, when the scene has a model)\n"
+            "  --up y|z|x|-y|-z|-x          which of --model's axes points up (default: y)\n"
+            "  --check-samples              print llvmpipe's 4 sample positions and check\n"
+            "                               them against SCENE.md's (exit 1 if they differ)\n"
             "\n");
     luz_options_print_help(out);
     fprintf(out,
@@ -1248,12 +1541,24 @@ int main(int argc, char **argv)
     luz_options options;
     luz_texture_set textures = {0};
     gl_reference gl = {.display = EGL_NO_DISPLAY, .context = EGL_NO_CONTEXT};
-    scene_data data = {.options = &options};
+    glref_settings settings = {.samples = 1};
+    scene_data data = {.options = &options, .settings = &settings};
     luz_error error = {{0}};
     int status = EXIT_USAGE;
 
     luz_options_init(&options);
+    if (take_own_options(&argc, argv, &settings, &error) != 0) goto done;
     if (luz_options_parse(&options, argc, argv, &error) != 0) goto done;
+    if (settings.has_up && !(scene_has_model(&options) && options.object_sources[0].line == 0)) {
+        luz_error_set(&error, "--up: expected --model FILE, whose up axis it names");
+        goto done;
+    }
+    /* SCENE.md's defaults are clamp at EV 0, and neutral at EV -1 with a
+     * model; glref keeps clamp at EV 0 for models too until luz-render
+     * follows the contract's model defaults, so that tools/conformance
+     * compares like with like. */
+    if (!settings.has_exposure) settings.exposure = 0.0;
+    if (!settings.has_tonemap) settings.neutral = false;
     if (options.help) {
         print_usage(stdout);
         status = EXIT_OK;
@@ -1308,13 +1613,19 @@ int main(int argc, char **argv)
     upload_cube(&gl);
     if (upload_textures(&gl, &textures, options.scene.filter, &error) != 0) goto done;
     /* A model that cannot be read is the user's error, as in luz-render. */
-    if (load_models(&gl, &options, options.scene.filter, data.object_models, &error) != 0) {
+    if (load_models(&gl, &options, &settings, data.object_models, &error) != 0) {
         status = EXIT_USAGE;
         goto done;
     }
     glBindVertexArray(gl.vertex_array);
-    if (create_framebuffer(&gl, options.width, options.height, &error) != 0) {
+    if (create_framebuffer(&gl, options.width, options.height,
+                           settings.check_samples ? 4 : settings.samples, &error) != 0) {
         status = EXIT_USAGE;
+        goto done;
+    }
+    if (settings.check_samples) {
+        status = check_sample_positions(&gl) == 0 ? EXIT_OK : EXIT_RUNTIME;
+        if (status != EXIT_OK) luz_error_set(&error, "llvmpipe's 4 samples are not SCENE.md's");
         goto done;
     }
     if ((options.bench_frames > 0 ? bench(&gl, &data, &error)
