@@ -324,6 +324,28 @@ static void write_gltf(const char *name, const float positions[9], const unsigne
     free(buffer_text);
 }
 
+/* One untextured triangle in glTF 2.0 whose buffer (three positions, 36
+ * bytes) is the file bin_name beside it. */
+static void write_gltf_with_bin(const char *name, const char *bin_name)
+{
+    const float positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    char json[1024], bin_path[256];
+    snprintf(json, sizeof json,
+             "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],"
+             "\"nodes\":[{\"mesh\":0}],"
+             "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]}],"
+             "\"buffers\":[{\"byteLength\":36,\"uri\":\"%s\"}],"
+             "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":0,\"byteLength\":36}],"
+             "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,"
+             "\"type\":\"VEC3\",\"min\":[0,0,0],\"max\":[1,1,0]}]}\n",
+             bin_name);
+    write_text(name, json);
+    const char *slash = strrchr(name, '/');
+    snprintf(bin_path, sizeof bin_path, "%.*s%s", slash ? (int)(slash - name + 1) : 0, name,
+             bin_name);
+    write_bytes(bin_path, positions, sizeof positions);
+}
+
 /* The box that luz-render draws: 2 x 1 x 1.5, centred, each face with the
  * whole texture and its own normal, wound counter-clockwise seen from
  * outside; a 64x64 checker of single texels, so that the filters differ
@@ -406,6 +428,7 @@ static int setup_files(void **state)
                sizeof not_png - 1);
     const float nan_triangle[9] = {0, 0, 0, NAN, 0, 0, 0, 1, 0};
     write_gltf("models/nan.gltf", nan_triangle, png, (size_t)png_length);
+    write_gltf_with_bin("models/external.gltf", "external.bin");
     free(png);
 
     /* Random bytes under a model's name and under a name no importer
@@ -1511,29 +1534,42 @@ static void test_corpus_files_with_missing_textures(void **state)
     }
 }
 
-/* -o naming a model or a texture file it read is refused (exit 2, one
- * line saying which input it is) and the file stays as it was: the image
- * would have replaced it. models/two.obj reads models/tex/a.png and, as
- * .\tex\b.png, models/tex/b.png. */
+/* -o naming a model or a file it read is refused (exit 2, one line
+ * saying which input it is) and the file stays as it was: the image would
+ * have replaced it. models/two.obj reads models/two.mtl (through assimp),
+ * models/tex/a.png and, as .\tex\b.png, models/tex/b.png;
+ * models/external.gltf reads its buffer, models/external.bin. */
 static void test_output_is_never_a_model_input(void **state)
 {
     (void)state;
     REQUIRE_MODELS();
     static const struct {
-        const char *output, *expected;
+        const char *model, *output, *expected;
     } cases[] = {
-        {"models/two.obj", "luz-render: -o: models/two.obj: is a model this run reads (@); "
-                           "expected an output file that is none of its inputs\n"},
-        {"models/tex/a.png", "luz-render: -o: models/tex/a.png: is a texture of a model this run "
-                             "reads (@/../tex/a.png)"},
-        {"models/./tex/b.png", "luz-render: -o: models/./tex/b.png: is a texture of a model this "
-                               "run reads (@/../tex/b.png)"},
+        {"models/two.obj", "models/two.obj",
+         "luz-render: -o: models/two.obj: is a model this run reads (@); "
+         "expected an output file that is none of its inputs\n"},
+        {"models/two.obj", "models/two.mtl",
+         "luz-render: -o: models/two.mtl: is a file of a model this run reads (@/../two.mtl); "
+         "expected an output file that is none of its inputs\n"},
+        {"models/external.gltf", "models/external.bin",
+         "luz-render: -o: models/external.bin: is a file of a model this run reads "
+         "(@/../external.bin); expected an output file that is none of its inputs\n"},
+        {"models/external.gltf", "models/./external.bin",
+         "luz-render: -o: models/./external.bin: is a file of a model this run reads "
+         "(@/../external.bin)"},
+        {"models/two.obj", "models/tex/a.png",
+         "luz-render: -o: models/tex/a.png: is a texture of a model this run reads "
+         "(@/../tex/a.png)"},
+        {"models/two.obj", "models/./tex/b.png",
+         "luz-render: -o: models/./tex/b.png: is a texture of a model this run reads "
+         "(@/../tex/b.png)"},
     };
-    char model[1024], directory[1024];
-    work_path("models/two.obj", model, sizeof model);
+    char directory[1024];
     work_path("models", directory, sizeof directory);
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
-        char path[1024], expected[4096] = "";
+        char model[1024], path[1024], expected[4096] = "";
+        work_path(cases[c].model, model, sizeof model);
         work_path(cases[c].output, path, sizeof path);
         /* "@" is the model's absolute path; "@/.." its directory's */
         const char *at = strchr(cases[c].expected, '@');
@@ -1544,7 +1580,7 @@ static void test_output_is_never_a_model_input(void **state)
         size_t length_before, length_after;
         char *before = read_file(path, &length_before);
         assert_non_null(before);
-        run_result result = run_render(ARGS("--model", "models/two.obj", "--size", "32x32", "-o",
+        run_result result = run_render(ARGS("--model", cases[c].model, "--size", "32x32", "-o",
                                             cases[c].output));
         assert_int_equal(result.status, 2);
         if (strncmp(result.err, expected, strlen(expected)) != 0)

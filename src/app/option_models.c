@@ -212,6 +212,11 @@ int luz_options_load_models(luz_options *options, luz_model_set *set,
         for (int k = 0; k < model->texture_file_count && status == 0; k++)
             status = luz_input_files_add(&options->inputs, model->texture_files[k],
                                          "a texture of a model", error);
+        /* and every file assimp read for it: the .mtl, the .bin, ... */
+        for (int k = 0; k < model->read_file_count && status == 0; k++)
+            status = luz_input_files_add_identified(
+                &options->inputs, model->read_files[k].path, "a file of a model",
+                (dev_t)model->read_files[k].device, (ino_t)model->read_files[k].inode, error);
         if (status != 0) {   /* out of memory, its only failure */
             luz_model_set_free(set);
             return LUZ_MACHINE_FAILED;

@@ -13,28 +13,55 @@
 #include <string.h>
 #include <sys/stat.h>
 
-int luz_input_files_add(luz_input_files *inputs, const char *path, const char *what,
-                        luz_error *error)
+/* A new entry for path at the end of the list, not yet identified; NULL
+ * if memory ran out. */
+static luz_input_file *add_entry(luz_input_files *inputs, const char *path, const char *what,
+                                 luz_error *error)
 {
     if (inputs->count == inputs->capacity) {
         int capacity = inputs->capacity ? inputs->capacity * 2 : 16;
         luz_input_file *files = realloc(inputs->files, (size_t)capacity * sizeof *files);
-        if (files == NULL)
-            return luz_error_set(error, "%s: out of memory", path);
+        if (files == NULL) {
+            luz_error_set(error, "%s: out of memory", path);
+            return NULL;
+        }
         inputs->files = files;
         inputs->capacity = capacity;
     }
     char *copy = strdup(path);
-    if (copy == NULL)
-        return luz_error_set(error, "%s: out of memory", path);
+    if (copy == NULL) {
+        luz_error_set(error, "%s: out of memory", path);
+        return NULL;
+    }
     luz_input_file *file = &inputs->files[inputs->count++];
     *file = (luz_input_file){.path = copy, .what = what};
+    return file;
+}
+
+int luz_input_files_add(luz_input_files *inputs, const char *path, const char *what,
+                        luz_error *error)
+{
+    luz_input_file *file = add_entry(inputs, path, what, error);
+    if (file == NULL)
+        return -1;
     struct stat status;
     if (stat(path, &status) == 0) {
         file->identified = true;
         file->device = status.st_dev;
         file->inode = status.st_ino;
     }
+    return 0;
+}
+
+int luz_input_files_add_identified(luz_input_files *inputs, const char *path, const char *what,
+                                   dev_t device, ino_t inode, luz_error *error)
+{
+    luz_input_file *file = add_entry(inputs, path, what, error);
+    if (file == NULL)
+        return -1;
+    file->identified = true;
+    file->device = device;
+    file->inode = inode;
     return 0;
 }
 

@@ -45,6 +45,12 @@ typedef struct luz_input_files {
 int luz_input_files_add(luz_input_files *inputs, const char *path, const char *what,
                         luz_error *error);
 
+/* The same for a file another process read and identified (assimp's, with
+ * fstat() of the descriptor it read: io/model_import.c): path as it was
+ * opened there, device and inode as it found them. */
+int luz_input_files_add_identified(luz_input_files *inputs, const char *path, const char *what,
+                                   dev_t device, ino_t inode, luz_error *error);
+
 /* The input that path names, by its text or by its device and inode, or
  * NULL if it is none of them. */
 const luz_input_file *luz_input_files_find(const luz_input_files *inputs, const char *path);

@@ -23,6 +23,12 @@
 #include "luz/texture.h"
 #include "luz/vecmath.h"
 
+/* A file, as opened, and what fstat() said it was. */
+typedef struct luz_input_file_id {
+    char *path;
+    uint64_t device, inode;
+} luz_input_file_id;
+
 typedef struct luz_model_part {
     luz_mesh *mesh;
     bool has_colour;              /* the material's diffuse colour, if it has
@@ -55,6 +61,11 @@ typedef struct luz_model {
                                      corrupt, drawn with T = 1 (once per
                                      texture name) */
     int warning_count;
+    luz_input_file_id *read_files;   /* every file assimp read for it (the
+                                        model, its .mtl, .bin, ...), by path
+                                        as opened and device and inode:
+                                        inputs no output may replace */
+    int read_file_count;
     luz_bounds bounds;            /* around every part's vertices */
     uint64_t triangle_count;
 } luz_model;

@@ -24,13 +24,18 @@
 
 #include "io/input_file.h"
 
-enum { TAG_TEXTURE = 1, TAG_PART = 2, TAG_END = 3, TAG_REFUSED = 4 };
+enum { TAG_TEXTURE = 1, TAG_PART = 2, TAG_END = 3, TAG_REFUSED = 4, TAG_FILE = 5 };
 
 /* What a record starts with; its payload follows, `length` bytes. */
 typedef struct record_header {
     uint32_t tag, zero;
     uint64_t length;
 } record_header;
+
+typedef struct file_fixed {
+    uint64_t device, inode;
+    uint32_t path_length, zero;
+} file_fixed;
 
 typedef struct texture_fixed {
     uint32_t compressed, width, height, name_length;
@@ -139,6 +144,16 @@ static void put_names(luz_model_writer *writer, const char *const *names, int co
         length += strlen(names[i]) + 1;
     }
     put_padding(writer, length);
+}
+
+void luz_model_write_file(luz_model_writer *writer, const luz_described_file *file)
+{
+    const file_fixed fixed = {.device = file->device, .inode = file->inode,
+                              .path_length = (uint32_t)strlen(file->path)};
+    const char *names[] = {file->path};
+    put_header(writer, TAG_FILE, sizeof fixed + names_length(names, 1));
+    put(writer, &fixed, sizeof fixed);
+    put_names(writer, names, 1);
 }
 
 void luz_model_write_texture(luz_model_writer *writer, const luz_described_texture *texture)
@@ -265,6 +280,17 @@ static bool take_names(cursor *from, const uint32_t *lengths, int count, const c
     return true;
 }
 
+static bool read_file(cursor payload, luz_described_file *file)
+{
+    file_fixed fixed;
+    const void *start = take(&payload, sizeof fixed);
+    if (start == NULL) return false;
+    memcpy(&fixed, start, sizeof fixed);
+    if (fixed.zero != 0 || fixed.path_length == 0) return false;
+    *file = (luz_described_file){.device = fixed.device, .inode = fixed.inode};
+    return take_names(&payload, &fixed.path_length, 1, &file->path) && payload.left == 0;
+}
+
 static bool read_texture(cursor payload, luz_described_texture *texture)
 {
     texture_fixed fixed;
@@ -341,10 +367,11 @@ int luz_model_description_read(const unsigned char *bytes, size_t size, const ch
     cursor from = {bytes, size};
     uint32_t tag = 0;
     cursor payload;
-    uint64_t parts = 0, textures = 0;
+    uint64_t parts = 0, textures = 0, files = 0;
     bool ended = false;
     while (!ended && next_record(&from, &tag, &payload)) {
-        if (tag == TAG_TEXTURE && parts == 0) textures++;   /* textures come first */
+        if (tag == TAG_FILE && parts == 0 && textures == 0) files++;   /* files first */
+        else if (tag == TAG_TEXTURE && parts == 0) textures++;   /* then textures */
         else if (tag == TAG_PART) parts++;
         else if (tag == TAG_END || tag == TAG_REFUSED) ended = true;
         else return unreadable(path, "a record of an unknown kind, or out of order", error);
@@ -374,9 +401,11 @@ int luz_model_description_read(const unsigned char *bytes, size_t size, const ch
         textures >= INT32_MAX)
         return unreadable(path, "its END record counts other records than it has", error);
 
+    description->files = calloc((size_t)files + 1, sizeof *description->files);
     description->textures = calloc((size_t)textures + 1, sizeof *description->textures);
     description->parts = calloc((size_t)parts + 1, sizeof *description->parts);
-    if (description->textures == NULL || description->parts == NULL) {
+    if (description->files == NULL || description->textures == NULL ||
+        description->parts == NULL) {
         luz_model_description_free(description);
         luz_error_set(error, "%s: out of memory for its %llu meshes", path,
                       (unsigned long long)parts);
@@ -384,6 +413,13 @@ int luz_model_description_read(const unsigned char *bytes, size_t size, const ch
     }
     from = (cursor){bytes, size};
     while (next_record(&from, &tag, &payload) && tag != TAG_END) {
+        if (tag == TAG_FILE) {
+            if (!read_file(payload, &description->files[description->file_count++])) {
+                luz_model_description_free(description);
+                return unreadable(path, "a file's path", error);
+            }
+            continue;
+        }
         bool sound = tag == TAG_TEXTURE
                          ? read_texture(payload,
                                         &description->textures[description->texture_count++])
@@ -401,6 +437,7 @@ int luz_model_description_read(const unsigned char *bytes, size_t size, const ch
 
 void luz_model_description_free(luz_model_description *description)
 {
+    free(description->files);
     free(description->textures);
     free(description->parts);
     memset(description, 0, sizeof *description);

@@ -12,6 +12,8 @@
  * The bytes are a sequence of records, each a header (a tag and the
  * length of what follows, a multiple of 8) and its payload, in the byte
  * order and layout of this build (both ends are the same program):
+ *   FILE     a file assimp read (the model, its .mtl, .bin, ...): its path
+ *            as opened, its device and inode; these come first;
  *   TEXTURE  an embedded texture that a part uses: its name, compressed
  *            bytes (a PNG, a JPEG, ...) or raw BGRA texels;
  *   PART     a triangle mesh of the file: luz_vertex array, indices,
@@ -63,6 +65,13 @@ typedef struct luz_described_texture {
     uint64_t size;
 } luz_described_texture;
 
+/* A file the import opened and read through luz's file system: an input
+ * of the run, which no output may replace. */
+typedef struct luz_described_file {
+    const char *path;         /* as assimp asked for it */
+    uint64_t device, inode;   /* fstat() of what was read */
+} luz_described_file;
+
 typedef struct luz_described_part {
     uint32_t mesh_index;      /* in the file, for messages */
     uint32_t vertex_count, triangle_count;
@@ -75,6 +84,7 @@ typedef struct luz_described_part {
     int32_t embedded;         /* the TEXTURE that texture_name is, or -1 */
 } luz_described_part;
 
+void luz_model_write_file(luz_model_writer *writer, const luz_described_file *file);
 void luz_model_write_texture(luz_model_writer *writer, const luz_described_texture *texture);
 /* A part, in steps, for arrays that are not in memory as such (assimp's
  * positions, normals and uvs are separate): the start (part's counts,
@@ -94,6 +104,8 @@ void luz_model_writer_free(luz_model_writer *writer);
 /* ---- reading ------------------------------------------------------------------------------ */
 
 typedef struct luz_model_description {
+    luz_described_file *files;
+    int file_count;
     luz_described_texture *textures;
     int texture_count;
     luz_described_part *parts;

@@ -19,7 +19,9 @@
  * only, at most LUZ_MODEL_FILE_MAX_BYTES each. assimp carries on without a
  * .mtl it cannot open, as without a missing one; but a file that luz
  * refused (a FIFO, a device, one too large) makes the whole model refused,
- * naming that file.
+ * naming that file. Each file opened is recorded (its path, device and
+ * inode) and listed in the description: they are all inputs of the run,
+ * which luz-render's -o must not replace.
  */
 #include "io/model_import.h"
 
@@ -31,6 +33,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <assimp/cfileio.h>
@@ -67,6 +70,11 @@ typedef struct model_files {
     const char *memory_name;       /* the one name it answers to */
     int refusal;                   /* 0, or the status of the first file refused */
     luz_error refusal_error;       /* its message */
+    luz_described_file *opened;    /* every file opened, once each (by device
+                                      and inode): inputs of the run, which
+                                      the description lists */
+    int opened_count;
+    bool opened_lost;              /* memory ran out recording one */
 } model_files;
 
 /* One open file: a descriptor, or the model in memory. */
@@ -140,6 +148,35 @@ static void file_flush(struct aiFile *handle)
     (void)handle;
 }
 
+/* Records the file open at descriptor, as path, unless it is recorded
+ * already; false if memory ran out (the caller refuses the model: an
+ * unrecorded input could be overwritten). */
+static bool record_opened(model_files *files, const char *path, int descriptor)
+{
+    struct stat status;
+    if (fstat(descriptor, &status) != 0) return true;   /* luz_input_open did: cannot fail */
+    for (int i = 0; i < files->opened_count; i++)
+        if (files->opened[i].device == (uint64_t)status.st_dev &&
+            files->opened[i].inode == (uint64_t)status.st_ino)
+            return true;
+    luz_described_file *grown =
+        realloc(files->opened, (size_t)(files->opened_count + 1) * sizeof *grown);
+    char *copy = grown ? strdup(path) : NULL;
+    if (grown) files->opened = grown;
+    if (copy == NULL) return false;
+    files->opened[files->opened_count++] = (luz_described_file){
+        .path = copy, .device = (uint64_t)status.st_dev, .inode = (uint64_t)status.st_ino};
+    return true;
+}
+
+static void free_opened(model_files *files)
+{
+    for (int i = 0; i < files->opened_count; i++) free((char *)files->opened[i].path);
+    free(files->opened);
+    files->opened = NULL;
+    files->opened_count = 0;
+}
+
 static struct aiFile *files_open(struct aiFileIO *io, const char *path, const char *mode)
 {
     model_files *files = (model_files *)io->UserData;
@@ -161,6 +198,11 @@ static struct aiFile *files_open(struct aiFileIO *io, const char *path, const ch
                 files->refusal = status;
                 files->refusal_error = refusal;
             }
+            return NULL;
+        }
+        if (!record_opened(files, path, descriptor)) {
+            files->opened_lost = true;
+            close(descriptor);
             return NULL;
         }
     }
@@ -397,12 +439,13 @@ static void write_arrays(luz_model_writer *writer, const struct aiMesh *source)
     luz_model_write_indices(writer, indices, n);
 }
 
-/* The scene, post-processed, as its description: the embedded textures
- * the parts use first (the reader wants them before the parts that name
- * them), then the parts. */
-static int describe_scene(const struct aiScene *scene, const char *path,
-                          luz_model_writer *writer, luz_error *error)
+/* The scene, post-processed, as its description: the files the import
+ * read, then the embedded textures the parts use (the reader wants them
+ * before the parts that name them), then the parts. */
+static int describe_scene(const struct aiScene *scene, const model_files *files,
+                          const char *path, luz_model_writer *writer, luz_error *error)
 {
+    for (int i = 0; i < files->opened_count; i++) luz_model_write_file(writer, &files->opened[i]);
     used_textures used = {0};
     used.textures = calloc((size_t)scene->mNumTextures + 1, sizeof *used.textures);
     mesh_part *described = malloc(sizeof *described);
@@ -458,14 +501,20 @@ int luz_model_import(const luz_model_source *source, uint64_t memory_limit,
      * runs them, validation first and then the rest, with the positions
      * checked in between (check_imported). */
     const struct aiScene *scene = aiImportFileEx(path, aiProcess_ValidateDataStructure, &io);
-    if (files.refusal != 0) {
+    if (files.refusal != 0 || files.opened_lost) {
         /* a file the model names was refused (and assimp may have carried
          * on without it): the model is refused with it */
         if (scene != NULL) aiReleaseImport(scene);
+        free_opened(&files);
+        if (files.refusal == 0) {
+            luz_error_set(error, "%s: out of memory for the names of the files it reads", path);
+            return LUZ_MACHINE_FAILED;
+        }
         luz_error_set(error, "%s: %s", path, files.refusal_error.message);
         return files.refusal;
     }
     if (scene == NULL) {
+        free_opened(&files);
         const char *why = aiGetErrorString();
         if (memory_limit > 0 && strstr(why, "bad_alloc") != NULL)
             return luz_error_set(error, "%s: assimp needs more than %llu MiB to read it (luz's "
@@ -475,15 +524,19 @@ int luz_model_import(const luz_model_source *source, uint64_t memory_limit,
     }
     if (check_imported(scene, path, error) != 0) {
         aiReleaseImport(scene);
+        free_opened(&files);
         return LUZ_BAD_INPUT;
     }
     /* On failure this releases the scene itself, and sets no error string. */
     scene = aiApplyPostProcessing(scene, model_steps & ~(unsigned)aiProcess_ValidateDataStructure);
-    if (scene == NULL)
+    if (scene == NULL) {
+        free_opened(&files);
         return luz_error_set(error, "%s: not a model luz can read (assimp's post-processing "
                                     "failed)", path);
-    int status = describe_scene(scene, path, writer, error);
+    }
+    int status = describe_scene(scene, &files, path, writer, error);
     aiReleaseImport(scene);
+    free_opened(&files);
     return status;
 }
 

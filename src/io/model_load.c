@@ -48,6 +48,8 @@ void luz_model_free(luz_model *model)
     free(model->texture_files);
     for (int i = 0; i < model->warning_count; i++) free(model->warnings[i]);
     free(model->warnings);
+    for (int i = 0; i < model->read_file_count; i++) free(model->read_files[i].path);
+    free(model->read_files);
     free(model->path);
     free(model->name);
     memset(model, 0, sizeof *model);
@@ -392,6 +394,31 @@ static void grow_bounds(luz_bounds *bounds, luz_bounds more, bool first)
                              fmaxf(bounds->max.z, more.max.z)};
 }
 
+/* The files the import read, kept for luz-render's check that no output
+ * replaces an input. */
+static int keep_read_files(luz_model *model, const luz_model_description *description,
+                           luz_error *error)
+{
+    if (description->file_count == 0) return 0;
+    model->read_files = calloc((size_t)description->file_count, sizeof *model->read_files);
+    if (model->read_files == NULL) {
+        luz_error_set(error, "%s: out of memory for the names of the files it read", model->path);
+        return LUZ_MACHINE_FAILED;
+    }
+    for (int i = 0; i < description->file_count; i++) {
+        const luz_described_file *file = &description->files[i];
+        char *path = copy_text(file->path);
+        if (path == NULL) {
+            luz_error_set(error, "%s: out of memory for the names of the files it read",
+                          model->path);
+            return LUZ_MACHINE_FAILED;
+        }
+        model->read_files[model->read_file_count++] =
+            (luz_input_file_id){.path = path, .device = file->device, .inode = file->inode};
+    }
+    return 0;
+}
+
 /* The description's parts as the model's, then the checks of the whole:
  * some triangle, a size, some area. model->path is set. */
 static int build_model(luz_model *model, const luz_model_description *description,
@@ -454,6 +481,7 @@ static int build(luz_model *model, const char *path, const unsigned char *bytes,
         status = description.refusal;
     }
     luz_texture_budget own = {0};
+    if (status == 0) status = keep_read_files(model, &description, error);
     if (status == 0)
         status = build_model(model, &description, from_memory, budget ? budget : &own, error);
     luz_model_description_free(&description);
