@@ -10,8 +10,9 @@
  *
  * The child is made with fork() and ends with _exit(): it runs no atexit
  * handler and flushes none of the parent's stdio buffers (luz-render may
- * hold half a PNG for standard output). It limits itself (RLIMIT_CPU,
- * RLIMIT_AS, no core files), writes to the pipe and exits. The parent
+ * hold half a PNG for standard output). It dies with its parent
+ * (PR_SET_PDEATHSIG), limits itself (RLIMIT_CPU, RLIMIT_AS, no core
+ * files), writes to the pipe and exits. The parent
  * reads with poll() against a wall-clock deadline (a child that blocks or
  * sleeps uses no CPU time), kills the child when it passes, always reaps
  * it (no zombies) and closes both ends of the pipe on every path. The
@@ -28,6 +29,7 @@
 #include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/time.h>
 #include <sys/wait.h>
@@ -96,9 +98,18 @@ static uint64_t address_space_bytes(void)
 }
 
 /* The child: its limits, its work, what it found down the pipe, _exit. */
-static _Noreturn void run_child(const char *path, int pipe_end, const luz_model_limits *limits,
-                                luz_model_child_work work, const void *context)
+static _Noreturn void run_child(const char *path, int pipe_end, pid_t parent,
+                                const luz_model_limits *limits, luz_model_child_work work,
+                                const void *context)
 {
+    /* It dies with luz: whatever ends luz's process (SIGKILL, or SIGTERM
+     * and SIGINT, which end luz-render and the viewer as their default
+     * action does), the kernel then sends the child SIGKILL, rather than
+     * leave assimp running under PID 1 until its CPU limit. (Strictly, the
+     * kernel sends it when the thread that forked ends: luz forks from its
+     * main thread.) A parent that ended before the prctl took effect is
+     * seen in getppid(): the child is then someone else's, and leaves. */
+    if (prctl(PR_SET_PDEATHSIG, SIGKILL) != 0 || getppid() != parent) _exit(1);
     signal(SIGPIPE, SIG_IGN);
     /* A crash ends the child with its signal, which the parent reports,
      * whatever handlers the parent had (a test framework's, a sanitizer's,
@@ -207,6 +218,7 @@ int luz_model_run_isolated(const char *path, const luz_model_limits *limits,
         return LUZ_MACHINE_FAILED;
     }
     const double start = now_seconds(), deadline = start + limits->wall_seconds;
+    const pid_t parent = getpid();
     pid_t child = fork();
     if (child < 0) {
         int reason = errno;
@@ -218,7 +230,7 @@ int luz_model_run_isolated(const char *path, const luz_model_limits *limits,
     }
     if (child == 0) {
         close(ends[0]);
-        run_child(path, ends[1], limits, work, context);
+        run_child(path, ends[1], parent, limits, work, context);
     }
     close(ends[1]);
 
