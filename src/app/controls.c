@@ -39,14 +39,21 @@ void luz_camera_move(luz_camera *camera, luz_motion motion, float seconds)
                                   clamp_float(position.z, -limit, limit)};
 }
 
-void luz_camera_turn(luz_camera *camera, float dx, float dy)
+void luz_camera_turn_degrees(luz_camera *camera, float yaw_degrees, float pitch_degrees)
 {
-    float yaw = camera->yaw_degrees + dx * LUZ_MOUSE_DEGREES_PER_PIXEL;
+    float yaw = camera->yaw_degrees + yaw_degrees;
     if (yaw < -180.0f || yaw >= 180.0f)
         yaw -= 360.0f * floorf((yaw + 180.0f) / 360.0f);
     camera->yaw_degrees = yaw;
-    camera->pitch_degrees = clamp_float(camera->pitch_degrees - dy * LUZ_MOUSE_DEGREES_PER_PIXEL,
+    camera->pitch_degrees = clamp_float(camera->pitch_degrees + pitch_degrees,
                                         -LUZ_PITCH_LIMIT, LUZ_PITCH_LIMIT);
+}
+
+void luz_camera_turn(luz_camera *camera, float dx, float dy)
+{
+    /* -(dy * k) is exact: the same pitch as pitch - dy * k */
+    luz_camera_turn_degrees(camera, dx * LUZ_MOUSE_DEGREES_PER_PIXEL,
+                            -(dy * LUZ_MOUSE_DEGREES_PER_PIXEL));
 }
 
 void luz_camera_reset(luz_camera *camera, const luz_camera *start)

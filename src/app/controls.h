@@ -50,6 +50,11 @@ void luz_camera_move(luz_camera *camera, luz_motion motion, float seconds);
  * [-180, 180) so that hours of turning lose no precision. */
 void luz_camera_turn(luz_camera *camera, float dx, float dy);
 
+/* Turns by the given degrees: yaw += yaw_degrees, kept within [-180, 180);
+ * pitch += pitch_degrees, clamped to [-89, 89]. Mouse look and the orbit
+ * camera's drag (app/orbit.h) both turn this way. */
+void luz_camera_turn_degrees(luz_camera *camera, float yaw_degrees, float pitch_degrees);
+
 /* C: back to the position and rotation the viewer started with (SCENE.md's
  * start unless options or a scene file chose another). The field of view is
  * not part of a reset. */
