@@ -507,10 +507,15 @@ void luz_hud_draw(luz_layer *layer, const luz_hud *hud)
         hud_add(&text, true, text_colour, "%dx%d", layer->width, layer->height);
     }
     hud_add(&text, false, text_colour, "%d threads", hud->threads);
-    hud_add(&text, true, text_colour, "camera %.2f, %.2f, %.2f", (double)camera->position.x,
+    /* Which camera the keys and the mouse move (O switches), and where it
+     * is: the orbit camera's distance to its target too. */
+    hud_add(&text, true, accent_colour, "%s (O)", hud->orbiting ? "orbit" : "fly");
+    hud_add(&text, false, text_colour, "camera %.2f, %.2f, %.2f", (double)camera->position.x,
             (double)camera->position.y, (double)camera->position.z);
     hud_add(&text, false, text_colour, "yaw %.1f", (double)camera->yaw_degrees);
     hud_add(&text, false, text_colour, "pitch %.1f", (double)camera->pitch_degrees);
+    if (hud->orbiting)
+        hud_add(&text, false, text_colour, "distance %.2f", hud->orbit_distance);
     hud_add(&text, true, text_colour, "time %.2f s%s", scene->time_seconds,
             hud->paused ? " (paused)" : "");
     hud_add(&text, false, text_colour, "filter %s", luz_filter_name(scene->filter));
@@ -549,7 +554,8 @@ void luz_hud_draw(luz_layer *layer, const luz_hud *hud)
                 "%d %s", term + 1, luz_term_name((luz_term)term));
     hud_add(&text, true, dim_text_colour, "H help");
     hud_add(&text, false, dim_text_colour, "I HUD");
-    hud_add(&text, false, dim_text_colour, "Tab %s", hud->panel_open ? "fly" : "panel");
+    hud_add(&text, false, dim_text_colour, "Tab %s",
+            !hud->panel_open ? "panel" : hud->orbiting ? "orbit" : "fly");
 
     const int s = hud_scale(layer);
     int room = (hud->max_width > 0 && hud->max_width < layer->width) ? hud->max_width

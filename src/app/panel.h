@@ -267,6 +267,8 @@ typedef struct luz_hud {
     int threads;
     bool paused;
     bool panel_open;
+    bool orbiting;            /* the orbit camera (O), else the fly camera */
+    double orbit_distance;    /* the orbit's distance to its target */
     uint32_t step_shown;      /* the step mode's triangles drawn, 0 when off */
     uint64_t step_total;      /* and the frame's triangles (rasterised), also
                                  when it is off: the triangles view's legend

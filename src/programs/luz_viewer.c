@@ -46,6 +46,7 @@
 #include "luz/luz.h"
 #include "app/bench.h"
 #include "app/controls.h"
+#include "app/orbit.h"
 #include "app/options.h"
 #include "app/panel.h"
 #include "app/probe_panel.h"
@@ -209,6 +210,12 @@ typedef struct viewer {
 
     bool running;
     bool panel_open;                 /* else flying: the mouse turns the camera */
+    /* O: the orbit camera (app/orbit.h), on at the start when the scene
+     * holds a model. The cursor is free; a drag turns the camera round
+     * orbit's target and the wheel dollies. */
+    bool orbiting;
+    bool orbit_dragging;             /* the left button went down on the scene */
+    luz_orbit orbit;
     bool paused;
     bool hud_visible;
     bool help_visible;
@@ -356,7 +363,7 @@ static void save_screenshot(viewer *v, const luz_framebuffer *framebuffer)
  * the probe mode). */
 static bool cursor_free(const viewer *v)
 {
-    return v->panel_open || v->probe_mode;
+    return v->panel_open || v->probe_mode || v->orbiting;
 }
 
 static void update_cursor(const viewer *v)
@@ -371,6 +378,28 @@ static void set_panel_open(viewer *v, bool open)
     v->panel_open = open;
     luz_panel_mouse_release(&v->panel);
     update_cursor(v);
+}
+
+/* O: the orbit camera on or off. On, it turns round the point of the line
+ * of sight nearest to the scene's centre, and the view stays as it is. */
+static void set_orbiting(viewer *v, bool on)
+{
+    luz_scene *scene = &v->options->scene;
+    v->orbiting = on;
+    v->orbit_dragging = false;
+    if (on)
+        v->orbit = luz_orbit_from_camera(&scene->camera, luz_scene_bounding_sphere(scene).centre);
+    update_cursor(v);
+}
+
+/* Home, Shift+O: the whole scene in view (its bounding sphere), from the
+ * direction the camera looks in; flying or orbiting, the orbit's target is
+ * then the scene's centre. */
+static void frame_scene(viewer *v)
+{
+    luz_scene *scene = &v->options->scene;
+    luz_orbit_frame(&v->orbit, &scene->camera, luz_scene_bounding_sphere(scene),
+                    (float)v->framebuffer->width / (float)v->framebuffer->height);
 }
 
 /* A click in the probe mode: mark the pixel, and probe it on the next
@@ -445,7 +474,18 @@ static void handle_key(viewer *v, const SDL_KeyboardEvent *key)
     switch (code) {
     case SDLK_ESCAPE: v->running = false; break;
     case SDLK_TAB: set_panel_open(v, !v->panel_open); break;
-    case SDLK_c: luz_camera_reset(&scene->camera, &v->start_camera); break;
+    case SDLK_c:
+        luz_camera_reset(&scene->camera, &v->start_camera);
+        if (v->orbiting)
+            set_orbiting(v, true);   /* round what the start view looks at */
+        break;
+    case SDLK_o:
+        if (shift)
+            frame_scene(v);
+        else
+            set_orbiting(v, !v->orbiting);
+        break;
+    case SDLK_HOME: frame_scene(v); break;
     case SDLK_r: luz_lights_reset(&scene->lights, &v->switches); break;
     case SDLK_F5: scene->seed = luz_seed_next(scene->seed, (uint32_t)SDL_GetPerformanceCounter()); break;
     case SDLK_f: scene->filter = luz_filter_next(scene->filter); break;
@@ -514,6 +554,10 @@ static void handle_event(viewer *v, const SDL_Event *event)
         } else if (v->panel_open && v->panel.dragging >= 0) {
             to_framebuffer(v, event->motion.x, event->motion.y, &x, &y);
             luz_panel_mouse_drag(&v->panel, &v->layout, lights, x);
+        } else if (v->orbit_dragging) {
+            /* in the window's pixels, whatever the render scale */
+            luz_orbit_turn(&v->orbit, &v->options->scene.camera, (float)event->motion.xrel,
+                           (float)event->motion.yrel);
         }
         break;
     case SDL_MOUSEBUTTONDOWN:
@@ -527,16 +571,28 @@ static void handle_event(viewer *v, const SDL_Event *event)
                                                                    &v->switches, x, y);
             if (!on_panel && v->probe_mode)
                 mark_probe(v, x, y);
+            /* the orbit camera takes a drag on the scene */
+            else if (!on_panel && v->orbiting)
+                v->orbit_dragging = true;
         }
         break;
     case SDL_MOUSEWHEEL:
-        if (help_scrolls(v))
+        if (help_scrolls(v)) {
             v->help_first = luz_help_scroll(&v->help_layout, v->help_first,
                                             event->wheel.y > 0 ? -3 : 3);
+        } else if (v->orbiting) {
+            /* y > 0 rolls away from the user: closer to the target */
+            int notches = event->wheel.y;
+            if (event->wheel.direction == SDL_MOUSEWHEEL_FLIPPED)
+                notches = -notches;
+            luz_orbit_dolly(&v->orbit, &v->options->scene.camera, (float)notches);
+        }
         break;
     case SDL_MOUSEBUTTONUP:
-        if (event->button.button == SDL_BUTTON_LEFT)
+        if (event->button.button == SDL_BUTTON_LEFT) {
             luz_panel_mouse_release(&v->panel);
+            v->orbit_dragging = false;
+        }
         break;
     default:
         break;
@@ -666,6 +722,8 @@ static int record_overlays(viewer *v, luz_error *error)
                 .threads = luz_renderer_thread_count(v->renderer),
                 .paused = v->paused,
                 .panel_open = v->panel_open,
+                .orbiting = v->orbiting,
+                .orbit_distance = v->orbit.distance,
                 .step_shown = v->step_limit,
                 .step_total = v->stats.triangles_rasterised,
                 .triangles = v->stats.triangles_submitted,
@@ -790,7 +848,10 @@ static int run(viewer *v, luz_error *error)
         double seconds = tick(v);
         if (seconds > 0.5)
             seconds = 0.5;
-        luz_camera_move(&v->options->scene.camera, held_motion(v), (float)seconds);
+        if (v->orbiting)
+            luz_orbit_move(&v->orbit, &v->options->scene.camera, held_motion(v), (float)seconds);
+        else
+            luz_camera_move(&v->options->scene.camera, held_motion(v), (float)seconds);
         /* The animation stops at the options' last time (about 32 years
          * on), so that a saved view always reads back. */
         if (!v->paused && v->options->scene.time_seconds < LUZ_SCENE_MAX_TIME)
@@ -1033,6 +1094,11 @@ int main(int argc, char **argv)
     if (v.framebuffer == NULL)
         goto done;
     set_panel_open(&v, false);
+    /* A model is looked at from round it; the lab is flown through. */
+    bool holds_model = false;
+    for (int i = 0; options.scene.objects && i < options.scene.object_count; i++)
+        holds_model = holds_model || options.scene.objects[i].model != NULL;
+    set_orbiting(&v, holds_model);
     if ((options.bench_frames > 0 ? run_bench(&v, &error) : run(&v, &error)) != 0)
         goto done;
     if (v.settings.print_state)
