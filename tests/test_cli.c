@@ -3016,6 +3016,127 @@ static void test_stdout_terminal_refused(void **state)
     sandbox_destroy(&box);
 }
 
+/* Runs luz-render in box->work with standard output opened on
+ * work/stdout_name with open_flags (O_APPEND: `>> name`; neither it nor
+ * O_TRUNC: `1<> name`), stderr captured; returns the status and *err. */
+static int run_with_stdout_on(const sandbox *box, const char *const *arguments,
+                              const char *stdout_name, int open_flags, char **err)
+{
+    const char *program = luz_render_path();
+    char err_path[400], out_path[600];
+    snprintf(err_path, sizeof err_path, "%s/stderr", box->root);
+    sandbox_path(box, stdout_name, out_path, sizeof out_path);
+    char *argv[64];
+    int argc = 0;
+    argv[argc++] = (char *)program;
+    for (int i = 0; arguments[i] != NULL && argc < 63; i++)
+        argv[argc++] = (char *)arguments[i];
+    argv[argc] = NULL;
+    fflush(NULL);
+    pid_t child = fork();
+    assert_true(child >= 0);
+    if (child == 0) {
+        int out = open(out_path, O_WRONLY | open_flags);
+        int errfd = open(err_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (out < 0 || errfd < 0 || chdir(box->work) != 0 || dup2(out, STDOUT_FILENO) < 0 ||
+            dup2(errfd, STDERR_FILENO) < 0)
+            _exit(127);
+        unsetenv("LUZ_TEXTURES");
+        execv(program, argv);
+        _exit(127);
+    }
+    int status;
+    while (waitpid(child, &status, 0) < 0)
+        assert_int_equal(errno, EINTR);
+    *err = read_file(err_path, NULL);
+    assert_non_null(*err);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+/* -o - with standard output redirected onto a file the run reads
+ * (appended, or opened without truncating) is refused before anything is
+ * written: status 2, one line naming the input, the file unchanged. With
+ * a hard link, the same file under another name. A file that is none of
+ * the inputs takes the stream as before. */
+static void test_stdout_is_never_an_input(void **state)
+{
+    (void)state;
+    sandbox box;
+    sandbox_create(&box);
+    write_text(box.work, "view.luz", "size = 8x6\ntime = 1\n");
+    char tex[600], link_path[600];
+    sandbox_path(&box, "tex/a.bmp", tex, sizeof tex);
+    sandbox_path(&box, "a-link.bmp", link_path, sizeof link_path);
+    assert_int_equal(link(tex, link_path), 0);
+    const bool models = luz_models_supported();
+    if (models) {
+        write_text(box.work, "m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                                      "vt 0 0\nvt 1 0\nvt 0 1\nusemtl m\nf 1/1 2/2 3/3\n");
+        write_text(box.work, "m.mtl", "newmtl m\nKd 1 1 1\nmap_Kd mtex/c.bmp\n");
+        make_directory(&box, "mtex");
+        char texture[600];
+        sandbox_path(&box, "mtex/c.bmp", texture, sizeof texture);
+        write_bmp(texture, 2, 2, 10, 20, 30);
+    }
+    static const struct {
+        const char *stdout_name;
+        int flags;
+        bool model;
+        const char *needle;
+    } cases[] = {
+        {"tex/a.bmp", O_APPEND, false, "is a texture this run reads (tex/a.bmp)"},
+        {"tex/b.bmp", 0, false, "is a texture this run reads (tex/b.bmp)"},
+        {"a-link.bmp", O_APPEND, false, "is a texture this run reads (tex/a.bmp)"},
+        {"view.luz", O_APPEND, false, "is the scene file this run reads"},
+        {"m.obj", O_APPEND, true, "is a model this run reads"},
+        {"mtex/c.bmp", O_APPEND, true, "is a texture of a model this run reads (/"},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        if (cases[c].model && !models)
+            continue;
+        char path[600];
+        sandbox_path(&box, cases[c].stdout_name, path, sizeof path);
+        size_t length_before, length_after;
+        char *before = read_file(path, &length_before);
+        assert_non_null(before);
+        char *err;
+        const int status =
+            cases[c].model
+                ? run_with_stdout_on(&box, ARGS("--model", "m.obj", "--textures", "tex",
+                                                "--size", "8x6", "-o", "-"),
+                                     cases[c].stdout_name, cases[c].flags, &err)
+                : run_with_stdout_on(&box, ARGS("--scene", "view.luz", "--textures", "tex",
+                                                "--frames", "2", "-o", "-"),
+                                     cases[c].stdout_name, cases[c].flags, &err);
+        print_message("stdout on %s: %s", cases[c].stdout_name, err);
+        assert_int_equal(status, 2);
+        assert_int_equal(count_lines(err), 1);
+        assert_contains(err, "luz-render: -o -: standard output ");
+        assert_contains(err, cases[c].needle);
+        char *after = read_file(path, &length_after);
+        assert_int_equal(length_after, length_before);
+        assert_memory_equal(after, before, length_before);
+        free(before);
+        free(after);
+        free(err);
+    }
+    /* a file that is no input takes the PNGs */
+    write_text(box.work, "frames.bin", "");
+    char *err;
+    assert_int_equal(run_with_stdout_on(&box, ARGS("--scene", "view.luz", "--textures", "tex",
+                                                   "-o", "-"),
+                                        "frames.bin", O_APPEND, &err), 0);
+    assert_string_equal(err, "");
+    free(err);
+    char frames[600];
+    sandbox_path(&box, "frames.bin", frames, sizeof frames);
+    size_t length;
+    char *png = read_file(frames, &length);
+    assert_true(length > 8 && memcmp(png, "\x89PNG", 4) == 0);
+    free(png);
+    sandbox_destroy(&box);
+}
+
 /* With -o -, the progress bar still goes to stderr when that is a
  * terminal, and stdout holds the PNGs alone. */
 static void test_stdout_stream_with_progress_bar(void **state)
@@ -3119,6 +3240,7 @@ int main(void)
         cmocka_unit_test(test_stdout_stream_is_the_files),
         cmocka_unit_test(test_stdout_reader_quits),
         cmocka_unit_test(test_stdout_terminal_refused),
+        cmocka_unit_test(test_stdout_is_never_an_input),
         cmocka_unit_test(test_stdout_stream_with_progress_bar),
         cmocka_unit_test(test_video_through_ffmpeg),
     };

@@ -1162,6 +1162,42 @@ static void test_fifos_never_block(void **state)
     remove_tree(box.root);
 }
 
+/* Textures that cannot be read are the input's fault, exit 2 with one
+ * line naming them, not 1 (a failure of the machine): a symbolic link to
+ * /proc/self/pagemap (a regular file whose read() says EINVAL), a
+ * directory under an image's name, and, when not run as root (whom
+ * permissions do not stop), a file without read permission. */
+static void test_unreadable_textures(void **state)
+{
+    (void)state;
+    sandbox box;
+    sandbox_create(&box);
+    sandbox_directory(&box, "p");
+    char path[600];
+    sandbox_path(&box, "p/x.png", path, sizeof path);
+    assert_int_equal(symlink("/proc/self/pagemap", path), 0);
+    assert_render_refuses(&box, ARGS("--textures", "p", "--size", "8x8", "-o", "x.png"), 10,
+                          "p/x.png: ", "cannot read the image file");
+    sandbox_directory(&box, "d");
+    sandbox_directory(&box, "d/x.png");
+    assert_render_refuses(&box, ARGS("--textures", "d", "--size", "8x8", "-o", "x.png"), 10,
+                          "d/x.png: not a regular file (a directory", NULL);
+    if (geteuid() != 0) {
+        sandbox_directory(&box, "n");
+        const unsigned char row[4] = {10, 20, 30, 0};
+        buffer bmp = make_bmp(1, 1, 24, 0, NULL, 0, row, 4);
+        sandbox_write(&box, "n/x.bmp", bmp.data, bmp.length);
+        buffer_free(&bmp);
+        sandbox_path(&box, "n/x.bmp", path, sizeof path);
+        assert_int_equal(chmod(path, 0), 0);
+        assert_render_refuses(&box, ARGS("--textures", "n", "--size", "8x8", "-o", "x.png"), 10,
+                              "n/x.bmp: cannot open the image file", "Permission denied");
+    } else {
+        print_message("not checked as root: a texture without read permission\n");
+    }
+    remove_tree(box.root);
+}
+
 /* Crafted textures through the real program: one line each, exit 2. */
 static void test_crafted_textures(void **state)
 {
@@ -1546,6 +1582,7 @@ int main(void)
         cmocka_unit_test(test_scene_text),
         cmocka_unit_test(test_fifos_never_block),
         cmocka_unit_test(test_crafted_textures),
+        cmocka_unit_test(test_unreadable_textures),
         cmocka_unit_test(test_assimp_findings_refused),
         cmocka_unit_test(test_model_child_ends),
         cmocka_unit_test(test_model_load_leaves_nothing),

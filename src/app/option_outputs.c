@@ -8,7 +8,8 @@
  *      device, FIFO, socket, directory or symbolic link at its path (the
  *      rename into place would replace it: as root, /dev/null itself), or
  *      an input of the run (the image would replace the texture or the
- *      scene file it came from).
+ *      scene file it came from); for -o -, standard output when it is
+ *      one of the inputs (redirected or appended to it).
  *
  * Every frame of a sequence is checked, not just the first: `-o
  * tex/%d.bmp --frames 3` reaches tex/1.bmp only at frame 1, and a half
@@ -24,6 +25,7 @@
 #include <limits.h>
 #include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "io/new_file.h"
 
@@ -51,10 +53,26 @@ static int check_output(const luz_options *options, const char *path, luz_error 
                          same_text ? "" : ")");
 }
 
+/* -o -: standard output may be a file (`> frames.bin`), but not one this
+ * run reads: `-o - >> tex/a.png` would append PNGs to the texture, and a
+ * redirection without truncation (`1<> scene.luz`) overwrite the scene. */
+static int check_stdout(const luz_options *options, luz_error *error)
+{
+    const luz_input_file *input = luz_input_files_find_descriptor(&options->inputs,
+                                                                  STDOUT_FILENO);
+    if (input == NULL)
+        return 0;
+    return luz_error_set(error, "-o -: standard output is %s this run reads (%s); expected a "
+                                "pipe or a file that is none of its inputs",
+                         input->what, input->path);
+}
+
 int luz_options_check_outputs(const luz_options *options, luz_error *error)
 {
-    if (options->bench_frames > 0 || luz_options_output_is_stdout(options))
+    if (options->bench_frames > 0)
         return 0;
+    if (luz_options_output_is_stdout(options))
+        return check_stdout(options, error);
     int first, count;
     luz_options_frames_to_render(options, &first, &count);
     char path[PATH_MAX + 64];

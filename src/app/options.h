@@ -198,8 +198,9 @@ int luz_options_add_object(luz_options *options, const luz_object *object,
  * path, to be replaced (luz_new_file_check_target: not a device, a FIFO, a
  * socket, a directory or a symbolic link), and it may not be one of
  * options->inputs, by name or by device and inode: call it once the
- * textures and models are loaded. Returns 0, or -1 with a message that
- * starts "-o: ". */
+ * textures and models are loaded. For -o -, standard output may not be
+ * one of the inputs (by device and inode). Returns 0, or -1 with a
+ * message that starts "-o: " ("-o -: " for standard output). */
 int luz_options_check_outputs(const luz_options *options, luz_error *error);
 
 /* ---- models (option_models.c) ---- */

@@ -133,7 +133,12 @@ int luz_input_read(const char *path, const char *what, uint64_t max_bytes,
             close(fd);
             const char *kind = strchr(what, ' ') ? strchr(what, ' ') + 1 : what;
             luz_error_set(error, "%s: cannot read the %s (%s)", path, kind, strerror(reason));
-            return LUZ_MACHINE_FAILED;
+            /* A disk's read error (EIO) or the kernel's lack of memory is
+             * the machine's failure; any other refusal to read is the
+             * file's: /proc/self/pagemap, which a symbolic link can pass
+             * off as an image, is a regular file that reads EINVAL. */
+            return reason == EIO || reason == ENOMEM || reason == ENOBUFS ? LUZ_MACHINE_FAILED
+                                                                          : LUZ_BAD_INPUT;
         }
         if (got == 0) break;
         length += (size_t)got;

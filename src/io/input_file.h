@@ -53,8 +53,9 @@ int luz_input_open(const char *path, const char *what, uint64_t max_bytes, int *
  * after the last byte; free() it) and its length into *size. A file that
  * grows past max_bytes while it is read (or a regular file whose size
  * stat() does not tell, as in /proc) is refused as too large. Returns 0,
- * LUZ_NO_SUCH_FILE, LUZ_BAD_INPUT or LUZ_MACHINE_FAILED (out of memory, a
- * read error), with a message. */
+ * LUZ_NO_SUCH_FILE, LUZ_BAD_INPUT (also a file that refuses to be read, as
+ * /proc/self/pagemap does) or LUZ_MACHINE_FAILED (out of memory, EIO),
+ * with a message. */
 int luz_input_read(const char *path, const char *what, uint64_t max_bytes,
                    unsigned char **bytes, size_t *size, luz_error *error);
 

@@ -80,6 +80,19 @@ const luz_input_file *luz_input_files_find(const luz_input_files *inputs, const 
     return NULL;
 }
 
+const luz_input_file *luz_input_files_find_descriptor(const luz_input_files *inputs,
+                                                      int descriptor)
+{
+    struct stat status;
+    if (fstat(descriptor, &status) != 0) return NULL;
+    for (int i = 0; i < inputs->count; i++) {
+        const luz_input_file *file = &inputs->files[i];
+        if (file->identified && file->device == status.st_dev && file->inode == status.st_ino)
+            return file;
+    }
+    return NULL;
+}
+
 void luz_input_files_free(luz_input_files *inputs)
 {
     for (int i = 0; i < inputs->count; i++)

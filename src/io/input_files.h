@@ -55,6 +55,12 @@ int luz_input_files_add_identified(luz_input_files *inputs, const char *path, co
  * NULL if it is none of them. */
 const luz_input_file *luz_input_files_find(const luz_input_files *inputs, const char *path);
 
+/* The input that an open descriptor is (by device and inode: standard
+ * output redirected or appended to a texture, `-o - >> tex/a.png`), or
+ * NULL if it is none of them or fstat fails. */
+const luz_input_file *luz_input_files_find_descriptor(const luz_input_files *inputs,
+                                                      int descriptor);
+
 void luz_input_files_free(luz_input_files *inputs);
 
 #endif
