@@ -50,6 +50,7 @@
 #include "app/bench.h"
 #include "app/controls.h"
 #include "app/options.h"
+#include "app/orbit.h"
 #include "app/panel.h"
 #include "io/image.h"
 #include "io/new_file.h"
@@ -1500,6 +1501,82 @@ static void parse_or_fail(luz_options *options, int argc, char **argv)
     luz_options_init(options);
     if (luz_options_parse(options, argc, argv, &error) != 0)
         fail_msg("%s", error.message);
+}
+
+/* The viewer's orbit camera end to end: a view set through the controls
+ * (the scene framed, turned round its target, dollied), saved as F2 saves
+ * it, is rendered by luz-render to the very bytes of the viewer's frame
+ * (the scene drawn in this process as luz_viewer.c's draw_frame draws it,
+ * without its HUD). The orbit's view is not the default one, so the check
+ * would catch a camera saved from the wrong place. */
+static void test_orbit_view_renders_the_same_in_luz_render(void **state)
+{
+    (void)state;
+    sandbox box;
+    sandbox_create(&box);
+    char textures_path[600], scene_path[600];
+    sandbox_path(&box, "tex", textures_path, sizeof textures_path);
+    sandbox_path(&box, "orbit.luz", scene_path, sizeof scene_path);
+    enum { WIDTH = 96, HEIGHT = 54 };
+    const float aspect = (float)WIDTH / (float)HEIGHT;
+
+    luz_options options;
+    char *argv[] = {"luz", "--size", "96x54", "--textures", textures_path, "--time", "1.25",
+                    NULL};
+    parse_or_fail(&options, 7, argv);
+    luz_error error = {{0}};
+    luz_texture_set textures = {0};
+    assert_int_equal(luz_options_load_textures(&options, &textures, NULL, &error), 0);
+
+    luz_scene *scene = &options.scene;
+    luz_orbit orbit = luz_orbit_from_camera(&scene->camera, (luz_vec3){0.0f, 0.0f, 0.0f});
+    luz_orbit_frame(&orbit, &scene->camera, luz_scene_bounding_sphere(scene), aspect);
+    luz_orbit_turn(&orbit, &scene->camera, 157.0f, -63.0f);
+    luz_orbit_dolly(&orbit, &scene->camera, 3.0f);
+    assert_true(scene->camera.yaw_degrees != -90.0f && scene->camera.pitch_degrees != 0.0f);
+
+    /* The viewer's frame. */
+    const luz_renderer_desc desc = luz_options_renderer_desc(&options);
+    luz_renderer *renderer = luz_renderer_create(&desc, &error);
+    luz_lab *lab = luz_lab_create(&error);
+    luz_framebuffer *framebuffer = luz_framebuffer_create(WIDTH, HEIGHT, &error);
+    assert_non_null(renderer);
+    assert_non_null(lab);
+    assert_non_null(framebuffer);
+    luz_frame frame = {0};
+    assert_int_equal(luz_scene_build_frame(lab, scene, textures.textures, textures.count, aspect,
+                                           &frame, &error),
+                     0);
+    const luz_render_options render = luz_scene_render_options(scene);
+    assert_int_equal(luz_renderer_draw(renderer, &frame, framebuffer, &render, &error), 0);
+
+    /* F2's file, rendered by luz-render. */
+    assert_int_equal(luz_options_save_scene(&options, scene_path, false, &error), 0);
+    unsigned char *saved = render_and_load(&box, ARGS("--scene", "orbit.luz", "-o", "orbit.png"),
+                                           "orbit.png", WIDTH, HEIGHT);
+    int differing = 0;
+    for (int i = 0; i < WIDTH * HEIGHT; i++)
+        differing += memcmp(saved + 3 * i, framebuffer->colour + 4 * i, 3) != 0;
+    assert_int_equal(differing, 0);
+
+    /* and the default camera's picture is another one */
+    unsigned char *start = render_and_load(
+        &box, ARGS("--size", "96x54", "--textures", "tex", "--time", "1.25", "-o", "start.png"),
+        "start.png", WIDTH, HEIGHT);
+    differing = 0;
+    for (int i = 0; i < WIDTH * HEIGHT; i++)
+        differing += memcmp(start + 3 * i, saved + 3 * i, 3) != 0;
+    assert_true(differing > WIDTH * HEIGHT / 4);
+
+    stbi_image_free(start);
+    stbi_image_free(saved);
+    luz_frame_free(&frame);
+    luz_framebuffer_destroy(framebuffer);
+    luz_lab_destroy(lab);
+    luz_renderer_destroy(renderer);
+    luz_texture_set_free(&textures);
+    luz_options_free(&options);
+    sandbox_destroy(&box);
 }
 
 /* Every value that is not the shortest decimal of its float (0.1, 1/3,
@@ -3237,6 +3314,7 @@ int main(void)
         cmocka_unit_test(test_shards_by_parallel_match_one_run),
         cmocka_unit_test(test_slices_match_one_run),
         cmocka_unit_test(test_killed_shard_resumed),
+        cmocka_unit_test(test_orbit_view_renders_the_same_in_luz_render),
         cmocka_unit_test(test_stdout_stream_is_the_files),
         cmocka_unit_test(test_stdout_reader_quits),
         cmocka_unit_test(test_stdout_terminal_refused),

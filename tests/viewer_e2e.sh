@@ -36,6 +36,11 @@
 #    panel. V shows another view and the paused panel stays as it was;
 #    Shift+E takes marker and panel away. Marked again and running (T),
 #    the panel follows the turning cube: its numbers change.
+# 7c. The orbit camera, in the lab (O; a model's scene starts with it):
+#    O alone changes no pixel; a drag turns the view; Home frames the
+#    scene and the wheel dollies, each a new view. For each of the three,
+#    F2's scene file, rendered by luz-render, gives F12's screenshot pixel
+#    for pixel, and --print-state at Esc saves the last one.
 # 8. With a window manager (openbox, if installed): F11 makes the window
 #    fill the screen, and the screenshot then has the screen's size; F11
 #    again gives the window its size back.
@@ -368,6 +373,65 @@ xdotool key Escape
 wait "$luz_pid" || fail "luz (probe) exited with status $? after Esc"
 luz_pid=""
 
+# 7c. The orbit camera.
+wait_for_saved() {
+    i=0
+    until grep -q "saved the view to $1" "$work/stderr" 2>/dev/null; do
+        i=$((i + 1))
+        [ $i -gt 600 ] && fail "no $1 after 60 s"
+        kill -0 "$luz_pid" 2>/dev/null || fail "luz exited before saving $1"
+        sleep 0.1
+    done
+}
+mkdir "$work/orbit"
+cd "$work/orbit" || exit 1
+rm -f "$work/stderr"
+"$luz" --size 480x270 --print-state >"$work/orbit-state.luz" 2>"$work/stderr" &
+luz_pid=$!
+wait_for_window "luz (orbit)"
+xdotool key t F12
+wait_for_shot luz-shot-0001.png
+xdotool key o F12
+wait_for_shot luz-shot-0002.png
+xdotool mousemove --window "$window" 240 135 mousedown 1
+for x in 260 280 300 320 340; do
+    sleep 0.05
+    xdotool mousemove --window "$window" "$x" 110
+done
+xdotool mouseup 1 key F12 F2
+wait_for_shot luz-shot-0003.png
+wait_for_saved luz-scene-0001.luz
+xdotool key Home F12 F2
+wait_for_shot luz-shot-0004.png
+wait_for_saved luz-scene-0002.luz
+xdotool click 4 click 4 click 4 key F12 F2
+wait_for_shot luz-shot-0005.png
+wait_for_saved luz-scene-0003.luz
+xdotool key Escape
+wait "$luz_pid" || fail "luz (orbit) exited with status $? after Esc"
+luz_pid=""
+whole=480x270+0+0
+changed=$(differing_pixels luz-shot-0001.png luz-shot-0002.png "$whole")
+[ "$changed" -eq 0 ] || fail "O alone changed $changed pixels"
+for pair in "0002 0003 the drag" "0003 0004 Home" "0004 0005 the wheel"; do
+    set -- $pair
+    changed=$(differing_pixels "luz-shot-$1.png" "luz-shot-$2.png" "$whole")
+    shift 2
+    [ "$changed" -gt 2000 ] || fail "$* changed only $changed pixels of the orbit's view"
+done
+grep -q '^camera-yaw = -90$' luz-scene-0001.luz && fail "the drag left the yaw at -90"
+for k in 1 2 3; do
+    "$luz_render" --scene "luz-scene-000$k.luz" -o "rendered-$k.png" 2>"$work/render.err" ||
+        fail "luz-render cannot render luz-scene-000$k.luz: $(cat "$work/render.err")"
+    changed=$(differing_pixels "luz-shot-000$((k + 2)).png" "rendered-$k.png" "$whole")
+    [ "$changed" -eq 0 ] ||
+        fail "luz-render --scene luz-scene-000$k.luz differs from luz-shot-000$((k + 2)).png in $changed pixels"
+done
+[ "$(grep '^camera-' luz-scene-0003.luz)" = "$(grep '^camera-' "$work/orbit-state.luz")" ] ||
+    fail "--print-state's camera is not the last saved view's: $(grep '^camera-' "$work/orbit-state.luz")"
+orbit_camera=$(sed -n 's/^camera-pos = //p' luz-scene-0003.luz)
+cd "$work" || exit 1
+
 # 8. F11 under a window manager.
 # Waits up to 10 s for the window to have the size $1.
 wait_for_geometry() {
@@ -405,4 +469,4 @@ if command -v openbox >/dev/null 2>&1; then
     fullscreen="F11 fills the $screen screen and gives 480x270 back"
 fi
 
-echo "ok: screenshots $size, spot diff $centre in the centre and 0 outside, camera $camera; the probe marked, frozen and followed; $fullscreen"
+echo "ok: screenshots $size, spot diff $centre in the centre and 0 outside, camera $camera; the probe marked, frozen and followed; orbit views (the last at $orbit_camera) rendered the same by luz-render; $fullscreen"
