@@ -346,6 +346,33 @@ static void write_gltf_with_bin(const char *name, const char *bin_name)
     write_bytes(bin_path, positions, sizeof positions);
 }
 
+/* Two triangles of a quad in glTF 2.0, the buffer inline; the second
+ * names vertex last_index (3 in range, 4 or more past the end). */
+static void write_gltf_quad(const char *name, uint16_t last_index)
+{
+    unsigned char buffer[60] = {0};
+    const float positions[12] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+    const uint16_t indices[6] = {0, 1, 2, 0, 2, last_index};
+    memcpy(buffer, positions, 48);
+    memcpy(buffer + 48, indices, 12);
+    char *buffer_text = base64(buffer, sizeof buffer);
+    char json[2048];
+    snprintf(json, sizeof json,
+             "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],"
+             "\"nodes\":[{\"mesh\":0}],"
+             "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1}]}],"
+             "\"buffers\":[{\"byteLength\":60,"
+             "\"uri\":\"data:application/octet-stream;base64,%s\"}],"
+             "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":0,\"byteLength\":48},"
+             "{\"buffer\":0,\"byteOffset\":48,\"byteLength\":12}],"
+             "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":4,"
+             "\"type\":\"VEC3\",\"min\":[0,0,0],\"max\":[1,1,0]},"
+             "{\"bufferView\":1,\"componentType\":5123,\"count\":6,\"type\":\"SCALAR\"}]}\n",
+             buffer_text);
+    write_text(name, json);
+    free(buffer_text);
+}
+
 /* The box that luz-render draws: 2 x 1 x 1.5, centred, each face with the
  * whole texture and its own normal, wound counter-clockwise seen from
  * outside; a 64x64 checker of single texels, so that the filters differ
@@ -429,6 +456,8 @@ static int setup_files(void **state)
     const float nan_triangle[9] = {0, 0, 0, NAN, 0, 0, 0, 1, 0};
     write_gltf("models/nan.gltf", nan_triangle, png, (size_t)png_length);
     write_gltf_with_bin("models/external.gltf", "external.bin");
+    write_gltf_quad("models/quad.gltf", 3);
+    write_gltf_quad("models/outofrange.gltf", 4);
     free(png);
 
     /* Random bytes under a model's name and under a name no importer
@@ -1534,6 +1563,48 @@ static void test_corpus_files_with_missing_textures(void **state)
     }
 }
 
+/* assimp's glTF importer drops a face that names a vertex past the end and
+ * says so only in its log: luz refuses the model (SCENE.md: an index out
+ * of range is an error), exit 2, one line naming the file; the same quad
+ * with its indices in range draws. So does the corpus's
+ * glTF2/IndexOutOfRange.gltf (a cube with one face dropped), when
+ * installed. */
+static void test_gltf_index_out_of_range(void **state)
+{
+    (void)state;
+    REQUIRE_MODELS();
+    run_result sound = run_render(ARGS("--model", "models/quad.gltf", "--size", "32x32", "-o",
+                                       "quad.png"));
+    assert_int_equal(sound.status, 0);
+    assert_string_equal(sound.err, "");
+    run_result_free(&sound);
+    remove_work_file("quad.png");
+    static const char corpus[] = "/usr/share/assimp/models/glTF2/IndexOutOfRange/"
+                                 "IndexOutOfRange.gltf";
+    char model[1024];
+    work_path("models/outofrange.gltf", model, sizeof model);
+    const char *files[] = {model, corpus};
+    for (size_t f = 0; f < 2; f++) {
+        if (access(files[f], R_OK) != 0) {
+            print_message("skipped: %s is not installed (Debian's assimp-testmodels)\n",
+                          files[f]);
+            continue;
+        }
+        run_result result = run_render(ARGS("--model", files[f], "--size", "32x32", "-o",
+                                            "range.png"));
+        assert_int_equal(result.status, 2);
+        assert_int_equal(count_lines(result.err), 1);
+        char expected[1200];
+        snprintf(expected, sizeof expected, "luz-render: %s: ", files[f]);
+        assert_true(strncmp(result.err, expected, strlen(expected)) == 0);
+        assert_contains(result.err, "out of range");
+        char path[1024];
+        work_path("range.png", path, sizeof path);
+        assert_int_equal(access(path, F_OK), -1);
+        run_result_free(&result);
+    }
+}
+
 /* -o naming a model or a file it read is refused (exit 2, one line
  * saying which input it is) and the file stays as it was: the image would
  * have replaced it. models/two.obj reads models/two.mtl (through assimp),
@@ -1891,6 +1962,7 @@ int main(void)
         cmocka_unit_test(test_output_is_never_a_model_input),
         cmocka_unit_test(test_missing_textures_through_luz_render),
         cmocka_unit_test(test_corpus_files_with_missing_textures),
+        cmocka_unit_test(test_gltf_index_out_of_range),
         cmocka_unit_test(test_views_on_a_model),
         cmocka_unit_test(test_probe_names_a_model),
         cmocka_unit_test(test_probe_of_nan_normals),

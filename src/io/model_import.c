@@ -229,6 +229,24 @@ static void files_close(struct aiFileIO *io, struct aiFile *handle)
     free(file);
 }
 
+/* ---- what assimp says ---------------------------------------------------------------------- */
+
+/* Some importers drop what they cannot use and say so only in assimp's
+ * log: the glTF 2 importer drops the faces that name a vertex past the
+ * end ("Some faces had out-of-range indices. Those faces were dropped."),
+ * so that glTF2/IndexOutOfRange.gltf loads as a cube with a face missing.
+ * SCENE.md calls an index out of range an error: the log is listened to
+ * during the import, and the model refused when it says so. */
+typedef struct import_log {
+    bool dropped_faces;
+} import_log;
+
+static void log_line(const char *message, char *user)
+{
+    import_log *log = (import_log *)(void *)user;
+    if (strstr(message, "out-of-range indices") != NULL) log->dropped_faces = true;
+}
+
 /* ---- what the parts use ------------------------------------------------------------------ */
 
 /* The embedded texture a material names: "*N", or the embedded texture's
@@ -500,7 +518,17 @@ int luz_model_import(const luz_model_source *source, uint64_t memory_limit,
     /* SCENE.md's steps in the order assimp's own aiImportFile(path, steps)
      * runs them, validation first and then the rest, with the positions
      * checked in between (check_imported). */
+    import_log log = {0};
+    struct aiLogStream listener = {.callback = log_line, .user = (char *)(void *)&log};
+    aiAttachLogStream(&listener);
     const struct aiScene *scene = aiImportFileEx(path, aiProcess_ValidateDataStructure, &io);
+    aiDetachLogStream(&listener);
+    if (scene != NULL && files.refusal == 0 && log.dropped_faces) {
+        aiReleaseImport(scene);
+        free_opened(&files);
+        return luz_error_set(error, "%s: some faces name a vertex that is not there (an index "
+                                    "out of range; assimp's importer dropped them)", path);
+    }
     if (files.refusal != 0 || files.opened_lost) {
         /* a file the model names was refused (and assimp may have carried
          * on without it): the model is refused with it */
