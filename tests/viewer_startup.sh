@@ -114,12 +114,28 @@ for case in "no display" "dead X11" "dead Wayland" "dead Wayland, no runtime dir
     expect_no_display "$case, SDL's choice" 'luz: cannot open a window: no display available' "$@"
 done
 
-# An X server that accepts the connection and never answers (one that
-# hangs, or a network path that drops its replies): Xlib would wait for it
-# forever; luz asks first, for a second. A listener on a free port from
-# 6100, DISPLAY=127.0.0.1:N for port 6000 + N.
-python3 -c "
+# Fake X servers on loopback TCP (a free port from 6100, DISPLAY=127.0.0.1:N
+# for port 6000 + N), each accepting connections for 30 s and answering
+# every one as MODE says:
+#   silent   nothing (a server that hangs, or a path that drops replies)
+#   one-byte the first byte of a Success reply (1), then nothing
+#   garbage  bytes no X server sends ("HTTP/1.0 ..."), then nothing
+#   header   a whole 8-byte header announcing 4 more bytes, then nothing
+#   probe    a whole Failed reply to the first connection (luz's probe),
+#            nothing to the next (Xlib's, under SDL)
+# Xlib would wait forever for any of them but the first answer of probe;
+# luz reads the whole answer, for a second, before SDL sees the display.
+# start_fake_x11 MODE: starts one, sets fake_pid and fake_number (empty if
+# none could be started).
+start_fake_x11() {
+    rm -f "$work/fake-display"
+    python3 -c "
 import socket, sys, time
+mode = sys.argv[2]
+reason = b'fake'
+failed = bytes([0, len(reason), 11, 0, 0, 0, 1, 0]) + reason
+answers = {'silent': b'', 'one-byte': b'\\x01', 'garbage': b'HTTP/1.0 400 Bad Request\\r\\n',
+           'header': bytes([1, 0, 11, 0, 0, 0, 1, 0]), 'probe': failed}
 for port in range(6100, 6200):
     s = socket.socket()
     try:
@@ -133,27 +149,66 @@ for port in range(6100, 6200):
     while time.time() < end:
         s.settimeout(1)
         try:
-            held.append(s.accept())
+            connection, _ = s.accept()
         except OSError:
-            pass
+            continue
+        held.append(connection)
+        answer = answers[mode] if mode != 'probe' or len(held) == 1 else b''
+        if answer:
+            connection.sendall(answer)
     break
-" "$work/silent-display" 2>/dev/null &
-listener=$!
-waited=0
-while [ ! -s "$work/silent-display" ] && [ "$waited" -lt 50 ] && kill -0 "$listener" 2>/dev/null; do
-    sleep 0.1
-    waited=$((waited + 1))
+" "$work/fake-display" "$1" 2>/dev/null &
+    fake_pid=$!
+    waited=0
+    while [ ! -s "$work/fake-display" ] && [ "$waited" -lt 50 ] && kill -0 "$fake_pid" 2>/dev/null; do
+        sleep 0.1
+        waited=$((waited + 1))
+    done
+    fake_number=$(cat "$work/fake-display" 2>/dev/null)
+}
+stop_fake_x11() {
+    kill "$fake_pid" 2>/dev/null
+    wait "$fake_pid" 2>/dev/null
+}
+for mode in silent one-byte garbage header; do
+    start_fake_x11 $mode
+    if [ -z "$fake_number" ]; then
+        echo "fake X11 server ($mode): not checked (no python3, or no free port from 6100 to 6199)"
+    else
+        expect_no_display "fake X11 server, $mode" \
+            "luz: cannot open a window: no display available (the X display 127.0.0.1:$fake_number did not answer as an X server within 1 s" \
+            env -u WAYLAND_DISPLAY -u SDL_VIDEODRIVER DISPLAY="127.0.0.1:$fake_number"
+    fi
+    stop_fake_x11
 done
-if [ ! -s "$work/silent-display" ]; then
-    echo "silent X11 server: not checked (no python3, or no free port from 6100 to 6199)"
+# A server that answers the probe and then leaves Xlib waiting: SIGTERM
+# ends the viewer while it connects (SDL's handler would only note it).
+start_fake_x11 probe
+if [ -z "$fake_number" ]; then
+    echo "fake X11 server (probe): not checked (no python3, or no free port from 6100 to 6199)"
 else
-    number=$(cat "$work/silent-display")
-    expect_no_display "silent X11 server" \
-        "luz: cannot open a window: no display available (the X display 127.0.0.1:$number did not answer within 1 s" \
-        env -u WAYLAND_DISPLAY -u SDL_VIDEODRIVER DISPLAY="127.0.0.1:$number"
+    env -u WAYLAND_DISPLAY -u SDL_VIDEODRIVER DISPLAY="127.0.0.1:$fake_number" \
+        "$luz" --textures none >"$work/out" 2>"$work/err" &
+    viewer=$!
+    sleep 2
+    kill -TERM "$viewer" 2>/dev/null
+    waited=0
+    while kill -0 "$viewer" 2>/dev/null && [ "$waited" -lt 50 ]; do
+        sleep 0.1
+        waited=$((waited + 1))
+    done
+    if kill -0 "$viewer" 2>/dev/null; then
+        kill -KILL "$viewer" 2>/dev/null
+        wait "$viewer"
+        fail "fake X11 server answering the probe only: luz still running 5 s after SIGTERM"
+    else
+        wait "$viewer"
+        status=$?
+        [ "$status" -eq 143 ] ||
+            fail "fake X11 server answering the probe only: status $status after SIGTERM: $(cat "$work/err")"
+    fi
 fi
-kill "$listener" 2>/dev/null
-wait "$listener" 2>/dev/null
+stop_fake_x11
 
 # --help and --version succeed on stdout.
 "$luz" --version >"$work/out" 2>"$work/err" || fail "luz --version failed"

@@ -34,6 +34,7 @@
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
+#include <signal.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -978,7 +979,23 @@ static int open_window(viewer *v, luz_error *error)
                              "cannot open a window: no display available (%s); luz-render "
                              "renders the same scene to PNG files",
                              silent);
-    if (SDL_Init(SDL_INIT_VIDEO) != 0)
+    /* SDL turns SIGINT and SIGTERM into an event, with handlers it
+     * installs as its event subsystem starts. While the video subsystem
+     * connects, nobody reads events, and Xlib may still wait on a server
+     * that answered the probe but not Xlib: the signals would only be
+     * noted, and the viewer hang on. So the events start first, and the
+     * two signals end the process, as by default, until the connection is
+     * made; then SDL's handlers are back. */
+    if (SDL_Init(SDL_INIT_EVENTS) != 0)
+        return luz_error_set(error, "cannot start SDL's events: %s", SDL_GetError());
+    struct sigaction sdl_interrupt, sdl_terminate, by_default = {.sa_handler = SIG_DFL};
+    sigemptyset(&by_default.sa_mask);
+    sigaction(SIGINT, &by_default, &sdl_interrupt);
+    sigaction(SIGTERM, &by_default, &sdl_terminate);
+    const int video = SDL_InitSubSystem(SDL_INIT_VIDEO);
+    sigaction(SIGINT, &sdl_interrupt, NULL);
+    sigaction(SIGTERM, &sdl_terminate, NULL);
+    if (video != 0)
         return luz_error_set(error,
                              "cannot open a window: no display available (%s); luz-render "
                              "renders the same scene to PNG files",

@@ -4,11 +4,13 @@
  *
  * In:  a DISPLAY string ([tcp/|unix/][host]:number[.screen]) and seconds.
  * Out: false, with the reason, only when something takes the connection
- *      and then says nothing to the first message of the X11 protocol
- *      within the deadline (or the connection itself hangs): the case in
- *      which Xlib would wait forever. True otherwise: a server answered
- *      (with success, failure or a request to authenticate: it is alive),
- *      or nothing listens, or the connection was closed or refused. Those
+ *      and then does not send a whole answer to the first message of the
+ *      X11 protocol within the deadline (nothing, a part of one, or the
+ *      connection itself hangs), or answers with bytes that are no X11
+ *      answer: the cases in which Xlib would wait forever. True otherwise:
+ *      a server answered in full (with success, failure or a request to
+ *      authenticate: it is alive), or nothing listens, or the connection
+ *      was closed or refused. Those
  *      are Xlib's to judge, as before this probe: it fails on them at once,
  *      or succeeds where this probe cannot (an ssh -X forwarder closes a
  *      connection without its cookie, which Xlib sends; libxcb falls back
@@ -20,9 +22,15 @@
  * window and no message. This probe makes the same connection without
  * blocking: connect, send the 12-byte setup request (X Window System
  * Protocol, section 8, "Connection Setup": byte order, protocol 11.0, no
- * authorisation), and wait at most the deadline for the first byte back.
- * It says nothing of whether Xlib will then be allowed in; SDL finds that
- * out, quickly, as before.
+ * authorisation), and read the whole reply within the deadline: its
+ * 8-byte header (a status of 0 Failed, 1 Success or 2 Authenticate, and
+ * for the first two the protocol's major version, 11) and the 4-byte
+ * units of data its bytes 6-7 count. Xlib reads exactly that much, with
+ * no limit: a server that sends one byte of it and stalls, or a header
+ * announcing data that never comes, would hold it forever (and SIGTERM
+ * with it, which SDL's handler turns into an event nobody reads yet).
+ * The probe says nothing of whether Xlib will then be allowed in; SDL
+ * finds that out, quickly, as before.
  *
  * Local displays (no host, or "unix") are the socket /tmp/.X11-unix/X<n>,
  * which Linux's libxcb tries after the abstract socket of the same name;
@@ -97,9 +105,83 @@ static int wait_for(int fd, short events, double deadline)
     }
 }
 
+/* PROBE_SILENT: no whole answer within the deadline, or one that is no X
+ * server's; Xlib would wait forever. */
 typedef enum probe_result { PROBE_ANSWERED, PROBE_NO_SERVER, PROBE_SILENT } probe_result;
 
-/* Connects fd to address, sends the setup request and waits for a byte. */
+/* Reads exactly size bytes of fd (non-blocking) into buffer (NULL: reads
+ * and drops them) before the deadline. Returns the count read: size, or
+ * fewer when the deadline passed (*closed false) or the peer closed the
+ * connection or failed (*closed true). */
+static size_t read_within(int fd, unsigned char *buffer, size_t size, double deadline,
+                          bool *closed)
+{
+    unsigned char scratch[4096];
+    size_t done = 0;
+    *closed = false;
+    while (done < size) {
+        const int ready = wait_for(fd, POLLIN, deadline);
+        if (ready == 0) return done;
+        if (ready < 0) {
+            *closed = true;
+            return done;
+        }
+        size_t want = size - done;
+        unsigned char *into = buffer ? buffer + done : scratch;
+        if (buffer == NULL && want > sizeof scratch) want = sizeof scratch;
+        const ssize_t got = recv(fd, into, want, 0);
+        if (got < 0 && (errno == EINTR || errno == EAGAIN || errno == EWOULDBLOCK)) continue;
+        if (got <= 0) {
+            *closed = true;
+            return done;
+        }
+        done += (size_t)got;
+    }
+    return done;
+}
+
+/* Reads the server's whole answer to the setup request (sent as 'l', so
+ * its numbers are little-endian). */
+static probe_result read_setup_reply(int fd, double deadline, char *why, size_t why_size)
+{
+    unsigned char header[8];
+    bool closed;
+    const size_t got = read_within(fd, header, sizeof header, deadline, &closed);
+    if (got == 0 && closed) {
+        snprintf(why, why_size, "it closed the connection without an answer");
+        return PROBE_NO_SERVER;
+    }
+    if (got > 0 && header[0] > 2) {
+        snprintf(why, why_size, "it answered with a byte no X server sends (0x%02x)", header[0]);
+        return PROBE_SILENT;
+    }
+    if (got < sizeof header) {
+        if (got == 0)
+            snprintf(why, why_size, "it accepted the connection, then said nothing");
+        else
+            snprintf(why, why_size, "it sent %zu bytes of its answer's 8-byte header, then %s",
+                     got, closed ? "closed the connection" : "nothing");
+        /* a connection closed early fails Xlib at once: its to report */
+        return closed ? PROBE_NO_SERVER : PROBE_SILENT;
+    }
+    const unsigned major = header[2] | (unsigned)header[3] << 8;
+    if (header[0] != 2 && major != 11) {
+        snprintf(why, why_size, "it answered for protocol version %u, not 11: no X server", major);
+        return PROBE_SILENT;
+    }
+    /* the rest: bytes 6-7 count it in 4-byte units (at most 256 KiB) */
+    const size_t rest = 4 * (size_t)(header[6] | (unsigned)header[7] << 8);
+    const size_t more = read_within(fd, NULL, rest, deadline, &closed);
+    if (more < rest) {
+        snprintf(why, why_size, "it sent %zu of the %zu bytes its answer announced, then %s",
+                 sizeof header + more, sizeof header + rest,
+                 closed ? "closed the connection" : "nothing");
+        return closed ? PROBE_NO_SERVER : PROBE_SILENT;
+    }
+    return PROBE_ANSWERED;
+}
+
+/* Connects fd to address, sends the setup request and reads the answer. */
 static probe_result probe_socket(int fd, const struct sockaddr *address, socklen_t length,
                                  double deadline, char *why, size_t why_size)
 {
@@ -126,15 +208,7 @@ static probe_result probe_socket(int fd, const struct sockaddr *address, socklen
         snprintf(why, why_size, "%s", strerror(errno));
         return PROBE_NO_SERVER;
     }
-    ready = wait_for(fd, POLLIN, deadline);
-    unsigned char status;
-    if (ready == 1 && recv(fd, &status, 1, 0) == 1) return PROBE_ANSWERED;
-    if (ready == 0) {
-        snprintf(why, why_size, "it accepted the connection, then said nothing");
-        return PROBE_SILENT;
-    }
-    snprintf(why, why_size, "it closed the connection without an answer");
-    return PROBE_NO_SERVER;
+    return read_setup_reply(fd, deadline, why, why_size);
 }
 
 static probe_result probe_address(int family, const struct sockaddr *address,
@@ -199,7 +273,7 @@ bool luz_x11_display_answers(const char *display, double seconds, char *why, siz
                                 : probe_tcp(host[0] ? host : "localhost", number, deadline,
                                             reason, sizeof reason);
     if (result != PROBE_SILENT) return true;
-    snprintf(why, why_size, "the X display %s did not answer within %g s: %s", display, seconds,
-             reason);
+    snprintf(why, why_size, "the X display %s did not answer as an X server within %g s: %s",
+             display, seconds, reason);
     return false;
 }

@@ -11,9 +11,10 @@
 
 /* False, with why (one phrase naming the display and what happened), when
  * a connection to display is taken and the X11 setup request gets no
- * answer within seconds (Xlib would wait forever); true otherwise (an
- * answer, or a failure Xlib reports itself at once, or a display form left
- * to Xlib). */
+ * whole answer within seconds (nothing, a part of one: Xlib would wait
+ * forever), or bytes no X server sends; true otherwise (a whole answer,
+ * or a failure Xlib reports itself at once, or a display form left to
+ * Xlib). */
 bool luz_x11_display_answers(const char *display, double seconds, char *why, size_t why_size);
 
 #endif
