@@ -15,6 +15,7 @@
 #include <cmocka.h>
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "app/panel.h"
@@ -611,6 +612,35 @@ static void test_hud_and_help_draw_within_the_framebuffer(void **state)
     }
 }
 
+/* The HUD says which camera the mouse moves: the same scene drawn with the
+ * orbit camera on gives another HUD than with the fly camera, and the
+ * orbit's distance shows in it. */
+static void test_hud_says_which_camera_is_on(void **state)
+{
+    (void)state;
+    luz_scene scene = luz_scene_defaults();
+    uint8_t *drawn[3];
+    const bool orbiting[3] = {false, true, true};
+    const double distances[3] = {3.0, 3.0, 7.5};
+    for (int k = 0; k < 3; k++) {
+        luz_framebuffer *framebuffer = grey_framebuffer(640, 360, 50);
+        luz_hud hud = {.window_width = 640, .window_height = 360, .render_scale = 1.0f,
+                       .threads = 2, .scene = &scene, .orbiting = orbiting[k],
+                       .orbit_distance = distances[k]};
+        luz_layer layer = begin(framebuffer);
+        luz_hud_draw(&layer, &hud);
+        fill_into(framebuffer, &layer);
+        drawn[k] = malloc(640 * 360 * 4);
+        assert_non_null(drawn[k]);
+        memcpy(drawn[k], framebuffer->colour, 640 * 360 * 4);
+        luz_framebuffer_destroy(framebuffer);
+    }
+    assert_true(memcmp(drawn[0], drawn[1], 640 * 360 * 4) != 0);
+    assert_true(memcmp(drawn[1], drawn[2], 640 * 360 * 4) != 0);
+    for (int k = 0; k < 3; k++)
+        free(drawn[k]);
+}
+
 /* ---- the HUD's timings -------------------------------------------------------------------------- */
 
 static void test_hud_timing_averages_the_same_frames(void **state)
@@ -835,6 +865,7 @@ int main(void)
         cmocka_unit_test(test_text),
         cmocka_unit_test(test_panel_draws_inside_its_box),
         cmocka_unit_test(test_hud_and_help_draw_within_the_framebuffer),
+        cmocka_unit_test(test_hud_says_which_camera_is_on),
         cmocka_unit_test(test_hud_timing_averages_the_same_frames),
         cmocka_unit_test(test_hud_fits_the_window_and_stays_left_of_the_panel),
         cmocka_unit_test(test_legends_have_every_entry),

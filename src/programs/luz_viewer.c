@@ -1,7 +1,8 @@
 /*
- * luz: the interactive viewer. Fly through the lighting lab of SCENE.md,
- * switch its six lights, edit them in a panel, and save what you find as a
- * scene file that luz-render renders at any size.
+ * luz: the interactive viewer. Fly through the lighting lab of SCENE.md
+ * (or orbit a model: app/orbit.h), switch its six lights, edit them in a
+ * panel, and save what you find as a scene file that luz-render renders at
+ * any size.
  *
  *   luz                              the default scene in a 1280x720 window
  *   luz --scene view.luz             a saved view
@@ -163,7 +164,8 @@ static void print_usage(FILE *out)
     fprintf(out,
             "Usage: luz [OPTION]...\n"
             "Fly through the luz lighting lab (rotating textured cubes lit by six lights, as\n"
-            "SCENE.md describes) in a window, rendered in real time on the CPU.\n"
+            "SCENE.md describes) in a window, rendered in real time on the CPU, or turn\n"
+            "round your own model (--model FILE) with the orbit camera.\n"
             "\n"
             "The scene options are luz-render's (-o, --frames, --frame-range, --shard,\n"
             "--skip-existing, --legend and --mark are luz-render's alone; the viewer\n"
