@@ -100,6 +100,9 @@ typedef struct luz_frame {
     luz_vec3 eye;                 /* E: the eye's position in the world */
     luz_lights lights;
     luz_vec3 clear_colour;        /* the background */
+    int samples;                  /* samples a pixel: 0 or 1 (one, at the
+                                     centre), or 4 (SCENE.md's 4x pattern,
+                                     resolved); others are an error */
     luz_draw *draws;              /* drawn in this order */
     int draw_count;
     int draw_capacity;

@@ -16,12 +16,17 @@
  *      to the bands of rows its bounding box touches, still in id order.
  *
  *   2. Bands, per band of rows (one job each):
- *        clear           the band's depth and visibility
- *        raster + depth  the band's triangles, in id order
+ *        clear           the band's depth and visibility (each sample's,
+ *                        with four samples a pixel)
+ *        raster + depth  the band's triangles, in id order, at each pixel
+ *                        centre (or at each of the four sample points)
  *        fragment        each visible pixel shaded once, and the
  *                        background given the clear colour (or, for a
  *                        --view other than color, a picture of a stage:
- *                        view.c)
+ *                        view.c); with four samples, once per pixel for
+ *                        each triangle that won one of its samples
+ *        resolve         four samples only: each pixel's samples averaged
+ *                        (resolve.c)
  *        probe           if a pixel is probed and lies in the band, the
  *                        bytes it got (luz/probe.h)
  *        hook            the caller's work on top of the band, if any
@@ -66,9 +71,13 @@ struct luz_renderer {
     bool reference;                 /* fragment.c's shading, not the packets */
     luz_packet_rows_function *packet_rows;   /* the SIMD variant this CPU
                                                 runs, chosen at creation */
-    uint32_t *overdraw;             /* depth tests per pixel, for the overdraw
-                                       view only; allocated when first asked */
+    uint32_t *overdraw;             /* depth tests per pixel (per sample), for
+                                       the overdraw view only; allocated when
+                                       first asked */
     size_t overdraw_capacity;
+    luz_sample_buffers samples;     /* four samples' planes, allocated when a
+                                       frame first asks for them */
+    size_t sample_capacity;         /* pixels each plane holds */
 };
 
 /* What the jobs of one frame share; read-only for the jobs except their
@@ -79,7 +88,9 @@ typedef struct frame_job {
     luz_framebuffer *framebuffer;
     luz_uniforms uniforms;
     luz_geometry_result geometry;   /* phase 1's triangles, binned */
-    uint32_t *overdraw;             /* NULL unless the overdraw view */
+    uint32_t *overdraw;             /* NULL unless the overdraw view (with
+                                       four samples, one plane per sample) */
+    luz_sample_buffers *samples;    /* NULL for one sample a pixel */
     const luz_band_hook *hook;      /* NULL, or called after each band */
     luz_pixel_probe *probe;         /* NULL, or the pixel to explain */
 } frame_job;
@@ -93,37 +104,23 @@ static double now_ms(void)
 
 /* ---- phase 2: bands ---------------------------------------------------- */
 
-static void band_job(void *context, int band_index, int worker_index)
+/* Raster and depth test, the band's triangles in submission order, at
+ * each pixel centre, or with four samples at each sample point into its
+ * plane. Each is read through by_id at an address phase 1 wrote long
+ * before, scattered (ids rise, but a band's are far apart): the hardware
+ * prefetcher cannot guess them, and on a mesh of a million triangles
+ * waiting for them was half the raster's time. The list says which come
+ * next, so they are asked for ahead: by_id's entry 2 * PREFETCH_AHEAD
+ * triangles ahead, and the triangle PREFETCH_AHEAD ahead, every line of it
+ * (the raster reads its box and edges, the fragment stage, after the
+ * band's raster, its planes). */
+static uint64_t raster_band(const frame_job *job, int band_index, int first_row, int end_row)
 {
-    frame_job *job = context;
     luz_framebuffer *framebuffer = job->framebuffer;
-    const luz_renderer *renderer = job->renderer;
     const luz_triangle *const *by_id = job->geometry.by_id;
-    int first_row = band_index * BAND_HEIGHT;
-    int end_row = first_row + BAND_HEIGHT;
-    if (end_row > framebuffer->height) end_row = framebuffer->height;
-    band_counters *counters = &job->renderer->bands[band_index];
-
-    /* Clear depth and visibility. Not colour: the fragment stage (or the
-     * view) writes every pixel of the band, the clear colour where no
-     * triangle wins, so each colour byte is written once. */
-    luz_framebuffer_clear_rows(framebuffer, first_row, end_row);
-
-    /* The overdraw view counts every depth test of the band's pixels. */
     uint32_t *overdraw = job->overdraw;
-    if (overdraw)
-        memset(overdraw + (size_t)first_row * framebuffer->width, 0,
-               (size_t)(end_row - first_row) * framebuffer->width * sizeof *overdraw);
-
-    /* Raster and depth test, the band's triangles in submission order.
-     * Each is read through by_id at an address phase 1 wrote long before,
-     * scattered (ids rise, but a band's are far apart): the hardware
-     * prefetcher cannot guess them, and on a mesh of a million triangles
-     * waiting for them was half the raster's time. The list says which
-     * come next, so they are asked for ahead: by_id's entry
-     * 2 * PREFETCH_AHEAD triangles ahead, and the triangle PREFETCH_AHEAD
-     * ahead, every line of it (the raster reads its box and edges, the
-     * fragment stage, after the band's raster, its planes). */
+    luz_sample_buffers *samples = job->samples;
+    const size_t pixels = (size_t)framebuffer->width * (size_t)framebuffer->height;
     uint64_t tested = 0;
     const size_t *band_start = job->geometry.band_start;
     const uint32_t *ids = job->geometry.band_ids;
@@ -140,30 +137,126 @@ static void band_job(void *context, int band_index, int worker_index)
         }
         const uint32_t id = ids[k];
         const luz_triangle *triangle = by_id[id];
-        if (overdraw)
+        if (samples) {
+            for (int s = 0; s < samples->samples; s++)
+                tested += luz_raster_triangle_sample(
+                    triangle, id, &samples->plane[s], luz_sample_offset_of(samples->samples, s),
+                    first_row, end_row, overdraw ? overdraw + (size_t)s * pixels : NULL);
+        } else if (overdraw) {
             tested += luz_raster_triangle_counting(triangle, id, framebuffer, first_row,
                                                    end_row, overdraw);
-        else
+        } else {
             tested += luz_raster_triangle(triangle, id, framebuffer, first_row, end_row);
+        }
     }
+    return tested;
+}
 
-    /* Fragment stage: shade each visible pixel once, one pixel at a time
-     * (the reference, fragment.c) or a packet of them at a time (the same
-     * equations as SIMD vectors, fragment_packet.c). The teaching views
-     * draw a picture of a stage instead, with the reference (view.c). */
+/* Fragment stage: shade each visible pixel once, one pixel at a time (the
+ * reference, fragment.c) or a packet of them at a time (the same
+ * equations as SIMD vectors, fragment_packet.c). The teaching views draw
+ * a picture of a stage instead, with the reference (view.c). */
+static uint64_t shade_band(const frame_job *job, luz_framebuffer *target, int first_row,
+                           int end_row, const uint32_t *overdraw, int worker_index)
+{
+    const luz_renderer *renderer = job->renderer;
     const luz_uniforms *uniforms = &job->uniforms;
     const luz_draw *draws = job->frame->draws;
-    if (uniforms->show != LUZ_VIEW_COLOR)
-        counters->fragments_shaded = luz_view_shade_rows(uniforms, draws, by_id, framebuffer,
-                                                         first_row, end_row, overdraw,
-                                                         worker_index);
-    else if (renderer->reference)
-        counters->fragments_shaded = luz_fragment_shade_rows(uniforms, draws, by_id,
-                                                             framebuffer, first_row, end_row);
+    const luz_triangle *const *by_id = job->geometry.by_id;
+    if (uniforms->show != LUZ_VIEW_COLOR && uniforms->show != LUZ_VIEW_BANDS)
+        return luz_view_shade_rows(uniforms, draws, by_id, target, first_row, end_row,
+                                   overdraw, worker_index);
+    if (renderer->reference || uniforms->show == LUZ_VIEW_BANDS)
+        return luz_fragment_shade_rows(uniforms, draws, by_id, target, first_row, end_row);
+    return renderer->packet_rows(uniforms, draws, by_id, target, first_row, end_row);
+}
+
+/* The fragment stage and the resolve of a band of four samples a pixel.
+ * The packets (the default): each pixel's first winner is shaded as one
+ * sample would be, every pixel of the band; then, only in rows where an
+ * edge crosses a pixel, the pixels' other winners, list by list; then the
+ * mixed pixels are resolved (resolve.c). The reference and the views
+ * shade every sample's plane and resolve every pixel, the plain way. */
+static uint64_t shade_and_resolve_samples(const frame_job *job, int first_row, int end_row,
+                                          int worker_index)
+{
+    luz_framebuffer *framebuffer = job->framebuffer;
+    luz_sample_buffers *samples = job->samples;
+    const luz_uniforms *uniforms = &job->uniforms;
+    uint64_t shaded = 0;
+    if (uniforms->show == LUZ_VIEW_COLOR && !job->renderer->reference) {
+        uint8_t row_summary[BAND_HEIGHT];
+        luz_samples_sort_winners(samples, framebuffer, first_row, end_row, row_summary);
+        shaded += shade_band(job, framebuffer, first_row, end_row, NULL, worker_index);
+        for (int k = 1; k < samples->samples; k++) {
+            luz_framebuffer list = luz_samples_winner_target(samples, k);
+            for (int y = first_row; y < end_row; y++)
+                if (row_summary[y - first_row] & (1u << k))
+                    shaded += shade_band(job, &list, y, y + 1, NULL, worker_index);
+        }
+        uint8_t background[4];
+        luz_pixel_write(background, luz_pixel_layout_of(framebuffer->channel_order),
+                        uniforms->clear_colour);
+        luz_samples_resolve_winners(samples, framebuffer, first_row, end_row, row_summary,
+                                    background);
+        return shaded;
+    }
+    const size_t pixels = (size_t)framebuffer->width * (size_t)framebuffer->height;
+    uint8_t row_summary[BAND_HEIGHT];
+    luz_samples_sort_winners(samples, framebuffer, first_row, end_row, row_summary);
+    for (int k = 0; k < samples->samples; k++)
+        shaded += shade_band(job, &samples->plane[k], first_row, end_row,
+                             job->overdraw ? job->overdraw + (size_t)k * pixels : NULL,
+                             worker_index);
+    luz_samples_resolve_planes(samples, framebuffer, first_row, end_row);
+    return shaded;
+}
+
+static void band_job(void *context, int band_index, int worker_index)
+{
+    frame_job *job = context;
+    luz_framebuffer *framebuffer = job->framebuffer;
+    luz_sample_buffers *samples = job->samples;
+    int first_row = band_index * BAND_HEIGHT;
+    int end_row = first_row + BAND_HEIGHT;
+    if (end_row > framebuffer->height) end_row = framebuffer->height;
+    band_counters *counters = &job->renderer->bands[band_index];
+    const int sample_count = samples ? samples->samples : 1;
+
+    /* Clear depth and visibility (each sample's). Not colour: the
+     * fragment stage (or the view, or the resolve) writes every pixel of
+     * the band, the clear colour where no triangle wins, so each colour
+     * byte is written once. */
+    if (samples)
+        for (int k = 0; k < sample_count; k++)
+            luz_framebuffer_clear_rows(&samples->plane[k], first_row, end_row);
     else
-        counters->fragments_shaded = renderer->packet_rows(uniforms, draws, by_id, framebuffer,
-                                                           first_row, end_row);
+        luz_framebuffer_clear_rows(framebuffer, first_row, end_row);
+
+    /* The overdraw view counts every depth test of the band's pixels (of
+     * each sample). */
+    if (job->overdraw) {
+        const size_t pixels = (size_t)framebuffer->width * (size_t)framebuffer->height;
+        for (int k = 0; k < sample_count; k++)
+            memset(job->overdraw + (size_t)k * pixels + (size_t)first_row * framebuffer->width,
+                   0, (size_t)(end_row - first_row) * framebuffer->width * sizeof *job->overdraw);
+    }
+
+    /* Raster and depth test. */
+    const uint64_t tested = raster_band(job, band_index, first_row, end_row);
+
+    /* Fragment stage (and, with four samples, the resolve). */
+    if (samples)
+        counters->fragments_shaded =
+            shade_and_resolve_samples(job, first_row, end_row, worker_index);
+    else
+        counters->fragments_shaded =
+            shade_band(job, framebuffer, first_row, end_row, job->overdraw, worker_index);
     counters->fragments_tested = tested;
+
+    /* The bands view tints what the colour view drew by the thread. */
+    if (job->uniforms.show == LUZ_VIEW_BANDS)
+        luz_view_tint_rows(framebuffer, first_row, end_row, worker_index);
 
     /* The probed pixel's bytes, before the hook can draw over them. */
     if (job->probe)
@@ -221,6 +314,12 @@ void luz_renderer_destroy(luz_renderer *renderer)
     luz_geometry_destroy(renderer->geometry);
     free(renderer->bands);
     free(renderer->overdraw);
+    for (int k = 0; k < LUZ_MAX_SAMPLES; k++) {
+        free(renderer->samples.plane[k].colour);
+        free(renderer->samples.plane[k].depth);
+        free(renderer->samples.plane[k].visibility);
+        free(renderer->samples.winners[k]);
+    }
     free(renderer);
 }
 
@@ -246,11 +345,53 @@ static int prepare_bands(luz_renderer *renderer, int band_count, luz_error *erro
     return 0;
 }
 
-/* The overdraw view's counters, one per pixel, allocated when first asked. */
+/* The planes of a frame of more than one sample a pixel (luz_sample_buffers),
+ * allocated when a frame first asks for them and kept (grown as needed). */
+static int prepare_samples(luz_renderer *renderer, frame_job *job, luz_error *error)
+{
+    if (job->uniforms.samples <= 1) return 0;
+    const luz_framebuffer *framebuffer = job->framebuffer;
+    const size_t pixels = (size_t)framebuffer->width * (size_t)framebuffer->height;
+    luz_sample_buffers *samples = &renderer->samples;
+    if (pixels > renderer->sample_capacity) {
+        renderer->sample_capacity = 0;
+        for (int k = 0; k < LUZ_MAX_SAMPLES; k++) {
+            luz_framebuffer *plane = &samples->plane[k];
+            free(plane->colour);
+            free(plane->depth);
+            free(plane->visibility);
+            free(samples->winners[k]);
+            plane->colour = malloc(pixels * 4);
+            plane->depth = malloc(pixels * sizeof *plane->depth);
+            plane->visibility = malloc(pixels * sizeof *plane->visibility);
+            samples->winners[k] = k == 0 ? NULL : malloc(pixels * sizeof *samples->winners[k]);
+            if (!plane->colour || !plane->depth || !plane->visibility ||
+                (k > 0 && !samples->winners[k]))
+                return luz_error_set(error, "out of memory for %d samples a pixel at %dx%d",
+                                     job->uniforms.samples, framebuffer->width,
+                                     framebuffer->height);
+        }
+        renderer->sample_capacity = pixels;
+    }
+    samples->samples = job->uniforms.samples;
+    for (int k = 0; k < LUZ_MAX_SAMPLES; k++) {
+        luz_framebuffer *plane = &samples->plane[k];
+        plane->width = framebuffer->width;
+        plane->height = framebuffer->height;
+        plane->channel_order = framebuffer->channel_order;
+        plane->own_colour = NULL;
+    }
+    job->samples = samples;
+    return 0;
+}
+
+/* The overdraw view's counters, one per pixel (per sample), allocated when
+ * first asked. */
 static int prepare_overdraw(luz_renderer *renderer, frame_job *job, luz_error *error)
 {
     if (job->uniforms.show != LUZ_VIEW_OVERDRAW) return 0;
-    size_t pixels = (size_t)job->framebuffer->width * (size_t)job->framebuffer->height;
+    size_t pixels = (size_t)job->framebuffer->width * (size_t)job->framebuffer->height *
+                    (size_t)(job->uniforms.samples > 1 ? job->uniforms.samples : 1);
     if (pixels > renderer->overdraw_capacity) {
         uint32_t *overdraw = realloc(renderer->overdraw, pixels * sizeof *overdraw);
         if (!overdraw) return luz_error_set(error, "out of memory for the overdraw view");
@@ -270,7 +411,10 @@ static void collect_stats(const luz_renderer *renderer, const frame_job *job,
     stats->draws_culled = job->geometry.draws_culled;
     stats->memory_bytes = luz_geometry_memory(renderer->geometry) +
                           (size_t)renderer->band_capacity * sizeof *renderer->bands +
-                          renderer->overdraw_capacity * sizeof *renderer->overdraw;
+                          renderer->overdraw_capacity * sizeof *renderer->overdraw +
+                          renderer->sample_capacity * (LUZ_MAX_SAMPLES * (4 + sizeof(float) +
+                                                                          sizeof(uint32_t)) +
+                                                       (LUZ_MAX_SAMPLES - 1) * sizeof(uint32_t));
     stats->triangles_rasterised = job->geometry.triangle_total;
     for (int b = 0; b < job->geometry.band_count; b++) {
         stats->fragments_tested += renderer->bands[b].fragments_tested;
@@ -290,6 +434,7 @@ luz_uniforms luz_uniforms_of(const luz_frame *frame, const luz_render_options *o
     uniforms.clear_colour = frame->clear_colour;
     uniforms.show = options->view;
     uniforms.interpolation = options->interpolation;
+    uniforms.samples = frame->samples > 1 ? frame->samples : 1;
     return uniforms;
 }
 
@@ -301,6 +446,9 @@ static int check_frame(const luz_frame *frame, const luz_render_options *options
         return luz_error_set(error, "frame: %d draws but no draw array", frame->draw_count);
     for (int d = 0; d < frame->draw_count; d++)
         if (frame->draws[d].mesh == NULL) return luz_error_set(error, "draw %d: no mesh", d);
+    if (frame->samples != 0 && frame->samples != 1 && frame->samples != 4)
+        return luz_error_set(error, "frame: %d samples a pixel: expected 1 or 4 (0 means 1)",
+                             frame->samples);
     if ((unsigned)options->view >= LUZ_VIEW_COUNT)
         return luz_error_set(error, "render options: view %d is not a luz_view",
                              (int)options->view);
@@ -340,6 +488,7 @@ int luz_renderer_draw(luz_renderer *renderer, const luz_frame *frame,
     /* Phase 2: bands of rows (clear, raster and depth test, fragments,
      * the caller's hook). */
     if (prepare_bands(renderer, job.geometry.band_count, error) != 0) return -1;
+    if (prepare_samples(renderer, &job, error) != 0) return -1;
     if (prepare_overdraw(renderer, &job, error) != 0) return -1;
     if (job.probe) luz_probe_begin(job.probe, framebuffer, options->view);
     luz_thread_pool_run(renderer->pool, job.geometry.band_count, band_job, &job);
@@ -347,7 +496,7 @@ int luz_renderer_draw(luz_renderer *renderer, const luz_frame *frame,
     /* The probed pixel's story (luz/probe.h), from what the bands left. */
     if (job.probe)
         luz_probe_explain(job.probe, &job.uniforms, frame->draws, job.geometry.by_id,
-                          job.geometry.triangle_count, framebuffer, job.overdraw,
+                          job.geometry.triangle_count, framebuffer, job.samples, job.overdraw,
                           !renderer->reference);
     const double end = now_ms();
 

@@ -475,9 +475,15 @@ static void set_up(geometry_batch *batch, const geometry_job *job, const luz_cli
                    bool small_box_checked)
 {
     luz_triangle *out = &batch->triangles[batch->count];
+    const int samples = job->uniforms->samples;
     luz_setup_result result =
-        luz_setup_projected(a, b, c, window_a, window_b, window_c, job->width, job->height,
-                            draw_index, job->uniforms->interpolation, small_box_checked, out);
+        samples > 1
+            ? luz_setup_projected_samples(a, b, c, window_a, window_b, window_c, job->width,
+                                          job->height, draw_index, job->uniforms->interpolation,
+                                          samples, out)
+            : luz_setup_projected(a, b, c, window_a, window_b, window_c, job->width,
+                                  job->height, draw_index, job->uniforms->interpolation,
+                                  small_box_checked, out);
     out->primitive = primitive;
     if (result == LUZ_SETUP_VISIBLE) batch->count++;
     else if (result == LUZ_SETUP_CULLED) batch->culled++;
@@ -807,6 +813,13 @@ int luz_geometry_run(luz_geometry *geometry, luz_thread_pool *pool, const luz_fr
         .vertex_project = geometry->vertex_project,
     };
     memset(out, 0, sizeof *out);
+    /* Screening and setup in lanes look for pixel centres: with more
+     * samples a pixel, the baseline's screening (every triangle through)
+     * and setup one triangle at a time, which test the samples. */
+    if (uniforms->samples > 1) {
+        job.screen = luz_screen_for(LUZ_PACKET_ISA_BASELINE, &job.screen_checks_small_boxes);
+        job.setup_eight = NULL;
+    }
 
     if (plan(geometry, pool, &job, error) != 0) return -1;
     if (job.band_count > geometry->band_capacity) {

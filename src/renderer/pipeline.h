@@ -107,6 +107,8 @@ typedef struct luz_uniforms {
     luz_vec3 clear_colour;
     luz_view show;                     /* what the colour buffer shows */
     luz_interpolation interpolation;   /* read by setup.c */
+    int samples;                       /* a pixel's samples: 1 or 4 (the
+                                          frame's; 0 read as 1) */
 } luz_uniforms;
 
 /* NULL options are the defaults. */
@@ -190,6 +192,39 @@ static inline unsigned luz_clip_outcode(luz_vec4 p)
  * nothing is left); the polygon is convex and keeps the winding. */
 int luz_clip_triangle(const luz_clip_vertex *a, const luz_clip_vertex *b,
                       const luz_clip_vertex *c, luz_clip_polygon *out);
+
+/* ---- samples (SCENE.md, "Anti-aliasing: four samples a pixel") ----------- */
+
+#define LUZ_MAX_SAMPLES 4
+
+/* Where sample k of a pixel lies, from the pixel's top-left corner, in
+ * 1/256 of a pixel (the sub-pixel grid): one sample at the centre (128,
+ * 128), or the standard 4x pattern (0.375, 0.125), (0.875, 0.375),
+ * (0.125, 0.625), (0.625, 0.875), Mesa llvmpipe's, which are exact in
+ * that grid (96/256 = 0.375, ...). */
+typedef struct luz_sample_offset {
+    int32_t x, y;
+} luz_sample_offset;
+
+static inline luz_sample_offset luz_sample_offset_of(int samples, int k)
+{
+    if (samples != 4) return (luz_sample_offset){128, 128};
+    const luz_sample_offset four[4] = {{96, 32}, {224, 96}, {32, 160}, {160, 224}};
+    return four[k & 3];
+}
+
+/* The nearest and farthest a sample lies from a pixel's left (or top)
+ * edge, over the pattern's samples (setup's box of pixels a triangle may
+ * cover): 128 and 128 for one sample, 32 and 224 for four. */
+static inline int32_t luz_sample_reach_low(int samples)
+{
+    return samples == 4 ? 32 : 128;
+}
+
+static inline int32_t luz_sample_reach_high(int samples)
+{
+    return samples == 4 ? 224 : 128;
+}
 
 /* ---- triangle setup ---------------------------------------------------- */
 
@@ -322,6 +357,19 @@ luz_setup_result luz_setup_projected(const luz_clip_vertex *v0, const luz_clip_v
                                      luz_interpolation interpolation, bool small_box_checked,
                                      luz_triangle *out);
 
+/* The same for a pixel of `samples` samples (1 or 4): the box holds the
+ * pixels one of whose samples may be inside, and a small triangle is kept
+ * if it covers one of its box's samples (the geometry of a four-sample
+ * frame calls this, without screening or setup in lanes, which look at
+ * pixel centres only). samples 1 is luz_setup_projected. */
+luz_setup_result luz_setup_projected_samples(const luz_clip_vertex *v0, const luz_clip_vertex *v1,
+                                             const luz_clip_vertex *v2,
+                                             const luz_window_vertex *p0,
+                                             const luz_window_vertex *p1,
+                                             const luz_window_vertex *p2, int width, int height,
+                                             uint32_t draw_index, luz_interpolation interpolation,
+                                             int samples, luz_triangle *out);
+
 /* Projects, snaps and sets up triangle (v0, v1, v2) for a width x height
  * viewport: luz_setup_project and luz_setup_projected in one. With
  * LUZ_INTERPOLATION_AFFINE the varying planes hold the varyings
@@ -331,6 +379,11 @@ luz_setup_result luz_setup_triangle(const luz_clip_vertex *v0, const luz_clip_ve
                                     const luz_clip_vertex *v2, int width, int height,
                                     uint32_t draw_index, luz_interpolation interpolation,
                                     luz_triangle *out);
+/* The same for pixels of `samples` samples (luz_setup_projected_samples). */
+luz_setup_result luz_setup_triangle_samples(const luz_clip_vertex *v0, const luz_clip_vertex *v1,
+                                            const luz_clip_vertex *v2, int width, int height,
+                                            uint32_t draw_index, luz_interpolation interpolation,
+                                            int samples, luz_triangle *out);
 
 /* ---- rasterisation and depth test -------------------------------------- */
 
@@ -365,20 +418,22 @@ LUZ_RASTER_INLINE bool luz_raster_is_small(const luz_triangle *triangle)
     return triangle->max_x - triangle->min_x < LUZ_RASTER_SMALL_SPAN;
 }
 
-/* The pixels of row y whose centres the triangle covers, [*first, *last]
- * (empty when *first > *last), for a row y within [min_y, max_y]; small is
- * luz_raster_is_small(triangle), worked out once per triangle. */
-LUZ_RASTER_INLINE void luz_raster_row_span(const luz_triangle *triangle, int y, bool small,
-                                       int64_t *first, int64_t *last)
+/* The pixels of row y whose sample at offset (sample.x, sample.y) in
+ * 1/256 pixel (luz_sample_offset) the triangle covers, [*first, *last]
+ * (empty when *first > *last), for a row y within [min_y, max_y]; small
+ * is luz_raster_is_small(triangle), worked out once per triangle. */
+LUZ_RASTER_INLINE void luz_raster_row_span_at(const luz_triangle *triangle, int y, bool small,
+                                              luz_sample_offset sample, int64_t *first,
+                                              int64_t *last)
 {
-    const int64_t sample_y = (int64_t)y * LUZ_SUBPIXEL_ONE + LUZ_SUBPIXEL_ONE / 2;
+    const int64_t sample_y = (int64_t)y * LUZ_SUBPIXEL_ONE + sample.y;
     *first = triangle->min_x;
     *last = triangle->max_x;
     int64_t e[3], step[3];
     for (int k = 0; k < 3; k++) {
         const luz_edge *edge = &triangle->edges[k];
-        /* E at the centre of pixel 0 of this row, and its step per pixel. */
-        e[k] = (int64_t)edge->a * (LUZ_SUBPIXEL_ONE / 2) + edge->b * sample_y + edge->c;
+        /* E at the sample of pixel 0 of this row, and its step per pixel. */
+        e[k] = (int64_t)edge->a * sample.x + edge->b * sample_y + edge->c;
         step[k] = (int64_t)edge->a * LUZ_SUBPIXEL_ONE;
     }
     if (small) {
@@ -396,6 +451,14 @@ LUZ_RASTER_INLINE void luz_raster_row_span(const luz_triangle *triangle, int y, 
     }
 }
 
+/* The pixels of row y whose centres the triangle covers: the one-sample
+ * span. */
+LUZ_RASTER_INLINE void luz_raster_row_span(const luz_triangle *triangle, int y, bool small,
+                                           int64_t *first, int64_t *last)
+{
+    luz_raster_row_span_at(triangle, y, small, (luz_sample_offset){128, 128}, first, last);
+}
+
 /* Window depth at the centres of row y, at x = reference_x... */
 LUZ_RASTER_INLINE float luz_raster_row_depth(luz_plane depth, float reference_y, int y)
 {
@@ -410,6 +473,20 @@ LUZ_RASTER_INLINE float luz_raster_depth(luz_plane depth, float reference_x, flo
     return row_depth + depth.dx * ((float)x + 0.5f - reference_x);
 }
 
+/* The same two at a sample offset_x, offset_y pixels from the pixel's
+ * corner (luz_sample_offset / 256, exact in a float). */
+LUZ_RASTER_INLINE float luz_raster_sample_row_depth(luz_plane depth, float reference_y, int y,
+                                                    float offset_y)
+{
+    return depth.value + depth.dy * ((float)y + offset_y - reference_y);
+}
+
+LUZ_RASTER_INLINE float luz_raster_sample_depth(luz_plane depth, float reference_x,
+                                                float row_depth, int x, float offset_x)
+{
+    return row_depth + depth.dx * ((float)x + offset_x - reference_x);
+}
+
 /* Covers the pixel centres of rows [first_row, end_row) that lie inside the
  * triangle; where a sample is nearer than the depth buffer (LESS), writes
  * its depth and triangle_id into the visibility buffer. Returns the number
@@ -422,6 +499,77 @@ uint64_t luz_raster_triangle(const luz_triangle *triangle, uint32_t triangle_id,
 uint64_t luz_raster_triangle_counting(const luz_triangle *triangle, uint32_t triangle_id,
                                       luz_framebuffer *framebuffer, int first_row,
                                       int end_row, uint32_t *overdraw);
+
+/* ---- four samples: the buffers (frame.c), raster, resolve (resolve.c) --- */
+
+/* What a frame of more than one sample a pixel keeps beside the
+ * framebuffer. plane[k] is sample k of every pixel as a one-sample
+ * framebuffer of the image's size: its depth and visibility are sample
+ * k's depth and winner (raster), its colour the 8-bit colour of a
+ * winner (the fragment stage writes each distinct winner of a pixel's
+ * samples into the plane of the first sample it won, or each sample's,
+ * for the teaching views). winners[k], k = 1 .. samples - 1, are the
+ * fragment stage's lists (resolve.c, luz_samples_sort_winners). */
+typedef struct luz_sample_buffers {
+    int samples;                               /* 1 (none of this is used) or 4 */
+    luz_framebuffer plane[LUZ_MAX_SAMPLES];
+    uint32_t *winners[LUZ_MAX_SAMPLES];        /* [0] unused: the framebuffer's
+                                                  visibility is the first list */
+} luz_sample_buffers;
+
+/* Covers the samples at offset sample of rows [first_row, end_row) inside
+ * the triangle into plane (one sample of every pixel, luz_sample_buffers):
+ * depth interpolated at the sample, LESS, the winner's id; overdraw, if
+ * not NULL, counts the plane's depth tests. Returns the tests made. */
+uint64_t luz_raster_triangle_sample(const luz_triangle *triangle, uint32_t triangle_id,
+                                    luz_framebuffer *plane, luz_sample_offset sample,
+                                    int first_row, int end_row, uint32_t *overdraw);
+
+/* Bits of luz_samples_sort_winners' summary of a row. */
+enum {
+    LUZ_ROW_MIXED = 1,   /* a pixel whose samples were not all won by one
+                            triangle (or all by none) */
+    /* 1 << k, k = 1 .. 3: the row has a pixel in winner list k */
+};
+
+/* The fragment stage's work for rows [first_row, end_row) of a frame of
+ * buffers->samples samples, from the planes' winners: the framebuffer's
+ * visibility gets each pixel's first winner (that of its first sample
+ * not background; 0 if all are; its depth is not written); winner
+ * list k (k >= 1) gets, where sample k was won by a triangle that no
+ * earlier sample and not the first winner had, that triangle's id, else
+ * 0. So each (pixel, winning triangle) is in exactly one list, and a
+ * pixel whose samples agree is in the first list alone. row_summary[y -
+ * first_row] gets the bits above. */
+void luz_samples_sort_winners(luz_sample_buffers *buffers, luz_framebuffer *framebuffer,
+                              int first_row, int end_row, uint8_t *row_summary);
+
+/* A winner list k (k >= 1) as a framebuffer whose visibility the fragment
+ * stage reads and whose colour (plane k's) it writes. */
+luz_framebuffer luz_samples_winner_target(const luz_sample_buffers *buffers, int k);
+
+/* The resolve, for the rows luz_samples_sort_winners summarised: each
+ * sample takes the colour of the triangle that won it (the framebuffer's
+ * colour for the first winner, plane j's for list j's, the clear colour's
+ * bytes `background` where none did), and the pixel becomes, per
+ * channel, floor((s0 + s1 + s2 + s3 + 2) / 4). Only mixed pixels change:
+ * a pixel whose four samples agree already holds its colour. */
+void luz_samples_resolve_winners(const luz_sample_buffers *buffers, luz_framebuffer *framebuffer,
+                                 int first_row, int end_row, const uint8_t *row_summary,
+                                 const uint8_t background[4]);
+
+/* The resolve from a colour per sample (plane k's colour holds sample
+ * k's: the teaching views and the reference path shade every plane), every
+ * pixel of the rows. */
+void luz_samples_resolve_planes(const luz_sample_buffers *buffers, luz_framebuffer *framebuffer,
+                                int first_row, int end_row);
+
+/* floor((s0 + s1 + s2 + s3 + 2) / 4), SCENE.md's resolve of one channel. */
+static inline uint8_t luz_samples_resolve_channel(unsigned s0, unsigned s1, unsigned s2,
+                                                  unsigned s3)
+{
+    return (uint8_t)((s0 + s1 + s2 + s3 + 2) >> 2);
+}
 
 /* ---- fragment stage ---------------------------------------------------- */
 
@@ -628,6 +776,12 @@ luz_vec3 luz_view_pixel(const luz_uniforms *uniforms, const luz_draw *draws,
  * worker thread worker_index (luz/view.h's LUZ_VIEW_BANDS_TINT). */
 luz_vec3 luz_view_bands_colour(const uint8_t rgb[3], int worker_index);
 
+/* The bands view's tint over rows [first_row, end_row) of the colour the
+ * colour view drew (luz_view_shade_rows does it for one sample; frame.c
+ * after the resolve of four). */
+void luz_view_tint_rows(luz_framebuffer *framebuffer, int first_row, int end_row,
+                        int worker_index);
+
 /* The triangles view: the distance in pixels from pixel (x, y)'s centre to
  * the nearest of the triangle's three edges (lines through them). */
 double luz_view_edge_distance(const luz_triangle *triangle, int x, int y);
@@ -657,7 +811,8 @@ void luz_probe_capture(luz_pixel_probe *probe, const luz_framebuffer *framebuffe
 void luz_probe_explain(luz_pixel_probe *probe, const luz_uniforms *uniforms,
                        const luz_draw *draws, const luz_triangle *const *by_id,
                        size_t triangle_count, const luz_framebuffer *framebuffer,
-                       const uint32_t *overdraw, bool packet_path);
+                       const luz_sample_buffers *samples, const uint32_t *overdraw,
+                       bool packet_path);
 
 /* ---- the renderer (frame.c) --------------------------------------------- */
 

@@ -291,8 +291,10 @@ static void shade(luz_pixel_probe *probe, const luz_uniforms *uniforms,
 void luz_probe_explain(luz_pixel_probe *probe, const luz_uniforms *uniforms,
                        const luz_draw *draws, const luz_triangle *const *by_id,
                        size_t triangle_count, const luz_framebuffer *framebuffer,
-                       const uint32_t *overdraw, bool packet_path)
+                       const luz_sample_buffers *samples, const uint32_t *overdraw,
+                       bool packet_path)
 {
+    (void)samples;
     if (!probe->filled) return;
     const int x = probe->x, y = probe->y;
     const size_t index = (size_t)y * framebuffer->width + x;

@@ -7,6 +7,11 @@
  *      visibility buffer. No colour yet: fragment.c shades each pixel once,
  *      after every triangle has been tested, so hidden fragments cost only
  *      a depth test (a "visibility buffer", Burns and Hunt 2013).
+ *      With four samples a pixel (SCENE.md, "Anti-aliasing"), the same for
+ *      each sample point: luz_raster_triangle_sample covers sample k of
+ *      every pixel, (x + sx, y + sy), with the depth interpolated there,
+ *      into that sample's plane of depth and ids (luz_sample_buffers); the
+ *      band calls it once per sample. Same arithmetic, another offset.
  *
  * Coverage: pixel (x, y) samples its centre (x + 0.5, y + 0.5), in fixed
  * point X = 256 x + 128. Along a row an edge function is linear in x,
@@ -87,4 +92,42 @@ uint64_t luz_raster_triangle_counting(const luz_triangle *triangle, uint32_t tri
                                       int end_row, uint32_t *overdraw)
 {
     return raster_triangle(triangle, triangle_id, framebuffer, first_row, end_row, overdraw);
+}
+
+uint64_t luz_raster_triangle_sample(const luz_triangle *triangle, uint32_t triangle_id,
+                                    luz_framebuffer *plane, luz_sample_offset sample,
+                                    int first_row, int end_row, uint32_t *overdraw)
+{
+    int y_begin = triangle->min_y > first_row ? triangle->min_y : first_row;
+    int y_end = triangle->max_y + 1 < end_row ? triangle->max_y + 1 : end_row;
+    const luz_plane depth = triangle->depth;
+    const int width = plane->width;
+    const bool small = luz_raster_is_small(triangle);
+    /* The sample's offset in pixels, exact in a float (k / 256). */
+    const float offset_x = (float)sample.x / LUZ_SUBPIXEL_ONE;
+    const float offset_y = (float)sample.y / LUZ_SUBPIXEL_ONE;
+    uint64_t tests = 0;
+
+    for (int y = y_begin; y < y_end; y++) {
+        int64_t first, last;
+        luz_raster_row_span_at(triangle, y, small, sample, &first, &last);
+        if (first > last) continue;
+        const float row_depth =
+            luz_raster_sample_row_depth(depth, triangle->reference_y, y, offset_y);
+        float *depth_row = plane->depth + (size_t)y * width;
+        uint32_t *visibility_row = plane->visibility + (size_t)y * width;
+        for (int x = (int)first; x <= (int)last; x++) {
+            float z = luz_raster_sample_depth(depth, triangle->reference_x, row_depth, x, offset_x);
+            if (z < depth_row[x]) {    /* GL_LESS, per sample */
+                depth_row[x] = z;
+                visibility_row[x] = triangle_id;
+            }
+        }
+        tests += (uint64_t)(last - first + 1);
+        if (overdraw != NULL) {
+            uint32_t *count_row = overdraw + (size_t)y * width;
+            for (int x = (int)first; x <= (int)last; x++) count_row[x]++;
+        }
+    }
+    return tests;
 }

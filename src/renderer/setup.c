@@ -14,7 +14,9 @@
  *      depth, 1/w and every varying/w (for affine interpolation: 1 and
  *      every varying); or CULLED (a back face), or OFFSCREEN (no pixel
  *      centre covered: outside the viewport, or a small triangle whose box
- *      holds centres that all fall outside it).
+ *      holds centres that all fall outside it). For a frame of four
+ *      samples a pixel (luz_setup_projected_samples) the box and that test
+ *      are the samples', SCENE.md's pattern, not the centres.
  *
  * Steps, as in OpenGL 4.6 section 13.8 (coordinate transformations) and
  * Fabian Giesen's "Triangle rasterization in practice":
@@ -116,6 +118,28 @@ static bool covers_a_centre(const luz_triangle *triangle)
     return false;
 }
 
+/* The same for the samples of a pixel of `samples` samples (luz_sample_offset_of):
+ * whether any sample of the box passes the three edges. */
+static bool covers_a_sample(const luz_triangle *triangle, int samples)
+{
+    for (int y = triangle->min_y; y <= triangle->max_y; y++) {
+        for (int x = triangle->min_x; x <= triangle->max_x; x++) {
+            for (int s = 0; s < samples; s++) {
+                const luz_sample_offset offset = luz_sample_offset_of(samples, s);
+                const int64_t sample_x = (int64_t)x * LUZ_SUBPIXEL_ONE + offset.x;
+                const int64_t sample_y = (int64_t)y * LUZ_SUBPIXEL_ONE + offset.y;
+                bool inside = true;
+                for (int k = 0; k < 3; k++) {
+                    const luz_edge *edge = &triangle->edges[k];
+                    inside &= edge->a * sample_x + edge->b * sample_y + edge->c >= 0;
+                }
+                if (inside) return true;
+            }
+        }
+    }
+    return false;
+}
+
 /* The plane through (x_k, y_k, value_k), k = 0..2 (Cramer's rule on the
  * two edge vectors), given by its value at the reference point (rx, ry).
  * Inlined, so that the ten calls of a triangle share the differences of
@@ -196,12 +220,14 @@ void luz_setup_project(const luz_clip_vertex *vertices, uint32_t first, uint32_t
     }
 }
 
-luz_setup_result luz_setup_projected(const luz_clip_vertex *v0, const luz_clip_vertex *v1,
-                                     const luz_clip_vertex *v2, const luz_window_vertex *p0,
-                                     const luz_window_vertex *p1, const luz_window_vertex *p2,
-                                     int width, int height, uint32_t draw_index,
-                                     luz_interpolation interpolation, bool small_box_checked,
-                                     luz_triangle *out)
+/* luz_setup_projected for pixels of `samples` samples; inlined into both
+ * public functions, so that the one-sample one compiles as it did. */
+static inline __attribute__((always_inline)) luz_setup_result
+setup_projected(const luz_clip_vertex *v0, const luz_clip_vertex *v1, const luz_clip_vertex *v2,
+                const luz_window_vertex *p0, const luz_window_vertex *p1,
+                const luz_window_vertex *p2, int width, int height, uint32_t draw_index,
+                luz_interpolation interpolation, bool small_box_checked, int samples,
+                luz_triangle *out)
 {
     /* 3. Cull back faces and degenerate triangles (and any vertex that
      * luz_setup_project found invalid). */
@@ -210,7 +236,9 @@ luz_setup_result luz_setup_projected(const luz_clip_vertex *v0, const luz_clip_v
     const int64_t fixed_y[3] = {p0->fixed_y, p1->fixed_y, p2->fixed_y};
 
     /* The pixels whose centre (x + 0.5, y + 0.5) can be inside: centre X =
-     * 256 x + 128 must lie within [min X, max X]. */
+     * 256 x + 128 must lie within [min X, max X]. With four samples, the
+     * pixels one of whose samples can be: 256 x + 32 <= max X and
+     * 256 x + 224 >= min X (luz_sample_reach_low, _high). */
     int64_t min_fx = fixed_x[0], max_fx = fixed_x[0], min_fy = fixed_y[0], max_fy = fixed_y[0];
     for (int k = 1; k < 3; k++) {
         if (fixed_x[k] < min_fx) min_fx = fixed_x[k];
@@ -218,11 +246,11 @@ luz_setup_result luz_setup_projected(const luz_clip_vertex *v0, const luz_clip_v
         if (fixed_y[k] < min_fy) min_fy = fixed_y[k];
         if (fixed_y[k] > max_fy) max_fy = fixed_y[k];
     }
-    const int64_t half = LUZ_SUBPIXEL_ONE / 2;
-    int64_t min_x = luz_ceil_divide(min_fx - half, LUZ_SUBPIXEL_ONE);
-    int64_t max_x = luz_floor_divide(max_fx - half, LUZ_SUBPIXEL_ONE);
-    int64_t min_y = luz_ceil_divide(min_fy - half, LUZ_SUBPIXEL_ONE);
-    int64_t max_y = luz_floor_divide(max_fy - half, LUZ_SUBPIXEL_ONE);
+    const int64_t low = luz_sample_reach_low(samples), high = luz_sample_reach_high(samples);
+    int64_t min_x = luz_ceil_divide(min_fx - high, LUZ_SUBPIXEL_ONE);
+    int64_t max_x = luz_floor_divide(max_fx - low, LUZ_SUBPIXEL_ONE);
+    int64_t min_y = luz_ceil_divide(min_fy - high, LUZ_SUBPIXEL_ONE);
+    int64_t max_y = luz_floor_divide(max_fy - low, LUZ_SUBPIXEL_ONE);
     if (min_x < 0) min_x = 0;
     if (min_y < 0) min_y = 0;
     if (max_x > width - 1) max_x = width - 1;
@@ -246,7 +274,8 @@ luz_setup_result luz_setup_projected(const luz_clip_vertex *v0, const luz_clip_v
      * already (small_box_checked). */
     const bool up_to_2x2 = max_x - min_x <= 1 && max_y - min_y <= 1;
     if ((max_x - min_x + 1) * (max_y - min_y + 1) <= LUZ_SETUP_SMALL_BOX_PIXELS &&
-        !(small_box_checked && up_to_2x2) && !covers_a_centre(out))
+        !(small_box_checked && up_to_2x2) &&
+        !(samples == 1 ? covers_a_centre(out) : covers_a_sample(out, samples)))
         return LUZ_SETUP_OFFSCREEN;
 
     /* 5. Planes. Snapping is for coverage only: the planes are solved from
@@ -269,17 +298,52 @@ luz_setup_result luz_setup_projected(const luz_clip_vertex *v0, const luz_clip_v
     return LUZ_SETUP_VISIBLE;
 }
 
-luz_setup_result luz_setup_triangle(const luz_clip_vertex *v0, const luz_clip_vertex *v1,
-                                    const luz_clip_vertex *v2, int width, int height,
-                                    uint32_t draw_index, luz_interpolation interpolation,
-                                    luz_triangle *out)
+luz_setup_result luz_setup_projected(const luz_clip_vertex *v0, const luz_clip_vertex *v1,
+                                     const luz_clip_vertex *v2, const luz_window_vertex *p0,
+                                     const luz_window_vertex *p1, const luz_window_vertex *p2,
+                                     int width, int height, uint32_t draw_index,
+                                     luz_interpolation interpolation, bool small_box_checked,
+                                     luz_triangle *out)
+{
+    return setup_projected(v0, v1, v2, p0, p1, p2, width, height, draw_index, interpolation,
+                           small_box_checked, 1, out);
+}
+
+luz_setup_result luz_setup_projected_samples(const luz_clip_vertex *v0, const luz_clip_vertex *v1,
+                                             const luz_clip_vertex *v2,
+                                             const luz_window_vertex *p0,
+                                             const luz_window_vertex *p1,
+                                             const luz_window_vertex *p2, int width, int height,
+                                             uint32_t draw_index, luz_interpolation interpolation,
+                                             int samples, luz_triangle *out)
+{
+    if (samples <= 1)
+        return luz_setup_projected(v0, v1, v2, p0, p1, p2, width, height, draw_index,
+                                   interpolation, false, out);
+    return setup_projected(v0, v1, v2, p0, p1, p2, width, height, draw_index, interpolation,
+                           false, samples, out);
+}
+
+luz_setup_result luz_setup_triangle_samples(const luz_clip_vertex *v0, const luz_clip_vertex *v1,
+                                            const luz_clip_vertex *v2, int width, int height,
+                                            uint32_t draw_index, luz_interpolation interpolation,
+                                            int samples, luz_triangle *out)
 {
     luz_clip_vertex vertices[3] = {*v0, *v1, *v2};
     luz_window_vertex window[3];
     for (int k = 0; k < 3; k++) vertices[k].outcode = 0;   /* project all three */
     luz_setup_project(vertices, 0, 3, width, height, window, NULL);
-    return luz_setup_projected(v0, v1, v2, &window[0], &window[1], &window[2], width, height,
-                               draw_index, interpolation, false, out);
+    return luz_setup_projected_samples(v0, v1, v2, &window[0], &window[1], &window[2], width,
+                                       height, draw_index, interpolation, samples, out);
+}
+
+luz_setup_result luz_setup_triangle(const luz_clip_vertex *v0, const luz_clip_vertex *v1,
+                                    const luz_clip_vertex *v2, int width, int height,
+                                    uint32_t draw_index, luz_interpolation interpolation,
+                                    luz_triangle *out)
+{
+    return luz_setup_triangle_samples(v0, v1, v2, width, height, draw_index, interpolation, 1,
+                                      out);
 }
 
 const char *luz_interpolation_name(luz_interpolation interpolation)

@@ -235,8 +235,8 @@ luz_vec3 luz_view_bands_colour(const uint8_t rgb[3], int worker_index)
 
 /* Mixes the tint into the rows fragment.c has just shaded, reading each
  * channel back from the byte the channel order put it in. */
-static void tint_rows_by_thread(luz_framebuffer *framebuffer, int first_row, int end_row,
-                                int worker_index)
+void luz_view_tint_rows(luz_framebuffer *framebuffer, int first_row, int end_row,
+                        int worker_index)
 {
     const luz_pixel_layout layout = luz_pixel_layout_of(framebuffer->channel_order);
     const size_t begin = (size_t)first_row * framebuffer->width;
@@ -299,7 +299,7 @@ uint64_t luz_view_shade_rows(const luz_uniforms *uniforms, const luz_draw *draws
     if (uniforms->show == LUZ_VIEW_BANDS) {
         uint64_t shaded = luz_fragment_shade_rows(uniforms, draws, by_id, framebuffer,
                                                   first_row, end_row);
-        tint_rows_by_thread(framebuffer, first_row, end_row, worker_index);
+        luz_view_tint_rows(framebuffer, first_row, end_row, worker_index);
         return shaded;
     }
 
