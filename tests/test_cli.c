@@ -1701,6 +1701,7 @@ static void set_every_option_by_hand(luz_options *options)
     lights->spot_reach = 7.5f;
     lights->directional = (luz_light){.colour = luz_vec3_make(0.9f, 0.8f, 0.7f), .strength = 0.2f};
     options->scene.filter = LUZ_FILTER_NEAREST;
+    options->scene.samples = 4;
     options->scene.view = LUZ_VIEW_DEPTH;
     options->scene.interpolation = LUZ_INTERPOLATION_AFFINE;
     options->paused = true;
@@ -1744,6 +1745,7 @@ static const char every_option_text[] =
     "spot-reach = 7.5\n"
     "directional = 0.9, 0.8, 0.7, 0.2\n"
     "filter = nearest\n"
+    "samples = 4\n"
     "textures = hand/textures\n"
     "view = depth\n"
     "interp = affine\n"
@@ -1802,6 +1804,7 @@ static void test_scene_round_trip_every_saved_key(void **state)
     assert_float_same(lights->spot_reach, 7.5f);
     assert_light_is(&lights->directional, 0.9f, 0.8f, 0.7f, 0.2f);
     assert_int_equal(copy.scene.filter, LUZ_FILTER_NEAREST);
+    assert_int_equal(copy.scene.samples, 4);
     assert_int_equal(copy.scene.view, LUZ_VIEW_DEPTH);
     assert_int_equal(copy.scene.interpolation, LUZ_INTERPOLATION_AFFINE);
     assert_true(copy.paused);
@@ -1940,12 +1943,13 @@ static void test_scene_text_of_the_defaults(void **state)
                         "spot-outer = 17.5\n"
                         "spot-reach = 10\n"
                         "directional = 1, 1, 1, 0.4\n"
-                        "filter = trilinear\n");
+                        "filter = trilinear\n"
+                        "samples = 1\n");
     free(text);
     /* one of the two changed: only that one is written */
     options.scene.interpolation = LUZ_INTERPOLATION_AFFINE;
     text = scene_text(&options);
-    assert_contains(text, "\nfilter = trilinear\ninterp = affine\n");
+    assert_contains(text, "\nfilter = trilinear\nsamples = 1\ninterp = affine\n");
     assert_null(strstr(text, "view ="));
     free(text);
     luz_options_free(&options);

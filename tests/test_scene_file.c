@@ -50,6 +50,7 @@ typedef enum key_type {
     KEY_FILTER,
     KEY_VIEW,
     KEY_INTERP,
+    KEY_SAMPLES,
     KEY_PATH,
     KEY_BOOL,
 } key_type;
@@ -84,6 +85,7 @@ static const key_field key_fields[] = {
     {"spot-reach", KEY_FLOAT, AT(scene.lights.spot_reach)},
     {"directional", KEY_LIGHT, AT(scene.lights.directional)},
     {"filter", KEY_FILTER, AT(scene.filter)},
+    {"samples", KEY_SAMPLES, AT(scene.samples)},
     {"view", KEY_VIEW, AT(scene.view)},
     {"interp", KEY_INTERP, AT(scene.interpolation)},
     {"textures", KEY_PATH, AT(textures_directory)},
@@ -201,6 +203,9 @@ static void assert_same_key(const luz_options *set, const luz_options *back,
         break;
     case KEY_INTERP:
         assert_int_equal(back->scene.interpolation, set->scene.interpolation);
+        break;
+    case KEY_SAMPLES:
+        assert_int_equal(back->scene.samples, set->scene.samples);
         break;
     case KEY_BOOL:
         assert_int_equal(*(const bool *)b, *(const bool *)a);
@@ -463,6 +468,7 @@ static void test_counts_sizes_and_names(void **state)
         options.scene.filter = filters[view % 3];
         options.scene.interpolation = modes[view % 2];
         options.paused = view % 2 == 1;   /* both values of the one yes/no key */
+        options.scene.samples = view % 2 == 1 ? 4 : 1;   /* both sample counts */
         assert_round_trip(&options);
         luz_options_free(&options);
     }

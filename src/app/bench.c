@@ -63,6 +63,7 @@ void luz_bench_print_case(FILE *out, const luz_options *options, int frames, int
         fprintf(out, "view=%s ", luz_view_name(scene->view));
     if (scene->interpolation != LUZ_INTERPOLATION_PERSPECTIVE)
         fprintf(out, "interp=%s ", luz_interpolation_name(scene->interpolation));
+    if (scene->samples > 1) fprintf(out, "samples=%d ", scene->samples);
 }
 
 int luz_bench_run(luz_bench *bench, int frame_count, double start_seconds,

@@ -58,6 +58,7 @@ typedef enum option_kind {
     OPTION_FILTER,    /* nearest | bilinear | trilinear */
     OPTION_VIEW,      /* color | depth | normals | ... (luz/view.h) */
     OPTION_INTERP,    /* perspective | affine */
+    OPTION_SAMPLES,   /* 1 | 4: samples a pixel */
     OPTION_YES_NO,    /* yes | no, a bool */
     OPTION_MARKS,     /* X,Y[,X,Y...]: pixels to mark in the image */
     OPTION_ONLY,      /* a comma-separated list of light terms */
@@ -159,6 +160,12 @@ static const option_spec option_table[] = {
     {.name = "filter", .kind = OPTION_FILTER,
      .in_scene_file = true, .saving = LUZ_OPTION_SAVED,
      .syntax = "nearest|bilinear|trilinear", .summary = "texture filter"},
+    /* Always saved: the viewer's default may differ from luz-render's. */
+    {.name = "samples", .kind = OPTION_SAMPLES, .offset = FIELD(scene.samples),
+     .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "1|4",
+     .summary = "samples a pixel: 1 (at its centre) or 4 (anti-aliased: SCENE.md's 4x "
+                "pattern, each pixel's samples averaged)",
+     .default_text = "1 (the viewer: 4)"},
     /* The teaching settings, saved when changed: a view saved while looking
      * at the depth buffer renders the depth buffer. */
     {.name = "view", .kind = OPTION_VIEW,
@@ -507,6 +514,17 @@ static int set_interpolation(luz_options *options, const char *value, const char
                          option_quote(value).text);
 }
 
+static int set_samples(luz_options *options, const char *value, const char *where,
+                       luz_error *error)
+{
+    if (strcmp(value, "1") == 0 || strcmp(value, "4") == 0) {
+        options->scene.samples = value[0] - '0';
+        return 0;
+    }
+    return luz_error_set(error, "%s: expected 1 or 4 (samples a pixel), got '%s'", where,
+                         option_quote(value).text);
+}
+
 static int set_yes_no(luz_options *options, const option_spec *spec, const char *value,
                       const char *where, luz_error *error)
 {
@@ -750,6 +768,8 @@ int luz_options_set_value(luz_options *options, const char *name, const char *va
         return set_view(options, value, where, error);
     case OPTION_INTERP:
         return set_interpolation(options, value, where, error);
+    case OPTION_SAMPLES:
+        return set_samples(options, value, where, error);
     case OPTION_YES_NO:
         return set_yes_no(options, spec, value, where, error);
     case OPTION_MARKS:
@@ -853,6 +873,9 @@ int luz_options_format(const luz_options *options, const char *name, char *buffe
     case OPTION_INTERP:
         written = snprintf(buffer, size, "%s",
                            luz_interpolation_name(options->scene.interpolation));
+        break;
+    case OPTION_SAMPLES:
+        written = snprintf(buffer, size, "%d", options->scene.samples);
         break;
     case OPTION_YES_NO:
         written = snprintf(buffer, size, "%s", *(const bool *)field ? "yes" : "no");

@@ -45,6 +45,7 @@ luz_scene luz_scene_defaults(void)
     scene.filter = LUZ_FILTER_TRILINEAR;
     scene.view = LUZ_VIEW_COLOR;
     scene.interpolation = LUZ_INTERPOLATION_PERSPECTIVE;
+    scene.samples = 1;
     return scene;
 }
 
@@ -204,6 +205,7 @@ void luz_scene_set_camera_and_lights(const luz_scene *scene, float aspect, luz_f
     frame->lights.directional_direction = (luz_vec3){(float)cos(sun), (float)sin(sun), 0.0f};
     frame->lights.spot_direction = front;   /* the spot rides on the camera */
     frame->clear_colour = (luz_vec3){0.1f, 0.1f, 0.1f};
+    frame->samples = scene->samples;
 }
 
 luz_render_options luz_scene_render_options(const luz_scene *scene)

@@ -128,6 +128,7 @@ typedef struct luz_scene {
     luz_filter filter;
     luz_view view;                   /* LUZ_VIEW_COLOR */
     luz_interpolation interpolation; /* LUZ_INTERPOLATION_PERSPECTIVE */
+    int samples;                     /* a pixel's: 1 (the default) or 4 */
 } luz_scene;
 
 luz_scene luz_scene_defaults(void);
@@ -158,7 +159,8 @@ const luz_mesh *luz_lab_cube_mesh(const luz_lab *lab);
 /* The frame's camera and lights at the scene's time, for an image of the
  * given aspect ratio (width / height): the view and projection matrices,
  * the eye, the lights with the point light and the sun where their orbits
- * have them and the spot along the camera's front, and the clear colour.
+ * have them and the spot along the camera's front, the clear colour and
+ * the samples a pixel.
  * The draws are left as they are. */
 void luz_scene_set_camera_and_lights(const luz_scene *scene, float aspect, luz_frame *frame);
 
