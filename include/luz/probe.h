@@ -20,6 +20,12 @@
  *   the lighting  the six terms (luz/shade.h), their sum, the colour C,
  *                 light x C x T before the clamp
  *   the bytes     what the image holds at the pixel
+ *   the samples   with four samples a pixel (luz_frame.samples): each
+ *                 sample's position, winner and 8-bit colour, and the
+ *                 history lists every sample's depth tests (each test
+ *                 says which sample); the winner above is the pixel's
+ *                 first (that of its first sample not background), and
+ *                 bytes = floor((s0 + s1 + s2 + s3 + 2) / 4) per channel
  *
  * Every number is produced by the code that drew the image: the raster
  * stage's coverage and depth arithmetic, luz_fragment_interpolate, the
@@ -47,8 +53,22 @@
  * (test_count counts them all). */
 #define LUZ_PROBE_MAX_TESTS 256
 
+/* With four samples a pixel, what the probe says of each sample. */
+#define LUZ_PROBE_MAX_SAMPLES 4
+
+typedef struct luz_probe_sample {
+    float x, y;          /* its position in the image: x + sx, y + sy */
+    int test_count;      /* depth tests made there */
+    uint32_t triangle;   /* its winner's id (0: none, the clear colour) */
+    float depth_buffer;  /* the depth it kept (1: none won) */
+    uint8_t bytes[3];    /* the colour it took: its winner's, shaded once
+                            for the pixel at its centre (the clear colour
+                            where none won), red, green, blue */
+} luz_probe_sample;
+
 /* One depth test at the pixel. */
 typedef struct luz_probe_test {
+    int sample;          /* which of the pixel's samples (0 with one) */
     uint32_t triangle;   /* its id: 1, 2, ... in submission order, as the
                             visibility buffer holds it */
     int draw;            /* its draw: an index into the frame's draws */
@@ -70,6 +90,9 @@ struct luz_pixel_probe {
     luz_view view;          /* what the image shows there (the options') */
     uint8_t bytes[3];       /* red, green, blue: what the image holds at the
                                pixel (before a band hook draws on top) */
+    int samples;            /* the frame's samples a pixel: 1 or 4 */
+    luz_probe_sample sample[LUZ_PROBE_MAX_SAMPLES];   /* with 4: each sample;
+                               bytes is their resolve */
 
     /* The history. */
     int test_count;         /* every depth test made at the pixel */

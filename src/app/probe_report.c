@@ -114,6 +114,7 @@ static void write_history(FILE *out, const luz_pixel_probe *probe, const luz_pro
         const luz_probe_test *test = &probe->tests[k];
         const luz_probe_source source = luz_probe_source_of(names, test->draw);
         fprintf(out, "test=%d ", k + 1);
+        if (probe->samples > 1) fprintf(out, "sample=%d ", test->sample);
         put_object(out, &source);
         fprintf(out, " mesh=%d triangle=%lu depth=", source.mesh, (unsigned long)test->triangle);
         put_float(out, test->depth);
@@ -218,6 +219,34 @@ static void write_view(FILE *out, const luz_pixel_probe *probe)
     line_vec3(out, "shown", probe->shown);
 }
 
+/* With four samples: each sample, its winner and colour, and the resolve
+ * of each channel written out (SCENE.md: floor((s0 + s1 + s2 + s3 + 2) / 4)). */
+static void write_samples(FILE *out, const luz_pixel_probe *probe)
+{
+    fprintf(out, "samples=%d\n", probe->samples);
+    for (int k = 0; k < probe->samples; k++) {
+        const luz_probe_sample *sample = &probe->sample[k];
+        fprintf(out, "sample=%d position=", k);
+        put_float(out, sample->x);
+        fputc(',', out);
+        put_float(out, sample->y);
+        fprintf(out, " tests=%d triangle=%lu depth=", sample->test_count,
+                (unsigned long)sample->triangle);
+        put_float(out, sample->depth_buffer);
+        fprintf(out, " bytes=%u,%u,%u\n", sample->bytes[0], sample->bytes[1], sample->bytes[2]);
+    }
+    static const char *const channels[3] = {"red", "green", "blue"};
+    for (int c = 0; c < 3; c++) {
+        unsigned sum = 0;
+        fprintf(out, "resolve_%s=floor((", channels[c]);
+        for (int k = 0; k < probe->samples; k++) {
+            fprintf(out, "%s%u", k ? "+" : "", probe->sample[k].bytes[c]);
+            sum += probe->sample[k].bytes[c];
+        }
+        fprintf(out, "+2)/4)=%u\n", (sum + 2) / 4);
+    }
+}
+
 void luz_probe_write(FILE *out, const luz_pixel_probe *probe, const luz_probe_names *names,
                      int width, int height, double time_seconds)
 {
@@ -232,5 +261,6 @@ void luz_probe_write(FILE *out, const luz_pixel_probe *probe, const luz_probe_na
     else
         write_winner(out, probe, names);
     write_view(out, probe);
+    if (probe->samples > 1) write_samples(out, probe);
     fprintf(out, "bytes=%u,%u,%u\n", probe->bytes[0], probe->bytes[1], probe->bytes[2]);
 }

@@ -7,7 +7,9 @@
  *      written by raster.c), the set-up triangles, their draws'
  *      materials, the frame's uniforms.
  * Out: the colour buffer, each channel round(clamp(c, 0, 1) * 255), in the
- *      framebuffer's channel order (RGBA or BGRA). Every pixel is written:
+ *      framebuffer's channel order (RGBA or BGRA); or, for a list of
+ *      (pixel, triangle) fragments (the other winners of pixels four
+ *      samples share, resolve.c), the bytes of each. Every pixel is written:
  *      the background, where no triangle won, gets the clear colour. No
  *      pass clears colour beforehand, so each byte is written once a frame
  *      and colour may be memory the caller lends, holding anything.
@@ -65,6 +67,41 @@ void luz_fragment_interpolate(const luz_triangle *triangle, int x, int y, luz_fr
     out->w = w;
 }
 
+/* Pixel (x, y) shaded as triangle's: interpolate, sample, light. */
+static inline luz_vec3 shade_pixel(const luz_shade_uniforms *uniforms, const luz_draw *draws,
+                                   const luz_triangle *triangle, int x, int y)
+{
+    const luz_material *material = &draws[triangle->draw_index].material;
+    if (material->shading == LUZ_SHADING_UNLIT) return material->colour;
+    luz_fragment fragment;
+    luz_fragment_interpolate(triangle, x, y, &fragment);
+    float lambda = 0.0f;
+    if (material->texture && material->filter == LUZ_FILTER_TRILINEAR)
+        lambda = luz_texture_level_of_detail(material->texture, fragment.du_dx, fragment.dv_dx,
+                                             fragment.du_dy, fragment.dv_dy);
+    luz_vec3 texel = luz_texture_sample(material->texture, material->filter, fragment.uv, lambda);
+    return luz_shade_fragment(uniforms, fragment.position, fragment.normal, material->colour,
+                              texel);
+}
+
+uint64_t luz_fragment_shade_list(const luz_uniforms *frame_uniforms, const luz_draw *draws,
+                                 const luz_triangle *const *by_id, luz_channel_order order,
+                                 const luz_fragment_ref *fragments, size_t count,
+                                 uint32_t *colours)
+{
+    const luz_shade_uniforms uniforms = frame_uniforms->shade;
+    const luz_pixel_layout layout = luz_pixel_layout_of(order);
+    for (size_t i = 0; i < count; i++) {
+        const luz_fragment_ref *fragment = &fragments[i];
+        uint8_t pixel[4];
+        luz_pixel_write(pixel, layout,
+                        shade_pixel(&uniforms, draws, by_id[fragment->id], fragment->x,
+                                    fragment->y));
+        memcpy(&colours[i], pixel, sizeof pixel);
+    }
+    return count;
+}
+
 uint64_t luz_fragment_shade_rows(const luz_uniforms *frame_uniforms, const luz_draw *draws,
                                  const luz_triangle *const *by_id, luz_framebuffer *framebuffer,
                                  int first_row, int end_row)
@@ -89,26 +126,7 @@ uint64_t luz_fragment_shade_rows(const luz_uniforms *frame_uniforms, const luz_d
                 memcpy(pixel, background, sizeof background);
                 continue;
             }
-            const luz_triangle *triangle = by_id[id];
-            const luz_material *material = &draws[triangle->draw_index].material;
-
-            luz_vec3 colour;
-            if (material->shading == LUZ_SHADING_UNLIT) {
-                colour = material->colour;
-            } else {
-                luz_fragment fragment;
-                luz_fragment_interpolate(triangle, x, y, &fragment);
-                float lambda = 0.0f;
-                if (material->texture && material->filter == LUZ_FILTER_TRILINEAR)
-                    lambda = luz_texture_level_of_detail(material->texture, fragment.du_dx,
-                                                         fragment.dv_dx, fragment.du_dy,
-                                                         fragment.dv_dy);
-                luz_vec3 texel = luz_texture_sample(material->texture, material->filter,
-                                                    fragment.uv, lambda);
-                colour = luz_shade_fragment(&uniforms, fragment.position, fragment.normal,
-                                            material->colour, texel);
-            }
-            luz_pixel_write(pixel, layout, colour);
+            luz_pixel_write(pixel, layout, shade_pixel(&uniforms, draws, by_id[id], x, y));
             shaded++;
         }
     }

@@ -79,15 +79,18 @@
 #endif
 #define LANES 16
 #define VARIANT_ROWS luz_fragment_packet_rows_avx512
+#define VARIANT_LIST luz_fragment_packet_list_avx512
 #elif defined(LUZ_PACKET_AVX2)
 #if !defined(__AVX2__)
 #error "the AVX2 variant is compiled with -mavx2 -mfma"
 #endif
 #define LANES 8
 #define VARIANT_ROWS luz_fragment_packet_rows_avx2
+#define VARIANT_LIST luz_fragment_packet_list_avx2
 #else
 #define LANES 4
 #define VARIANT_ROWS luz_fragment_packet_rows_baseline
+#define VARIANT_LIST luz_fragment_packet_list_baseline
 #define BASELINE_VARIANT 1
 #endif
 
@@ -597,10 +600,10 @@ INLINE vplane splat_plane(luz_plane plane)
 
 /* Every lane the same triangle's. */
 INLINE void one_triangle(lane_triangles *out, const luz_triangle *triangle, vfloat centre_x,
-                         float centre_y)
+                         vfloat centre_y)
 {
     out->dx = centre_x - triangle->reference_x;
-    out->dy = splat(centre_y - triangle->reference_y);
+    out->dy = centre_y - triangle->reference_y;
     out->inverse_w = splat_plane(triangle->inverse_w);
     for (int k = 0; k < LUZ_VARYING_COUNT; k++)
         out->varyings[k] = splat_plane(triangle->varyings[k]);
@@ -701,7 +704,7 @@ INLINE void read_columns(const float *const from[LANES], vfloat column[READ_FLOA
  * gives each lane, so the same arithmetic gives the same bits. */
 INLINE void gather_triangles(lane_triangles *out, const luz_triangle *const *by_id, vuint ids,
                              unsigned lanes, const luz_triangle *fallback, vfloat centre_x,
-                             float centre_y)
+                             vfloat centre_y)
 {
     const float *from[LANES];
     for (int i = 0; i < LANES; i++) {
@@ -819,6 +822,44 @@ INLINE vuint shade_lanes(const packet_uniforms *u, const luz_material *material,
     return pack_pixels(colour, u);
 }
 
+/* The lanes of `covered` shaded as their triangles' (ids), at centres
+ * (centre_x, centre_y), over `pixels`: one pass per draw in the packet,
+ * its lanes shaded with their own triangles' planes. A lone triangle (or
+ * two, as on a quad's diagonal) takes each its own pass with its planes
+ * broadcast, cheaper than gathering them. */
+INLINE vuint shade_packet(const packet_uniforms *u, const luz_draw *draws,
+                          const luz_triangle *const *by_id, vuint ids, unsigned covered,
+                          vfloat centre_x, vfloat centre_y, vuint pixels)
+{
+    for (unsigned pending = covered; pending != 0;) {
+        const luz_triangle *first = by_id[ids[__builtin_ctz(pending)]];
+        unsigned mine_bits = lane_bits((vint)(ids == ids[__builtin_ctz(pending)]));
+        unsigned others = pending & ~mine_bits;   /* not yet the draw's */
+        unsigned same_draw = mine_bits;
+        for (unsigned rest = others; rest != 0; rest &= rest - 1) {
+            const int i = __builtin_ctz(rest);
+            if (by_id[ids[i]]->draw_index == first->draw_index)
+                same_draw |= 1u << i;
+        }
+        const unsigned second = same_draw & ~mine_bits;
+        const bool two_or_fewer =
+            second == 0 ||
+            (second & ~lane_bits((vint)(ids == ids[__builtin_ctz(second)]))) == 0;
+        lane_triangles triangles;
+        if (two_or_fewer) {
+            one_triangle(&triangles, first, centre_x, centre_y);
+        } else {
+            gather_triangles(&triangles, by_id, ids, same_draw, first, centre_x, centre_y);
+            mine_bits = same_draw;
+        }
+        pending &= ~mine_bits;
+        const vint mine = lanes_of_bits(mine_bits);
+        const vuint shade = shade_lanes(u, &draws[first->draw_index].material, &triangles, mine);
+        pixels = (vuint)select_int(mine, (vint)shade, (vint)pixels);
+    }
+    return pixels;
+}
+
 /* ---- the band ------------------------------------------------------------ */
 
 uint64_t VARIANT_ROWS(const luz_uniforms *uniforms, const luz_draw *draws,
@@ -861,38 +902,8 @@ uint64_t VARIANT_ROWS(const luz_uniforms *uniforms, const luz_draw *draws,
                 shaded += (uint64_t)__builtin_popcount(covered);
                 /* Pixel centres as fragment.c computes them: (float)x + 0.5. */
                 const vfloat centre_x = (lane_x + (float)x) + 0.5f;
-                /* One pass per draw in the packet: its lanes shaded with
-                 * their own triangles' planes. A lone triangle (or two,
-                 * as on a quad's diagonal) takes each its own pass with
-                 * its planes broadcast, cheaper than gathering them. */
-                for (unsigned pending = covered; pending != 0;) {
-                    const luz_triangle *first = by_id[ids[__builtin_ctz(pending)]];
-                    unsigned mine_bits = lane_bits((vint)(ids == ids[__builtin_ctz(pending)]));
-                    unsigned others = pending & ~mine_bits;   /* not yet the draw's */
-                    unsigned same_draw = mine_bits;
-                    for (unsigned rest = others; rest != 0; rest &= rest - 1) {
-                        const int i = __builtin_ctz(rest);
-                        if (by_id[ids[i]]->draw_index == first->draw_index)
-                            same_draw |= 1u << i;
-                    }
-                    const unsigned second = same_draw & ~mine_bits;
-                    const bool two_or_fewer =
-                        second == 0 ||
-                        (second & ~lane_bits((vint)(ids == ids[__builtin_ctz(second)]))) == 0;
-                    lane_triangles triangles;
-                    if (two_or_fewer) {
-                        one_triangle(&triangles, first, centre_x, centre_y);
-                    } else {
-                        gather_triangles(&triangles, by_id, ids, same_draw, first, centre_x,
-                                         centre_y);
-                        mine_bits = same_draw;
-                    }
-                    pending &= ~mine_bits;
-                    const vint mine = lanes_of_bits(mine_bits);
-                    const vuint shade = shade_lanes(&u, &draws[first->draw_index].material,
-                                                    &triangles, mine);
-                    pixels = (vuint)select_int(mine, (vint)shade, (vint)pixels);
-                }
+                pixels = shade_packet(&u, draws, by_id, ids, covered, centre_x,
+                                      splat(centre_y), pixels);
             }
             /* Lanes are in memory order, so a short packet's first count
              * lanes are its pixels. */
@@ -905,15 +916,48 @@ uint64_t VARIANT_ROWS(const luz_uniforms *uniforms, const luz_draw *draws,
     return shaded;
 }
 
+uint64_t VARIANT_LIST(const luz_uniforms *uniforms, const luz_draw *draws,
+                      const luz_triangle *const *by_id, luz_channel_order order,
+                      const luz_fragment_ref *fragments, size_t count, uint32_t *colours);
+
+/* The list loop of this variant: LANES fragments of the list at a time,
+ * each lane at its own pixel, shaded as the rows shade it (the same
+ * centre, (float)x + 0.5, and planes: the same bits). */
+uint64_t VARIANT_LIST(const luz_uniforms *uniforms, const luz_draw *draws,
+                      const luz_triangle *const *by_id, luz_channel_order order,
+                      const luz_fragment_ref *fragments, size_t count, uint32_t *colours)
+{
+    const packet_uniforms u = packet_uniforms_of(uniforms, order);
+    const vuint background = (vuint){0} + u.background;
+    for (size_t begin = 0; begin < count; begin += LANES) {
+        const int lanes = count - begin < LANES ? (int)(count - begin) : LANES;
+        vuint ids = {0};
+        vfloat centre_x = splat(0.5f), centre_y = splat(0.5f);
+        for (int i = 0; i < lanes; i++) {
+            const luz_fragment_ref *fragment = &fragments[begin + (size_t)i];
+            ids[i] = fragment->id;
+            centre_x[i] = (float)fragment->x + 0.5f;
+            centre_y[i] = (float)fragment->y + 0.5f;
+        }
+        const unsigned covered = lane_bits((vint)(ids != 0u));
+        const vuint pixels = shade_packet(&u, draws, by_id, ids, covered, centre_x, centre_y,
+                                          background);
+        memcpy(colours + begin, &pixels, (size_t)lanes * sizeof *colours);
+    }
+    return count;
+}
+
 /* ---- run-time dispatch (in the baseline variant only) ------------------ */
 
 #if defined(BASELINE_VARIANT)
 
 #if defined(LUZ_PACKET_HAVE_AVX512)
 luz_packet_rows_function luz_fragment_packet_rows_avx512;
+luz_packet_list_function luz_fragment_packet_list_avx512;
 #endif
 #if defined(LUZ_PACKET_HAVE_AVX2)
 luz_packet_rows_function luz_fragment_packet_rows_avx2;
+luz_packet_list_function luz_fragment_packet_list_avx2;
 #endif
 
 bool luz_packet_isa_supported(luz_packet_isa isa)
@@ -959,6 +1003,26 @@ luz_packet_rows_function *luz_packet_rows_for(luz_packet_isa isa)
 #endif
     default:
         return luz_fragment_packet_rows_baseline;
+    }
+}
+
+luz_packet_list_function *luz_packet_list_for(luz_packet_isa isa)
+{
+    if (isa == LUZ_PACKET_ISA_BEST) isa = LUZ_PACKET_ISA_AVX512;
+    if (isa == LUZ_PACKET_ISA_AVX512 && !luz_packet_isa_supported(isa)) isa = LUZ_PACKET_ISA_AVX2;
+    if (isa == LUZ_PACKET_ISA_AVX2 && !luz_packet_isa_supported(isa)) isa = LUZ_PACKET_ISA_BASELINE;
+
+    switch (isa) {
+#if defined(LUZ_PACKET_HAVE_AVX512)
+    case LUZ_PACKET_ISA_AVX512:
+        return luz_fragment_packet_list_avx512;
+#endif
+#if defined(LUZ_PACKET_HAVE_AVX2)
+    case LUZ_PACKET_ISA_AVX2:
+        return luz_fragment_packet_list_avx2;
+#endif
+    default:
+        return luz_fragment_packet_list_baseline;
     }
 }
 

@@ -71,6 +71,7 @@ struct luz_renderer {
     bool reference;                 /* fragment.c's shading, not the packets */
     luz_packet_rows_function *packet_rows;   /* the SIMD variant this CPU
                                                 runs, chosen at creation */
+    luz_packet_list_function *packet_list;   /* its list form (four samples) */
     uint32_t *overdraw;             /* depth tests per pixel (per sample), for
                                        the overdraw view only; allocated when
                                        first asked */
@@ -78,6 +79,9 @@ struct luz_renderer {
     luz_sample_buffers samples;     /* four samples' planes, allocated when a
                                        frame first asks for them */
     size_t sample_capacity;         /* pixels each plane holds */
+    luz_sample_band *sample_bands;  /* one per thread: a band's mixed pixels */
+    size_t sample_band_capacity;    /* pixels each holds room for */
+    int sample_band_count;          /* the threads' */
 };
 
 /* What the jobs of one frame share; read-only for the jobs except their
@@ -172,11 +176,11 @@ static uint64_t shade_band(const frame_job *job, luz_framebuffer *target, int fi
 }
 
 /* The fragment stage and the resolve of a band of four samples a pixel.
- * The packets (the default): each pixel's first winner is shaded as one
- * sample would be, every pixel of the band; then, only in rows where an
- * edge crosses a pixel, the pixels' other winners, list by list; then the
- * mixed pixels are resolved (resolve.c). The reference and the views
- * shade every sample's plane and resolve every pixel, the plain way. */
+ * Each pixel's first winner is shaded as one sample would be, every pixel
+ * of the band (the packets, or the reference); then the other winners of
+ * the pixels an edge crosses, as a list; then those pixels are resolved
+ * (resolve.c). The views shade every sample's plane and resolve every
+ * pixel, the plain way. */
 static uint64_t shade_and_resolve_samples(const frame_job *job, int first_row, int end_row,
                                           int worker_index)
 {
@@ -184,26 +188,24 @@ static uint64_t shade_and_resolve_samples(const frame_job *job, int first_row, i
     luz_sample_buffers *samples = job->samples;
     const luz_uniforms *uniforms = &job->uniforms;
     uint64_t shaded = 0;
-    if (uniforms->show == LUZ_VIEW_COLOR && !job->renderer->reference) {
-        uint8_t row_summary[BAND_HEIGHT];
-        luz_samples_sort_winners(samples, framebuffer, first_row, end_row, row_summary);
-        shaded += shade_band(job, framebuffer, first_row, end_row, NULL, worker_index);
-        for (int k = 1; k < samples->samples; k++) {
-            luz_framebuffer list = luz_samples_winner_target(samples, k);
-            for (int y = first_row; y < end_row; y++)
-                if (row_summary[y - first_row] & (1u << k))
-                    shaded += shade_band(job, &list, y, y + 1, NULL, worker_index);
-        }
+    if (uniforms->show == LUZ_VIEW_COLOR || uniforms->show == LUZ_VIEW_BANDS) {
+        luz_sample_band *band = &job->renderer->sample_bands[worker_index];
+        luz_samples_sort_winners(samples, first_row, end_row, band);
+        /* The first winners, in sample 0's plane now, into the image. */
+        luz_framebuffer first_winners = *framebuffer;
+        first_winners.visibility = samples->plane[0].visibility;
+        shaded += shade_band(job, &first_winners, first_row, end_row, NULL, worker_index);
+        const bool reference = job->renderer->reference || uniforms->show == LUZ_VIEW_BANDS;
+        shaded += (reference ? luz_fragment_shade_list : job->renderer->packet_list)(
+            uniforms, job->frame->draws, job->geometry.by_id, framebuffer->channel_order,
+            band->extra, band->extra_count, band->extra_colour);
         uint8_t background[4];
         luz_pixel_write(background, luz_pixel_layout_of(framebuffer->channel_order),
                         uniforms->clear_colour);
-        luz_samples_resolve_winners(samples, framebuffer, first_row, end_row, row_summary,
-                                    background);
+        luz_samples_resolve_winners(band, framebuffer, background);
         return shaded;
     }
     const size_t pixels = (size_t)framebuffer->width * (size_t)framebuffer->height;
-    uint8_t row_summary[BAND_HEIGHT];
-    luz_samples_sort_winners(samples, framebuffer, first_row, end_row, row_summary);
     for (int k = 0; k < samples->samples; k++)
         shaded += shade_band(job, &samples->plane[k], first_row, end_row,
                              job->overdraw ? job->overdraw + (size_t)k * pixels : NULL,
@@ -297,6 +299,7 @@ luz_renderer *luz_renderer_create(const luz_renderer_desc *desc, luz_error *erro
     }
     renderer->reference = desc->reference;
     renderer->packet_rows = luz_packet_rows_for(LUZ_PACKET_ISA_BEST);
+    renderer->packet_list = luz_packet_list_for(LUZ_PACKET_ISA_BEST);
     renderer->geometry = luz_geometry_create(threads);
     renderer->pool = luz_thread_pool_create(threads);
     if (!renderer->geometry || !renderer->pool) {
@@ -305,6 +308,22 @@ luz_renderer *luz_renderer_create(const luz_renderer_desc *desc, luz_error *erro
         return NULL;
     }
     return renderer;
+}
+
+static void free_sample_bands(luz_renderer *renderer)
+{
+    if (renderer->sample_bands) {
+        for (int t = 0; t < renderer->sample_band_count; t++) {
+            free(renderer->sample_bands[t].mixed);
+            free(renderer->sample_bands[t].extra);
+            free(renderer->sample_bands[t].extra_colour);
+            free(renderer->sample_bands[t].row_mixed);
+        }
+    }
+    free(renderer->sample_bands);
+    renderer->sample_bands = NULL;
+    renderer->sample_band_capacity = 0;
+    renderer->sample_band_count = 0;
 }
 
 void luz_renderer_destroy(luz_renderer *renderer)
@@ -318,14 +337,15 @@ void luz_renderer_destroy(luz_renderer *renderer)
         free(renderer->samples.plane[k].colour);
         free(renderer->samples.plane[k].depth);
         free(renderer->samples.plane[k].visibility);
-        free(renderer->samples.winners[k]);
     }
+    free_sample_bands(renderer);
     free(renderer);
 }
 
 void luz_renderer_set_packet_isa(luz_renderer *renderer, luz_packet_isa isa)
 {
     renderer->packet_rows = luz_packet_rows_for(isa);
+    renderer->packet_list = luz_packet_list_for(isa);
     luz_geometry_set_isa(renderer->geometry, isa);
 }
 
@@ -360,18 +380,40 @@ static int prepare_samples(luz_renderer *renderer, frame_job *job, luz_error *er
             free(plane->colour);
             free(plane->depth);
             free(plane->visibility);
-            free(samples->winners[k]);
             plane->colour = malloc(pixels * 4);
             plane->depth = malloc(pixels * sizeof *plane->depth);
             plane->visibility = malloc(pixels * sizeof *plane->visibility);
-            samples->winners[k] = k == 0 ? NULL : malloc(pixels * sizeof *samples->winners[k]);
-            if (!plane->colour || !plane->depth || !plane->visibility ||
-                (k > 0 && !samples->winners[k]))
+            if (!plane->colour || !plane->depth || !plane->visibility)
                 return luz_error_set(error, "out of memory for %d samples a pixel at %dx%d",
                                      job->uniforms.samples, framebuffer->width,
                                      framebuffer->height);
         }
         renderer->sample_capacity = pixels;
+    }
+    /* A band's mixed pixels: at most each of its pixels, with at most
+     * three other winners each. */
+    const size_t band_pixels = (size_t)BAND_HEIGHT * (size_t)framebuffer->width;
+    if (band_pixels > renderer->sample_band_capacity) {
+        free_sample_bands(renderer);
+        const int threads = luz_thread_pool_thread_count(renderer->pool);
+        renderer->sample_bands = calloc((size_t)threads, sizeof *renderer->sample_bands);
+        if (!renderer->sample_bands)
+            return luz_error_set(error, "out of memory for %d samples a pixel",
+                                 job->uniforms.samples);
+        renderer->sample_band_count = threads;
+        for (int t = 0; t < threads; t++) {
+            luz_sample_band *band = &renderer->sample_bands[t];
+            band->mixed = malloc(band_pixels * sizeof *band->mixed);
+            band->extra = malloc(3 * band_pixels * sizeof *band->extra);
+            band->extra_colour = malloc(3 * band_pixels * sizeof *band->extra_colour);
+            band->row_mixed = malloc((size_t)framebuffer->width * sizeof *band->row_mixed);
+            if (!band->mixed || !band->extra || !band->extra_colour || !band->row_mixed) {
+                free_sample_bands(renderer);
+                return luz_error_set(error, "out of memory for %d samples a pixel",
+                                     job->uniforms.samples);
+            }
+        }
+        renderer->sample_band_capacity = band_pixels;
     }
     samples->samples = job->uniforms.samples;
     for (int k = 0; k < LUZ_MAX_SAMPLES; k++) {
@@ -412,9 +454,12 @@ static void collect_stats(const luz_renderer *renderer, const frame_job *job,
     stats->memory_bytes = luz_geometry_memory(renderer->geometry) +
                           (size_t)renderer->band_capacity * sizeof *renderer->bands +
                           renderer->overdraw_capacity * sizeof *renderer->overdraw +
-                          renderer->sample_capacity * (LUZ_MAX_SAMPLES * (4 + sizeof(float) +
-                                                                          sizeof(uint32_t)) +
-                                                       (LUZ_MAX_SAMPLES - 1) * sizeof(uint32_t));
+                          renderer->sample_capacity * LUZ_MAX_SAMPLES *
+                              (4 + sizeof(float) + sizeof(uint32_t)) +
+                          renderer->sample_band_capacity *
+                              (size_t)renderer->sample_band_count *
+                              (sizeof(luz_mixed_pixel) +
+                               3 * (sizeof(luz_fragment_ref) + sizeof(uint32_t)));
     stats->triangles_rasterised = job->geometry.triangle_total;
     for (int b = 0; b < job->geometry.band_count; b++) {
         stats->fragments_tested += renderer->bands[b].fragments_tested;
@@ -497,7 +542,7 @@ int luz_renderer_draw(luz_renderer *renderer, const luz_frame *frame,
     if (job.probe)
         luz_probe_explain(job.probe, &job.uniforms, frame->draws, job.geometry.by_id,
                           job.geometry.triangle_count, framebuffer, job.samples, job.overdraw,
-                          !renderer->reference);
+                          renderer->reference ? NULL : renderer->packet_list);
     const double end = now_ms();
 
     luz_frame_stats *stats = options->stats;

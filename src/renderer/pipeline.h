@@ -505,16 +505,11 @@ uint64_t luz_raster_triangle_counting(const luz_triangle *triangle, uint32_t tri
 /* What a frame of more than one sample a pixel keeps beside the
  * framebuffer. plane[k] is sample k of every pixel as a one-sample
  * framebuffer of the image's size: its depth and visibility are sample
- * k's depth and winner (raster), its colour the 8-bit colour of a
- * winner (the fragment stage writes each distinct winner of a pixel's
- * samples into the plane of the first sample it won, or each sample's,
- * for the teaching views). winners[k], k = 1 .. samples - 1, are the
- * fragment stage's lists (resolve.c, luz_samples_sort_winners). */
+ * k's depth and winner (raster); its colour is sample k's colour where
+ * the teaching views and the reference path shade every plane. */
 typedef struct luz_sample_buffers {
     int samples;                               /* 1 (none of this is used) or 4 */
     luz_framebuffer plane[LUZ_MAX_SAMPLES];
-    uint32_t *winners[LUZ_MAX_SAMPLES];        /* [0] unused: the framebuffer's
-                                                  visibility is the first list */
 } luz_sample_buffers;
 
 /* Covers the samples at offset sample of rows [first_row, end_row) inside
@@ -525,42 +520,62 @@ uint64_t luz_raster_triangle_sample(const luz_triangle *triangle, uint32_t trian
                                     luz_framebuffer *plane, luz_sample_offset sample,
                                     int first_row, int end_row, uint32_t *overdraw);
 
-/* Bits of luz_samples_sort_winners' summary of a row. */
+/* A fragment of a list: pixel (x, y) to be shaded as triangle id's, at
+ * the pixel centre (the other winners of a pixel whose samples differ,
+ * resolve.c). */
+typedef struct luz_fragment_ref {
+    uint32_t id;
+    uint16_t x, y;   /* LUZ_MAX_DIMENSION is 2^14 */
+} luz_fragment_ref;
+
+/* A pixel whose samples were not all won by one triangle (or all by
+ * none): where each sample's colour comes from. */
 enum {
-    LUZ_ROW_MIXED = 1,   /* a pixel whose samples were not all won by one
-                            triangle (or all by none) */
-    /* 1 << k, k = 1 .. 3: the row has a pixel in winner list k */
+    LUZ_SAMPLE_FROM_CLEAR = 0,    /* no triangle: the clear colour */
+    LUZ_SAMPLE_FROM_FIRST = 1,    /* the pixel's first winner: its colour
+                                     in the framebuffer */
+    /* 2 + j: the pixel's j-th other winner, extra[first_extra + j] */
 };
 
-/* The fragment stage's work for rows [first_row, end_row) of a frame of
- * buffers->samples samples, from the planes' winners: the framebuffer's
- * visibility gets each pixel's first winner (that of its first sample
- * not background; 0 if all are; its depth is not written); winner
- * list k (k >= 1) gets, where sample k was won by a triangle that no
- * earlier sample and not the first winner had, that triangle's id, else
- * 0. So each (pixel, winning triangle) is in exactly one list, and a
- * pixel whose samples agree is in the first list alone. row_summary[y -
- * first_row] gets the bits above. */
-void luz_samples_sort_winners(luz_sample_buffers *buffers, luz_framebuffer *framebuffer,
-                              int first_row, int end_row, uint8_t *row_summary);
+typedef struct luz_mixed_pixel {
+    uint32_t index;              /* y * width + x */
+    uint32_t first_extra;        /* its other winners in the extra list */
+    uint8_t source[LUZ_MAX_SAMPLES];
+} luz_mixed_pixel;
 
-/* A winner list k (k >= 1) as a framebuffer whose visibility the fragment
- * stage reads and whose colour (plane k's) it writes. */
-luz_framebuffer luz_samples_winner_target(const luz_sample_buffers *buffers, int k);
+/* The work of a band of four samples a pixel beyond one sample's: its mixed
+ * pixels and, in the same order, their other winners to shade. Room for
+ * every pixel of a band (BAND_HEIGHT x width), one per thread. */
+typedef struct luz_sample_band {
+    luz_mixed_pixel *mixed;
+    size_t mixed_count;
+    luz_fragment_ref *extra;     /* (pixel, triangle) shaded at the centre */
+    uint32_t *extra_colour;      /* their bytes, by the fragment stage */
+    size_t extra_count;
+    uint16_t *row_mixed;         /* scratch: a row's mixed pixels' x */
+} luz_sample_band;
 
-/* The resolve, for the rows luz_samples_sort_winners summarised: each
- * sample takes the colour of the triangle that won it (the framebuffer's
- * colour for the first winner, plane j's for list j's, the clear colour's
- * bytes `background` where none did), and the pixel becomes, per
- * channel, floor((s0 + s1 + s2 + s3 + 2) / 4). Only mixed pixels change:
- * a pixel whose four samples agree already holds its colour. */
-void luz_samples_resolve_winners(const luz_sample_buffers *buffers, luz_framebuffer *framebuffer,
-                                 int first_row, int end_row, const uint8_t *row_summary,
+/* The fragment stage's work for rows [first_row, end_row), from the
+ * planes' winners: band gets the mixed pixels (whose four samples were
+ * not all won by one triangle, or all by none) and their other winners
+ * than the first (each triangle once per pixel, in the order of the
+ * samples it first won), and sample 0's plane becomes each pixel's first
+ * winner (that of its first sample not background; 0 if all are): the
+ * fragment stage shades that plane as a one-sample visibility buffer. */
+void luz_samples_sort_winners(luz_sample_buffers *buffers, int first_row, int end_row,
+                              luz_sample_band *band);
+
+/* The resolve of the band's mixed pixels, after the fragment stage shaded
+ * the first winners (the framebuffer's colour) and the others
+ * (band->extra_colour): each sample takes the colour of the triangle that
+ * won it, the clear colour's bytes `background` where none did, and the
+ * pixel becomes, per channel, floor((s0 + s1 + s2 + s3 + 2) / 4). A
+ * pixel whose samples agree already holds its colour. */
+void luz_samples_resolve_winners(const luz_sample_band *band, luz_framebuffer *framebuffer,
                                  const uint8_t background[4]);
 
 /* The resolve from a colour per sample (plane k's colour holds sample
- * k's: the teaching views and the reference path shade every plane), every
- * pixel of the rows. */
+ * k's: the teaching views shade every plane), every pixel of the rows. */
 void luz_samples_resolve_planes(const luz_sample_buffers *buffers, luz_framebuffer *framebuffer,
                                 int first_row, int end_row);
 
@@ -638,6 +653,22 @@ uint64_t luz_fragment_shade_rows_packet(luz_packet_isa isa, const luz_uniforms *
                                         const luz_draw *draws, const luz_triangle *const *by_id,
                                         luz_framebuffer *framebuffer, int first_row,
                                         int end_row);
+
+/* colours[i] = the four bytes (in order's channel order) fragment i gets,
+ * exactly as a row's shading would give that pixel for that triangle:
+ * fragment.c's one pixel at a time (luz_fragment_shade_list) or a
+ * variant's packets of any fragments (the list function of
+ * luz_packet_list_for). Returns count. */
+uint64_t luz_fragment_shade_list(const luz_uniforms *uniforms, const luz_draw *draws,
+                                 const luz_triangle *const *by_id, luz_channel_order order,
+                                 const luz_fragment_ref *fragments, size_t count,
+                                 uint32_t *colours);
+typedef uint64_t luz_packet_list_function(const luz_uniforms *uniforms, const luz_draw *draws,
+                                          const luz_triangle *const *by_id,
+                                          luz_channel_order order,
+                                          const luz_fragment_ref *fragments, size_t count,
+                                          uint32_t *colours);
+luz_packet_list_function *luz_packet_list_for(luz_packet_isa isa);
 
 /* ---- screening (screen.c) ---------------------------------------------- */
 
@@ -805,14 +836,17 @@ void luz_probe_capture(luz_pixel_probe *probe, const luz_framebuffer *framebuffe
 
 /* After the bands: the rest of the story, from the frame's set-up
  * triangles (ids 1 .. triangle_count were rasterised) and the final depth
- * and visibility buffers. packet_path: the image's colour was shaded by
- * fragment_packet.c, whose level of detail the probe then reports (else
- * fragment.c's). overdraw: the overdraw view's counts, or NULL. */
+ * and visibility buffers, or with four samples (samples not NULL) the
+ * samples' planes. packet_list: not NULL when the image's colour was
+ * shaded by fragment_packet.c, whose level of detail the probe then
+ * reports (else fragment.c's), and whose list shades each sample's
+ * winner again for its bytes. overdraw: the overdraw view's counts, or
+ * NULL. */
 void luz_probe_explain(luz_pixel_probe *probe, const luz_uniforms *uniforms,
                        const luz_draw *draws, const luz_triangle *const *by_id,
                        size_t triangle_count, const luz_framebuffer *framebuffer,
                        const luz_sample_buffers *samples, const uint32_t *overdraw,
-                       bool packet_path);
+                       luz_packet_list_function *packet_list);
 
 /* ---- the renderer (frame.c) --------------------------------------------- */
 

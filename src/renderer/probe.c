@@ -80,38 +80,73 @@ void luz_probe_capture(luz_pixel_probe *probe, const luz_framebuffer *framebuffe
 
 /* ---- the history ---------------------------------------------------------- */
 
-/* Does the triangle cover the pixel centre, and at what depth? */
-static bool covers(const luz_triangle *triangle, int x, int y, float *depth)
+/* Does the triangle cover the pixel centre, and at what depth? With
+ * samples > 1, sample `sample` of the pixel instead (raster.c's
+ * luz_raster_triangle_sample). */
+static bool covers(const luz_triangle *triangle, int x, int y, int samples, int sample,
+                   float *depth)
 {
     if (y < triangle->min_y || y > triangle->max_y || x < triangle->min_x ||
         x > triangle->max_x)
         return false;
     int64_t first, last;
-    luz_raster_row_span(triangle, y, luz_raster_is_small(triangle), &first, &last);
+    if (samples == 1) {
+        luz_raster_row_span(triangle, y, luz_raster_is_small(triangle), &first, &last);
+        if (x < first || x > last) return false;
+        const float row_depth = luz_raster_row_depth(triangle->depth, triangle->reference_y, y);
+        *depth = luz_raster_depth(triangle->depth, triangle->reference_x, row_depth, x);
+        return true;
+    }
+    const luz_sample_offset offset = luz_sample_offset_of(samples, sample);
+    luz_raster_row_span_at(triangle, y, luz_raster_is_small(triangle), offset, &first, &last);
     if (x < first || x > last) return false;
-    const float row_depth = luz_raster_row_depth(triangle->depth, triangle->reference_y, y);
-    *depth = luz_raster_depth(triangle->depth, triangle->reference_x, row_depth, x);
+    const float row_depth = luz_raster_sample_row_depth(
+        triangle->depth, triangle->reference_y, y, (float)offset.y / LUZ_SUBPIXEL_ONE);
+    *depth = luz_raster_sample_depth(triangle->depth, triangle->reference_x, row_depth, x,
+                                     (float)offset.x / LUZ_SUBPIXEL_ONE);
     return true;
 }
 
+/* Every depth test of the pixel (of each sample in turn), in the order
+ * the raster stage made them; with samples > 1, each sample's winner and
+ * depth too. */
 static void record_history(luz_pixel_probe *probe, const luz_triangle *const *by_id,
-                           size_t triangle_count)
+                           size_t triangle_count, int samples)
 {
-    float stored = 1.0f;   /* the cleared depth buffer */
-    for (size_t id = 1; id <= triangle_count; id++) {
-        float depth;
-        if (!covers(by_id[id], probe->x, probe->y, &depth)) continue;
-        const bool passed = depth < stored;   /* GL_LESS, as raster.c */
-        if (probe->tests_kept < LUZ_PROBE_MAX_TESTS)
-            probe->tests[probe->tests_kept++] = (luz_probe_test){
-                .triangle = (uint32_t)id,
-                .draw = (int)by_id[id]->draw_index,
-                .depth = depth,
-                .stored = stored,
-                .passed = passed,
+    for (int sample = 0; sample < samples; sample++) {
+        float stored = 1.0f;   /* the cleared depth buffer */
+        uint32_t winner = 0;
+        int tests = 0;
+        for (size_t id = 1; id <= triangle_count; id++) {
+            float depth;
+            if (!covers(by_id[id], probe->x, probe->y, samples, sample, &depth)) continue;
+            const bool passed = depth < stored;   /* GL_LESS, as raster.c */
+            if (probe->tests_kept < LUZ_PROBE_MAX_TESTS)
+                probe->tests[probe->tests_kept++] = (luz_probe_test){
+                    .sample = sample,
+                    .triangle = (uint32_t)id,
+                    .draw = (int)by_id[id]->draw_index,
+                    .depth = depth,
+                    .stored = stored,
+                    .passed = passed,
+                };
+            probe->test_count++;
+            tests++;
+            if (passed) {
+                stored = depth;
+                winner = (uint32_t)id;
+            }
+        }
+        if (samples > 1) {
+            const luz_sample_offset offset = luz_sample_offset_of(samples, sample);
+            probe->sample[sample] = (luz_probe_sample){
+                .x = (float)probe->x + (float)offset.x / LUZ_SUBPIXEL_ONE,
+                .y = (float)probe->y + (float)offset.y / LUZ_SUBPIXEL_ONE,
+                .test_count = tests,
+                .triangle = winner,
+                .depth_buffer = stored,
             };
-        probe->test_count++;
-        if (passed) stored = depth;
+        }
     }
 }
 
@@ -153,8 +188,9 @@ static luz_setup_result set_up(const luz_clip_vertex *a, const luz_clip_vertex *
                                const luz_uniforms *uniforms, uint32_t draw_index,
                                luz_triangle *out)
 {
-    return luz_setup_triangle(a, b, c, framebuffer->width, framebuffer->height, draw_index,
-                              uniforms->interpolation, out);
+    return luz_setup_triangle_samples(a, b, c, framebuffer->width, framebuffer->height,
+                                      draw_index, uniforms->interpolation, uniforms->samples,
+                                      out);
 }
 
 /* The three vertices with their position varyings replaced by the
@@ -288,24 +324,74 @@ static void shade(luz_pixel_probe *probe, const luz_uniforms *uniforms,
     probe->colour = luz_shade_colour(probe->light, material->colour, probe->texel);
 }
 
+/* With four samples: the colour each sample took, by the functions that
+ * gave it in the image: the fragment stage's list (shading is once per
+ * pixel and triangle, at the centre, so the sample's winner shaded there
+ * again is its bytes), or, for the teaching views, the view of the
+ * sample's plane. */
+static void sample_bytes(luz_pixel_probe *probe, const luz_uniforms *uniforms,
+                         const luz_draw *draws, const luz_triangle *const *by_id,
+                         const luz_sample_buffers *samples, luz_packet_list_function *list)
+{
+    const luz_pixel_layout layout = luz_pixel_layout_of(samples->plane[0].channel_order);
+    const size_t index = (size_t)probe->y * samples->plane[0].width + (size_t)probe->x;
+    for (int k = 0; k < samples->samples; k++) {
+        luz_probe_sample *sample = &probe->sample[k];
+        uint8_t pixel[4];
+        if (uniforms->show != LUZ_VIEW_COLOR && uniforms->show != LUZ_VIEW_BANDS) {
+            memcpy(pixel, samples->plane[k].colour + index * 4, sizeof pixel);
+        } else if (sample->triangle == 0) {
+            luz_pixel_write(pixel, layout, uniforms->clear_colour);
+        } else {
+            const luz_fragment_ref fragment = {sample->triangle, (uint16_t)probe->x,
+                                               (uint16_t)probe->y};
+            uint32_t colour;
+            (list != NULL && uniforms->show == LUZ_VIEW_COLOR ? list : luz_fragment_shade_list)(
+                uniforms, draws, by_id, samples->plane[0].channel_order, &fragment, 1, &colour);
+            memcpy(pixel, &colour, sizeof pixel);
+        }
+        sample->bytes[0] = pixel[layout.red];
+        sample->bytes[1] = pixel[1];
+        sample->bytes[2] = pixel[layout.blue];
+    }
+}
+
 void luz_probe_explain(luz_pixel_probe *probe, const luz_uniforms *uniforms,
                        const luz_draw *draws, const luz_triangle *const *by_id,
                        size_t triangle_count, const luz_framebuffer *framebuffer,
                        const luz_sample_buffers *samples, const uint32_t *overdraw,
-                       bool packet_path)
+                       luz_packet_list_function *packet_list)
 {
-    (void)samples;
     if (!probe->filled) return;
+    const bool packet_path = packet_list != NULL;
     const int x = probe->x, y = probe->y;
     const size_t index = (size_t)y * framebuffer->width + x;
+    const int sample_count = samples ? samples->samples : 1;
+    probe->samples = sample_count;
 
-    record_history(probe, by_id, triangle_count);
-    probe->depth_buffer = framebuffer->depth[index];
-    if (overdraw != NULL) probe->overdraw = overdraw[index];
-
-    /* The winner is whom the visibility buffer names, as the fragment
-     * stage reads it. */
-    const uint32_t id = framebuffer->visibility[index];
+    record_history(probe, by_id, triangle_count, sample_count);
+    uint32_t id;
+    if (samples) {
+        /* The first winner (resolve.c): that of the first sample a
+         * triangle won, the one the fragment stage shades as the pixel's
+         * own; its depth there. */
+        id = 0;
+        probe->depth_buffer = 1.0f;
+        for (int k = 0; k < sample_count && id == 0; k++) {
+            id = probe->sample[k].triangle;
+            if (id != 0) probe->depth_buffer = probe->sample[k].depth_buffer;
+        }
+        sample_bytes(probe, uniforms, draws, by_id, samples, packet_list);
+        const size_t pixels = (size_t)framebuffer->width * (size_t)framebuffer->height;
+        if (overdraw != NULL)
+            for (int k = 0; k < sample_count; k++) probe->overdraw += overdraw[k * pixels + index];
+    } else {
+        probe->depth_buffer = framebuffer->depth[index];
+        if (overdraw != NULL) probe->overdraw = overdraw[index];
+        /* The winner is whom the visibility buffer names, as the fragment
+         * stage reads it. */
+        id = framebuffer->visibility[index];
+    }
     probe->triangle = id;
     if (id != 0) {
         const luz_triangle *winner = by_id[id];
@@ -333,11 +419,24 @@ void luz_probe_explain(luz_pixel_probe *probe, const luz_uniforms *uniforms,
     }
 
     /* What a teaching view shows, by view.c's own functions. */
-    if (uniforms->show == LUZ_VIEW_BANDS) {
+    if (uniforms->show == LUZ_VIEW_BANDS && samples) {
+        /* The tint goes over the resolved colour. */
+        uint8_t rgb[3];
+        for (int c = 0; c < 3; c++)
+            rgb[c] = luz_samples_resolve_channel(probe->sample[0].bytes[c],
+                                                 probe->sample[1].bytes[c],
+                                                 probe->sample[2].bytes[c],
+                                                 probe->sample[3].bytes[c]);
+        probe->shown = luz_view_bands_colour(rgb, probe->worker);
+    } else if (uniforms->show == LUZ_VIEW_BANDS) {
         const luz_vec3 colour = id != 0 ? probe->colour : uniforms->clear_colour;
         const uint8_t rgb[3] = {luz_colour_to_byte(colour.x), luz_colour_to_byte(colour.y),
                                 luz_colour_to_byte(colour.z)};
         probe->shown = luz_view_bands_colour(rgb, probe->worker);
+    } else if (uniforms->show != LUZ_VIEW_COLOR && samples) {
+        /* Sample 0's view, one of the four the pixel resolves. */
+        probe->shown = luz_view_pixel(uniforms, draws, by_id, &samples->plane[0], x, y,
+                                      overdraw);
     } else if (uniforms->show != LUZ_VIEW_COLOR) {
         probe->shown = luz_view_pixel(uniforms, draws, by_id, framebuffer, x, y, overdraw);
     }
