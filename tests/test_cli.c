@@ -441,6 +441,14 @@ static const error_case error_cases[] = {
     {"bench-junk", {"--bench", "two"}, NULL, NULL, {"--bench", "integer"}},
     /* names */
     {"filter-unknown", {"--filter", "cubic"}, NULL, NULL, {"--filter", "trilinear"}},
+    /* samples a pixel: 1 or 4, nothing else */
+    {"samples-zero", {"--samples", "0"}, NULL, NULL, {"--samples", "expected 1 or 4", "'0'"}},
+    {"samples-two", {"--samples", "2"}, NULL, NULL, {"--samples", "expected 1 or 4", "'2'"}},
+    {"samples-eight", {"--samples", "8"}, NULL, NULL, {"--samples", "expected 1 or 4"}},
+    {"samples-negative", {"--samples", "-4"}, NULL, NULL, {"--samples", "expected 1 or 4"}},
+    {"samples-trailing-junk", {"--samples", "4x"}, NULL, NULL, {"--samples", "expected 1 or 4"}},
+    {"samples-leading-zero", {"--samples", "04"}, NULL, NULL, {"--samples", "expected 1 or 4"}},
+    {"samples-empty", {"--samples="}, NULL, NULL, {"--samples", "missing"}},
     {"only-unknown-term", {"--only", "spot,moon"}, NULL, NULL, {"--only", "directional"}},
     {"only-trailing-comma", {"--only", "spot,"}, NULL, NULL, {"--only", "ambient"}},
     /* the -o pattern */
@@ -572,6 +580,8 @@ static const error_case error_cases[] = {
     {"scene-malformed-number", {"--scene", "s.luz"}, "seed = 12abc\n", NULL,
      {"s.luz:1", "seed", "integer"}},
     {"scene-missing-value", {"--scene", "s.luz"}, "fov =\n", NULL, {"s.luz:1", "missing"}},
+    {"scene-bad-samples", {"--scene", "s.luz"}, "\nsamples = 16\n", NULL,
+     {"s.luz:2", "samples", "expected 1 or 4"}},
     {"scene-duplicate-key", {"--scene", "s.luz"}, "seed = 1\nseed = 2\n", NULL,
      {"s.luz:2", "duplicate", "line 1"}},
     {"scene-spot-cone", {"--scene", "s.luz"}, "spot-inner = 30\n", NULL,
