@@ -23,7 +23,9 @@
  * about the colour buffer itself: every byte is written (colour is never
  * cleared, so what it held before must not show), the background gets the
  * clear colour, and a BGRA framebuffer gets the RGBA image with red and
- * blue swapped.
+ * blue swapped. And the output (exposure, tone map): both paths give the
+ * same bytes under every setting, and neither touches the point-light
+ * marker or the background.
  */
 #include <fenv.h>
 #include <math.h>
@@ -421,6 +423,137 @@ static void ambient_only_is_exact(void **state)
     }
 }
 
+/* ---- the output: exposure and tone map ------------------------------------ */
+
+static const luz_output outputs[] = {
+    {.exposure = -1.0f, .tone_map = LUZ_TONE_MAP_CLAMP},
+    {.exposure = 1.5f, .tone_map = LUZ_TONE_MAP_CLAMP},
+    {.exposure = 0.0f, .tone_map = LUZ_TONE_MAP_NEUTRAL},
+    {.exposure = -1.0f, .tone_map = LUZ_TONE_MAP_NEUTRAL},
+    {.exposure = 2.5f, .tone_map = LUZ_TONE_MAP_NEUTRAL},
+    {.exposure = -0.3f, .tone_map = LUZ_TONE_MAP_NEUTRAL},
+};
+#define OUTPUT_COUNT (sizeof outputs / sizeof outputs[0])
+
+static luz_scene scene_with_output(luz_output output)
+{
+    luz_scene scene = luz_scene_defaults();
+    scene.time_seconds = 3.0;
+    scene.has_exposure = scene.has_tone_map = true;
+    scene.exposure = output.exposure;
+    scene.tone_map = output.tone_map;
+    return scene;
+}
+
+/* Untextured (T = 1, so the level of detail's logarithm, the one
+ * operation the paths compute differently, is never taken), the SIMD
+ * variants give the reference's bytes exactly under every output, with one
+ * sample a pixel and with four; and each output changes more than a third
+ * of the plain image's pixels (the cubes cover 38% of it). With the textures the usual contract
+ * holds. */
+static void output_same_bytes_in_both_paths(void **state)
+{
+    (void)state;
+    const luz_texture_set none = {0};
+    for (int samples = 1; samples <= 4; samples += 3) {
+    luz_scene plain_at_3 = luz_scene_defaults();
+    plain_at_3.time_seconds = 3.0;
+    plain_at_3.samples = samples;
+    luz_framebuffer *unchanged =
+        render(&plain_at_3, &none, HALF_WIDTH, HALF_HEIGHT, 1, reference_stage);
+    for (size_t o = 0; o < OUTPUT_COUNT; o++) {
+        luz_scene scene = scene_with_output(outputs[o]);
+        scene.samples = samples;
+        luz_framebuffer *expected =
+            render(&scene, &none, HALF_WIDTH, HALF_HEIGHT, 1, reference_stage);
+        const agreement moved = compare(unchanged, expected);
+        /* The cubes cover 38% of the image (87421 of 230400 pixels at
+         * one sample); all but a few of theirs change. */
+        print_message("output %s EV %g, %d sample(s): %zu of %zu pixels changed\n",
+                      luz_tone_map_name(outputs[o].tone_map), (double)outputs[o].exposure,
+                      samples, moved.pixels - moved.identical, moved.pixels);
+        assert_true((moved.pixels - moved.identical) * 3 > moved.pixels);
+        for (size_t v = 0; v < VARIANT_COUNT; v++) {
+            if (!luz_packet_isa_supported(variants[v])) continue;
+            luz_framebuffer *got = render(&scene, &none, HALF_WIDTH, HALF_HEIGHT, 1,
+                                          (stage){false, variants[v]});
+            assert_memory_equal(got->colour, expected->colour,
+                                (size_t)HALF_WIDTH * HALF_HEIGHT * 4);
+            luz_framebuffer_destroy(got);
+        }
+        luz_framebuffer_destroy(expected);
+
+        char name[64];
+        snprintf(name, sizeof name, "output %s EV %g, %d", luz_tone_map_name(outputs[o].tone_map),
+                 (double)outputs[o].exposure, samples);
+        assert_agreement(name, &scene, lab_textures(), HALF_WIDTH, HALF_HEIGHT);
+    }
+    luz_framebuffer_destroy(unchanged);
+    }
+}
+
+/* SCENE.md: the point-light marker and the clear colour are written as
+ * they are. A marker coloured (0.2, 0.6, 1) is bytes (51, 153, 255) at
+ * every output, and the background 26 (test_shade and the test above
+ * show the lit pixels change). One cube far behind, at t = 7.85 (the light's orbit at 5/4 pi, in view). */
+static void output_leaves_marker_and_background(void **state)
+{
+    (void)state;
+    enum { SMALL_WIDTH = 321, SMALL_HEIGHT = 181 };
+    const luz_texture_set none = {0};
+    const luz_object cube = {.position = {0.0f, 0.0f, -6.0f},
+                             .has_colour = true,
+                             .colour = {1.0f, 1.0f, 1.0f},
+                             .texture = LUZ_TEXTURE_BY_INDEX};
+    for (size_t o = 0; o < OUTPUT_COUNT; o++) {
+        luz_scene scene = scene_with_output(outputs[o]);
+        scene.time_seconds = 7.85;
+        scene.objects = &cube;
+        scene.object_count = 1;
+        scene.lights.point.colour = (luz_vec3){0.2f, 0.6f, 1.0f};
+        /* Triangle ids count those that survive culling, in draw order:
+         * the cube's are those of the image without the marker (a point
+         * light at strength 0 is not drawn), the marker's come after. */
+        luz_scene unmarked = scene;
+        unmarked.lights.point.strength = 0.0f;
+        luz_framebuffer *cube_only =
+            render(&unmarked, &none, SMALL_WIDTH, SMALL_HEIGHT, 1, reference_stage);
+        uint32_t cube_ids = 0;
+        for (size_t p = 0; p < (size_t)SMALL_WIDTH * SMALL_HEIGHT; p++)
+            if (cube_only->visibility[p] > cube_ids) cube_ids = cube_only->visibility[p];
+        luz_framebuffer_destroy(cube_only);
+        assert_true(cube_ids > 0);
+        for (size_t v = 0; v <= VARIANT_COUNT; v++) {
+            const bool reference = v == VARIANT_COUNT;
+            if (!reference && !luz_packet_isa_supported(variants[v])) continue;
+            const stage how = reference ? reference_stage : (stage){false, variants[v]};
+            luz_framebuffer *image = render(&scene, &none, SMALL_WIDTH, SMALL_HEIGHT, 1, how);
+            size_t marker = 0, background = 0, cube_pixels = 0;
+            for (size_t p = 0; p < (size_t)SMALL_WIDTH * SMALL_HEIGHT; p++) {
+                const uint8_t *rgba = image->colour + p * 4;
+                const uint32_t id = image->visibility[p];
+                if (id == 0) {
+                    background++;
+                    assert_int_equal(rgba[0], 26);
+                    assert_int_equal(rgba[1], 26);
+                    assert_int_equal(rgba[2], 26);
+                } else if (id <= cube_ids) {
+                    cube_pixels++;
+                } else {
+                    marker++;
+                    assert_int_equal(rgba[0], 51);
+                    assert_int_equal(rgba[1], 153);
+                    assert_int_equal(rgba[2], 255);
+                }
+            }
+            assert_true(cube_pixels > 0);
+            assert_true(marker > 0);
+            assert_true(background > 0);
+            luz_framebuffer_destroy(image);
+        }
+    }
+}
+
 /* ---- every byte of colour, in either channel order ----------------------- */
 
 /* A clear colour whose channels all differ, each far from a rounding tie:
@@ -640,6 +773,8 @@ int main(void)
         cmocka_unit_test(ambient_only_is_exact),
         cmocka_unit_test(every_byte_written_in_either_order),
         cmocka_unit_test(pixel_sized_triangles),
+        cmocka_unit_test(output_same_bytes_in_both_paths),
+        cmocka_unit_test(output_leaves_marker_and_background),
     };
     return cmocka_run_group_tests(tests, lab_textures_load, lab_textures_free);
 }

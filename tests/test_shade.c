@@ -5,6 +5,12 @@
  * Every light is coloured (0.2, 0.5, 1.0) with strength 0.8 unless a test
  * says otherwise, so a term that mixes up channels, forgets the strength or
  * applies it twice cannot pass.
+ *
+ * Then the output (SCENE.md, "Output: exposure and tone map"): the
+ * exposure's factor 2^EV, and the Khronos PBR Neutral tone map on colours
+ * worked through its formula by hand (each branch: a minimum below 0.08,
+ * a peak below 0.76, the compression and the mix towards grey), and on
+ * many colours against the formula evaluated again here in double.
  */
 #include <math.h>
 #include <setjmp.h>
@@ -307,6 +313,130 @@ static void test_all_strengths_zero_give_exact_black(void **state)
     assert_exactly_zero(luz_shade_lighting(&uniforms, origin, up_z));
 }
 
+/* ---- output: exposure and tone map ------------------------------------ */
+
+#define assert_rgb(got, r, g, b, tolerance)                \
+    do {                                                   \
+        const luz_vec3 got_ = (got);                       \
+        assert_near(got_.x, (r), (tolerance));             \
+        assert_near(got_.y, (g), (tolerance));             \
+        assert_near(got_.z, (b), (tolerance));             \
+    } while (0)
+
+/* Below 0.08 the minimum sets the offset, x - 6.25 x^2: for x = 0.05,
+ * 0.05 - 6.25 * 0.0025 = 0.034375, taken off every channel; the peak,
+ * 0.465625, is below 0.76, so that is all. */
+static void test_neutral_small_minimum_offsets_only(void **state)
+{
+    (void)state;
+    assert_rgb(luz_tone_map_neutral((luz_vec3){0.05f, 0.3f, 0.5f}), 0.015625, 0.265625,
+               0.465625, 1e-7);
+    /* A zero minimum: offset 0 - 0 = 0, the colour unchanged. */
+    assert_rgb(luz_tone_map_neutral((luz_vec3){0.0f, 0.25f, 0.5f}), 0.0, 0.25, 0.5, 0.0);
+}
+
+/* A minimum of 0.08 or more: the offset is 0.04. (0.2, 0.4, 0.6) ->
+ * (0.16, 0.36, 0.56), the peak below 0.76. */
+static void test_neutral_offset_of_four_hundredths(void **state)
+{
+    (void)state;
+    assert_rgb(luz_tone_map_neutral((luz_vec3){0.2f, 0.4f, 0.6f}), 0.16, 0.36, 0.56, 1e-7);
+    /* Just under the start of compression, after the offset: 0.8 - 0.04
+     * = 0.76 is at it, 0.79 - 0.04 = 0.75 below. */
+    assert_rgb(luz_tone_map_neutral((luz_vec3){0.79f, 0.5f, 0.3f}), 0.75, 0.46, 0.26, 1e-7);
+}
+
+/* White above the peak: 1 - 0.04 = 0.96 per channel; new_peak = 1 -
+ * 0.24^2 / (0.96 + 0.24 - 0.76) = 1 - 0.0576 / 0.44 = 0.8690909; the three
+ * channels equal, the mix leaves them so. White becomes byte 222
+ * (0.8690909 * 255 = 221.62), not 255: a white model keeps its shading. */
+static void test_neutral_compresses_white(void **state)
+{
+    (void)state;
+    const luz_vec3 white = luz_tone_map_neutral((luz_vec3){1.0f, 1.0f, 1.0f});
+    assert_rgb(white, 0.8690909, 0.8690909, 0.8690909, 1e-6);
+    assert_int_equal(luz_colour_to_byte(white.x), 222);
+}
+
+/* The mix: (2, 1, 0.5) - 0.04 = (1.96, 0.96, 0.46), peak 1.96; new_peak =
+ * 1 - 0.0576 / 1.44 = 0.96; scaled by 0.96 / 1.96: (0.96, 0.4702041,
+ * 0.2253061); g = 1 - 1 / (0.15 * (1.96 - 0.96) + 1) = 3/23; mixed
+ * towards 0.96 by 3/23: (0.96, (0.4702041 * 20 + 0.96 * 3) / 23,
+ * (0.2253061 * 20 + 0.96 * 3) / 23) = (0.96, 0.5340905, 0.3211358). */
+static void test_neutral_mixes_towards_grey(void **state)
+{
+    (void)state;
+    assert_rgb(luz_tone_map_neutral((luz_vec3){2.0f, 1.0f, 0.5f}), 0.96, 0.5340905, 0.3211358,
+               1e-6);
+}
+
+/* SCENE.md's formula again, in double, written from the text (not from
+ * shade.h's code). */
+static void neutral_in_double(const double in[3], double out[3])
+{
+    double c[3] = {in[0], in[1], in[2]};
+    const double x = fmin(c[0], fmin(c[1], c[2]));
+    const double offset = x < 0.08 ? x - 6.25 * x * x : 0.04;
+    for (int i = 0; i < 3; i++) c[i] -= offset;
+    const double peak = fmax(c[0], fmax(c[1], c[2]));
+    if (peak >= 0.76) {
+        const double d = 0.24;
+        const double new_peak = 1.0 - d * d / (peak + d - 0.76);
+        const double g = 1.0 - 1.0 / (0.15 * (peak - new_peak) + 1.0);
+        for (int i = 0; i < 3; i++) {
+            const double scaled = c[i] * new_peak / peak;
+            c[i] = scaled + (new_peak - scaled) * g;
+        }
+    }
+    for (int i = 0; i < 3; i++) out[i] = c[i];
+}
+
+/* Many colours from black to 16 (EV +4 on a bright spot), each channel
+ * against the double evaluation: a few float roundings apart. Every
+ * output stays below 1 and, for inputs of at least 0.08, above 0. */
+static void test_neutral_against_double(void **state)
+{
+    (void)state;
+    uint32_t seed = 27;
+    int compressed = 0, offset_by_minimum = 0;
+    for (int i = 0; i < 20000; i++) {
+        const float high = (i & 1) ? 1.0f : 16.0f;
+        const luz_vec3 in = {test_uniform(&seed, 0.0f, high), test_uniform(&seed, 0.0f, high),
+                             test_uniform(&seed, 0.0f, high)};
+        const double in_double[3] = {in.x, in.y, in.z};
+        double expected[3];
+        neutral_in_double(in_double, expected);
+        const luz_vec3 got = luz_tone_map_neutral(in);
+        const float channels[3] = {got.x, got.y, got.z};
+        for (int c = 0; c < 3; c++) {
+            assert_near(channels[c], expected[c], 4e-6);
+            assert_true(channels[c] < 1.0f);
+        }
+        compressed += fmax(in.x, fmax(in.y, in.z)) >= 0.8;
+        offset_by_minimum += fmin(in.x, fmin(in.y, in.z)) < 0.08;
+    }
+    /* Both branches were taken, many times. */
+    assert_true(compressed > 5000);
+    assert_true(offset_by_minimum > 1000);
+}
+
+/* The exposure multiplies by 2^EV before the tone map; clamp leaves the
+ * rest to luz_colour_to_byte. EV -1 halves exactly; EV +1 then neutral on
+ * (1, 0.5, 0.25) is the mix above on (2, 1, 0.5). */
+static void test_output_exposes_then_maps(void **state)
+{
+    (void)state;
+    assert_rgb(luz_shade_output((luz_vec3){0.5f, 0.25f, 3.0f}, exp2f(-1.0f), LUZ_TONE_MAP_CLAMP),
+               0.25, 0.125, 1.5, 0.0);
+    assert_rgb(luz_shade_output((luz_vec3){1.0f, 0.5f, 0.25f}, exp2f(1.0f), LUZ_TONE_MAP_NEUTRAL),
+               0.96, 0.5340905, 0.3211358, 1e-6);
+    /* A fractional EV: 2^0.5. */
+    assert_rgb(luz_shade_output((luz_vec3){1.0f, 0.5f, 0.25f}, exp2f(0.5f), LUZ_TONE_MAP_CLAMP),
+               sqrt(2.0), sqrt(2.0) / 2, sqrt(2.0) / 4, 1e-6);
+    assert_string_equal(luz_tone_map_name(LUZ_TONE_MAP_CLAMP), "clamp");
+    assert_string_equal(luz_tone_map_name(LUZ_TONE_MAP_NEUTRAL), "neutral");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -324,6 +454,12 @@ int main(void)
         cmocka_unit_test(test_lighting_sums_the_terms_and_normalises_the_normal),
         cmocka_unit_test(test_fragment_multiplies_by_colour_and_texel),
         cmocka_unit_test(test_all_strengths_zero_give_exact_black),
+        cmocka_unit_test(test_neutral_small_minimum_offsets_only),
+        cmocka_unit_test(test_neutral_offset_of_four_hundredths),
+        cmocka_unit_test(test_neutral_compresses_white),
+        cmocka_unit_test(test_neutral_mixes_towards_grey),
+        cmocka_unit_test(test_neutral_against_double),
+        cmocka_unit_test(test_output_exposes_then_maps),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -85,6 +85,29 @@ typedef struct luz_material {
     luz_filter filter;            /* how the texture is sampled (trilinear) */
 } luz_material;
 
+/* ---- output: exposure and tone map ---------------------------------------- */
+
+/* How a lit colour becomes bytes (SCENE.md, "Output: exposure and tone
+ * map"). The six terms add up to more than 1 where several lights meet, so
+ * a light material clips to a flat silhouette; an exposure below 0 and a
+ * tone map that rolls off towards 1 keep its shading. */
+typedef enum luz_tone_map {
+    LUZ_TONE_MAP_CLAMP,     /* round(clamp(c, 0, 1) * 255), the report's */
+    LUZ_TONE_MAP_NEUTRAL,   /* the Khronos PBR Neutral tone mapper first
+                               (luz_tone_map_neutral in luz/shade.h) */
+    LUZ_TONE_MAP_COUNT
+} luz_tone_map;
+
+LUZ_API const char *luz_tone_map_name(luz_tone_map tone_map);   /* "clamp", "neutral" */
+
+/* Applied to lit fragments only: an unlit material (the point-light
+ * marker) and the clear colour are written as they are. A zero luz_output
+ * is clamp at EV 0: the colour as the equations give it. */
+typedef struct luz_output {
+    float exposure;          /* EV, finite: the colour is multiplied by 2^EV */
+    luz_tone_map tone_map;
+} luz_output;
+
 /* ---- a frame ------------------------------------------------------------ */
 
 /* One object to draw: a mesh, where it is, and what it is made of. */
@@ -103,6 +126,7 @@ typedef struct luz_frame {
     int samples;                  /* samples a pixel: 0 or 1 (one, at the
                                      centre), or 4 (SCENE.md's 4x pattern,
                                      resolved); others are an error */
+    luz_output output;            /* exposure and tone map of lit colours */
     luz_draw *draws;              /* drawn in this order */
     int draw_count;
     int draw_capacity;

@@ -18,7 +18,9 @@
  *   the texture   the footprint rho, the level of detail the sampler used,
  *                 the mip levels and their blend, the texel T
  *   the lighting  the six terms (luz/shade.h), their sum, the colour C,
- *                 light x C x T before the clamp
+ *                 light x C x T
+ *   the output    the exposure, the colour times 2^EV, the tone-mapped
+ *                 colour before the clamp
  *   the bytes     what the image holds at the pixel
  *   the samples   with four samples a pixel (luz_frame.samples): each
  *                 sample's position, winner and 8-bit colour, and the
@@ -31,7 +33,7 @@
  * stage's coverage and depth arithmetic, luz_fragment_interpolate, the
  * sampler, the level of detail of the fragment path that shaded the pixel
  * (the SIMD one's polynomial logarithm, or the reference's log2f), and
- * luz_shade_terms. round(clamp(colour) x 255) is the image's byte; the
+ * luz_shade_terms, luz_shade_output. round(clamp(mapped) x 255) is the image's byte; the
  * tests check it at every pixel.
  *
  * Asking costs one branch per band of rows and the probe's own work after
@@ -153,7 +155,16 @@ struct luz_pixel_probe {
     luz_vec3 terms[LUZ_TERM_COUNT];   /* in luz_term's order */
     luz_vec3 light;         /* their sum, added in that order */
     luz_vec3 object_colour; /* C */
-    luz_vec3 colour;        /* light x C x T, before the clamp (unlit: C) */
+    luz_vec3 colour;        /* light x C x T, before the output (unlit: C) */
+    /* The output (SCENE.md, "Output"; luz_shade_output), for a lit
+     * material: the frame's exposure and tone map, the colour times 2^EV,
+     * and that colour tone-mapped, which luz_colour_to_byte makes the
+     * bytes. Unlit: exposed and mapped are the colour as it is. */
+    float exposure;         /* EV */
+    float exposure_scale;   /* 2^EV */
+    luz_tone_map tone_map;
+    luz_vec3 exposed;       /* colour x 2^EV */
+    luz_vec3 mapped;        /* the tone map's output, before the clamp */
 
     /* What a view other than LUZ_VIEW_COLOR shows (luz/view.h). */
     luz_vec3 shown;         /* the view's colour before it became bytes */

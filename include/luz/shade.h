@@ -16,6 +16,9 @@
  * colour C and the texel T, as the report's GLSL does:
  *
  *   colour = (ambient + diffuse + specular + point + spot + directional) * C * T
+ *
+ * and luz_shade_output() turns that colour into what is written, with the
+ * frame's exposure and tone map (SCENE.md, "Output").
  */
 #ifndef LUZ_SHADE_H
 #define LUZ_SHADE_H
@@ -198,6 +201,70 @@ static inline luz_vec3 luz_shade_fragment(const luz_shade_uniforms *uniforms, lu
 {
     return luz_shade_colour(luz_shade_lighting(uniforms, position, normal), object_colour,
                             texel);
+}
+
+/* ---- output: exposure and tone map (SCENE.md, "Output") ------------------ */
+
+/* GLSL's min() for the tone map, as luz_shade_max: a NaN b gives b. */
+static inline float luz_shade_min(float a, float b)
+{
+    return a < b ? a : b;
+}
+
+/* The Khronos PBR Neutral tone mapper, on a linear colour, step by step as
+ * SCENE.md (and Khronos's GLSL) write it:
+ *
+ *   x        = min(r, g, b)
+ *   offset   = x < 0.08 ? x - 6.25 x^2 : 0.04
+ *   c        = c - offset
+ *   peak     = max(r, g, b) of the new c
+ *   if peak < 0.76: done
+ *   d        = 0.24
+ *   new_peak = 1 - d^2 / (peak + d - 0.76)
+ *   c        = c * new_peak / peak
+ *   g        = 1 - 1 / (0.15 (peak - new_peak) + 1)
+ *   c        = mix(c, new_peak (1, 1, 1), g)
+ *
+ * Below 0.76 the colour is only shifted down by the offset (a little
+ * darker, slightly more contrast near black); above, the peak channel is
+ * compressed towards 1 (1 - d^2 / (peak - 0.52): 0.76 stays 0.76, no input
+ * reaches 1) and the colour is moved towards grey by g, as film does with
+ * very bright light. fragment_packet.c computes the same operations in
+ * the same order, lane by lane. */
+#define LUZ_TONE_MAP_START_COMPRESSION 0.76f
+#define LUZ_TONE_MAP_DESATURATION 0.15f
+
+static inline luz_vec3 luz_tone_map_neutral(luz_vec3 c)
+{
+    const float x = luz_shade_min(c.x, luz_shade_min(c.y, c.z));
+    const float offset = x < 0.08f ? x - 6.25f * x * x : 0.04f;
+    c = (luz_vec3){c.x - offset, c.y - offset, c.z - offset};
+
+    const float peak = luz_shade_max(c.x, luz_shade_max(c.y, c.z));
+    if (peak < LUZ_TONE_MAP_START_COMPRESSION) return c;
+
+    const float d = 1.0f - LUZ_TONE_MAP_START_COMPRESSION;
+    const float new_peak = 1.0f - d * d / (peak + d - LUZ_TONE_MAP_START_COMPRESSION);
+    const float ratio = new_peak / peak;
+    c = (luz_vec3){c.x * ratio, c.y * ratio, c.z * ratio};
+
+    const float g = 1.0f - 1.0f / (LUZ_TONE_MAP_DESATURATION * (peak - new_peak) + 1.0f);
+    /* mix(a, b, g) = a (1 - g) + b g, as GLSL defines it */
+    return (luz_vec3){c.x * (1.0f - g) + new_peak * g, c.y * (1.0f - g) + new_peak * g,
+                      c.z * (1.0f - g) + new_peak * g};
+}
+
+/* The colour a lit fragment writes, before luz_colour_to_byte: the
+ * equations' colour times 2^EV (exposure_scale, worked out once a frame
+ * with exp2f), then the tone map. Clamp at EV 0 is the colour itself: the
+ * fragment stages skip this call then, so the report's images stay the
+ * same to the bit. */
+static inline luz_vec3 luz_shade_output(luz_vec3 colour, float exposure_scale,
+                                        luz_tone_map tone_map)
+{
+    colour = (luz_vec3){colour.x * exposure_scale, colour.y * exposure_scale,
+                        colour.z * exposure_scale};
+    return tone_map == LUZ_TONE_MAP_NEUTRAL ? luz_tone_map_neutral(colour) : colour;
 }
 
 #endif

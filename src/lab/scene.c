@@ -206,6 +206,15 @@ void luz_scene_set_camera_and_lights(const luz_scene *scene, float aspect, luz_f
     frame->lights.spot_direction = front;   /* the spot rides on the camera */
     frame->clear_colour = (luz_vec3){0.1f, 0.1f, 0.1f};
     frame->samples = scene->samples;
+    frame->output = luz_scene_output(scene);
+}
+
+luz_output luz_scene_output(const luz_scene *scene)
+{
+    luz_output output = {.exposure = 0.0f, .tone_map = LUZ_TONE_MAP_CLAMP};
+    if (scene->has_exposure) output.exposure = scene->exposure;
+    if (scene->has_tone_map) output.tone_map = scene->tone_map;
+    return output;
 }
 
 luz_render_options luz_scene_render_options(const luz_scene *scene)

@@ -129,9 +129,19 @@ typedef struct luz_scene {
     luz_view view;                   /* LUZ_VIEW_COLOR */
     luz_interpolation interpolation; /* LUZ_INTERPOLATION_PERSPECTIVE */
     int samples;                     /* a pixel's: 1 (the default) or 4 */
+    /* The output of lit colours (SCENE.md, "Output"), as far as the user
+     * set it: exposure only if has_exposure, tone_map only if
+     * has_tone_map; the rest is the defaults' (luz_scene_output). */
+    bool has_exposure, has_tone_map;
+    float exposure;                  /* EV */
+    luz_tone_map tone_map;
 } luz_scene;
 
 luz_scene luz_scene_defaults(void);
+
+/* The output in force for the scene (SCENE.md, "Output"): what the user
+ * set, else clamp at EV 0. */
+luz_output luz_scene_output(const luz_scene *scene);
 
 /* Cube i (i >= 0) of SCENE.md's tiled set: one of the ten positions plus
  * its tile's offset. */
@@ -159,8 +169,8 @@ const luz_mesh *luz_lab_cube_mesh(const luz_lab *lab);
 /* The frame's camera and lights at the scene's time, for an image of the
  * given aspect ratio (width / height): the view and projection matrices,
  * the eye, the lights with the point light and the sun where their orbits
- * have them and the spot along the camera's front, the clear colour and
- * the samples a pixel.
+ * have them and the spot along the camera's front, the clear colour, the
+ * samples a pixel and the output in force (luz_scene_output).
  * The draws are left as they are. */
 void luz_scene_set_camera_and_lights(const luz_scene *scene, float aspect, luz_frame *frame);
 

@@ -9,10 +9,12 @@
  * Out: the colour buffer, each channel round(clamp(c, 0, 1) * 255), in the
  *      framebuffer's channel order (RGBA or BGRA); or, for a list of
  *      (pixel, triangle) fragments (the other winners of pixels four
- *      samples share, resolve.c), the bytes of each. Every pixel is written:
- *      the background, where no triangle won, gets the clear colour. No
- *      pass clears colour beforehand, so each byte is written once a frame
- *      and colour may be memory the caller lends, holding anything.
+ *      samples share, resolve.c), the bytes of each. A lit colour is first
+ *      exposed and tone-mapped (luz_shade_output, SCENE.md's "Output").
+ *      Every pixel is written: the background, where no triangle won,
+ *      gets the clear colour. No pass clears colour beforehand, so each
+ *      byte is written once a frame and colour may be memory the caller
+ *      lends, holding anything.
  *
  * Perspective-correct interpolation: on the screen, a varying a is not
  * affine, but a / w and 1 / w are (the projection is a projective map;
@@ -67,8 +69,23 @@ void luz_fragment_interpolate(const luz_triangle *triangle, int x, int y, luz_fr
     out->w = w;
 }
 
-/* Pixel (x, y) shaded as triangle's: interpolate, sample, light. */
-static inline luz_vec3 shade_pixel(const luz_shade_uniforms *uniforms, const luz_draw *draws,
+/* luz_shade_output's settings, read once from the frame's uniforms. */
+typedef struct output_settings {
+    bool identity;             /* clamp at EV 0: the colour as it is */
+    float exposure_scale;      /* 2^EV */
+    luz_tone_map tone_map;
+} output_settings;
+
+static output_settings output_of(const luz_uniforms *uniforms)
+{
+    return (output_settings){uniforms->output_is_identity, uniforms->exposure_scale,
+                             uniforms->tone_map};
+}
+
+/* Pixel (x, y) shaded as triangle's: interpolate, sample, light, and a lit
+ * colour exposed and tone-mapped. */
+static inline luz_vec3 shade_pixel(const luz_shade_uniforms *uniforms,
+                                   const output_settings *output, const luz_draw *draws,
                                    const luz_triangle *triangle, int x, int y)
 {
     const luz_material *material = &draws[triangle->draw_index].material;
@@ -80,8 +97,10 @@ static inline luz_vec3 shade_pixel(const luz_shade_uniforms *uniforms, const luz
         lambda = luz_texture_level_of_detail(material->texture, fragment.du_dx, fragment.dv_dx,
                                              fragment.du_dy, fragment.dv_dy);
     luz_vec3 texel = luz_texture_sample(material->texture, material->filter, fragment.uv, lambda);
-    return luz_shade_fragment(uniforms, fragment.position, fragment.normal, material->colour,
-                              texel);
+    const luz_vec3 colour = luz_shade_fragment(uniforms, fragment.position, fragment.normal,
+                                               material->colour, texel);
+    return output->identity ? colour
+                            : luz_shade_output(colour, output->exposure_scale, output->tone_map);
 }
 
 uint64_t luz_fragment_shade_list(const luz_uniforms *frame_uniforms, const luz_draw *draws,
@@ -90,13 +109,14 @@ uint64_t luz_fragment_shade_list(const luz_uniforms *frame_uniforms, const luz_d
                                  uint32_t *colours)
 {
     const luz_shade_uniforms uniforms = frame_uniforms->shade;
+    const output_settings output = output_of(frame_uniforms);
     const luz_pixel_layout layout = luz_pixel_layout_of(order);
     for (size_t i = 0; i < count; i++) {
         const luz_fragment_ref *fragment = &fragments[i];
         uint8_t pixel[4];
         luz_pixel_write(pixel, layout,
-                        shade_pixel(&uniforms, draws, by_id[fragment->id], fragment->x,
-                                    fragment->y));
+                        shade_pixel(&uniforms, &output, draws, by_id[fragment->id],
+                                    fragment->x, fragment->y));
         memcpy(&colours[i], pixel, sizeof pixel);
     }
     return count;
@@ -110,6 +130,7 @@ uint64_t luz_fragment_shade_rows(const luz_uniforms *frame_uniforms, const luz_d
      * which C allows to alias anything, so without it the compiler would
      * have to reload every uniform after every pixel. */
     const luz_shade_uniforms uniforms = frame_uniforms->shade;
+    const output_settings output = output_of(frame_uniforms);
     const int width = framebuffer->width;
     const luz_pixel_layout layout = luz_pixel_layout_of(framebuffer->channel_order);
     uint8_t background[4];   /* the clear colour's bytes, worked out once */
@@ -126,7 +147,7 @@ uint64_t luz_fragment_shade_rows(const luz_uniforms *frame_uniforms, const luz_d
                 memcpy(pixel, background, sizeof background);
                 continue;
             }
-            luz_pixel_write(pixel, layout, shade_pixel(&uniforms, draws, by_id[id], x, y));
+            luz_pixel_write(pixel, layout, shade_pixel(&uniforms, &output, draws, by_id[id], x, y));
             shaded++;
         }
     }

@@ -246,6 +246,11 @@ typedef struct packet_uniforms {
      * in it. */
     unsigned red_shift, blue_shift;
     uint32_t background;
+    /* luz_shade_output's settings; skipped when they leave the colour as
+     * it is (clamp at EV 0). */
+    bool output_is_identity;
+    bool tone_map_neutral;
+    float exposure_scale;
 } packet_uniforms;
 
 static packet_uniforms packet_uniforms_of(const luz_uniforms *uniforms, luz_channel_order order)
@@ -272,6 +277,9 @@ static packet_uniforms packet_uniforms_of(const luz_uniforms *uniforms, luz_chan
         .cos_inner = uniforms->shade.spot_cos_inner,
         .cos_outer = uniforms->shade.spot_cos_outer,
         .reach = lights->spot_reach,
+        .output_is_identity = uniforms->output_is_identity,
+        .tone_map_neutral = uniforms->tone_map == LUZ_TONE_MAP_NEUTRAL,
+        .exposure_scale = uniforms->exposure_scale,
     };
     u.cone_width = u.cos_inner - u.cos_outer != 0.0f ? u.cos_inner - u.cos_outer : 1.0f;
     const float s = lights->shininess;
@@ -363,6 +371,54 @@ INLINE vvec3 shade_lighting(const packet_uniforms *u, vvec3 position, vvec3 norm
         light = add_light(light, u->directional.colour,
                           max_zero(dot3_uniform(n, u->to_sun)) * u->directional.strength);
     return light;
+}
+
+/* ---- output: exposure and tone map ---------------------------------------- */
+
+/* shade.h's luz_shade_min and luz_shade_max: a NaN a gives b. */
+INLINE vfloat min_lanes(vfloat a, vfloat b)
+{
+    return select_float(a < b, a, b);
+}
+
+INLINE vfloat max_lanes(vfloat a, vfloat b)
+{
+    return select_float(a > b, a, b);
+}
+
+/* luz_tone_map_neutral, every lane through every step; the lanes whose
+ * peak is below the start of compression keep the offset colour, as the
+ * scalar form returns early. */
+INLINE vvec3 tone_map_neutral(vvec3 c)
+{
+    const vfloat x = min_lanes(c.x, min_lanes(c.y, c.z));
+    const vfloat offset = select_float(x < 0.08f, x - 6.25f * x * x, splat(0.04f));
+    c = (vvec3){c.x - offset, c.y - offset, c.z - offset};
+
+    const vfloat peak = max_lanes(c.x, max_lanes(c.y, c.z));
+    const vint below = peak < LUZ_TONE_MAP_START_COMPRESSION;
+    /* A lane that keeps c divides by 1 instead of a peak that may be 0. */
+    const vfloat compressed_peak = select_float(below, splat(1.0f), peak);
+    const float d = 1.0f - LUZ_TONE_MAP_START_COMPRESSION;
+    const vfloat new_peak =
+        1.0f - d * d / (compressed_peak + d - LUZ_TONE_MAP_START_COMPRESSION);
+    const vfloat ratio = new_peak / compressed_peak;
+    const vfloat g = 1.0f - 1.0f / (LUZ_TONE_MAP_DESATURATION *
+                                    (compressed_peak - new_peak) + 1.0f);
+    const vfloat keep = 1.0f - g, towards = new_peak * g;
+    return (vvec3){
+        select_float(below, c.x, c.x * ratio * keep + towards),
+        select_float(below, c.y, c.y * ratio * keep + towards),
+        select_float(below, c.z, c.z * ratio * keep + towards),
+    };
+}
+
+/* luz_shade_output: times 2^EV, then the tone map. */
+INLINE vvec3 output_lanes(vvec3 colour, const packet_uniforms *u)
+{
+    const float scale = u->exposure_scale;
+    colour = (vvec3){colour.x * scale, colour.y * scale, colour.z * scale};
+    return u->tone_map_neutral ? tone_map_neutral(colour) : colour;
 }
 
 /* ---- textures ------------------------------------------------------------ */
@@ -819,6 +875,7 @@ INLINE vuint shade_lanes(const packet_uniforms *u, const luz_material *material,
     vvec3 colour = {light.x * object_colour.x, light.y * object_colour.y,
                     light.z * object_colour.z};
     if (textured) colour = (vvec3){colour.x * texel.x, colour.y * texel.y, colour.z * texel.z};
+    if (!u->output_is_identity) colour = output_lanes(colour, u);
     return pack_pixels(colour, u);
 }
 

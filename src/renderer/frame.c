@@ -4,7 +4,8 @@
  * luz_renderer_draw() runs the stages in two phases:
  *
  *   0. Uniforms: what every stage reads that is the same for the whole
- *      frame (matrices, the eye, the lights, the spot's cone), once.
+ *      frame (matrices, the eye, the lights, the spot's cone, the
+ *      exposure), once.
  *
  *   1. Geometry (geometry.c), in batches of a few thousand triangles over
  *      all the draws, one job each:
@@ -20,7 +21,8 @@
  *                        with four samples a pixel)
  *        raster + depth  the band's triangles, in id order, at each pixel
  *                        centre (or at each of the four sample points)
- *        fragment        each visible pixel shaded once, and the
+ *        fragment        each visible pixel shaded once (a lit colour
+ *                        exposed and tone-mapped), and the
  *                        background given the clear colour (or, for a
  *                        --view other than color, a picture of a stage:
  *                        view.c); with four samples, once per pixel for
@@ -39,6 +41,7 @@
  * so the image is the same byte for byte whichever thread draws which band
  * and however many threads there are.
  */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -477,6 +480,12 @@ luz_uniforms luz_uniforms_of(const luz_frame *frame, const luz_render_options *o
     uniforms.projection = frame->projection;
     uniforms.shade = luz_shade_uniforms_of(frame->eye, &frame->lights);
     uniforms.clear_colour = frame->clear_colour;
+    /* 2^EV, exact for a whole EV (exp2f of an integer is a power of two). */
+    uniforms.output_exposure = frame->output.exposure;
+    uniforms.exposure_scale = exp2f(frame->output.exposure);
+    uniforms.tone_map = frame->output.tone_map;
+    uniforms.output_is_identity =
+        frame->output.tone_map == LUZ_TONE_MAP_CLAMP && frame->output.exposure == 0.0f;
     uniforms.show = options->view;
     uniforms.interpolation = options->interpolation;
     uniforms.samples = frame->samples > 1 ? frame->samples : 1;
@@ -494,6 +503,12 @@ static int check_frame(const luz_frame *frame, const luz_render_options *options
     if (frame->samples != 0 && frame->samples != 1 && frame->samples != 4)
         return luz_error_set(error, "frame: %d samples a pixel: expected 1 or 4 (0 means 1)",
                              frame->samples);
+    if ((unsigned)frame->output.tone_map >= LUZ_TONE_MAP_COUNT)
+        return luz_error_set(error, "frame: tone map %d is not a luz_tone_map",
+                             (int)frame->output.tone_map);
+    if (!isfinite(frame->output.exposure))
+        return luz_error_set(error, "frame: exposure %g EV is not a finite number",
+                             (double)frame->output.exposure);
     if ((unsigned)options->view >= LUZ_VIEW_COUNT)
         return luz_error_set(error, "render options: view %d is not a luz_view",
                              (int)options->view);

@@ -1,6 +1,6 @@
 /*
- * lights.c: the names of the six light terms, a term's light, and the
- * shading uniforms worked out once a frame.
+ * lights.c: the names of the six light terms and of the tone maps, a
+ * term's light, and the shading uniforms worked out once a frame.
  */
 #include <math.h>
 #include <stddef.h>
@@ -15,6 +15,12 @@ const char *luz_term_name(luz_term term)
         "ambient", "diffuse", "specular", "point", "spot", "directional",
     };
     return (unsigned)term < LUZ_TERM_COUNT ? names[term] : "unknown";
+}
+
+const char *luz_tone_map_name(luz_tone_map tone_map)
+{
+    static const char *const names[LUZ_TONE_MAP_COUNT] = {"clamp", "neutral"};
+    return (unsigned)tone_map < LUZ_TONE_MAP_COUNT ? names[tone_map] : "unknown";
 }
 
 luz_light *luz_lights_term(luz_lights *lights, luz_term term)

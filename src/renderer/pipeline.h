@@ -105,6 +105,13 @@ typedef struct luz_uniforms {
     luz_mat4 projection;               /* the depth view reads its z row */
     luz_shade_uniforms shade;          /* eye, lights, the spot's cosines */
     luz_vec3 clear_colour;
+    /* The output of lit colours (luz_shade_output): 2^EV, the tone map,
+     * and whether the two leave the colour as it is (clamp at EV 0), when
+     * the fragment stages skip them. */
+    float output_exposure;             /* EV, as the frame gives it */
+    float exposure_scale;
+    luz_tone_map tone_map;
+    bool output_is_identity;
     luz_view show;                     /* what the colour buffer shows */
     luz_interpolation interpolation;   /* read by setup.c */
     int samples;                       /* a pixel's samples: 1 or 4 (the

@@ -294,8 +294,12 @@ static void shade(luz_pixel_probe *probe, const luz_uniforms *uniforms,
 {
     probe->shading = material->shading;
     probe->object_colour = material->colour;
+    probe->exposure = uniforms->output_exposure;
+    probe->exposure_scale = uniforms->exposure_scale;
+    probe->tone_map = uniforms->tone_map;
     if (material->shading == LUZ_SHADING_UNLIT) {
-        probe->colour = material->colour;
+        /* The marker is written as it is (SCENE.md, "Output"). */
+        probe->colour = probe->exposed = probe->mapped = material->colour;
         return;
     }
 
@@ -322,6 +326,16 @@ static void shade(luz_pixel_probe *probe, const luz_uniforms *uniforms,
     probe->light = luz_shade_terms(&uniforms->shade, fragment->position, fragment->normal,
                                    probe->terms);
     probe->colour = luz_shade_colour(probe->light, material->colour, probe->texel);
+    /* The fragment stages skip the output at clamp and EV 0, where it
+     * leaves the colour as it is; so does the probe, to give their bits. */
+    if (uniforms->output_is_identity) {
+        probe->exposed = probe->mapped = probe->colour;
+    } else {
+        probe->exposed = luz_shade_output(probe->colour, uniforms->exposure_scale,
+                                          LUZ_TONE_MAP_CLAMP);
+        probe->mapped = luz_shade_output(probe->colour, uniforms->exposure_scale,
+                                         uniforms->tone_map);
+    }
 }
 
 /* With four samples: the colour each sample took, by the functions that
@@ -429,7 +443,7 @@ void luz_probe_explain(luz_pixel_probe *probe, const luz_uniforms *uniforms,
                                                  probe->sample[3].bytes[c]);
         probe->shown = luz_view_bands_colour(rgb, probe->worker);
     } else if (uniforms->show == LUZ_VIEW_BANDS) {
-        const luz_vec3 colour = id != 0 ? probe->colour : uniforms->clear_colour;
+        const luz_vec3 colour = id != 0 ? probe->mapped : uniforms->clear_colour;
         const uint8_t rgb[3] = {luz_colour_to_byte(colour.x), luz_colour_to_byte(colour.y),
                                 luz_colour_to_byte(colour.z)};
         probe->shown = luz_view_bands_colour(rgb, probe->worker);
