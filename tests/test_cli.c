@@ -518,6 +518,21 @@ static const error_case error_cases[] = {
      {"s.luz:1", "skip-existing", "not allowed"}},
     {"scene-reference-key", {"--scene", "s.luz"}, "reference = 1\n", NULL,
      {"s.luz:1", "reference", "not allowed"}},
+    /* --exposure EV and --tonemap clamp|neutral (SCENE.md, "Output") */
+    {"exposure-nan", {"--exposure", "nan"}, NULL, NULL, {"--exposure", "finite", "'nan'"}},
+    {"exposure-infinite", {"--exposure", "-inf"}, NULL, NULL, {"--exposure", "finite"}},
+    {"exposure-above-ten", {"--exposure", "10.5"}, NULL, NULL,
+     {"--exposure", "[-10, 10]", "'10.5'"}},
+    {"exposure-below-minus-ten", {"--exposure", "-11"}, NULL, NULL, {"--exposure", "[-10, 10]"}},
+    {"exposure-word", {"--exposure", "bright"}, NULL, NULL, {"--exposure", "a number"}},
+    {"exposure-missing-value", {"--exposure"}, NULL, NULL, {"--exposure", "missing", "EV"}},
+    {"tonemap-unknown", {"--tonemap", "aces"}, NULL, NULL,
+     {"--tonemap", "clamp or neutral", "'aces'"}},
+    {"tonemap-case", {"--tonemap", "Neutral"}, NULL, NULL, {"--tonemap", "clamp or neutral"}},
+    {"scene-exposure", {"--scene", "s.luz"}, "\nexposure = 1e3\n", NULL,
+     {"s.luz:2", "exposure", "[-10, 10]"}},
+    {"scene-tonemap", {"--scene", "s.luz"}, "tonemap = reinhard\n", NULL,
+     {"s.luz:1", "tonemap", "clamp or neutral"}},
     /* --probe X,Y */
     {"probe-malformed", {"--probe", "abc"}, NULL, NULL, {"--probe", "X,Y", "'abc'"}},
     {"probe-one-number", {"--probe", "5"}, NULL, NULL, {"--probe", "X,Y"}},
@@ -1355,6 +1370,48 @@ static void assert_rgb(const unsigned char *image, int width, int x, int y, int 
                  p[2], r, g, b);
 }
 
+/* --exposure and --tonemap reach the image, worked by hand: a white cube
+ * lit by the ambient light alone at strength 0.5 is 0.5 everywhere, byte
+ * round(127.5) = 128. EV 1 doubles it to 1 (255), EV -1 halves it to 0.25
+ * (63.75: 64). Neutral at EV 0 takes off 0.04 (0.46: 117.3, 117); at
+ * EV 1, white: 1 - 0.04 = 0.96, compressed to 1 - 0.0576 / 0.44 =
+ * 0.8690909 (221.6: 222). The background stays 26 whatever the output.
+ * The same keys in a scene file give the same image. */
+static void test_exposure_and_tone_map_reach_the_image(void **state)
+{
+    (void)state;
+    sandbox box;
+    sandbox_create(&box);
+    write_text(box.work, "white.luz",
+               "size = 32x18\ntextures = none\nonly = ambient\nambient = 1, 1, 1, 0.5\n"
+               "cube = 0, 0, 0 colour 1, 1, 1\n");
+    static const struct {
+        const char *exposure, *tone_map;
+        int byte;
+    } cases[] = {
+        {"0", "clamp", 128},   {"1", "clamp", 255},    {"-1", "clamp", 64},
+        {"0", "neutral", 117}, {"1", "neutral", 222},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        unsigned char *image = render_and_load(
+            &box,
+            ARGS("--scene", "white.luz", "--exposure", cases[i].exposure, "--tonemap",
+                 cases[i].tone_map, "-o", "out.png"),
+            "out.png", 32, 18);
+        assert_rgb(image, 32, 16, 9, cases[i].byte, cases[i].byte, cases[i].byte);
+        assert_rgb(image, 32, 0, 0, 26, 26, 26);
+        stbi_image_free(image);
+    }
+    write_text(box.work, "neutral.luz",
+               "size = 32x18\ntextures = none\nonly = ambient\nambient = 1, 1, 1, 0.5\n"
+               "cube = 0, 0, 0 colour 1, 1, 1\nexposure = 1\ntonemap = neutral\n");
+    unsigned char *image = render_and_load(&box, ARGS("--scene", "neutral.luz", "-o", "out.png"),
+                                           "out.png", 32, 18);
+    assert_rgb(image, 32, 16, 9, 222, 222, 222);
+    stbi_image_free(image);
+    sandbox_destroy(&box);
+}
+
 /* --mark rings a pixel and leaves it and the pixels around it as rendered:
  * along the marked row, the ring is black 8 pixels out, white 7 and 6, and
  * black 5 (at an image under 1000 wide); 4 pixels out and nearer nothing
@@ -1462,6 +1519,8 @@ static void assert_scene_options_equal(const luz_options *a, const luz_options *
     assert_int_equal(a->scene.filter, b->scene.filter);
     assert_int_equal(a->scene.view, b->scene.view);
     assert_int_equal(a->scene.interpolation, b->scene.interpolation);
+    assert_float_same(luz_options_output(a).exposure, luz_options_output(b).exposure);
+    assert_int_equal(luz_options_output(a).tone_map, luz_options_output(b).tone_map);
     if (a->textures_directory == NULL || b->textures_directory == NULL)
         assert_ptr_equal(a->textures_directory, b->textures_directory);
     else
@@ -1715,6 +1774,9 @@ static void set_every_option_by_hand(luz_options *options)
     options->scene.view = LUZ_VIEW_DEPTH;
     options->scene.interpolation = LUZ_INTERPOLATION_AFFINE;
     options->paused = true;
+    options->scene.has_exposure = options->scene.has_tone_map = true;
+    options->scene.exposure = -2.5f;
+    options->scene.tone_map = LUZ_TONE_MAP_NEUTRAL;
     options->textures_directory = strdup("hand/textures");
     assert_non_null(options->textures_directory);
     /* and what a scene file does not keep (docs/cli.md, Writing scene
@@ -1756,6 +1818,8 @@ static const char every_option_text[] =
     "directional = 0.9, 0.8, 0.7, 0.2\n"
     "filter = nearest\n"
     "samples = 4\n"
+    "exposure = -2.5\n"
+    "tonemap = neutral\n"
     "textures = hand/textures\n"
     "view = depth\n"
     "interp = affine\n"
@@ -1818,6 +1882,9 @@ static void test_scene_round_trip_every_saved_key(void **state)
     assert_int_equal(copy.scene.view, LUZ_VIEW_DEPTH);
     assert_int_equal(copy.scene.interpolation, LUZ_INTERPOLATION_AFFINE);
     assert_true(copy.paused);
+    assert_true(copy.scene.has_exposure && copy.scene.has_tone_map);
+    assert_float_same(copy.scene.exposure, -2.5f);
+    assert_int_equal(copy.scene.tone_map, LUZ_TONE_MAP_NEUTRAL);
     assert_string_equal(copy.textures_directory, "hand/textures");
     /* what is not written comes back as the defaults */
     assert_int_equal(copy.only_terms, 0);
@@ -1954,12 +2021,14 @@ static void test_scene_text_of_the_defaults(void **state)
                         "spot-reach = 10\n"
                         "directional = 1, 1, 1, 0.4\n"
                         "filter = trilinear\n"
-                        "samples = 1\n");
+                        "samples = 1\n"
+                        "exposure = 0\n"
+                        "tonemap = clamp\n");
     free(text);
     /* one of the two changed: only that one is written */
     options.scene.interpolation = LUZ_INTERPOLATION_AFFINE;
     text = scene_text(&options);
-    assert_contains(text, "\nfilter = trilinear\nsamples = 1\ninterp = affine\n");
+    assert_contains(text, "\nfilter = trilinear\nsamples = 1\nexposure = 0\ntonemap = clamp\ninterp = affine\n");
     assert_null(strstr(text, "view ="));
     free(text);
     luz_options_free(&options);
@@ -3305,6 +3374,7 @@ int main(void)
         cmocka_unit_test(test_scene_file_and_precedence),
         cmocka_unit_test(test_options_reach_the_image),
         cmocka_unit_test(test_mark_and_legend),
+        cmocka_unit_test(test_exposure_and_tone_map_reach_the_image),
         cmocka_unit_test(test_huge_size_refused_at_once),
         cmocka_unit_test(test_scene_nul_bytes),
         cmocka_unit_test(test_long_paths_come_through_whole),

@@ -473,6 +473,46 @@ static void test_step_mode_adds_triangles_over_time(void **state)
     assert_int_equal(luz_step_advance(&step, 0.5, 0), 0);     /* an empty frame */
 }
 
+/* [ and ] step the exposure in force by half a stop, N switches the tone
+ * map in force: from a lab scene's clamp at EV 0, and from a model
+ * scene's neutral at EV -1 (SCENE.md's defaults); the exposure stops at
+ * -10 and 10 and lands on whole half stops. */
+static void test_exposure_and_tone_map_keys(void **state)
+{
+    (void)state;
+    luz_scene scene = luz_scene_defaults();
+    luz_exposure_step(&scene, +1);
+    assert_true(scene.has_exposure);
+    assert_true(luz_scene_output(&scene).exposure == 0.5f);
+    luz_exposure_step(&scene, -1);
+    luz_exposure_step(&scene, -1);
+    assert_true(luz_scene_output(&scene).exposure == -0.5f);
+    luz_tone_map_toggle(&scene);
+    assert_int_equal(luz_scene_output(&scene).tone_map, LUZ_TONE_MAP_NEUTRAL);
+    luz_tone_map_toggle(&scene);
+    assert_int_equal(luz_scene_output(&scene).tone_map, LUZ_TONE_MAP_CLAMP);
+    for (int i = 0; i < 30; i++) luz_exposure_step(&scene, +1);
+    assert_true(scene.exposure == 10.0f);
+    for (int i = 0; i < 50; i++) luz_exposure_step(&scene, -1);
+    assert_true(scene.exposure == -10.0f);
+    /* a given exposure between steps lands on one */
+    scene.exposure = 0.3f;
+    luz_exposure_step(&scene, +1);
+    assert_true(scene.exposure == 1.0f);
+
+    /* a scene with a model starts from neutral at EV -1 */
+    const luz_lab_model model = {.name = "m"};
+    const luz_object object = {.model = &model, .texture = LUZ_TEXTURE_BY_INDEX};
+    luz_scene with_model = luz_scene_defaults();
+    with_model.objects = &object;
+    with_model.object_count = 1;
+    luz_exposure_step(&with_model, +1);
+    assert_true(luz_scene_output(&with_model).exposure == -0.5f);
+    assert_int_equal(luz_scene_output(&with_model).tone_map, LUZ_TONE_MAP_NEUTRAL);
+    luz_tone_map_toggle(&with_model);
+    assert_int_equal(luz_scene_output(&with_model).tone_map, LUZ_TONE_MAP_CLAMP);
+}
+
 static void test_help_lists_every_control(void **state)
 {
     (void)state;
@@ -514,6 +554,7 @@ int main(void)
         cmocka_unit_test(test_seed_next),
         cmocka_unit_test(test_view_and_interpolation_keys_cycle),
         cmocka_unit_test(test_step_mode_adds_triangles_over_time),
+        cmocka_unit_test(test_exposure_and_tone_map_keys),
         cmocka_unit_test(test_help_lists_every_control),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -559,7 +559,7 @@ static void test_panel_draws_inside_its_box(void **state)
     luz_panel_init(&panel);
     luz_lights lights = default_lights();
     luz_layer layer = begin(framebuffer);
-    luz_panel_draw(&layer, &layout, &panel, &lights);
+    luz_panel_draw(&layer, &layout, &panel, &lights, (luz_output){0});
     fill_into(framebuffer, &layer);
     luz_rect changed = changed_box(framebuffer, 77);
     assert_true(rect_inside(changed, (luz_rect){layout.box.x - layout.scale, layout.box.y,
@@ -574,6 +574,47 @@ static void test_panel_draws_inside_its_box(void **state)
                         ((uint8_t[]){255, 255, 255, 255}), 4);
     assert_true(pixel(framebuffer, track.x + filled, track.y)[0] != 255);
     luz_framebuffer_destroy(framebuffer);
+}
+
+/* The panel's last row shows the output: inside the box, under the last
+ * slider, and its text changes with the exposure and with the tone map
+ * (and nothing else of the panel does). */
+static void test_panel_shows_the_output(void **state)
+{
+    (void)state;
+    luz_panel_layout layout = luz_panel_layout_for(1280, 720);
+    const luz_rect row = layout.output;
+    assert_true(rect_inside(row, layout.box));
+    const luz_rect last = layout.row[LUZ_PANEL_SLIDER_COUNT - 1];
+    assert_true(row.y >= last.y + last.height);
+    luz_panel panel;
+    luz_panel_init(&panel);
+    luz_lights lights = default_lights();
+    const luz_output outputs[3] = {{0.0f, LUZ_TONE_MAP_CLAMP},
+                                   {-1.0f, LUZ_TONE_MAP_CLAMP},
+                                   {-1.0f, LUZ_TONE_MAP_NEUTRAL}};
+    luz_framebuffer *images[3];
+    for (int i = 0; i < 3; i++) {
+        images[i] = grey_framebuffer(1280, 720, 77);
+        luz_layer layer = begin(images[i]);
+        luz_panel_draw(&layer, &layout, &panel, &lights, outputs[i]);
+        fill_into(images[i], &layer);
+    }
+    for (int i = 1; i < 3; i++) {
+        /* compare the two images row by row: the rows that differ lie in
+         * the output's row */
+        int differing = 0;
+        for (int y = 0; y < 720; y++) {
+            const bool differs = memcmp(pixel(images[i - 1], 0, y), pixel(images[i], 0, y),
+                                        1280 * 4) != 0;
+            if (differs) {
+                differing++;
+                assert_true(y >= row.y && y < row.y + row.height);
+            }
+        }
+        assert_true(differing > 0);
+    }
+    for (int i = 0; i < 3; i++) luz_framebuffer_destroy(images[i]);
 }
 
 static void test_hud_and_help_draw_within_the_framebuffer(void **state)
@@ -602,7 +643,7 @@ static void test_hud_and_help_draw_within_the_framebuffer(void **state)
         luz_panel_layout layout = luz_panel_layout_for(sizes[i][0], sizes[i][1]);
         luz_panel panel;
         luz_panel_init(&panel);
-        luz_panel_draw(&layer, &layout, &panel, &scene.lights);
+        luz_panel_draw(&layer, &layout, &panel, &scene.lights, luz_scene_output(&scene));
         /* Every rectangle recorded lies inside the framebuffer. */
         for (size_t r = 0; r < layer.rect_count; r++)
             assert_true(rect_inside(layer.rects[r].rect,
@@ -864,6 +905,7 @@ int main(void)
         cmocka_unit_test(test_layer_filled_by_bands_blends_each_pixel_once),
         cmocka_unit_test(test_text),
         cmocka_unit_test(test_panel_draws_inside_its_box),
+        cmocka_unit_test(test_panel_shows_the_output),
         cmocka_unit_test(test_hud_and_help_draw_within_the_framebuffer),
         cmocka_unit_test(test_hud_says_which_camera_is_on),
         cmocka_unit_test(test_hud_timing_averages_the_same_frames),

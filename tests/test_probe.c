@@ -147,6 +147,7 @@ typedef struct case_summary {
     int term_on[LUZ_TERM_COUNT];
     int by_mesh[4];             /* pixels won by a model's meshes 0 .. 3 */
     int max_tests;
+    int output_applied;         /* lit pixels under an exposure or tone map */
 } case_summary;
 
 typedef struct drawn {
@@ -577,6 +578,20 @@ static void check_lit(const luz_frame *frame, const probe_case *c, const luz_pix
                              probe->light.y * C.y * probe->texel.y,
                              probe->light.z * C.z * probe->texel.z};
     assert_memory_equal(&colour, &probe->colour, sizeof colour);
+    /* The output: the frame's exposure and tone map; exposed is colour x
+     * 2^EV and mapped the tone map of that (or the colour itself at clamp
+     * and EV 0, which the fragment stages leave alone). */
+    assert_float_equal(probe->exposure, frame->output.exposure, 0.0);
+    assert_int_equal(probe->tone_map, frame->output.tone_map);
+    assert_float_equal(probe->exposure_scale, exp2(frame->output.exposure), 0.0);
+    const float scale = probe->exposure_scale;
+    const luz_vec3 exposed = {colour.x * scale, colour.y * scale, colour.z * scale};
+    assert_memory_equal(&exposed, &probe->exposed, sizeof exposed);
+    const luz_vec3 mapped =
+        frame->output.tone_map == LUZ_TONE_MAP_NEUTRAL ? luz_tone_map_neutral(exposed) : exposed;
+    assert_memory_equal(&mapped, &probe->mapped, sizeof mapped);
+    if (frame->output.tone_map != LUZ_TONE_MAP_CLAMP || frame->output.exposure != 0.0f)
+        summary->output_applied++;
 
     /* Each term is its equation. */
     dvec3 expected[LUZ_TERM_COUNT];
@@ -636,7 +651,7 @@ static void check_view(const probe_case *c, const luz_frame *frame,
         break;
     case LUZ_VIEW_BANDS: {
         /* the colour view's bytes under the tint of the band's thread */
-        luz_vec3 colour = probe->triangle ? probe->colour : frame->clear_colour;
+        luz_vec3 colour = probe->triangle ? probe->mapped : frame->clear_colour;
         luz_vec3 tint = luz_view_thread_colour(probe->worker);
         const float k = LUZ_VIEW_BANDS_TINT;
         expected = (luz_vec3){(1 - k) * luz_colour_to_byte(colour.x) / 255.0f + k * tint.x,
@@ -695,11 +710,14 @@ static case_summary run_case(const probe_case *c)
                 check_lit(&d->frame, c, probe, &summary);
                 summary.lit++;
             }
-            /* the probe's colour made the colour view's byte */
+            /* the probe's mapped colour made the colour view's byte (the
+             * marker's is its colour as it is) */
             if (c->options.view == LUZ_VIEW_COLOR) {
-                assert_int_equal(pixel[0], luz_colour_to_byte(probe->colour.x));
-                assert_int_equal(pixel[1], luz_colour_to_byte(probe->colour.y));
-                assert_int_equal(pixel[2], luz_colour_to_byte(probe->colour.z));
+                assert_int_equal(pixel[0], luz_colour_to_byte(probe->mapped.x));
+                assert_int_equal(pixel[1], luz_colour_to_byte(probe->mapped.y));
+                assert_int_equal(pixel[2], luz_colour_to_byte(probe->mapped.z));
+                if (probe->shading == LUZ_SHADING_UNLIT)
+                    assert_memory_equal(&probe->mapped, &probe->colour, sizeof probe->colour);
             }
         }
     }
@@ -955,6 +973,14 @@ static void a_model(void **state)
     print_message("model: %d lit; mesh 0 (cubes and the ball) %d, mesh 1 (the ring) %d\n", s.lit,
                   s.by_mesh[0], s.by_mesh[1]);
     assert_true(s.by_mesh[1] > 20);
+    /* A scene with a model: neutral at EV -1 on every lit pixel. */
+    assert_int_equal(s.output_applied, s.lit);
+    /* and clamp at EV 1.5, given */
+    c.scene.has_exposure = c.scene.has_tone_map = true;
+    c.scene.exposure = 1.5f;
+    c.scene.tone_map = LUZ_TONE_MAP_CLAMP;
+    s = run_case(&c);
+    assert_int_equal(s.output_applied, s.lit);
 
     /* The names: the draws are cube 0, the ball, the ring, cube 2, the
      * marker. */

@@ -53,6 +53,8 @@ typedef enum key_type {
     KEY_SAMPLES,
     KEY_PATH,
     KEY_BOOL,
+    KEY_EXPOSURE,   /* a float; compared as the output in force */
+    KEY_TONE_MAP,
 } key_type;
 
 typedef struct key_field {
@@ -90,6 +92,8 @@ static const key_field key_fields[] = {
     {"interp", KEY_INTERP, AT(scene.interpolation)},
     {"textures", KEY_PATH, AT(textures_directory)},
     {"paused", KEY_BOOL, AT(paused)},
+    {"exposure", KEY_EXPOSURE, AT(scene.exposure)},
+    {"tonemap", KEY_TONE_MAP, AT(scene.tone_map)},
 };
 
 #define KEY_COUNT (sizeof key_fields / sizeof key_fields[0])
@@ -209,6 +213,15 @@ static void assert_same_key(const luz_options *set, const luz_options *back,
         break;
     case KEY_BOOL:
         assert_int_equal(*(const bool *)b, *(const bool *)a);
+        break;
+    /* What is in force, given or the default of a scene with or without
+     * models, is what must come back. */
+    case KEY_EXPOSURE:
+        assert_same_float(luz_options_output(set).exposure, luz_options_output(back).exposure,
+                          key->name);
+        break;
+    case KEY_TONE_MAP:
+        assert_int_equal(luz_options_output(back).tone_map, luz_options_output(set).tone_map);
         break;
     case KEY_PATH: {
         const char *expected = *(char *const *)a, *actual = *(char *const *)b;
@@ -387,6 +400,7 @@ static void test_numbers_at_their_edges(void **state)
         int count = 0;
         switch (key->type) {
         case KEY_FLOAT:
+        case KEY_EXPOSURE:
         case KEY_VEC3:
         case KEY_LIGHT:
             count = float_edges(row.min, row.max, floats);
@@ -404,8 +418,9 @@ static void test_numbers_at_their_edges(void **state)
             void *field = field_of(&options, key);
             if (key->type == KEY_DOUBLE) {
                 *(double *)field = doubles[v];
-            } else if (key->type == KEY_FLOAT) {
+            } else if (key->type == KEY_FLOAT || key->type == KEY_EXPOSURE) {
                 *(float *)field = floats[v];
+                options.scene.has_exposure = true;
             } else {
                 /* x,y,z (and a) at this edge, and at the next edges round */
                 float *components = field;
@@ -423,6 +438,7 @@ static void test_numbers_at_their_edges(void **state)
             *(double *)low = doubles[0];
             *(double *)high = doubles[2];
         } else {
+            lowest.scene.has_exposure = highest.scene.has_exposure = true;
             for (int i = 0; i < (key->type == KEY_LIGHT ? 4 : key->type == KEY_VEC3 ? 3 : 1); i++) {
                 ((float *)low)[i] = floats[0];
                 ((float *)high)[i] = floats[2];
@@ -469,7 +485,72 @@ static void test_counts_sizes_and_names(void **state)
         options.scene.interpolation = modes[view % 2];
         options.paused = view % 2 == 1;   /* both values of the one yes/no key */
         options.scene.samples = view % 2 == 1 ? 4 : 1;   /* both sample counts */
+        options.scene.has_tone_map = true;
+        options.scene.tone_map = (luz_tone_map)(view % LUZ_TONE_MAP_COUNT);
         assert_round_trip(&options);
+        luz_options_free(&options);
+    }
+}
+
+/* The output's defaults depend on the models (SCENE.md, "Output"): clamp
+ * at EV 0 without, neutral at EV -1 with one. A scene file keeps what is
+ * in force, always written: with a model, clamp at EV 0 given by the user
+ * reads back as clamp at EV 0, not as the model's default, and a model's
+ * default is written out as neutral at EV -1. */
+static void test_output_defaults_follow_the_models(void **state)
+{
+    (void)state;
+    static const struct {
+        bool model, given;
+        float exposure;
+        luz_tone_map tone_map;
+        const char *written;   /* the lines expected */
+    } cases[] = {
+        {false, false, 0.0f, LUZ_TONE_MAP_CLAMP, "exposure = 0\ntonemap = clamp\n"},
+        {false, true, 0.0f, LUZ_TONE_MAP_CLAMP, "exposure = 0\ntonemap = clamp\n"},
+        {false, true, -1.0f, LUZ_TONE_MAP_NEUTRAL, "exposure = -1\ntonemap = neutral\n"},
+        {true, false, -1.0f, LUZ_TONE_MAP_NEUTRAL, "exposure = -1\ntonemap = neutral\n"},
+        {true, true, -1.0f, LUZ_TONE_MAP_NEUTRAL, "exposure = -1\ntonemap = neutral\n"},
+        {true, true, 0.0f, LUZ_TONE_MAP_CLAMP, "exposure = 0\ntonemap = clamp\n"},
+        {true, true, 0.5f, LUZ_TONE_MAP_NEUTRAL, "exposure = 0.5\ntonemap = neutral\n"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        luz_options options;
+        luz_options_init(&options);
+        luz_error error = {{0}};
+        if (cases[i].model) {
+            const luz_object object = {.texture = LUZ_TEXTURE_BY_INDEX, .scale = 1.0f};
+            assert_int_equal(luz_options_add_object(&options, &object, NULL, "/models/a.obj", 1,
+                                                    "test", &error),
+                             0);
+        }
+        if (cases[i].given) {
+            options.scene.has_exposure = options.scene.has_tone_map = true;
+            options.scene.exposure = cases[i].exposure;
+            options.scene.tone_map = cases[i].tone_map;
+        }
+        const luz_output output = luz_options_output(&options);
+        assert_true(output.exposure == cases[i].exposure);
+        assert_int_equal(output.tone_map, cases[i].tone_map);
+
+        char *text = NULL;
+        size_t size = 0;
+        FILE *memory = open_memstream(&text, &size);
+        assert_non_null(memory);
+        luz_options_write_scene(&options, memory);
+        assert_int_equal(fclose(memory), 0);
+        const char *at = strstr(text, "exposure = ");
+        if (at == NULL || strncmp(at, cases[i].written, strlen(cases[i].written)) != 0) {
+            fail_msg("case %zu: expected '%s' in:\n%s", i, cases[i].written, text);
+        }
+        free(text);
+
+        luz_options back;
+        write_and_read(&options, &back);
+        const luz_output read = luz_options_output(&back);
+        assert_true(read.exposure == cases[i].exposure);
+        assert_int_equal(read.tone_map, cases[i].tone_map);
+        luz_options_free(&back);
         luz_options_free(&options);
     }
 }
@@ -572,6 +653,7 @@ int main(void)
         cmocka_unit_test(test_every_saved_key_is_covered),
         cmocka_unit_test(test_numbers_at_their_edges),
         cmocka_unit_test(test_counts_sizes_and_names),
+        cmocka_unit_test(test_output_defaults_follow_the_models),
         cmocka_unit_test(test_textures_paths),
         cmocka_unit_test(test_object_lines),
     };

@@ -1554,11 +1554,11 @@ int main(int argc, char **argv)
         goto done;
     }
     /* SCENE.md's defaults are clamp at EV 0, and neutral at EV -1 with a
-     * model; glref keeps clamp at EV 0 for models too until luz-render
-     * follows the contract's model defaults, so that tools/conformance
-     * compares like with like. */
-    if (!settings.has_exposure) settings.exposure = 0.0;
-    if (!settings.has_tonemap) settings.neutral = false;
+     * model, unless a scene file set them: the output luz's options have
+     * in force when the command line gave none. */
+    const luz_output output = luz_options_output(&options);
+    if (!settings.has_exposure) settings.exposure = output.exposure;
+    if (!settings.has_tonemap) settings.neutral = output.tone_map == LUZ_TONE_MAP_NEUTRAL;
     if (options.help) {
         print_usage(stdout);
         status = EXIT_OK;

@@ -167,6 +167,24 @@ uint32_t luz_step_advance(luz_step_mode *step, double seconds, uint64_t total)
     return (uint32_t)shown;
 }
 
+void luz_exposure_step(luz_scene *scene, int direction)
+{
+    float exposure = luz_scene_output(scene).exposure + (float)direction * LUZ_EXPOSURE_STEP;
+    exposure = roundf(exposure / LUZ_EXPOSURE_STEP) * LUZ_EXPOSURE_STEP;
+    if (exposure < -LUZ_EXPOSURE_LIMIT) exposure = -LUZ_EXPOSURE_LIMIT;
+    if (exposure > LUZ_EXPOSURE_LIMIT) exposure = LUZ_EXPOSURE_LIMIT;
+    scene->exposure = exposure;
+    scene->has_exposure = true;
+}
+
+void luz_tone_map_toggle(luz_scene *scene)
+{
+    scene->tone_map = luz_scene_output(scene).tone_map == LUZ_TONE_MAP_CLAMP
+                          ? LUZ_TONE_MAP_NEUTRAL
+                          : LUZ_TONE_MAP_CLAMP;
+    scene->has_tone_map = true;
+}
+
 uint32_t luz_seed_next(uint32_t seed, uint32_t entropy)
 {
     uint32_t x = seed ^ entropy;
@@ -199,6 +217,7 @@ const luz_control_help luz_controls_help[] = {
     {"Up / Down (panel)", "choose a slider"},
     {"Left / Right (panel)", "change it; with Shift, in fine steps"},
     {"Click, drag (panel)", "set a slider; click a light's name to switch it"},
+    {"[ / ], N", "exposure down / up half a stop; tone map clamp / neutral"},
     {"F", "texture filter: nearest, bilinear, trilinear"},
     {"V / Shift+V", "next / previous view of the pipeline (its legend in the HUD)"},
     {"X", "interpolation: perspective-correct or affine"},

@@ -105,6 +105,18 @@ void luz_lights_reset(luz_lights *lights, luz_light_switches *switches);
 /* nearest -> bilinear -> trilinear -> nearest. */
 luz_filter luz_filter_next(luz_filter filter);
 
+/* ---- the output: exposure and tone map (SCENE.md, "Output") -------------------- */
+
+#define LUZ_EXPOSURE_STEP 0.5f    /* EV per press of [ / ] */
+#define LUZ_EXPOSURE_LIMIT 10.0f  /* the options' range, [-10, 10] */
+
+/* [ / ]: the exposure in force (luz_scene_output) down / up by
+ * LUZ_EXPOSURE_STEP (direction -1 or +1), rounded to a whole number of
+ * steps and kept within [-10, 10]; from then on the user's. */
+void luz_exposure_step(luz_scene *scene, int direction);
+/* N: clamp <-> neutral, from the tone map in force. */
+void luz_tone_map_toggle(luz_scene *scene);
+
 /* ---- the teaching controls (README, "Guided tour") ------------------------------- */
 
 /* V / Shift+V: the next / previous --view (color, depth, normals, uv, mip,

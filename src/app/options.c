@@ -59,6 +59,8 @@ typedef enum option_kind {
     OPTION_VIEW,      /* color | depth | normals | ... (luz/view.h) */
     OPTION_INTERP,    /* perspective | affine */
     OPTION_SAMPLES,   /* 1 | 4: samples a pixel */
+    OPTION_EXPOSURE,  /* a float within the row's range: the scene's EV */
+    OPTION_TONE_MAP,  /* clamp | neutral */
     OPTION_YES_NO,    /* yes | no, a bool */
     OPTION_MARKS,     /* X,Y[,X,Y...]: pixels to mark in the image */
     OPTION_ONLY,      /* a comma-separated list of light terms */
@@ -166,6 +168,20 @@ static const option_spec option_table[] = {
      .summary = "samples a pixel: 1 (at its centre) or 4 (anti-aliased: SCENE.md's 4x "
                 "pattern, each pixel's samples averaged)",
      .default_text = "1 (the viewer: 4)"},
+    /* The output of lit colours (SCENE.md, "Output"), saved and shown as
+     * in force: the user's, else the default of a scene with or without
+     * models (luz_options_output). 2^10 takes a colour of 1/1000 to 1,
+     * and 2^-10 a thousand to 1. */
+    {.name = "exposure", .kind = OPTION_EXPOSURE, .offset = FIELD(scene.exposure), .min = -10,
+     .max = 10, .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "EV",
+     .summary = "exposure in stops, -10 to 10: each lit colour (cubes and models, not the "
+                "point light's marker nor the background) is multiplied by 2^EV",
+     .default_text = "0; -1 with a model"},
+    {.name = "tonemap", .kind = OPTION_TONE_MAP, .in_scene_file = true,
+     .saving = LUZ_OPTION_SAVED, .syntax = "clamp|neutral",
+     .summary = "how a lit colour becomes bytes: clamp to [0, 1] (the report's), or the "
+                "Khronos PBR Neutral tone map first, which keeps a light model's shading",
+     .default_text = "clamp; neutral with a model"},
     /* The teaching settings, saved when changed: a view saved while looking
      * at the depth buffer renders the depth buffer. */
     {.name = "view", .kind = OPTION_VIEW,
@@ -352,7 +368,8 @@ static bool read_integer(const char *text, long long min, long long max, long lo
  * that float. */
 static bool in_range(const option_spec *spec, double value)
 {
-    if (spec->kind == OPTION_FLOAT || spec->kind == OPTION_VEC3 || spec->kind == OPTION_LIGHT)
+    if (spec->kind == OPTION_FLOAT || spec->kind == OPTION_EXPOSURE ||
+        spec->kind == OPTION_VEC3 || spec->kind == OPTION_LIGHT)
         value = (float)value;   /* option_read_numbers kept it within a float's range */
     return value >= spec->min && value <= spec->max;
 }
@@ -407,7 +424,8 @@ static int set_number(luz_options *options, const option_spec *spec, const char 
     double number;
     char range[64];
     describe_range(spec, range, sizeof range);
-    switch (option_read_numbers(value, &number, 1, spec->kind == OPTION_FLOAT)) {
+    const bool is_float = spec->kind == OPTION_FLOAT || spec->kind == OPTION_EXPOSURE;
+    switch (option_read_numbers(value, &number, 1, is_float)) {
     case OPTION_PARSE_MALFORMED:
         return luz_error_set(error, "%s: expected %s, got '%s'", where, range,
                              option_quote(value).text);
@@ -420,7 +438,7 @@ static int set_number(luz_options *options, const option_spec *spec, const char 
     if (!in_range(spec, number))
         return luz_error_set(error, "%s: expected %s, got '%s'", where, range,
                              option_quote(value).text);
-    if (spec->kind == OPTION_FLOAT)
+    if (is_float)
         *(float *)option_field(options, spec) = (float)number;
     else
         *(double *)option_field(options, spec) = number;
@@ -522,6 +540,20 @@ static int set_samples(luz_options *options, const char *value, const char *wher
         return 0;
     }
     return luz_error_set(error, "%s: expected 1 or 4 (samples a pixel), got '%s'", where,
+                         option_quote(value).text);
+}
+
+static int set_tone_map(luz_options *options, const char *value, const char *where,
+                        luz_error *error)
+{
+    for (int i = 0; i < LUZ_TONE_MAP_COUNT; i++) {
+        if (strcmp(value, luz_tone_map_name((luz_tone_map)i)) == 0) {
+            options->scene.tone_map = (luz_tone_map)i;
+            options->scene.has_tone_map = true;
+            return 0;
+        }
+    }
+    return luz_error_set(error, "%s: expected clamp or neutral, got '%s'", where,
                          option_quote(value).text);
 }
 
@@ -770,6 +802,12 @@ int luz_options_set_value(luz_options *options, const char *name, const char *va
         return set_interpolation(options, value, where, error);
     case OPTION_SAMPLES:
         return set_samples(options, value, where, error);
+    case OPTION_EXPOSURE:
+        if (set_number(options, spec, value, where, error) != 0) return -1;
+        options->scene.has_exposure = true;
+        return 0;
+    case OPTION_TONE_MAP:
+        return set_tone_map(options, value, where, error);
     case OPTION_YES_NO:
         return set_yes_no(options, spec, value, where, error);
     case OPTION_MARKS:
@@ -805,6 +843,21 @@ bool luz_options_is_scene_key(const char *name)
 }
 
 /* ---- formatting a value back ------------------------------------------------- */
+
+/* Whether the options name a model: their objects' files, known before
+ * the models are read (objects[i].model is set only then). */
+static bool options_name_a_model(const luz_options *options)
+{
+    for (int i = 0; i < options->scene.object_count; i++)
+        if (options->object_sources[i].model_path != NULL) return true;
+    return false;
+}
+
+luz_output luz_options_output(const luz_options *options)
+{
+    return luz_scene_output_for(&options->scene, options_name_a_model(options));
+}
+
 
 int luz_options_format(const luz_options *options, const char *name, char *buffer,
                        size_t size)
@@ -879,6 +932,14 @@ int luz_options_format(const luz_options *options, const char *name, char *buffe
         break;
     case OPTION_YES_NO:
         written = snprintf(buffer, size, "%s", *(const bool *)field ? "yes" : "no");
+        break;
+    case OPTION_EXPOSURE:
+        option_format_float(number[0], sizeof number[0], luz_options_output(options).exposure);
+        written = snprintf(buffer, size, "%s", number[0]);
+        break;
+    case OPTION_TONE_MAP:
+        written = snprintf(buffer, size, "%s",
+                           luz_tone_map_name(luz_options_output(options).tone_map));
         break;
     case OPTION_MARKS: {
         if (options->mark_count == 0)

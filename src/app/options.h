@@ -169,6 +169,12 @@ bool luz_options_find(const char *name, size_t length, luz_option_info *info);
 int luz_options_format(const luz_options *options, const char *name,
                        char *buffer, size_t size);
 
+/* The output in force (SCENE.md, "Output"): exposure and tone map as the
+ * user set them, the rest the default of a scene with or without models
+ * (lab/scene.h), the models counted by the files the objects name. What
+ * --print-state shows and the viewer starts with. */
+luz_output luz_options_output(const luz_options *options);
+
 /* What must wait until every option is known, called by luz_options_parse()
  * and by anyone who sets options one by one or reads a scene file directly:
  * applies --only (the strengths of the other terms become 0), checks the

@@ -14,7 +14,7 @@
  *     strength [=======-----------]      0.20
  *
  * then shininess after the specular light, inner, outer and reach after
- * the spot.
+ * the spot; last, the output's exposure and tone map.
  */
 #include "app/panel.h"
 #include "luz/view.h"
@@ -99,7 +99,8 @@ enum {
     MARGIN = 6,          /* between the box and the framebuffer's edge */
     GAP = 3,             /* between a label, its track and its value */
     INNER_WIDTH = 200,   /* the box's width without its padding */
-    ROW_COUNT = 1 + LUZ_TERM_COUNT * 3 + 4,   /* title, 3 per light, 4 extras */
+    ROW_COUNT = 1 + LUZ_TERM_COUNT * 3 + 4 + 1,   /* title, 3 per light, 4 extras,
+                                                     the output */
     MIN_ROW = 9,         /* the shortest row, in a short window: the 7-pixel
                             capitals and a gap; descenders touch the next row */
 };
@@ -185,6 +186,7 @@ luz_panel_layout luz_panel_layout_for(int width, int height)
             break;
         }
     }
+    layout.output = (luz_rect){x, y, inner, row};
     return layout;
 }
 
@@ -270,12 +272,12 @@ static uint8_t to_byte(float value)
     return luz_colour_to_byte(value);
 }
 
-/* Text centred vertically in a row. */
-static void row_text(luz_layer *layer, int x, luz_rect row, int scale, const char *text,
-                     luz_rgba colour)
+/* Text centred vertically in a row; returns its width. */
+static int row_text(luz_layer *layer, int x, luz_rect row, int scale, const char *text,
+                    luz_rgba colour)
 {
     int top = row.y + (row.height - luz_overlay_text_height(scale)) / 2 + scale;
-    luz_overlay_text(layer, x, top, scale, text, colour);
+    return luz_overlay_text(layer, x, top, scale, text, colour);
 }
 
 static luz_rgba fill_colour(const luz_slider *spec, const luz_light *light)
@@ -367,7 +369,7 @@ static void draw_header(luz_layer *layer, const luz_panel_layout *layout,
 }
 
 void luz_panel_draw(luz_layer *layer, const luz_panel_layout *layout,
-                    const luz_panel *panel, const luz_lights *lights)
+                    const luz_panel *panel, const luz_lights *lights, luz_output output)
 {
     int s = layout->scale;
     luz_overlay_fill(layer, layout->box, box_colour);
@@ -379,6 +381,17 @@ void luz_panel_draw(luz_layer *layer, const luz_panel_layout *layout,
         draw_header(layer, layout, lights, (luz_term)term);
     for (int slider = 0; slider < LUZ_PANEL_SLIDER_COUNT; slider++)
         draw_slider(layer, layout, panel, lights, slider);
+
+    /* The output: "EV -1.0  neutral", the keys on the right. */
+    char text[48];
+    snprintf(text, sizeof text, "EV %+.1f  %s", (double)output.exposure,
+             luz_tone_map_name(output.tone_map));
+    const luz_rect row = layout->output;
+    const int label_width = row_text(layer, row.x, row, s, "output", text_colour);
+    row_text(layer, row.x + label_width + 2 * GAP * s, row, s, text, accent_colour);
+    const char *keys = "[ ] N";
+    row_text(layer, row.x + row.width - luz_overlay_text_width(keys, s), row, s, keys,
+             dim_text_colour);
 }
 
 /* ---- HUD timings ------------------------------------------------------------------------------- */

@@ -11,7 +11,8 @@
  * The light panel is the report's six colour pickers, whose alpha set each
  * light's strength: for each light a swatch and sliders for red, green,
  * blue and strength, plus the specular shininess and the spot's angles and
- * reach. A light whose strength is 0 is off.
+ * reach. A light whose strength is 0 is off. Its last row shows the
+ * exposure and the tone map of the output.
  */
 #ifndef LUZ_PANEL_H
 #define LUZ_PANEL_H
@@ -163,6 +164,7 @@ typedef struct luz_panel_layout {
     luz_rect header[LUZ_TERM_COUNT];   /* a light's name and swatch: click to switch */
     luz_rect row[LUZ_PANEL_SLIDER_COUNT];
     luz_rect track[LUZ_PANEL_SLIDER_COUNT];
+    luz_rect output;   /* the last row: the exposure and the tone map */
 } luz_panel_layout;
 
 void luz_panel_init(luz_panel *panel);
@@ -192,8 +194,10 @@ void luz_panel_mouse_release(luz_panel *panel);
  * snapped to the slider's fine step. */
 float luz_panel_track_value(const luz_panel_layout *layout, int slider, int x);
 
+/* The panel: the lights' blocks, and under them the output in force
+ * (SCENE.md, "Output"), which the keys [ ] and N change. */
 void luz_panel_draw(luz_layer *layer, const luz_panel_layout *layout,
-                    const luz_panel *panel, const luz_lights *lights);
+                    const luz_panel *panel, const luz_lights *lights, luz_output output);
 
 /* ---- view legends (legend.c) ---------------------------------------------------- */
 

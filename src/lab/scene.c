@@ -209,12 +209,25 @@ void luz_scene_set_camera_and_lights(const luz_scene *scene, float aspect, luz_f
     frame->output = luz_scene_output(scene);
 }
 
-luz_output luz_scene_output(const luz_scene *scene)
+bool luz_scene_has_model(const luz_scene *scene)
 {
-    luz_output output = {.exposure = 0.0f, .tone_map = LUZ_TONE_MAP_CLAMP};
+    for (int i = 0; scene->objects != NULL && i < scene->object_count; i++)
+        if (scene->objects[i].model != NULL) return true;
+    return false;
+}
+
+luz_output luz_scene_output_for(const luz_scene *scene, bool has_model)
+{
+    luz_output output = {.exposure = has_model ? LUZ_MODEL_EXPOSURE : 0.0f,
+                         .tone_map = has_model ? LUZ_MODEL_TONE_MAP : LUZ_TONE_MAP_CLAMP};
     if (scene->has_exposure) output.exposure = scene->exposure;
     if (scene->has_tone_map) output.tone_map = scene->tone_map;
     return output;
+}
+
+luz_output luz_scene_output(const luz_scene *scene)
+{
+    return luz_scene_output_for(scene, luz_scene_has_model(scene));
 }
 
 luz_render_options luz_scene_render_options(const luz_scene *scene)

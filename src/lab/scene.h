@@ -139,8 +139,20 @@ typedef struct luz_scene {
 
 luz_scene luz_scene_defaults(void);
 
-/* The output in force for the scene (SCENE.md, "Output"): what the user
- * set, else clamp at EV 0. */
+/* ---- output: exposure and tone map ------------------------------------------
+ * SCENE.md: a scene without models keeps the report's output, clamp at
+ * EV 0 (every lab image as it was); a scene with at least one model
+ * defaults to neutral at EV -1, where a white model keeps its shading. A
+ * setting the user gave wins in both cases. */
+#define LUZ_MODEL_EXPOSURE (-1.0f)
+#define LUZ_MODEL_TONE_MAP LUZ_TONE_MAP_NEUTRAL
+
+/* Whether one of the scene's objects is a model (objects[i].model). */
+bool luz_scene_has_model(const luz_scene *scene);
+/* The output in force for the scene, if it holds a model (has_model) or
+ * not: what the user set, the rest its default. */
+luz_output luz_scene_output_for(const luz_scene *scene, bool has_model);
+/* luz_scene_output_for(scene, luz_scene_has_model(scene)). */
 luz_output luz_scene_output(const luz_scene *scene);
 
 /* Cube i (i >= 0) of SCENE.md's tiled set: one of the ten positions plus

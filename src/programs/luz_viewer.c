@@ -494,6 +494,9 @@ static void handle_key(viewer *v, const SDL_KeyboardEvent *key)
     case SDLK_f: scene->filter = luz_filter_next(scene->filter); break;
     case SDLK_v: scene->view = luz_view_next(scene->view, shift); break;
     case SDLK_x: scene->interpolation = luz_interpolation_next(scene->interpolation); break;
+    case SDLK_LEFTBRACKET: luz_exposure_step(scene, -1); break;
+    case SDLK_RIGHTBRACKET: luz_exposure_step(scene, +1); break;
+    case SDLK_n: luz_tone_map_toggle(scene); break;
     case SDLK_g:
         /* The step mode freezes the animation, so the triangles keep their
          * order while they are drawn one by one; leaving it restores the
@@ -744,7 +747,8 @@ static int record_overlays(viewer *v, luz_error *error)
             luz_probe_marker_draw(layer, v->probe.x, v->probe.y);
         }
         if (v->panel_open)
-            luz_panel_draw(layer, &v->layout, &v->panel, &v->options->scene.lights);
+            luz_panel_draw(layer, &v->layout, &v->panel, &v->options->scene.lights,
+                           luz_scene_output(&v->options->scene));
     }
     if (v->message_seconds_left > 0.0)
         luz_hud_draw_message(layer, v->message);
