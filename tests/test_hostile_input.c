@@ -41,6 +41,7 @@
 #include <string.h>
 #include <sys/mman.h>
 #include <sys/resource.h>
+#include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/types.h>
 #include <sys/wait.h>
@@ -68,6 +69,7 @@
 #include "app/options.h"
 #include "io/input_file.h"
 #include "io/model.h"
+#include "io/model_confine.h"
 #include "io/model_description.h"
 #include "io/model_sandbox.h"
 #include "io/textures.h"
@@ -800,6 +802,14 @@ static void write_buffer(const char *path, const buffer *b)
     assert_int_equal(fclose(file), 0);
 }
 
+static void write_text_file(const char *path, const char *text)
+{
+    FILE *file = fopen(path, "w");
+    assert_non_null(file);
+    assert_int_equal(fputs(text, file) >= 0, 1);
+    assert_int_equal(fclose(file), 0);
+}
+
 static void make_temporary_directory(char *path, size_t size)
 {
     const char *tmp = getenv("TMPDIR");
@@ -1320,6 +1330,9 @@ static void test_assimp_findings_refused(void **state)
 enum child_act { CHILD_SEGV, CHILD_ILL, CHILD_SPIN, CHILD_SLEEP, CHILD_ALLOCATE, CHILD_LIE,
                  CHILD_FLOOD, CHILD_REFUSE, CHILD_EXIT };
 
+/* Where CHILD_ALLOCATE keeps its last block. */
+char *volatile kept_block;
+
 static int misbehave(const void *context, uint64_t memory_limit, luz_model_writer *writer,
                      luz_error *error)
 {
@@ -1332,7 +1345,9 @@ static int misbehave(const void *context, uint64_t memory_limit, luz_model_write
     case CHILD_SLEEP:
         for (;;) pause();
     case CHILD_ALLOCATE:
-        /* until malloc fails: touched, so that it is memory */
+        /* until malloc fails: touched, so that it is memory, and kept
+         * where the compiler must assume it is used (clang removes a
+         * malloc whose block nothing reads) */
         for (;;) {
             char *block = malloc((size_t)16 << 20);
             if (block == NULL) {
@@ -1340,6 +1355,7 @@ static int misbehave(const void *context, uint64_t memory_limit, luz_model_write
                 return LUZ_MACHINE_FAILED;
             }
             memset(block, 1, (size_t)16 << 20);
+            kept_block = block;
         }
     case CHILD_LIE: {
         /* a part of a million vertices, and not one of them sent */
@@ -1429,6 +1445,156 @@ static void test_model_child_ends(void **state)
     assert_int_equal(waitpid(-1, NULL, WNOHANG), -1);   /* no child left, not even a zombie */
     assert_int_equal(errno, ECHILD);
     assert_int_equal(open_descriptors(), descriptors);
+}
+
+/* ---- the confinement of that process (io/model_confine.h) ---------------------------------- */
+
+/* What a child of luz_model_run_isolated tries in place of assimp's
+ * import, under the confinement a model at `model` gets; what came of it
+ * is sent back as its refusal ("errno N", or the bytes read). */
+enum confined_act { READ_BESIDE, READ_OUTSIDE, READ_ROOT_FILE, WRITE_BESIDE, WRITE_OUTSIDE,
+                    OPEN_SOCKET, RUN_PROGRAM, FORK };
+
+typedef struct confined_try {
+    enum confined_act act;
+    const char *path;        /* the file it reads or writes */
+} confined_try;
+
+static int try_confined(const void *context, uint64_t memory_limit, luz_model_writer *writer,
+                        luz_error *error)
+{
+    (void)memory_limit;
+    (void)writer;
+    const confined_try *attempt = context;
+    int result = -1;
+    switch (attempt->act) {
+    case READ_BESIDE:
+    case READ_OUTSIDE:
+    case READ_ROOT_FILE: {
+        int descriptor = open(attempt->path, O_RDONLY | O_CLOEXEC);
+        if (descriptor >= 0) {
+            char text[64] = "";
+            ssize_t got = read(descriptor, text, sizeof text - 1);
+            close(descriptor);
+            return luz_error_set(error, "read %zd bytes: %s", got, got > 0 ? text : "");
+        }
+        break;
+    }
+    case WRITE_BESIDE:
+    case WRITE_OUTSIDE:
+        result = open(attempt->path, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+        if (result >= 0) {
+            (void)!write(result, "written", 7);
+            close(result);
+            return luz_error_set(error, "wrote the file");
+        }
+        break;
+    case OPEN_SOCKET:
+        result = socket(AF_INET, SOCK_STREAM, 0);
+        if (result >= 0) return luz_error_set(error, "opened a socket");
+        break;
+    case RUN_PROGRAM: {
+        char *const arguments[] = {"/bin/true", NULL};
+        execv("/bin/true", arguments);
+        break;
+    }
+    case FORK: {
+        pid_t child = fork();
+        if (child == 0) _exit(0);
+        if (child > 0) {
+            waitpid(child, NULL, 0);
+            return luz_error_set(error, "forked");
+        }
+        break;
+    }
+    }
+    return luz_error_set(error, "errno %d", errno);
+}
+
+/* The child that reads a model reads files beside it (the folder and
+ * below), and nothing else: a file in a folder next to it, or /etc/passwd,
+ * cannot be opened (Landlock: EACCES); no file can be written, beside it
+ * or elsewhere (seccomp: EPERM, or Landlock: EACCES), and none appears;
+ * a socket, a program run or a fork kills it (SIGSYS), which luz reports
+ * as one line naming the model. Where the kernel lacks a mechanism, the
+ * cases it holds are skipped with a note. */
+static void test_model_child_confined(void **state)
+{
+    (void)state;
+    const luz_confinement available = luz_confinement_available();
+    char root[1024], model[1200], beside[1200], outside[1200], written[1200],
+        written_outside[1200];
+    make_temporary_directory(root, sizeof root);
+    snprintf(model, sizeof model, "%s/models/m.obj", root);
+    snprintf(beside, sizeof beside, "%s/models/sub/beside.txt", root);
+    snprintf(outside, sizeof outside, "%s/other/secret.txt", root);
+    snprintf(written, sizeof written, "%s/models/new.txt", root);
+    snprintf(written_outside, sizeof written_outside, "%s/other/new.txt", root);
+    char folder[1200];
+    snprintf(folder, sizeof folder, "%s/models", root);
+    assert_int_equal(mkdir(folder, 0755), 0);
+    snprintf(folder, sizeof folder, "%s/models/sub", root);
+    assert_int_equal(mkdir(folder, 0755), 0);
+    snprintf(folder, sizeof folder, "%s/other", root);
+    assert_int_equal(mkdir(folder, 0755), 0);
+    write_text_file(model, "v 0 0 0\n");
+    write_text_file(beside, "beside");
+    write_text_file(outside, "secret");
+
+    static const char eacces[] = "errno 13", eperm[] = "errno 1";
+    const struct {
+        enum confined_act act;
+        const char *path;
+        bool needs_landlock, needs_seccomp;
+        const char *expected, *or_expected;   /* the refusal's message, or the crash's */
+    } cases[] = {
+        {READ_BESIDE, beside, false, false, "read 6 bytes: beside", NULL},
+        {READ_OUTSIDE, outside, true, false, eacces, NULL},
+        {READ_ROOT_FILE, "/etc/passwd", true, false, eacces, NULL},
+        {WRITE_BESIDE, written, false, true, eperm, eacces},
+        {WRITE_OUTSIDE, written_outside, false, true, eperm, eacces},
+        {OPEN_SOCKET, NULL, false, true, "SIGSYS", NULL},
+        {RUN_PROGRAM, NULL, false, true, "SIGSYS", NULL},
+        {FORK, NULL, false, true, "SIGSYS", NULL},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        if ((cases[i].needs_landlock && available.landlock_abi == 0) ||
+            (cases[i].needs_seccomp && !available.seccomp)) {
+            print_message("skipped case %zu: this kernel has no %s\n", i,
+                          cases[i].needs_landlock ? "Landlock" : "seccomp filter");
+            continue;
+        }
+        const luz_model_limits limits = {.cpu_seconds = 5.0, .wall_seconds = 20.0,
+                                         .description_bytes = (uint64_t)1 << 20};
+        const confined_try attempt = {.act = cases[i].act, .path = cases[i].path};
+        unsigned char *bytes = NULL;
+        size_t size = 0;
+        luz_error error = {{0}};
+        int status = luz_model_run_isolated(model, &limits, try_confined, &attempt, &bytes, &size,
+                                            &error);
+        if (status == 0) {
+            luz_model_description description;
+            assert_int_equal(luz_model_description_read(bytes, size, model, &description, &error),
+                             0);
+            assert_int_not_equal(description.refusal, 0);
+            luz_error_set(&error, "%s", description.refusal_message);
+            free(bytes);
+        }
+        const bool as_expected =
+            strstr(error.message, cases[i].expected) != NULL ||
+            (cases[i].or_expected != NULL && strstr(error.message, cases[i].or_expected) != NULL);
+        if (!as_expected || strchr(error.message, '\n') != NULL)
+            fail_msg("case %zu: '%s', expected '%s'", i, error.message, cases[i].expected);
+        if (strcmp(cases[i].expected, "SIGSYS") == 0) {
+            /* a crash of the child, reported naming the model */
+            assert_int_equal(status, LUZ_BAD_INPUT);
+            assert_true(strncmp(error.message, model, strlen(model)) == 0);
+        }
+    }
+    /* nothing was written, beside the model or elsewhere */
+    assert_int_equal(access(written, F_OK), -1);
+    assert_int_equal(access(written_outside, F_OK), -1);
+    remove_tree(root);
 }
 
 /* luz_model_load through its child, a sound model and a refused one:
@@ -1585,6 +1751,7 @@ int main(void)
         cmocka_unit_test(test_unreadable_textures),
         cmocka_unit_test(test_assimp_findings_refused),
         cmocka_unit_test(test_model_child_ends),
+        cmocka_unit_test(test_model_child_confined),
         cmocka_unit_test(test_model_load_leaves_nothing),
         cmocka_unit_test(test_budget_through_luz_render),
         cmocka_unit_test(test_out_of_memory_while_decoding),

@@ -27,6 +27,7 @@
 #include <unistd.h>
 
 #include "io/input_file.h"
+#include "io/model_confine.h"
 #include "io/model_description.h"
 #include "io/model_guards.h"
 #include "io/model_import.h"
@@ -526,6 +527,17 @@ int luz_model_load(luz_model *model, const char *path, luz_texture_budget *budge
     if (status != 0) return status;
     status = build(model, path, bytes, byte_count, false, budget, error);
     free(bytes);
+    /* Read, but less confined than luz means it to be: said once, with
+     * the model's other warnings (io/model_confine.h). */
+    const luz_confinement available = luz_confinement_available();
+    const char *missing = luz_confinement_missing(&available);
+    if (status == 0 && missing[0] != '\0') {
+        luz_error warning;
+        luz_error_set(&warning, "%s: read by assimp without %s (this kernel or build has none): "
+                                "its process was limited but not confined", path, missing);
+        status = add_warning(model, warning.message, error);
+        if (status != 0) luz_model_free(model);
+    }
     return status;
 }
 

@@ -37,6 +37,7 @@
 #include <unistd.h>
 
 #include "io/input_file.h"
+#include "io/model_confine.h"
 
 /* AddressSanitizer and ThreadSanitizer reserve terabytes of address space
  * for their shadow memory: under them, RLIMIT_AS would stop everything. */
@@ -99,7 +100,8 @@ static uint64_t address_space_bytes(void)
 
 /* The child: its limits, its work, what it found down the pipe, _exit. */
 static _Noreturn void run_child(const char *path, int pipe_end, pid_t parent,
-                                const luz_model_limits *limits, luz_model_child_work work,
+                                const luz_model_limits *limits,
+                                const luz_confinement *confinement, luz_model_child_work work,
                                 const void *context)
 {
     /* It dies with luz: whatever ends luz's process (SIGKILL, or SIGTERM
@@ -141,13 +143,22 @@ static _Noreturn void run_child(const char *path, int pipe_end, pid_t parent,
     luz_model_writer writer = {.descriptor = pipe_end, .bytes = buffer,
                                .capacity = sizeof buffer};
     luz_error error = {{0}};
-    int status = work(context, limits->memory_bytes, &writer, &error);
-    if (status == LUZ_MACHINE_FAILED && limits->memory_bytes > 0) {
-        /* out of memory within the limit: the file asked for too much */
-        status = LUZ_BAD_INPUT;
-        luz_error_set(&error, "%s: assimp needs more than %llu MiB to read it (luz's limit "
-                              "for a model file of this size)", path,
-                      (unsigned long long)(limits->memory_bytes >> 20));
+    /* Confined before it reads a byte of the model (io/model_confine.h). */
+    int status = 0;
+    luz_error confine_error;
+    if (luz_confine_model_reader(path, pipe_end, confinement, &confine_error) != 0) {
+        luz_error_set(&error, "%s: %s", path, confine_error.message);
+        status = LUZ_MACHINE_FAILED;
+    }
+    if (status == 0) {
+        status = work(context, limits->memory_bytes, &writer, &error);
+        if (status == LUZ_MACHINE_FAILED && limits->memory_bytes > 0) {
+            /* out of memory within the limit: the file asked for too much */
+            status = LUZ_BAD_INPUT;
+            luz_error_set(&error, "%s: assimp needs more than %llu MiB to read it (luz's "
+                                  "limit for a model file of this size)", path,
+                          (unsigned long long)(limits->memory_bytes >> 20));
+        }
     }
     if (status != 0) {
         /* after what was written of the description: the reader stops at
@@ -201,6 +212,7 @@ static const char *signal_name(int number)
     case SIGINT: return "SIGINT";
     case SIGTERM: return "SIGTERM";
     case SIGHUP: return "SIGHUP";
+    case SIGSYS: return "SIGSYS: a system call the confinement forbids";
     default: return "a signal";
     }
 }
@@ -217,6 +229,7 @@ int luz_model_run_isolated(const char *path, const luz_model_limits *limits,
                       strerror(errno));
         return LUZ_MACHINE_FAILED;
     }
+    const luz_confinement confinement = luz_confinement_available();
     const double start = now_seconds(), deadline = start + limits->wall_seconds;
     const pid_t parent = getpid();
     pid_t child = fork();
@@ -230,7 +243,7 @@ int luz_model_run_isolated(const char *path, const luz_model_limits *limits,
     }
     if (child == 0) {
         close(ends[0]);
-        run_child(path, ends[1], parent, limits, work, context);
+        run_child(path, ends[1], parent, limits, &confinement, work, context);
     }
     close(ends[1]);
 
