@@ -533,6 +533,18 @@ static const error_case error_cases[] = {
      {"s.luz:2", "exposure", "[-10, 10]"}},
     {"scene-tonemap", {"--scene", "s.luz"}, "tonemap = reinhard\n", NULL,
      {"s.luz:1", "tonemap", "clamp or neutral"}},
+    /* --up AXIS, with --model only (SCENE.md, "Up axis") */
+    {"up-without-model", {"--up", "z"}, NULL, NULL, {"--up", "--model FILE"}},
+    {"up-with-cube-lines", {"--scene", "s.luz", "--up", "x"}, "cube = 0, 0, 0\n", NULL,
+     {"--up", "--model FILE"}},
+    {"up-unknown", {"--up", "+z", "--model", "m.obj"}, NULL, NULL,
+     {"--up", "y, z, x, -y, -z or -x", "'+z'"}},
+    {"up-missing-value", {"--up"}, NULL, NULL, {"--up", "missing"}},
+    {"scene-up-key", {"--scene", "s.luz"}, "up = z\n", NULL, {"s.luz:1", "up", "not allowed"}},
+    {"scene-model-up-unknown", {"--scene", "s.luz"}, "\nmodel = m.obj up w\n", NULL,
+     {"s.luz:2", "up AXIS", "y, z, x, -y, -z, -x"}},
+    {"scene-model-up-twice", {"--scene", "s.luz"}, "model = m.obj up z up x\n", NULL,
+     {"s.luz:1", "up AXIS", "once"}},
     /* --probe X,Y */
     {"probe-malformed", {"--probe", "abc"}, NULL, NULL, {"--probe", "X,Y", "'abc'"}},
     {"probe-one-number", {"--probe", "5"}, NULL, NULL, {"--probe", "X,Y"}},

@@ -864,7 +864,7 @@ static void test_normalisation(void **state)
     (void)state;
     hand_model hand;
     make_hand_model(&hand, 1);
-    const luz_mat4 norm = luz_lab_model_normalisation(&hand.model);
+    const luz_mat4 norm = luz_lab_model_normalisation(&hand.model, LUZ_UP_Y);
     assert_vec3_near(luz_mat4_transform_point(norm, (luz_vec3){3, 2.5f, 3.5f}), 0, 0, 0,
                      TOLERANCE);
     assert_vec3_near(luz_mat4_transform_point(norm, (luz_vec3){1, 2, 3}), -1, -0.25, -0.25,
@@ -876,7 +876,7 @@ static void test_normalisation(void **state)
 
     /* The longest side along z instead: (0,0,0)-(1,1,10), k = 0.2. */
     hand.model.bounds = (luz_bounds){{0, 0, 0}, {1, 1, 10}};
-    const luz_mat4 tall = luz_lab_model_normalisation(&hand.model);
+    const luz_mat4 tall = luz_lab_model_normalisation(&hand.model, LUZ_UP_Y);
     assert_vec3_near(luz_mat4_transform_point(tall, (luz_vec3){1, 1, 10}), 0.1, 0.1, 1,
                      TOLERANCE);
     assert_vec3_near(luz_mat4_transform_point(tall, (luz_vec3){0, 0, 0}), -0.1, -0.1, -1,
@@ -886,10 +886,70 @@ static void test_normalisation(void **state)
      * min + max overflow a float. s = 6e38, so Norm takes (3e38, 0, 0) to
      * (1, 0, 0) and (0, 1, 0) to (0, 1/3e38, 0), about 0. */
     hand.model.bounds = (luz_bounds){{-3e38f, -1, 0}, {3e38f, 1, 0}};
-    const luz_mat4 huge = luz_lab_model_normalisation(&hand.model);
+    const luz_mat4 huge = luz_lab_model_normalisation(&hand.model, LUZ_UP_Y);
     assert_vec3_near(luz_mat4_transform_point(huge, (luz_vec3){3e38f, 0, 0}), 1, 0, 0, 1e-3);
     assert_vec3_near(luz_mat4_transform_point(huge, (luz_vec3){-3e38f, 1, 0}), -1, 0, 0, 1e-3);
     free_hand_model(&hand);
+}
+
+/* SCENE.md's "Up axis", on a model whose three vertices differ along
+ * every axis: A = (0, 1, -1), B = (4, 2, 0), P = (1, 2, -1), its box
+ * (0, 1, -1)-(4, 2, 0) taken by luz_mesh_bounds. Each axis turns the
+ * vertices by SCENE.md's table first, then the box of the turned vertices
+ * gives c and s (4, the x extent, in every case here, so k = 1/2):
+ *
+ *   y   as they are; c = (2, 1.5, -0.5)
+ *   z   (x, z, -y):  A (0, -1, -1)  B (4, 0, -2)  P (1, -1, -2);  c = (2, -0.5, -1.5)
+ *   -z  (x, -z, y):  A (0, 1, 1)    B (4, 0, 2)   P (1, 1, 2);    c = (2, 0.5, 1.5)
+ *   x   (-y, x, z):  A (-1, 0, -1)  B (-2, 4, 0)  P (-2, 1, -1);  c = (-1.5, 2, -0.5)
+ *   -x  (y, -x, z):  A (1, 0, -1)   B (2, -4, 0)  P (2, -1, -1);  c = (1.5, -2, -0.5)
+ *   -y  (-x, -y, z): A (0, -1, -1)  B (-4, -2, 0) P (-1, -2, -1); c = (-2, -1.5, -0.5)
+ *
+ * and Norm(v) = (turned v - c) / 2, written out below. A turn in the
+ * wrong direction, or bounds taken before the turn, moves some vertex. */
+static void test_up_axis_turns_then_normalises(void **state)
+{
+    (void)state;
+    const luz_vertex vertices[3] = {{{0, 1, -1}, {0, 0, 1}, {0, 0}},
+                                    {{4, 2, 0}, {0, 0, 1}, {1, 0}},
+                                    {{1, 2, -1}, {0, 0, 1}, {0, 1}}};
+    luz_mesh *mesh = luz_mesh_create(&(luz_mesh_desc){.vertices = vertices, .vertex_count = 3},
+                                     NULL);
+    assert_non_null(mesh);
+    const luz_lab_model_part part = {.mesh = mesh};
+    const luz_lab_model model = {.name = "asymmetric", .parts = &part, .part_count = 1,
+                                 .bounds = luz_mesh_bounds(mesh)};
+    static const struct {
+        const char *name;
+        float expected[3][3];   /* A, B, P normalised */
+    } cases[] = {
+        {"y", {{-1, -0.25f, -0.25f}, {1, 0.25f, 0.25f}, {-0.5f, 0.25f, -0.25f}}},
+        {"z", {{-1, -0.25f, 0.25f}, {1, 0.25f, -0.25f}, {-0.5f, -0.25f, -0.25f}}},
+        {"-z", {{-1, 0.25f, -0.25f}, {1, -0.25f, 0.25f}, {-0.5f, 0.25f, 0.25f}}},
+        {"x", {{0.25f, -1, -0.25f}, {-0.25f, 1, 0.25f}, {-0.25f, -0.5f, -0.25f}}},
+        {"-x", {{-0.25f, 1, -0.25f}, {0.25f, -1, 0.25f}, {0.25f, 0.5f, -0.25f}}},
+        {"-y", {{1, 0.25f, -0.25f}, {-1, -0.25f, 0.25f}, {0.5f, -0.25f, -0.25f}}},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        luz_up_axis up;
+        assert_true(luz_up_axis_from_name(cases[i].name, &up));
+        assert_string_equal(luz_up_axis_name(up), cases[i].name);
+        const luz_mat4 norm = luz_lab_model_normalisation(&model, up);
+        for (int v = 0; v < 3; v++) {
+            const luz_vec3 got = luz_mat4_transform_point(norm, vertices[v].position);
+            if (fabsf(got.x - cases[i].expected[v][0]) > 1e-6f ||
+                fabsf(got.y - cases[i].expected[v][1]) > 1e-6f ||
+                fabsf(got.z - cases[i].expected[v][2]) > 1e-6f)
+                fail_msg("up %s, vertex %d: got (%g, %g, %g), expected (%g, %g, %g)",
+                         cases[i].name, v, (double)got.x, (double)got.y, (double)got.z,
+                         (double)cases[i].expected[v][0], (double)cases[i].expected[v][1],
+                         (double)cases[i].expected[v][2]);
+        }
+    }
+    luz_up_axis up;
+    assert_false(luz_up_axis_from_name("+z", &up));
+    assert_false(luz_up_axis_from_name("Z", &up));
+    luz_mesh_destroy(mesh);
 }
 
 /* The model at index 1 (after a cube), p = (1, -2, 0.5), k = 2, at
@@ -1877,6 +1937,60 @@ static void test_views_on_a_model(void **state)
  * smaller than itself comes out differently from each filter; --interp
  * affine bends the textures of the turned box. Each the same on 1 and 3
  * threads. */
+/* The box of pixels that are not the background (26, 26, 26). */
+static void covered_box(const image *picture, int *width, int *height)
+{
+    int low_x = picture->width, high_x = -1, low_y = picture->height, high_y = -1;
+    for (int y = 0; y < picture->height; y++)
+        for (int x = 0; x < picture->width; x++) {
+            const unsigned char *p = picture->pixels + 3 * (y * picture->width + x);
+            if (p[0] == 26 && p[1] == 26 && p[2] == 26) continue;
+            if (x < low_x) low_x = x;
+            if (x > high_x) high_x = x;
+            if (y < low_y) low_y = y;
+            if (y > high_y) high_y = y;
+        }
+    *width = high_x - low_x + 1;
+    *height = high_y - low_y + 1;
+}
+
+/* --up through luz-render, on box.obj (2 wide in x, 1 tall in y, 1.5 deep
+ * in z) at t = 0, facing the camera: y draws it 2 wide and 1 tall; z
+ * turns its depth up (x, z, -y), 2 wide and 1.5 tall; x stands its width
+ * up (-y, x, z), 1 wide and 2 tall; -y (-x, -y, z) keeps the sizes. And
+ * `up AXIS` on a model line gives --up's bytes. */
+static void test_up_axis_through_luz_render(void **state)
+{
+    (void)state;
+    REQUIRE_MODELS();
+    static const char *const axes[] = {"y", "z", "x", "-y"};
+    int widths[4], heights[4];
+    for (int i = 0; i < 4; i++) {
+        image turned = render_image(ARGS(BOX, "--time", "0", "--up", axes[i], "-o", "up.png"),
+                                    "up.png");
+        covered_box(&turned, &widths[i], &heights[i]);
+        print_message("--up %s: %d x %d pixels\n", axes[i], widths[i], heights[i]);
+        char scene[96];
+        snprintf(scene, sizeof scene, "model = box.obj up %s\n", axes[i]);
+        write_text("box/up.luz", scene);
+        image line = render_image(ARGS("--scene", "box/up.luz", "--size", "96x64", "--time", "0",
+                                       "--textures", "none", "-o", "line.png"),
+                                  "line.png");
+        assert_int_equal(pixels_differing(&turned, &line), 0);
+        free(turned.pixels);
+        free(line.pixels);
+    }
+    /* y: twice as wide as tall (68 x 34); z: still wider than tall, but
+     * 1.5 / 1 taller (62 x 46: its front face, 0.5 from the centre instead
+     * of 0.75, is a little farther); x: twice as tall as wide (34 x 64,
+     * the top and bottom rows cut); -y: y's sizes. */
+    assert_true(10 * widths[0] > 17 * heights[0]);
+    assert_true(heights[1] > heights[0] + 8 && heights[1] < widths[1]);
+    assert_true(10 * heights[2] > 17 * widths[2]);
+    assert_int_equal(widths[3], widths[0]);
+    assert_int_equal(heights[3], heights[0]);
+}
+
 static void test_options_on_a_model(void **state)
 {
     (void)state;
@@ -1951,6 +2065,7 @@ int main(void)
         cmocka_unit_test(test_load_refusals),
         cmocka_unit_test(test_missing_or_corrupt_texture_is_a_warning),
         cmocka_unit_test(test_normalisation),
+        cmocka_unit_test(test_up_axis_turns_then_normalises),
         cmocka_unit_test(test_model_matrix),
         cmocka_unit_test(test_colour_precedence),
         cmocka_unit_test(test_texture_precedence),
@@ -1967,6 +2082,7 @@ int main(void)
         cmocka_unit_test(test_probe_names_a_model),
         cmocka_unit_test(test_probe_of_nan_normals),
         cmocka_unit_test(test_options_on_a_model),
+        cmocka_unit_test(test_up_axis_through_luz_render),
     };
     return cmocka_run_group_tests(tests, setup_files, teardown_files);
 }

@@ -262,6 +262,7 @@ static void assert_same_objects(const luz_options *set, const luz_options *back)
             snprintf(what, sizeof what, "object %d scale", i);
             assert_same_float(a->scale, b->scale, what);
             assert_int_equal(b->still, a->still);
+            assert_int_equal(b->up, a->up);
         }
     }
 }
@@ -617,7 +618,9 @@ static void test_object_lines(void **state)
                              .colour = colours[i % 3],
                              .texture = LUZ_TEXTURE_BY_INDEX,
                              .scale = model ? scales[(i / 2) % 4] : 1.0f,
-                             .still = model && i % 4 == 1};
+                             .still = model && i % 4 == 1,
+                             .up = model ? (luz_up_axis)((i / 2) % LUZ_UP_AXIS_COUNT)
+                                         : LUZ_UP_Y};
         if (luz_options_add_object(&options, &object, names[(i / 2) % 4],
                                    model ? models[(i / 2) % 3] : NULL, i + 1, "test",
                                    &error) != 0)

@@ -128,12 +128,16 @@ typedef struct glref_settings {
 } glref_settings;
 
 /* Object i's up axis: --up for the object --model places (it has no
- * scene-file line), y for the rest. */
+ * scene-file line), else what luz's options read (a model line's `up`;
+ * luz_up_axis lists the axes in glref's order). */
+_Static_assert((int)LUZ_UP_Z == (int)UP_Z && (int)LUZ_UP_MINUS_X == (int)UP_MINUS_X &&
+                   (int)LUZ_UP_AXIS_COUNT == (int)UP_AXIS_COUNT,
+               "glref's up axes are luz's, in the same order");
 static up_axis object_up(const luz_options *options, const glref_settings *settings, int i)
 {
     const luz_object_source *source = &options->object_sources[i];
-    return source->model_path != NULL && source->line == 0 && settings->has_up ? settings->up
-                                                                              : UP_Y;
+    if (source->model_path != NULL && source->line == 0 && settings->has_up) return settings->up;
+    return (up_axis)options->objects[i].up;
 }
 
 /* Whether the scene draws a model: SCENE.md's defaults of the output

@@ -69,6 +69,7 @@ typedef enum option_kind {
     OPTION_SHARD,     /* K/M with 0 <= K < M */
     OPTION_SCENE,     /* a scene file, read at once */
     OPTION_MODEL,     /* a model file, the one object (command_line.c) */
+    OPTION_UP,        /* y | z | x | -y | -z | -x: --model's up axis */
     OPTION_PROBE,     /* X,Y: a pixel, checked against --size at the end */
 } option_kind;
 
@@ -270,6 +271,12 @@ static const option_spec option_table[] = {
                 "the cubes, at the origin, turning as cube 0; a scene file places models with "
                 "model lines",
      .default_text = "none: the cubes"},
+    /* A model line's `up` in a scene file; on the command line, for the
+     * one model --model names (luz_options_finish). */
+    {.name = "up", .kind = OPTION_UP, .syntax = "y|z|x|-y|-z|-x",
+     .summary = "with --model: which of the model's own axes points up, turned to +Y before "
+                "it is centred and scaled (SCENE.md, Up axis); CAD and STL files are often z",
+     .default_text = "y"},
     {.name = "scene", .kind = OPTION_SCENE, .syntax = "FILE",
      .summary = "read options and cubes from a scene file (the command line wins)",
      .default_text = "none"},
@@ -822,6 +829,12 @@ int luz_options_set_value(luz_options *options, const char *name, const char *va
         return set_shard(options, spec, value, where, error);
     case OPTION_PROBE:
         return set_probe(options, value, where, error);
+    case OPTION_UP:
+        if (!luz_up_axis_from_name(value, &options->up))
+            return luz_error_set(error, "%s: expected y, z, x, -y, -z or -x, got '%s'", where,
+                                 option_quote(value).text);
+        options->up_given = true;
+        return 0;
     case OPTION_SCENE:
     case OPTION_MODEL:
         /* Files are not this file's business: luz_options_set
@@ -998,6 +1011,11 @@ int luz_options_format(const luz_options *options, const char *name, char *buffe
         if (!options->probe)
             return -1;
         written = snprintf(buffer, size, "%d,%d", options->probe_x, options->probe_y);
+        break;
+    case OPTION_UP:
+        if (!options->up_given)
+            return -1;
+        written = snprintf(buffer, size, "%s", luz_up_axis_name(options->up));
         break;
     case OPTION_FLAG:
     case OPTION_SCENE:
@@ -1212,6 +1230,16 @@ int luz_options_finish(luz_options *options, luz_error *error)
                              "got %.9g",
                              (double)lights->spot_outer_degrees,
                              (double)lights->spot_inner_degrees);
+
+    /* --up names the axis of the model --model gives, whatever the order:
+     * that model alone, object 0, placed by no scene-file line. */
+    if (options->up_given) {
+        if (options->scene.object_count != 1 || options->object_sources[0].model_path == NULL ||
+            options->object_sources[0].line != 0)
+            return luz_error_set(error, "--up: expected --model FILE, whose up axis it names "
+                                        "(a scene file's model lines take `up AXIS`)");
+        options->objects[0].up = options->up;
+    }
 
     /* The marks are checked once --size is known, whatever the order. */
     for (int i = 0; i < options->mark_count; i++) {

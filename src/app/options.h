@@ -88,6 +88,8 @@ typedef struct luz_options {
     bool legend;                /* --legend: the view's legend in the image */
     int mark_count;             /* --mark: pixels ringed in the image */
     int marks[LUZ_MAX_MARKS][2];    /* x, y of each */
+    bool up_given;              /* --up AXIS: the up axis of --model's model */
+    luz_up_axis up;
     bool probe;                 /* --probe X,Y: explain pixel (probe_x, probe_y) */
     int probe_x, probe_y;       /* column and row, row 0 on top */
     bool help;

@@ -15,7 +15,7 @@
  * on a line but inside a quoted string (below); blank lines are ignored.
  * `cube = x, y, z` lines, optionally followed by `colour r,g,b` and
  * `texture NAME`, and `model = FILE` lines, optionally followed by
- * `at x,y,z`, `scale k`, `colour r,g,b`, `texture NAME` and `still`,
+ * `at x,y,z`, `scale k`, `colour r,g,b`, `texture NAME`, `up AXIS` and `still`,
  * replace the cube list with the user's own objects, in the order given. A
  * texture NAME is kept as text until the textures are loaded
  * (luz_options_resolve_textures), since the file is read before the
@@ -283,7 +283,7 @@ static option_parse_result read_triple(char *text, double numbers[3], char **nex
 
 /* The object lines:
  *   cube = x, y, z [colour r,g,b] [texture NAME]
- *   model = FILE [at x,y,z] [scale k] [colour r,g,b] [texture NAME] [still]
+ *   model = FILE [at x,y,z] [scale k] [colour r,g,b] [texture NAME] [up AXIS] [still]
  * the fields in any order. A model's FILE is relative to the scene file's
  * directory and kept absolute. */
 static int read_object(scene_reader *reader, char *value, bool is_model, luz_error *error)
@@ -292,7 +292,7 @@ static int read_object(scene_reader *reader, char *value, bool is_model, luz_err
     const int line = reader->line;
     const char *kind = is_model ? "model" : "cube";
     const char *syntax = is_model ? "FILE [at x,y,z] [scale k] [colour r,g,b] [texture NAME] "
-                                    "[still]"
+                                    "[up AXIS] [still]"
                                   : "x,y,z [colour r,g,b] [texture NAME]";
     if (reader->cubes_key_line != 0)
         return luz_error_set(error,
@@ -309,7 +309,7 @@ static int read_object(scene_reader *reader, char *value, bool is_model, luz_err
     char model_path[PATH_MAX];
     char *fields;
     double numbers[3];
-    bool has_position = false, has_scale = false;
+    bool has_position = false, has_scale = false, has_up = false;
     if (is_model) {
         char *file;
         if ((fields = read_word(reader, value, "model: FILE", &file, error)) == NULL)
@@ -410,6 +410,20 @@ static int read_object(scene_reader *reader, char *value, bool is_model, luz_err
             has_scale = true;
             object.scale = k;
             fields = end;
+        } else if (is_model && FIELD_IS("up")) {
+            /* The axis is one word (its letters would start a field). */
+            char *end = rest + strcspn(rest, " \t");
+            char saved = *end;
+            *end = '\0';
+            const bool known = rest[0] != '\0' && luz_up_axis_from_name(rest, &object.up);
+            *end = saved;
+            if (has_up || !known)
+                return luz_error_set(error,
+                                     "%s:%d: model: expected `up AXIS` once, AXIS one of y, z, "
+                                     "x, -y, -z, -x, got '%s'",
+                                     path, line, original.text);
+            has_up = true;
+            fields = end + strspn(end, " \t");
         } else if (is_model && FIELD_IS("still")) {
             if (object.still)
                 return luz_error_set(error, "%s:%d: model: duplicate still field in '%s'", path,
@@ -420,8 +434,8 @@ static int read_object(scene_reader *reader, char *value, bool is_model, luz_err
             fields[length] = '\0';
             return luz_error_set(error, "%s:%d: %s: unknown field '%s' (expected %s)", path,
                                  line, kind, option_quote(fields).text,
-                                 is_model ? "at x,y,z, scale k, colour r,g,b, texture NAME or "
-                                            "still"
+                                 is_model ? "at x,y,z, scale k, colour r,g,b, texture NAME, "
+                                            "up AXIS or still"
                                           : "colour r,g,b or texture NAME");
         }
 #undef FIELD_IS
@@ -729,6 +743,8 @@ void luz_options_write_scene(const luz_options *options, FILE *out)
             fputs(" texture ", out);
             write_text(out, source->texture_name, true);
         }
+        if (source->model_path != NULL && object->up != LUZ_UP_Y)
+            fprintf(out, " up %s", luz_up_axis_name(object->up));
         if (source->model_path != NULL && object->still)
             fputs(" still", out);
         fputc('\n', out);

@@ -235,11 +235,61 @@ luz_render_options luz_scene_render_options(const luz_scene *scene)
     return (luz_render_options){.view = scene->view, .interpolation = scene->interpolation};
 }
 
-luz_mat4 luz_lab_model_normalisation(const luz_lab_model *model)
+const char *luz_up_axis_name(luz_up_axis up)
 {
+    static const char *const names[LUZ_UP_AXIS_COUNT] = {"y", "z", "x", "-y", "-z", "-x"};
+    return (unsigned)up < LUZ_UP_AXIS_COUNT ? names[up] : "unknown";
+}
+
+bool luz_up_axis_from_name(const char *name, luz_up_axis *up)
+{
+    for (int axis = 0; axis < LUZ_UP_AXIS_COUNT; axis++) {
+        if (strcmp(name, luz_up_axis_name((luz_up_axis)axis)) == 0) {
+            *up = (luz_up_axis)axis;
+            return true;
+        }
+    }
+    return false;
+}
+
+/* The turned vector's coordinates, each a coordinate of (x, y, z) or its
+ * negation: SCENE.md's table. */
+static luz_vec3 turn_up(luz_up_axis up, luz_vec3 v)
+{
+    switch (up) {
+    case LUZ_UP_Z: return (luz_vec3){v.x, v.z, -v.y};
+    case LUZ_UP_X: return (luz_vec3){-v.y, v.x, v.z};
+    case LUZ_UP_MINUS_Y: return (luz_vec3){-v.x, -v.y, v.z};
+    case LUZ_UP_MINUS_Z: return (luz_vec3){v.x, -v.z, v.y};
+    case LUZ_UP_MINUS_X: return (luz_vec3){v.y, -v.x, v.z};
+    default: return v;
+    }
+}
+
+luz_mat4 luz_up_axis_matrix(luz_up_axis up)
+{
+    /* Column j is the turn of the unit vector e_j. */
+    luz_mat4 matrix = luz_mat4_identity();
+    const luz_vec3 units[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    for (int j = 0; j < 3; j++) {
+        const luz_vec3 column = turn_up(up, units[j]);
+        matrix.m[j * 4 + 0] = column.x;
+        matrix.m[j * 4 + 1] = column.y;
+        matrix.m[j * 4 + 2] = column.z;
+    }
+    return matrix;
+}
+
+luz_mat4 luz_lab_model_normalisation(const luz_lab_model *model, luz_up_axis up)
+{
+    /* The box after the turn: the turn of the box's corners, each
+     * coordinate turned exactly (a permutation with signs), sorted back
+     * into min and max. */
+    const luz_vec3 a = turn_up(up, model->bounds.min), c = turn_up(up, model->bounds.max);
+    const luz_bounds b = {{fminf(a.x, c.x), fminf(a.y, c.y), fminf(a.z, c.z)},
+                          {fmaxf(a.x, c.x), fmaxf(a.y, c.y), fmaxf(a.z, c.z)}};
     /* In double: min + max and max - min of huge coordinates overflow a
      * float. */
-    const luz_bounds b = model->bounds;
     const luz_vec3 centre = {(float)(0.5 * ((double)b.min.x + b.max.x)),
                              (float)(0.5 * ((double)b.min.y + b.max.y)),
                              (float)(0.5 * ((double)b.min.z + b.max.z))};
@@ -247,8 +297,11 @@ luz_mat4 luz_lab_model_normalisation(const luz_lab_model *model)
     if ((double)b.max.y - b.min.y > side) side = (double)b.max.y - b.min.y;
     if ((double)b.max.z - b.min.z > side) side = (double)b.max.z - b.min.z;
     const float k = (float)(2.0 / side);
-    return luz_mat4_translate(luz_mat4_scale(luz_mat4_identity(), (luz_vec3){k, k, k}),
-                              luz_vec3_scale(centre, -1.0f));
+    const luz_mat4 scale_and_centre = luz_mat4_translate(
+        luz_mat4_scale(luz_mat4_identity(), (luz_vec3){k, k, k}), luz_vec3_scale(centre, -1.0f));
+    /* Up is the identity for y: the product then changes no bit. */
+    return up == LUZ_UP_Y ? scale_and_centre
+                          : luz_mat4_multiply(scale_and_centre, luz_up_axis_matrix(up));
 }
 
 /* Object i, a model: M_i(t) = Translate(p) Rotate(angle_i, axis) Scale(k)
@@ -263,7 +316,7 @@ static int add_model(luz_frame *frame, const luz_scene *scene, const luz_object 
     const luz_lab_model *model = object->model;
     const float k = object->scale > 0.0f ? object->scale : 1.0f;
     const luz_mat4 matrix = luz_mat4_multiply(luz_mat4_scale(placed, (luz_vec3){k, k, k}),
-                                              luz_lab_model_normalisation(model));
+                                              luz_lab_model_normalisation(model, object->up));
     for (int p = 0; p < model->part_count; p++) {
         const luz_lab_model_part *part = &model->parts[p];
         luz_draw draw = {.mesh = part->mesh, .model = matrix};

@@ -70,10 +70,31 @@ typedef struct luz_lab_model {
     luz_bounds bounds;             /* around every part's vertices */
 } luz_lab_model;
 
-/* Norm = Scale(2 / s) * Translate(-c): c the bounds' centre, s their
- * largest side, so the model is centred on the origin and spans [-1, 1]
- * along its longest axis. s must be above 0. */
-luz_mat4 luz_lab_model_normalisation(const luz_lab_model *model);
+/* SCENE.md's "Up axis": which of a model's own axes points up. The model
+ * is first turned so that this axis becomes +Y: */
+typedef enum luz_up_axis {
+    LUZ_UP_Y,        /* the default: as the file is */
+    LUZ_UP_Z,        /* -90 degrees about X: (x, y, z) -> (x, z, -y) */
+    LUZ_UP_X,        /* +90 degrees about Z: (x, y, z) -> (-y, x, z) */
+    LUZ_UP_MINUS_Y,  /* 180 degrees about Z: (x, y, z) -> (-x, -y, z) */
+    LUZ_UP_MINUS_Z,  /* +90 degrees about X: (x, y, z) -> (x, -z, y) */
+    LUZ_UP_MINUS_X,  /* -90 degrees about Z: (x, y, z) -> (y, -x, z) */
+    LUZ_UP_AXIS_COUNT
+} luz_up_axis;
+
+/* "y", "z", "x", "-y", "-z", "-x"; "unknown" for another value. */
+const char *luz_up_axis_name(luz_up_axis up);
+/* The axis of a name, into *up; false for a name that is none. */
+bool luz_up_axis_from_name(const char *name, luz_up_axis *up);
+/* The turn itself, as a matrix: a permutation of the axes with signs, so
+ * every vertex is turned exactly. */
+luz_mat4 luz_up_axis_matrix(luz_up_axis up);
+
+/* Norm = Scale(2 / s) * Translate(-c) * Up: the model turned so that its
+ * `up` axis is +Y, then c the centre of its box and s the box's largest
+ * side after the turn, so the model is centred on the origin and spans
+ * [-1, 1] along its longest axis. s must be above 0. */
+luz_mat4 luz_lab_model_normalisation(const luz_lab_model *model, luz_up_axis up);
 
 /* ---- the scene's objects -------------------------------------------------- */
 
@@ -91,6 +112,7 @@ typedef struct luz_object {
     const luz_lab_model *model;   /* NULL: a cube */
     float scale;         /* a model's k; 0 means 1 */
     bool still;          /* a model that does not turn */
+    luz_up_axis up;      /* a model's up axis (SCENE.md, "Up axis") */
 } luz_object;
 
 #define LUZ_MAX_CUBES 100000
