@@ -1381,8 +1381,10 @@ static void draw_frame(gl_reference *gl, const scene_data *data, double t, frame
         glDrawElements(GL_TRIANGLES, 36, GL_UNSIGNED_SHORT, NULL);
     }
 
+    double submitted = luz_wall_ms();
     /* Four samples: the resolve, the average of each pixel's samples
-     * (SCENE.md writes it floor((s0 + s1 + s2 + s3 + 2) / 4)). */
+     * (SCENE.md writes it floor((s0 + s1 + s2 + s3 + 2) / 4)); it waits
+     * for the draws, so it counts with glFinish as rasterisation. */
     if (gl->samples > 1) {
         glBindFramebuffer(GL_READ_FRAMEBUFFER, gl->framebuffer);
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gl->resolve_framebuffer);
@@ -1390,8 +1392,6 @@ static void draw_frame(gl_reference *gl, const scene_data *data, double t, frame
                           GL_COLOR_BUFFER_BIT, GL_NEAREST);
         glBindFramebuffer(GL_FRAMEBUFFER, gl->framebuffer);
     }
-
-    double submitted = luz_wall_ms();
     glFinish();
     if (times != NULL) {
         times->submit_ms = submitted - start;
