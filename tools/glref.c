@@ -117,7 +117,7 @@ static const char *const up_axis_names[UP_AXIS_COUNT] = {"y", "z", "x", "-y", "-
  * and a --model's up axis ("Up axis"), once resolved: given, or the
  * contract's defaults. */
 typedef struct glref_settings {
-    int samples;              /* 1 or 4 */
+    int samples;              /* 1 or 4: luz's --samples, or a scene file's */
     bool has_exposure;        /* given; else 0, or -1 with a model */
     double exposure;          /* EV: lit colours are multiplied by 2^EV */
     bool has_tonemap;         /* given; else clamp, or neutral with a model */
@@ -171,7 +171,7 @@ static const char *take_value(int argc, char **argv, int *index, const char *nam
 }
 
 /* Takes glref's own options out of argv (--check-samples, and until luz's
- * parser reads them, --samples, --exposure, --tonemap and --up), checked
+ * parser reads them, --exposure, --tonemap and --up), checked
  * as luz-render checks them; what is left goes to luz's parser. Returns 0,
  * or -1 with one line naming the option. */
 static int take_own_options(int *argc, char **argv, glref_settings *settings, luz_error *error)
@@ -183,10 +183,6 @@ static int take_own_options(int *argc, char **argv, glref_settings *settings, lu
         if (strcmp(argv[index], "--check-samples") == 0) {
             settings->check_samples = true;
             index++;
-        } else if ((value = take_value(*argc, argv, &index, "samples", &missing)) != NULL) {
-            if (missing || (strcmp(value, "1") != 0 && strcmp(value, "4") != 0))
-                return luz_error_set(error, "--samples: expected 1 or 4, got '%s'", value);
-            settings->samples = value[0] - '0';
         } else if ((value = take_value(*argc, argv, &index, "exposure", &missing)) != NULL) {
             char *end;
             errno = 0;
@@ -1553,6 +1549,7 @@ int main(int argc, char **argv)
     luz_options_init(&options);
     if (take_own_options(&argc, argv, &settings, &error) != 0) goto done;
     if (luz_options_parse(&options, argc, argv, &error) != 0) goto done;
+    settings.samples = options.scene.samples == 4 ? 4 : 1;   /* 0 means 1 */
     if (settings.has_up && !(scene_has_model(&options) && options.object_sources[0].line == 0)) {
         luz_error_set(&error, "--up: expected --model FILE, whose up axis it names");
         goto done;
