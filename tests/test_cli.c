@@ -29,6 +29,7 @@
 
 #include <dirent.h>
 #include <errno.h>
+#include <math.h>
 #include <fcntl.h>
 #include <signal.h>
 #include <stdio.h>
@@ -980,7 +981,8 @@ static void test_probe(void **state)
     static const char *const keys[] = {"triangle", "barycentric", "w", "P", "uv", "rho",
                                        "lod", "levels", "weight", "texel", "ambient",
                                        "diffuse", "specular", "point", "spot", "directional",
-                                       "light", "C", "colour", "bytes"};
+                                       "light", "C", "colour", "exposure", "tonemap",
+                                       "exposed", "mapped", "bytes"};
     for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++)
         if (key_value(result.out, keys[i], value, sizeof value) == NULL)
             fail_msg("no %s= in:\n%s", keys[i], result.out);
@@ -1414,6 +1416,39 @@ static void test_exposure_and_tone_map_reach_the_image(void **state)
         assert_rgb(image, 32, 0, 0, 26, 26, 26);
         stbi_image_free(image);
     }
+    /* The probe at the cube's centre pixel, worked by hand: colour 0.5
+     * (ambient 0.5 x C 1 x T 1), exposure 1, tonemap neutral, exposed
+     * 0.5 x 2 = 1, mapped 1 - 0.0576 / 0.44 = 0.8690909 after the offset
+     * 0.04, bytes 222. */
+    run_result probed = run_in(&box,
+                               ARGS("--scene", "white.luz", "--exposure", "1", "--tonemap",
+                                    "neutral", "--probe", "16,9"),
+                               NULL);
+    assert_success(&probed);
+    char value[256];
+    assert_string_equal(key_value(probed.out, "colour", value, sizeof value), "0.5,0.5,0.5");
+    assert_string_equal(key_value(probed.out, "exposure", value, sizeof value), "1");
+    assert_string_equal(key_value(probed.out, "tonemap", value, sizeof value), "neutral");
+    assert_string_equal(key_value(probed.out, "exposed", value, sizeof value), "1,1,1");
+    key_value(probed.out, "mapped", value, sizeof value);
+    float mapped[3];
+    assert_int_equal(sscanf(value, "%f,%f,%f", &mapped[0], &mapped[1], &mapped[2]), 3);
+    for (int c = 0; c < 3; c++) assert_true(fabsf(mapped[c] - 0.8690909f) < 1e-6f);
+    assert_string_equal(key_value(probed.out, "bytes", value, sizeof value), "222,222,222");
+    /* the lines in this order, after colour */
+    assert_non_null(strstr(probed.out, "\ncolour=0.5,0.5,0.5\nexposure=1\ntonemap=neutral\n"
+                                       "exposed=1,1,1\nmapped="));
+    run_result_free(&probed);
+    /* and clamp at EV -1: exposed = mapped = 0.25, bytes 64 */
+    probed = run_in(&box, ARGS("--scene", "white.luz", "--exposure", "-1", "--probe", "16,9"),
+                    NULL);
+    assert_success(&probed);
+    assert_string_equal(key_value(probed.out, "tonemap", value, sizeof value), "clamp");
+    assert_string_equal(key_value(probed.out, "exposed", value, sizeof value), "0.25,0.25,0.25");
+    assert_string_equal(key_value(probed.out, "mapped", value, sizeof value), "0.25,0.25,0.25");
+    assert_string_equal(key_value(probed.out, "bytes", value, sizeof value), "64,64,64");
+    run_result_free(&probed);
+
     write_text(box.work, "neutral.luz",
                "size = 32x18\ntextures = none\nonly = ambient\nambient = 1, 1, 1, 0.5\n"
                "cube = 0, 0, 0 colour 1, 1, 1\nexposure = 1\ntonemap = neutral\n");

@@ -51,6 +51,11 @@ static luz_pixel_probe *hand_made_probe(void)
     probe->texel = (luz_vec3){0.5f, 0.25f, 1.0f};
     probe->object_colour = (luz_vec3){1.0f, 0.5f, 0.2f};
     probe->colour = (luz_vec3){1.0f, 0.2125f, 0.28f};
+    /* the output, made up by hand: its swatch is mapped's, not colour's */
+    probe->exposure = -1.0f;
+    probe->tone_map = LUZ_TONE_MAP_NEUTRAL;
+    probe->exposed = (luz_vec3){0.5f, 0.10625f, 0.14f};
+    probe->mapped = (luz_vec3){0.5f, 0.25f, 1.0f};
     probe->bytes[0] = 255;
     probe->bytes[1] = 54;
     probe->bytes[2] = 71;
@@ -153,6 +158,7 @@ static void test_bars_are_the_terms(void **state)
     assert_filled(&p, layout.swatch[LUZ_PROBE_SWATCH_OBJECT], (luz_rgba){255, 128, 51, 255});
     assert_filled(&p, layout.swatch[LUZ_PROBE_SWATCH_COLOUR], (luz_rgba){255, 54, 71, 255});
     assert_filled(&p, layout.swatch[LUZ_PROBE_SWATCH_BYTES], (luz_rgba){255, 54, 71, 255});
+    assert_filled(&p, layout.swatch[LUZ_PROBE_SWATCH_MAPPED], (luz_rgba){128, 64, 255, 255});
     assert_int_equal(layout.swatch[LUZ_PROBE_SWATCH_SHOWN].width, 0);   /* no view */
     /* The box in the bottom-left corner, inside the frame, the history
      * listed whole. */

@@ -260,6 +260,16 @@ static void panel_rows_of(panel_rows *rows, const luz_pixel_probe *probe,
     }
     add_view_rows(rows, probe);
     panel_row *row = add_row(rows, ROW_SWATCHES, accent_colour);
+    if (probe->triangle != 0 && probe->shading == LUZ_SHADING_LIT &&
+        probe->view == LUZ_VIEW_COLOR) {
+        /* The output (SCENE.md): light x C x T times 2^EV, then the tone
+         * map, whose clamp is the bytes. */
+        char label[48];
+        snprintf(label, sizeof label, "EV %+.1f %s", (double)probe->exposure,
+                 luz_tone_map_name(probe->tone_map));
+        format_vec3(a, sizeof a, probe->mapped);
+        add_swatch(row, LUZ_PROBE_SWATCH_MAPPED, label, swatch_of(probe->mapped), a);
+    }
     snprintf(c, sizeof c, "%u %u %u", probe->bytes[0], probe->bytes[1], probe->bytes[2]);
     add_swatch(row, LUZ_PROBE_SWATCH_BYTES, "bytes",
                (luz_rgba){probe->bytes[0], probe->bytes[1], probe->bytes[2], 255}, c);

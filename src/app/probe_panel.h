@@ -23,7 +23,9 @@
  *     ...                                         length the term's mean
  *     light        [the six bars end to end]      channel, in the term's
  *     C  [swatch] ...   colour [swatch] ...       colour of the key
- *     bytes [swatch] 120 255 159
+ *     EV +0.0 clamp [swatch] ...  bytes [swatch] 120 255 159
+ *                                                 (the colour exposed and
+ *                                                 tone-mapped, its bytes)
  *     2 depth tests, in draw order
  *      1 cube 0 triangle 1   0.96096 < 1.00000  pass
  *      ...
@@ -49,6 +51,7 @@ typedef enum luz_probe_swatch {
     LUZ_PROBE_SWATCH_TEXEL,     /* T */
     LUZ_PROBE_SWATCH_OBJECT,    /* C */
     LUZ_PROBE_SWATCH_COLOUR,    /* light x C x T, clamped */
+    LUZ_PROBE_SWATCH_MAPPED,    /* that colour exposed and tone-mapped */
     LUZ_PROBE_SWATCH_SHOWN,     /* what a view shows */
     LUZ_PROBE_SWATCH_BYTES,     /* the image's pixel */
     LUZ_PROBE_SWATCH_COUNT

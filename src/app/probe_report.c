@@ -190,6 +190,13 @@ static void write_winner(FILE *out, const luz_pixel_probe *probe, const luz_prob
     line_vec3(out, "light", probe->light);
     line_vec3(out, "C", probe->object_colour);
     line_vec3(out, "colour", probe->colour);
+
+    /* the output (SCENE.md, "Output"): colour x 2^EV, then the tone map,
+     * whose result round(clamp(mapped) x 255) is the bytes */
+    line_float(out, "exposure", probe->exposure);
+    fprintf(out, "tonemap=%s\n", luz_tone_map_name(probe->tone_map));
+    line_vec3(out, "exposed", probe->exposed);
+    line_vec3(out, "mapped", probe->mapped);
 }
 
 /* What a view other than color shows at the pixel. */
