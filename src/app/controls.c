@@ -146,6 +146,11 @@ luz_view luz_view_next(luz_view view, bool backwards)
     return (luz_view)(next % LUZ_VIEW_COUNT);
 }
 
+int luz_samples_next(int samples)
+{
+    return samples == 4 ? 1 : 4;
+}
+
 luz_interpolation luz_interpolation_next(luz_interpolation interpolation)
 {
     return interpolation == LUZ_INTERPOLATION_PERSPECTIVE ? LUZ_INTERPOLATION_AFFINE
@@ -220,7 +225,7 @@ const luz_control_help luz_controls_help[] = {
     {"[ / ], N", "exposure down / up half a stop; tone map clamp / neutral"},
     {"F", "texture filter: nearest, bilinear, trilinear"},
     {"V / Shift+V", "next / previous view of the pipeline (its legend in the HUD)"},
-    {"X", "interpolation: perspective-correct or affine"},
+    {"X, B", "interpolation perspective-correct / affine; 1 / 4 samples a pixel"},
     {"G", "step mode: draw the frame triangle by triangle, slowly"},
     {"E", "probe mode: click a pixel to see why it has its colour; T freezes the panel"},
     {"Shift+E", "forget the probed pixel and close its panel"},

@@ -123,6 +123,9 @@ void luz_tone_map_toggle(luz_scene *scene);
  * overdraw, bands, triangles, then color again). */
 luz_view luz_view_next(luz_view view, bool backwards);
 
+/* B: 1 <-> 4 samples a pixel. */
+int luz_samples_next(int samples);
+
 /* X: perspective-correct <-> affine interpolation. */
 luz_interpolation luz_interpolation_next(luz_interpolation interpolation);
 

@@ -168,7 +168,7 @@ static const option_spec option_table[] = {
      .in_scene_file = true, .saving = LUZ_OPTION_SAVED, .syntax = "1|4",
      .summary = "samples a pixel: 1 (at its centre) or 4 (anti-aliased: SCENE.md's 4x "
                 "pattern, each pixel's samples averaged)",
-     .default_text = "1 (the viewer: 4)"},
+     .default_text = "1"},
     /* The output of lit colours (SCENE.md, "Output"), saved and shown as
      * in force: the user's, else the default of a scene with or without
      * models (luz_options_output). 2^10 takes a colour of 1/1000 to 1,

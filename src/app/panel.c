@@ -553,6 +553,8 @@ void luz_hud_draw(luz_layer *layer, const luz_hud *hud)
     hud_add(&text, true, text_colour, "view %s (V)", luz_view_name(scene->view));
     hud_add(&text, false, text_colour, "interp %s (X)",
             luz_interpolation_name(scene->interpolation));
+    hud_add(&text, false, text_colour, "%d sample%s (B)", scene->samples,
+            scene->samples == 1 ? "" : "s");
     if (hud->step_shown > 0)
         hud_add(&text, true, text_colour, "step (G): %lu of %llu triangles",
                 (unsigned long)hud->step_shown, (unsigned long long)hud->step_total);

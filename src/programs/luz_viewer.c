@@ -497,6 +497,7 @@ static void handle_key(viewer *v, const SDL_KeyboardEvent *key)
     case SDLK_LEFTBRACKET: luz_exposure_step(scene, -1); break;
     case SDLK_RIGHTBRACKET: luz_exposure_step(scene, +1); break;
     case SDLK_n: luz_tone_map_toggle(scene); break;
+    case SDLK_b: scene->samples = luz_samples_next(scene->samples); break;
     case SDLK_g:
         /* The step mode freezes the animation, so the triangles keep their
          * order while they are drawn one by one; leaving it restores the
