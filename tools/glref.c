@@ -110,33 +110,25 @@ enum {
 
 /* SCENE.md's "Up axis": which of a model's own axes points up. */
 typedef enum up_axis { UP_Y, UP_Z, UP_X, UP_MINUS_Y, UP_MINUS_Z, UP_MINUS_X, UP_AXIS_COUNT } up_axis;
-static const char *const up_axis_names[UP_AXIS_COUNT] = {"y", "z", "x", "-y", "-z", "-x"};
 
 /* The frame's sample count (SCENE.md, "Anti-aliasing: four samples a
- * pixel"), the output of lit fragments ("Output: exposure and tone map")
- * and a --model's up axis ("Up axis"), once resolved: given, or the
- * contract's defaults. */
+ * pixel") and the output of lit fragments ("Output: exposure and tone
+ * map"), once resolved from luz's options: given (on the command line or
+ * in a scene file), or the contract's defaults. */
 typedef struct glref_settings {
-    int samples;              /* 1 or 4: luz's --samples, or a scene file's */
-    bool has_exposure;        /* given; else 0, or -1 with a model */
+    int samples;              /* 1 or 4 */
     double exposure;          /* EV: lit colours are multiplied by 2^EV */
-    bool has_tonemap;         /* given; else clamp, or neutral with a model */
     bool neutral;             /* the Khronos PBR Neutral tone map, else clamp */
-    bool has_up;
-    up_axis up;               /* of the object --model places */
     bool check_samples;       /* --check-samples: print llvmpipe's positions */
 } glref_settings;
 
-/* Object i's up axis: --up for the object --model places (it has no
- * scene-file line), else what luz's options read (a model line's `up`;
- * luz_up_axis lists the axes in glref's order). */
+/* Object i's up axis, as luz's options read it (--up for --model's model,
+ * a model line's `up`); luz_up_axis lists the axes in glref's order. */
 _Static_assert((int)LUZ_UP_Z == (int)UP_Z && (int)LUZ_UP_MINUS_X == (int)UP_MINUS_X &&
                    (int)LUZ_UP_AXIS_COUNT == (int)UP_AXIS_COUNT,
                "glref's up axes are luz's, in the same order");
-static up_axis object_up(const luz_options *options, const glref_settings *settings, int i)
+static up_axis object_up(const luz_options *options, int i)
 {
-    const luz_object_source *source = &options->object_sources[i];
-    if (source->model_path != NULL && source->line == 0 && settings->has_up) return settings->up;
     return (up_axis)options->objects[i].up;
 }
 
@@ -150,70 +142,19 @@ static bool scene_has_model(const luz_options *options)
     return false;
 }
 
-/* The value of option `name` at argv[*index] ("--name VALUE" or
- * "--name=VALUE"), or NULL if argv[*index] is another argument. Moves
- * *index past what it read. */
-static const char *take_value(int argc, char **argv, int *index, const char *name, bool *missing)
-{
-    const char *text = argv[*index];
-    size_t length = strlen(name);
-    if (strncmp(text, "--", 2) != 0 || strncmp(text + 2, name, length) != 0) return NULL;
-    const char *rest = text + 2 + length;
-    if (*rest == '=') {
-        (*index)++;
-        *missing = rest[1] == '\0';
-        return rest + 1;
-    }
-    if (*rest != '\0') return NULL;
-    (*index)++;
-    *missing = *index >= argc || argv[*index][0] == '\0';
-    return *index < argc ? argv[(*index)++] : "";
-}
-
-/* Takes glref's own options out of argv (--check-samples, and until luz's
- * parser reads them, --exposure, --tonemap and --up), checked
- * as luz-render checks them; what is left goes to luz's parser. Returns 0,
- * or -1 with one line naming the option. */
-static int take_own_options(int *argc, char **argv, glref_settings *settings, luz_error *error)
+/* Takes glref's own option, --check-samples, out of argv; what is left
+ * goes to luz's parser. */
+static void take_own_options(int *argc, char **argv, glref_settings *settings)
 {
     int kept = 1;
-    for (int index = 1; index < *argc;) {
-        bool missing = false;
-        const char *value;
-        if (strcmp(argv[index], "--check-samples") == 0) {
+    for (int index = 1; index < *argc; index++) {
+        if (strcmp(argv[index], "--check-samples") == 0)
             settings->check_samples = true;
-            index++;
-        } else if ((value = take_value(*argc, argv, &index, "exposure", &missing)) != NULL) {
-            char *end;
-            errno = 0;
-            double ev = missing ? NAN : strtod(value, &end);
-            if (missing || errno != 0 || end == value || *end != '\0' || !isfinite(ev) ||
-                ev < -10.0 || ev > 10.0)
-                return luz_error_set(error, "--exposure: expected a number of stops in "
-                                            "[-10, 10], got '%s'", value);
-            settings->has_exposure = true;
-            settings->exposure = ev;
-        } else if ((value = take_value(*argc, argv, &index, "tonemap", &missing)) != NULL) {
-            if (strcmp(value, "clamp") != 0 && strcmp(value, "neutral") != 0)
-                return luz_error_set(error, "--tonemap: expected clamp or neutral, got '%s'",
-                                     value);
-            settings->has_tonemap = true;
-            settings->neutral = strcmp(value, "neutral") == 0;
-        } else if ((value = take_value(*argc, argv, &index, "up", &missing)) != NULL) {
-            int axis = 0;
-            while (axis < UP_AXIS_COUNT && strcmp(value, up_axis_names[axis]) != 0) axis++;
-            if (axis == UP_AXIS_COUNT)
-                return luz_error_set(error, "--up: expected y, z, x, -y, -z or -x, got '%s'",
-                                     value);
-            settings->has_up = true;
-            settings->up = (up_axis)axis;
-        } else {
-            argv[kept++] = argv[index++];
-        }
+        else
+            argv[kept++] = argv[index];
     }
     *argc = kept;
     argv[kept] = NULL;
-    return 0;
 }
 
 /* ---- the cube of SCENE.md, copied from its table ------------------------------------ */
@@ -1064,15 +1005,15 @@ static int load_model(gl_model *model, const char *path, up_axis up, luz_filter 
 /* Every model file the objects name, each read once per up axis;
  * object_models[i] is object i's model (an index into gl->models), or -1
  * for a cube. */
-static int load_models(gl_reference *gl, const luz_options *options, const glref_settings *settings,
-                       int *object_models, luz_error *error)
+static int load_models(gl_reference *gl, const luz_options *options, int *object_models,
+                       luz_error *error)
 {
     const int count = options->scene.objects ? options->scene.object_count : 0;
     for (int i = 0; i < count; i++) {
         const char *path = options->object_sources[i].model_path;
         object_models[i] = -1;
         if (path == NULL) continue;
-        up_axis up = object_up(options, settings, i);
+        up_axis up = object_up(options, i);
         for (int m = 0; m < gl->model_count && object_models[i] < 0; m++)
             if (strcmp(gl->models[m].path, path) == 0 && gl->models[m].up == up)
                 object_models[i] = m;
@@ -1502,13 +1443,8 @@ static void print_usage(FILE *out)
             "EGL surfaceless), the reference luz is compared with. The options are\n"
             "luz-render's; --threads N sets llvmpipe's LP_NUM_THREADS.\n"
             "\n"
-            "  --samples 1|4                samples a pixel (4: multisample renderbuffers\n"
-            "                               resolved by glBlitFramebuffer) (default: 1)\n"
-            "  --exposure EV                lit colours times 2^EV, EV in [-10, 10]\n"
-            "                               (default: 0; -1 when the scene has a model)\n"
-            "  --tonemap clamp|neutral      the output (default: clamp; neutral, the\n"
-            "                               Khronos PBR Neutral, when the scene has a model)\n"
-            "  --up y|z|x|-y|-z|-x          which of --model's axes points up (default: y)\n"
+            "--samples 4 draws into multisample renderbuffers that glBlitFramebuffer\n"
+            "resolves. glref's own option:\n"
             "  --check-samples              print llvmpipe's 4 sample positions and check\n"
             "                               them against SCENE.md's (exit 1 if they differ)\n"
             "\n");
@@ -1547,19 +1483,18 @@ int main(int argc, char **argv)
     int status = EXIT_USAGE;
 
     luz_options_init(&options);
-    if (take_own_options(&argc, argv, &settings, &error) != 0) goto done;
+    take_own_options(&argc, argv, &settings);
     if (luz_options_parse(&options, argc, argv, &error) != 0) goto done;
     settings.samples = options.scene.samples == 4 ? 4 : 1;   /* 0 means 1 */
-    if (settings.has_up && !(scene_has_model(&options) && options.object_sources[0].line == 0)) {
-        luz_error_set(&error, "--up: expected --model FILE, whose up axis it names");
-        goto done;
-    }
-    /* SCENE.md's defaults are clamp at EV 0, and neutral at EV -1 with a
-     * model, unless a scene file set them: the output luz's options have
-     * in force when the command line gave none. */
-    const luz_output output = luz_options_output(&options);
-    if (!settings.has_exposure) settings.exposure = output.exposure;
-    if (!settings.has_tonemap) settings.neutral = output.tone_map == LUZ_TONE_MAP_NEUTRAL;
+    /* SCENE.md's defaults, worked out here from what the user gave: clamp
+     * at EV 0, and neutral at EV -1 when the scene has a model. */
+    const bool has_model = scene_has_model(&options);
+    settings.exposure = options.scene.has_exposure ? options.scene.exposure
+                        : has_model                ? -1.0
+                                                   : 0.0;
+    settings.neutral = options.scene.has_tone_map
+                           ? options.scene.tone_map == LUZ_TONE_MAP_NEUTRAL
+                           : has_model;
     if (options.help) {
         print_usage(stdout);
         status = EXIT_OK;
@@ -1614,7 +1549,7 @@ int main(int argc, char **argv)
     upload_cube(&gl);
     if (upload_textures(&gl, &textures, options.scene.filter, &error) != 0) goto done;
     /* A model that cannot be read is the user's error, as in luz-render. */
-    if (load_models(&gl, &options, &settings, data.object_models, &error) != 0) {
+    if (load_models(&gl, &options, data.object_models, &error) != 0) {
         status = EXIT_USAGE;
         goto done;
     }
