@@ -27,6 +27,7 @@
  * model file; the lab's tests need no file and always run.
  */
 #define _XOPEN_SOURCE 700
+#define _DEFAULT_SOURCE   /* syscall */
 
 #include <stdarg.h>
 #include <stddef.h>
@@ -46,6 +47,13 @@
 #include <sys/types.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#if defined(__x86_64__)
+#include <linux/audit.h>
+#include <linux/filter.h>
+#include <linux/seccomp.h>
+#include <sys/prctl.h>
+#include <sys/syscall.h>
+#endif
 
 #include <stb_image.h>
 #include <stb_image_write.h>
@@ -403,6 +411,107 @@ static void write_texture_model(const char *stem, const char *texture_line)
     write_text(name, text);
 }
 
+/* ---- textures named outside the model's folder (issue 32, finding 4) -------------------- */
+
+/* models/confine/ holds one-triangle models whose material names a
+ * texture: outside/secret.png (texture_b, 3x1) beside models/, reached by
+ * an absolute path, by `..`, through a relative and an absolute symbolic
+ * link; and img/real.png (texture_a, 2x2) inside, reached through a link
+ * that stays inside and by a name that goes up and back down. */
+typedef struct confinement_case {
+    const char *stem;        /* models/confine/STEM.obj */
+    const char *map;         /* what its material names; "@" is work/ */
+    bool inside;             /* the texture lies in the folder */
+    const char *rule;        /* the warning's reason when outside */
+} confinement_case;
+
+static const confinement_case confinement_cases[] = {
+    {"absolute", "@/outside/secret.png", false, "named by an absolute path"},
+    {"dotdot", "../../outside/secret.png", false, "through '..' or a symbolic link"},
+    {"backslashes", "..\\..\\outside\\secret.png", false, "through '..' or a symbolic link"},
+    {"link", "out-link.png", false, "through '..' or a symbolic link"},
+    {"abslink", "abs-link.png", false, "through '..' or a symbolic link"},
+    {"dirlink", "out-dir/secret.png", false, "through '..' or a symbolic link"},
+    {"inlink", "in-link.png", true, NULL},
+    {"updown", "img/../img/real.png", true, NULL},
+};
+
+static void write_confinement_files(void)
+{
+    make_directory("outside");
+    write_png("outside/secret.png", 3, 1, texture_b);
+    make_directory("models/confine");
+    make_directory("models/confine/img");
+    write_png("models/confine/img/real.png", 2, 2, texture_a);
+    char target[1024], link_path[1024];
+    work_path("outside/secret.png", target, sizeof target);
+    work_path("models/confine/abs-link.png", link_path, sizeof link_path);
+    assert_int_equal(symlink(target, link_path), 0);
+    work_path("models/confine/out-link.png", link_path, sizeof link_path);
+    assert_int_equal(symlink("../../outside/secret.png", link_path), 0);
+    work_path("models/confine/out-dir", link_path, sizeof link_path);
+    assert_int_equal(symlink("../../outside", link_path), 0);
+    work_path("models/confine/in-link.png", link_path, sizeof link_path);
+    assert_int_equal(symlink("img/real.png", link_path), 0);
+    for (size_t c = 0; c < sizeof confinement_cases / sizeof confinement_cases[0]; c++) {
+        const confinement_case *test = &confinement_cases[c];
+        char name[128], text[2048], map[1024];
+        if (test->map[0] == '@')
+            snprintf(map, sizeof map, "%s%s", work_directory, test->map + 1);
+        else
+            snprintf(map, sizeof map, "%s", test->map);
+        snprintf(name, sizeof name, "models/confine/%s.obj", test->stem);
+        snprintf(text, sizeof text, texture_obj_format, test->stem);
+        write_text(name, text);
+        snprintf(name, sizeof name, "models/confine/%s.mtl", test->stem);
+        snprintf(text, sizeof text, "newmtl m\nKd 1 1 1\nmap_Kd %s\n", map);
+        write_text(name, text);
+    }
+}
+
+/* Loads every confinement case under files and checks it; returns NULL, or
+ * what went wrong (no cmocka here: it also runs in a child process). */
+static const char *check_confinement(luz_model_files files, char *why, size_t size)
+{
+    for (size_t c = 0; c < sizeof confinement_cases / sizeof confinement_cases[0]; c++) {
+        const confinement_case *test = &confinement_cases[c];
+        char path[1024], name[128];
+        snprintf(name, sizeof name, "models/confine/%s.obj", test->stem);
+        work_path(name, path, sizeof path);
+        luz_model model;
+        luz_error error = {{0}};
+        const luz_model_rules rules = {.files = files};
+        if (luz_model_load_with(&model, path, &rules, NULL, &error) != 0) {
+            snprintf(why, size, "%s: %s", test->stem, error.message);
+            return why;
+        }
+        const bool drawn = test->inside || files == LUZ_MODEL_FILES_ANYWHERE;
+        const luz_texture *texture = model.part_count == 1 ? model.parts[0].texture : NULL;
+        const uint8_t *expected = test->inside ? texture_a : texture_b;
+        const int width = test->inside ? 2 : 3, height = test->inside ? 2 : 1;
+        if (drawn && (texture == NULL || texture->levels[0].width != width ||
+                      texture->levels[0].height != height ||
+                      memcmp(texture->levels[0].texels, expected, (size_t)width * height * 4)))
+            snprintf(why, size, "%s: the texture is not the file's (%d warnings: %s)", test->stem,
+                     model.warning_count, model.warning_count ? model.warnings[0] : "");
+        else if (drawn && model.warning_count != 0)
+            snprintf(why, size, "%s: drawn, yet warned: %s", test->stem, model.warnings[0]);
+        else if (!drawn && (texture != NULL || model.warning_count != 1))
+            snprintf(why, size, "%s: read from outside the folder (%d warnings)", test->stem,
+                     model.warning_count);
+        else if (!drawn && (strstr(model.warnings[0], test->rule) == NULL ||
+                            strstr(model.warnings[0], "--model-files anywhere") == NULL ||
+                            strstr(model.warnings[0], path) == NULL))
+            snprintf(why, size, "%s: the warning does not name the rule: %s", test->stem,
+                     model.warnings[0]);
+        else
+            why[0] = '\0';
+        luz_model_free(&model);
+        if (why[0] != '\0') return why;
+    }
+    return NULL;
+}
+
 static int setup_files(void **state)
 {
     (void)state;
@@ -444,6 +553,7 @@ static int setup_files(void **state)
     write_texture_model("cuttex", "map_Kd tex/cut.png");
     write_bytes("models/tex/cut.png", png, 40);   /* the signature, IHDR, and no more */
 
+    write_confinement_files();
     write_two_quads("twobad", "map_Kd tex/gone.png", "map_Kd tex/bad.png");
     write_two_quads("twoplain", "", "");
     write_two_quads("samegone", "map_Kd tex/gone.png", "map_Kd tex/gone.png");
@@ -819,6 +929,67 @@ static void test_missing_or_corrupt_texture_is_a_warning(void **state)
     assert_vec3_near(model.parts[0].colour, 0.5, 0.25, 1, 0);
     assert_vec3_near(model.parts[1].colour, 0.25, 0.75, 0.5, 0);
     luz_model_free(&model);
+}
+
+/* A texture named outside the model's folder is as good as missing (a
+ * warning naming the file and the rule, T = 1) unless the rules say
+ * anywhere; names that stay inside load. */
+static void test_textures_confined_to_the_folder(void **state)
+{
+    (void)state;
+    REQUIRE_MODELS();
+    static char why[LUZ_ERROR_MESSAGE_SIZE + 256];
+    const char *failure = check_confinement(LUZ_MODEL_FILES_FOLDER, why, sizeof why);
+    if (failure) fail_msg("folder: %s", failure);
+    failure = check_confinement(LUZ_MODEL_FILES_ANYWHERE, why, sizeof why);
+    if (failure) fail_msg("anywhere: %s", failure);
+}
+
+/* The same on a kernel without openat2 (before Linux 5.6), made here in a
+ * child process whose seccomp filter answers openat2 with ENOSYS: the
+ * loader then checks the file it opened against the folder's real path. */
+static void test_textures_confined_without_openat2(void **state)
+{
+    (void)state;
+    REQUIRE_MODELS();
+#if defined(__x86_64__) && defined(SYS_openat2)
+    fflush(NULL);
+    const pid_t child = fork();
+    assert_true(child >= 0);
+    if (child == 0) {
+        struct sock_filter filter[] = {
+            BPF_STMT(BPF_LD | BPF_W | BPF_ABS, offsetof(struct seccomp_data, arch)),
+            BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, AUDIT_ARCH_X86_64, 1, 0),
+            BPF_STMT(BPF_RET | BPF_K, SECCOMP_RET_ALLOW),
+            BPF_STMT(BPF_LD | BPF_W | BPF_ABS, offsetof(struct seccomp_data, nr)),
+            BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, SYS_openat2, 0, 1),
+            BPF_STMT(BPF_RET | BPF_K, SECCOMP_RET_ERRNO | ENOSYS),
+            BPF_STMT(BPF_RET | BPF_K, SECCOMP_RET_ALLOW),
+        };
+        struct sock_fprog program = {.len = sizeof filter / sizeof filter[0], .filter = filter};
+        if (prctl(PR_SET_NO_NEW_PRIVS, 1, 0, 0, 0) != 0 ||
+            prctl(PR_SET_SECCOMP, SECCOMP_MODE_FILTER, &program) != 0)
+            _exit(3);
+        /* openat2 is gone */
+        if (syscall(SYS_openat2, AT_FDCWD, ".", NULL, 0) != -1 || errno != ENOSYS) _exit(4);
+        static char why[LUZ_ERROR_MESSAGE_SIZE + 256];
+        const char *failure = check_confinement(LUZ_MODEL_FILES_FOLDER, why, sizeof why);
+        if (failure == NULL) failure = check_confinement(LUZ_MODEL_FILES_ANYWHERE, why, sizeof why);
+        if (failure) fprintf(stderr, "without openat2: %s\n", failure);
+        _exit(failure ? 1 : 0);
+    }
+    int status;
+    while (waitpid(child, &status, 0) < 0) assert_int_equal(errno, EINTR);
+    assert_true(WIFEXITED(status));
+    if (WEXITSTATUS(status) == 3) {
+        print_message("skipped: no seccomp filter could be set\n");
+        skip();
+    }
+    assert_int_equal(WEXITSTATUS(status), 0);
+#else
+    print_message("skipped: the seccomp filter here is written for x86-64\n");
+    skip();
+#endif
 }
 
 /* ---- the lab's placement ------------------------------------------------------------------ */
@@ -1585,6 +1756,60 @@ static void test_missing_textures_through_luz_render(void **state)
     for (size_t i = 0; i < sizeof made / sizeof made[0]; i++) remove_work_file(made[i]);
 }
 
+/* luz-render and --model-files: the `..` case warns (one line naming the
+ * file and the rule) and draws the triangle untextured, as a missing
+ * texture; anywhere, from the command line or a scene file, draws the
+ * outside texture without a word, and -o may not then replace it; a
+ * value other than folder or anywhere is refused. */
+static void test_model_files_through_luz_render(void **state)
+{
+    (void)state;
+    REQUIRE_MODELS();
+    char secret[1024];
+    work_path("outside/secret.png", secret, sizeof secret);
+    run_result folder = run_render(ARGS("--model", "models/confine/dotdot.obj", "--size", "48x32",
+                                        "-o", "folder.png"));
+    assert_int_equal(folder.status, 0);
+    assert_int_equal(count_lines(folder.err), 1);
+    assert_contains(folder.err, "luz: warning: ");
+    assert_contains(folder.err, "outside/secret.png");
+    assert_contains(folder.err, "unless --model-files anywhere");
+    run_result anywhere = run_render(ARGS("--model", "models/confine/dotdot.obj", "--size",
+                                          "48x32", "--model-files", "anywhere", "-o",
+                                          "anywhere.png"));
+    assert_int_equal(anywhere.status, 0);
+    assert_string_equal(anywhere.err, "");
+    write_text("anywhere.luz", "size = 48x32\nmodel-files = anywhere\n"
+                               "model = models/confine/dotdot.obj\n");
+    run_result scene = run_render(ARGS("--scene", "anywhere.luz", "-o", "scene.png"));
+    assert_int_equal(scene.status, 0);
+    assert_string_equal(scene.err, "");
+    assert_same_files("anywhere.png", "scene.png");
+    size_t length_a, length_b;
+    char *a = work_file("folder.png", &length_a), *b = work_file("anywhere.png", &length_b);
+    assert_false(length_a == length_b && memcmp(a, b, length_a) == 0);
+    free(a);
+    free(b);
+    run_result_free(&folder);
+    run_result_free(&anywhere);
+    run_result_free(&scene);
+
+    run_result replace = run_render(ARGS("--model", "models/confine/dotdot.obj",
+                                         "--model-files", "anywhere", "-o", secret));
+    assert_int_equal(replace.status, 2);
+    assert_contains(replace.err, "is a texture of a model this run reads");
+    run_result_free(&replace);
+    run_result bad = run_render(ARGS("--model", "models/confine/dotdot.obj", "--model-files",
+                                     "everywhere", "-o", "bad.png"));
+    assert_int_equal(bad.status, 2);
+    assert_int_equal(count_lines(bad.err), 1);
+    assert_contains(bad.err, "--model-files: expected folder or anywhere");
+    run_result_free(&bad);
+    static const char *const made[] = {"folder.png", "anywhere.png", "scene.png",
+                                       "anywhere.luz"};
+    for (size_t i = 0; i < sizeof made / sizeof made[0]; i++) remove_work_file(made[i]);
+}
+
 /* Debian's assimp-testmodels: files that name their author's disk
  * (spider.fbx: D:\projects\...\drkwood2.jpg and three more) or a
  * texture not shipped beside them (cube_with_diffuse_texture.3DS:
@@ -2064,6 +2289,8 @@ int main(void)
         cmocka_unit_test(test_glb_embedded_texture),
         cmocka_unit_test(test_load_refusals),
         cmocka_unit_test(test_missing_or_corrupt_texture_is_a_warning),
+        cmocka_unit_test(test_textures_confined_to_the_folder),
+        cmocka_unit_test(test_textures_confined_without_openat2),
         cmocka_unit_test(test_normalisation),
         cmocka_unit_test(test_up_axis_turns_then_normalises),
         cmocka_unit_test(test_model_matrix),
@@ -2077,6 +2304,7 @@ int main(void)
         cmocka_unit_test(test_output_is_never_a_model_input),
         cmocka_unit_test(test_missing_textures_through_luz_render),
         cmocka_unit_test(test_corpus_files_with_missing_textures),
+        cmocka_unit_test(test_model_files_through_luz_render),
         cmocka_unit_test(test_gltf_index_out_of_range),
         cmocka_unit_test(test_views_on_a_model),
         cmocka_unit_test(test_probe_names_a_model),

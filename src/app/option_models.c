@@ -80,16 +80,16 @@ static void *watch_slow_load(void *context)
     return NULL;
 }
 
-static int load_noting_slowness(luz_model *model, const char *path, luz_texture_budget *budget,
-                                luz_error *error)
+static int load_noting_slowness(luz_model *model, const char *path, const luz_model_rules *rules,
+                                luz_texture_budget *budget, luz_error *error)
 {
-    if (!isatty(STDERR_FILENO)) return luz_model_load(model, path, budget, error);
+    if (!isatty(STDERR_FILENO)) return luz_model_load_with(model, path, rules, budget, error);
     slow_notice notice = {.path = path, .start_ms = luz_wall_ms()};
     pthread_mutex_init(&notice.lock, NULL);
     pthread_cond_init(&notice.done_changed, NULL);
     pthread_t watcher;
     bool watching = pthread_create(&watcher, NULL, watch_slow_load, &notice) == 0;
-    int status = luz_model_load(model, path, budget, error);
+    int status = luz_model_load_with(model, path, rules, budget, error);
     pthread_mutex_lock(&notice.lock);
     notice.done = true;
     pthread_cond_signal(&notice.done_changed);
@@ -178,8 +178,9 @@ int luz_options_load_models(luz_options *options, luz_model_set *set,
         const luz_object_source *source = &options->object_sources[i];
         if (source->model_path == NULL || find_model(set, source->model_path) >= 0) continue;
         luz_error inner;
-        int status = load_noting_slowness(&set->models[set->count], source->model_path, budget,
-                                          &inner);
+        const luz_model_rules rules = {.files = options->model_files};
+        int status = load_noting_slowness(&set->models[set->count], source->model_path, &rules,
+                                          budget, &inner);
         if (status != 0) {
             if (source->line > 0 && options->scene_path != NULL)
                 luz_error_set(error, "%s:%d: model: %s", options->scene_path, source->line,

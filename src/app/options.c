@@ -71,6 +71,7 @@ typedef enum option_kind {
     OPTION_MODEL,     /* a model file, the one object (command_line.c) */
     OPTION_UP,        /* y | z | x | -y | -z | -x: --model's up axis */
     OPTION_PROBE,     /* X,Y: a pixel, checked against --size at the end */
+    OPTION_MODEL_FILES, /* folder | anywhere */
 } option_kind;
 
 typedef struct option_spec {
@@ -277,6 +278,15 @@ static const option_spec option_table[] = {
      .summary = "with --model: which of the model's own axes points up, turned to +Y before "
                 "it is centred and scaled (SCENE.md, Up axis); CAD and STL files are often z",
      .default_text = "y"},
+    /* A trust decision of the run's, which a saved view does not keep: a
+     * file shared with others says nothing of where their images are. */
+    {.name = "model-files", .kind = OPTION_MODEL_FILES, .in_scene_file = true,
+     .syntax = "folder|anywhere",
+     .summary = "where the texture files a model names may be: folder, in the model file's "
+                "folder (a name that is absolute, or leads out through .. or a symbolic link, "
+                "is drawn as a missing texture, with a warning); anywhere, wherever the names "
+                "lead",
+     .default_text = "folder"},
     {.name = "scene", .kind = OPTION_SCENE, .syntax = "FILE",
      .summary = "read options and cubes from a scene file (the command line wins)",
      .default_text = "none"},
@@ -564,6 +574,18 @@ static int set_tone_map(luz_options *options, const char *value, const char *whe
                          option_quote(value).text);
 }
 
+static int set_model_files(luz_options *options, const char *value, const char *where,
+                           luz_error *error)
+{
+    if (strcmp(value, "folder") == 0 || strcmp(value, "anywhere") == 0) {
+        options->model_files =
+            value[0] == 'f' ? LUZ_MODEL_FILES_FOLDER : LUZ_MODEL_FILES_ANYWHERE;
+        return 0;
+    }
+    return luz_error_set(error, "%s: expected folder or anywhere, got '%s'", where,
+                         option_quote(value).text);
+}
+
 static int set_yes_no(luz_options *options, const option_spec *spec, const char *value,
                       const char *where, luz_error *error)
 {
@@ -817,6 +839,8 @@ int luz_options_set_value(luz_options *options, const char *name, const char *va
         return set_tone_map(options, value, where, error);
     case OPTION_YES_NO:
         return set_yes_no(options, spec, value, where, error);
+    case OPTION_MODEL_FILES:
+        return set_model_files(options, value, where, error);
     case OPTION_MARKS:
         return set_marks(options, value, where, error);
     case OPTION_ONLY:
@@ -953,6 +977,11 @@ int luz_options_format(const luz_options *options, const char *name, char *buffe
     case OPTION_TONE_MAP:
         written = snprintf(buffer, size, "%s",
                            luz_tone_map_name(luz_options_output(options).tone_map));
+        break;
+    case OPTION_MODEL_FILES:
+        written = snprintf(buffer, size, "%s",
+                           options->model_files == LUZ_MODEL_FILES_FOLDER ? "folder"
+                                                                          : "anywhere");
         break;
     case OPTION_MARKS: {
         if (options->mark_count == 0)

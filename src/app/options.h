@@ -98,6 +98,8 @@ typedef struct luz_options {
                                    many as scene.object_count */
     luz_object_source *object_sources;  /* one per object (owned) */
     int object_capacity;
+    luz_model_files model_files;   /* --model-files: where a model's
+                                      texture files may be (folder) */
     luz_input_files inputs;     /* every file read: the scene files, and once
                                    loaded the textures, the models and the
                                    textures they name (owned); no output may

@@ -12,14 +12,21 @@
  * descriptor is checked again with fstat(), so a file swapped for a FIFO
  * in between is caught too. O_NONBLOCK changes nothing for a regular file.
  */
+#define _GNU_SOURCE   /* O_PATH, syscall */
 #include "io/input_file.h"
 
 #include <errno.h>
 #include <fcntl.h>
+#include <limits.h>
+#include <stdbool.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/syscall.h>
 #include <unistd.h>
+
+#include <linux/openat2.h>
 
 const char *luz_input_file_kind(unsigned mode)
 {
@@ -85,6 +92,152 @@ int luz_input_open(const char *path, const char *what, uint64_t max_bytes, int *
     return 0;
 }
 
+/* ---- a file named inside a directory -------------------------------------------------- */
+
+/* What a path that leaves the directory is told. */
+static int outside(const char *path, const char *directory, const char *how, luz_error *error)
+{
+    luz_error_set(error, "%s: outside %s (%s)", path, directory, how);
+    return LUZ_OUTSIDE_DIRECTORY;
+}
+
+/* openat2(2) with RESOLVE_BENEATH (Linux 5.6): the kernel resolves name
+ * within directory_fd, refusing (EXDEV) an absolute name, a `..` above directory_fd and
+ * a symbolic link that leads out (or to an absolute path), and with
+ * RESOLVE_NO_MAGICLINKS /proc's links. glibc 2.36 has no wrapper. */
+static int open_beneath(int directory_fd, const char *name, int flags)
+{
+#ifdef SYS_openat2
+    struct open_how how = {.flags = (uint64_t)flags,
+                           .resolve = RESOLVE_BENEATH | RESOLVE_NO_MAGICLINKS};
+    return (int)syscall(SYS_openat2, directory_fd, name, &how, sizeof how);
+#else
+    (void)directory_fd;
+    (void)name;
+    (void)flags;
+    errno = ENOSYS;
+    return -1;
+#endif
+}
+
+/* Without openat2 (an older kernel, or a filter that forbids it): open the
+ * path as it is, then ask the kernel where the descriptor leads
+ * (/proc/self/fd) and check that it lies in the directory's real path.
+ * The check is of the file opened, so a link changed in between changes
+ * nothing. Returns an O_PATH descriptor, or -1 with the error set. */
+static int open_checked_by_proc(const char *directory, const char *path, int *status,
+                                luz_error *error)
+{
+    char real_directory[PATH_MAX], link[64], target[PATH_MAX + 1];
+    if (realpath(directory, real_directory) == NULL) {
+        *status = open_failed(directory, "a directory", errno, error);
+        return -1;
+    }
+    int fd = open(path, O_PATH | O_CLOEXEC);
+    if (fd < 0) {
+        *status = open_failed(path, "an image file", errno, error);
+        return -1;
+    }
+    snprintf(link, sizeof link, "/proc/self/fd/%d", fd);
+    const ssize_t length = readlink(link, target, sizeof target - 1);
+    if (length < 0 || (size_t)length >= sizeof target - 1) {
+        close(fd);
+        luz_error_set(error, "%s: cannot tell whether it lies in %s (no openat2, and %s "
+                             "cannot be read)", path, directory, link);
+        *status = LUZ_OUTSIDE_DIRECTORY;
+        return -1;
+    }
+    target[length] = '\0';
+    const size_t prefix = strlen(real_directory);
+    const bool root = strcmp(real_directory, "/") == 0;
+    if (!root && (strncmp(target, real_directory, prefix) != 0 || target[prefix] != '/')) {
+        close(fd);
+        *status = outside(path, directory, "it leads to a file elsewhere through '..' or a "
+                                           "symbolic link", error);
+        return -1;
+    }
+    return fd;
+}
+
+int luz_input_open_beneath(const char *directory, const char *name, const char *what,
+                           uint64_t max_bytes, int *descriptor, uint64_t *size,
+                           luz_error *error)
+{
+    *descriptor = -1;
+    *size = 0;
+    char path[2 * PATH_MAX];
+    const int written = snprintf(path, sizeof path, "%s/%s", directory, name);
+    if (written < 0 || (size_t)written >= sizeof path)
+        return luz_error_set(error, "%s/%s: path too long", directory, name);
+    if (name[0] == '/')
+        return outside(name, directory, "named by an absolute path", error);
+
+    /* The file without opening it for reading (O_PATH: a device or a FIFO
+     * is not opened), resolved within the directory. */
+    int status = 0;
+    int path_fd = -1, directory_fd = open(directory, O_PATH | O_DIRECTORY | O_CLOEXEC);
+    if (directory_fd < 0)
+        return open_failed(directory, "a directory", errno, error);
+    path_fd = open_beneath(directory_fd, name, O_PATH | O_CLOEXEC);
+    const bool kernel_checks = path_fd >= 0 || (errno != ENOSYS && errno != EPERM);
+    if (path_fd < 0 && errno == EXDEV) {
+        close(directory_fd);
+        return outside(path, directory, "it leads out through '..' or a symbolic link", error);
+    }
+    if (path_fd < 0 && kernel_checks) {
+        status = open_failed(path, what, errno, error);
+        close(directory_fd);
+        return status;
+    }
+    if (!kernel_checks) {
+        path_fd = open_checked_by_proc(directory, path, &status, error);
+        if (path_fd < 0) {
+            close(directory_fd);
+            return status;
+        }
+    }
+    struct stat found;
+    if (fstat(path_fd, &found) != 0) {
+        status = open_failed(path, what, errno, error);
+    } else {
+        status = check_status(path, what, max_bytes, &found, error);
+    }
+    /* Then the same file for reading: through the kernel's check again, or
+     * through the descriptor found, and it must be the file found. */
+    int fd = -1;
+    if (status == 0) {
+        const int flags = O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY;
+        if (kernel_checks) {
+            fd = open_beneath(directory_fd, name, flags);
+        } else {
+            char link[64];
+            snprintf(link, sizeof link, "/proc/self/fd/%d", path_fd);
+            fd = open(link, flags);
+        }
+        struct stat opened;
+        if (fd < 0)
+            status = open_failed(path, what, errno, error);
+        else if (fstat(fd, &opened) != 0)
+            status = open_failed(path, what, errno, error);
+        else if (opened.st_dev != found.st_dev || opened.st_ino != found.st_ino)
+            status = luz_error_set(error, "%s: changed while it was opened", path);
+        else
+            status = check_status(path, what, max_bytes, &opened, error);
+        if (status == 0) *size = (uint64_t)opened.st_size;
+    }
+    close(path_fd);
+    close(directory_fd);
+    if (status != 0) {
+        if (fd >= 0) close(fd);
+        *size = 0;
+        return status;
+    }
+    *descriptor = fd;
+    return 0;
+}
+
+/* ---- the whole file ---------------------------------------------------------------------- */
+
 int luz_input_read(const char *path, const char *what, uint64_t max_bytes,
                    unsigned char **bytes, size_t *size, luz_error *error)
 {
@@ -94,6 +247,15 @@ int luz_input_read(const char *path, const char *what, uint64_t max_bytes,
     uint64_t expected;
     int code = luz_input_open(path, what, max_bytes, &fd, &expected, error);
     if (code != 0) return code;
+    return luz_input_read_descriptor(fd, expected, path, what, max_bytes, bytes, size, error);
+}
+
+int luz_input_read_descriptor(int fd, uint64_t expected, const char *path, const char *what,
+                              uint64_t max_bytes, unsigned char **bytes, size_t *size,
+                              luz_error *error)
+{
+    *bytes = NULL;
+    *size = 0;
 
     /* The size stat() gave, and more only if the file has more (it grew,
      * or it is a /proc file that says 0): never more than max_bytes + 1,

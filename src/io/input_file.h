@@ -35,6 +35,9 @@ enum {
     LUZ_NO_SUCH_FILE = -3,     /* luz_input_open only: nothing at the path
                                   (ENOENT, ENOTDIR); a fault of the input,
                                   which a caller may choose to ignore */
+    LUZ_OUTSIDE_DIRECTORY = -4,   /* luz_input_open_beneath only: the name
+                                     leads out of the directory; a fault
+                                     of the input */
 };
 
 /* Opens path for reading, never blocking: stat() first, so that a FIFO, a
@@ -58,6 +61,31 @@ int luz_input_open(const char *path, const char *what, uint64_t max_bytes, int *
  * with a message. */
 int luz_input_read(const char *path, const char *what, uint64_t max_bytes,
                    unsigned char **bytes, size_t *size, luz_error *error);
+
+/* luz_input_open for the file `name` names within directory, when name
+ * must not lead out of it (a model's textures, SCENE.md's "Models"): an
+ * absolute name, a `..` above the directory, or a symbolic link whose
+ * target lies outside it (or is an absolute path, where the kernel checks)
+ * gives LUZ_OUTSIDE_DIRECTORY with "DIRECTORY/NAME: outside DIRECTORY
+ * (how)". The kernel resolves the name within the directory (openat2's
+ * RESOLVE_BENEATH, Linux 5.6); without it, the file opened is checked
+ * against the directory's real path through /proc/self/fd. The file is
+ * found without being opened for reading (O_PATH), must be a regular file
+ * of at most max_bytes, and is then opened as luz_input_open opens one;
+ * the check is of the file opened, so nothing changed in between escapes
+ * it. Returns 0 with *descriptor and *size, or LUZ_NO_SUCH_FILE,
+ * LUZ_BAD_INPUT, LUZ_OUTSIDE_DIRECTORY with a message naming
+ * DIRECTORY/NAME. */
+int luz_input_open_beneath(const char *directory, const char *name, const char *what,
+                           uint64_t max_bytes, int *descriptor, uint64_t *size,
+                           luz_error *error);
+
+/* luz_input_read's reading, of a descriptor that luz_input_open or
+ * luz_input_open_beneath gave with its size: reads it whole and closes
+ * it; path names it in messages. */
+int luz_input_read_descriptor(int descriptor, uint64_t size, const char *path, const char *what,
+                              uint64_t max_bytes, unsigned char **bytes, size_t *byte_count,
+                              luz_error *error);
 
 /* "a FIFO", "a directory", ... for a stat() mode; "a regular file" for one. */
 const char *luz_input_file_kind(unsigned mode);

@@ -70,6 +70,21 @@ typedef struct luz_model {
     uint64_t triangle_count;
 } luz_model;
 
+/* Where the texture files a model names may be (--model-files). */
+typedef enum luz_model_files {
+    LUZ_MODEL_FILES_FOLDER = 0,   /* in the model file's folder (its
+                                     subfolders too): a name that is
+                                     absolute, or leads out through `..`
+                                     or a symbolic link, is as good as
+                                     missing (the default) */
+    LUZ_MODEL_FILES_ANYWHERE,     /* wherever the names lead */
+} luz_model_files;
+
+/* How a model is read; zero-initialised (or NULL), the defaults. */
+typedef struct luz_model_rules {
+    luz_model_files files;
+} luz_model_rules;
+
 /* Whether this build reads models (built with assimp: -Dmodels). */
 bool luz_models_supported(void);
 
@@ -95,6 +110,11 @@ bool luz_models_supported(void);
  * and the texture (SCENE.md, "Models"). */
 int luz_model_load(luz_model *model, const char *path, luz_texture_budget *budget,
                    luz_error *error);
+/* luz_model_load under rules (NULL: the defaults, as luz_model_load):
+ * with LUZ_MODEL_FILES_FOLDER, a texture file named outside the model's
+ * folder gives a warning naming it and the rule, as a missing one does. */
+int luz_model_load_with(luz_model *model, const char *path, const luz_model_rules *rules,
+                        luz_texture_budget *budget, luz_error *error);
 
 /* The same for a model file's bytes in memory, which assimp reads as the
  * file `name` (its extension chooses the importer); no other file exists

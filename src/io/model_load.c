@@ -72,6 +72,13 @@ int luz_model_load(luz_model *model, const char *path, luz_texture_budget *budge
                                 "-Dmodels=enabled needs libassimp-dev)", path);
 }
 
+int luz_model_load_with(luz_model *model, const char *path, const luz_model_rules *rules,
+                        luz_texture_budget *budget, luz_error *error)
+{
+    (void)rules;
+    return luz_model_load(model, path, budget, error);
+}
+
 int luz_model_load_memory(luz_model *model, const unsigned char *bytes, size_t size,
                           const char *name, luz_texture_budget *budget, luz_error *error)
 {
@@ -113,6 +120,7 @@ typedef struct model_reading {
     luz_model *model;
     const luz_model_description *description;
     bool from_memory;
+    luz_model_files files;        /* where its texture files may be */
     luz_texture_budget *budget;
     char **texture_keys;
     const luz_texture **keyed_textures;   /* one per key; NULL for a texture
@@ -254,17 +262,37 @@ static int load_texture(model_reading *reading, const char *name, int32_t embedd
             if (*c == '\\') *c = '/';
         const char *file = relative;
         while (file[0] == '.' && file[1] == '/') file += 2;
-        char path[8192];
+        /* the model's folder: its path up to the last slash ("/" for a
+         * file at the root, "." for a bare name) */
+        char folder[4096], path[8192];
         const char *slash = strrchr(model->path, '/');
-        if (file[0] == '/' || slash == NULL)
+        if (slash == NULL)
+            snprintf(folder, sizeof folder, ".");
+        else if (slash == model->path)
+            snprintf(folder, sizeof folder, "/");
+        else
+            snprintf(folder, sizeof folder, "%.*s", (int)(slash - model->path), model->path);
+        if (file[0] == '/')
             snprintf(path, sizeof path, "%s", file);
         else
-            snprintf(path, sizeof path, "%.*s/%s", (int)(slash - model->path), model->path, file);
-        if (reading->from_memory)
+            snprintf(path, sizeof path, "%s%s%s", folder, slash == model->path ? "" : "/", file);
+        if (reading->from_memory) {
             status = luz_error_set(&inner, "%s: no such file (the model is read from memory)",
                                    path);
-        else {
+        } else if (reading->files == LUZ_MODEL_FILES_FOLDER) {
+            /* Within the model's folder: a name that leads out of it is
+             * as good as missing (issue 32: a stranger's file must not
+             * pull any image of the machine into the picture). */
+            status = luz_texture_load_beneath(folder, file, reading->budget, &texture, &inner);
+            if (status == LUZ_OUTSIDE_DIRECTORY) {
+                luz_error rule = inner;
+                luz_error_set(&inner, "%s; a model's textures are read from its folder only, "
+                                      "unless --model-files anywhere", rule.message);
+            }
+        } else {
             status = luz_texture_load(path, reading->budget, &texture, &inner);
+        }
+        if (!reading->from_memory) {
             if (status == 0 && remember_texture_file(model, path, &inner) != 0) {
                 luz_texture_destroy(texture);
                 texture = NULL;
@@ -423,11 +451,12 @@ static int keep_read_files(luz_model *model, const luz_model_description *descri
 /* The description's parts as the model's, then the checks of the whole:
  * some triangle, a size, some area. model->path is set. */
 static int build_model(luz_model *model, const luz_model_description *description,
-                       bool from_memory, luz_texture_budget *budget, luz_error *error)
+                       bool from_memory, luz_model_files files, luz_texture_budget *budget,
+                       luz_error *error)
 {
     const char *path = model->path;
     model_reading reading = {.model = model, .description = description,
-                             .from_memory = from_memory, .budget = budget};
+                             .from_memory = from_memory, .files = files, .budget = budget};
     int status = 0;
     uint64_t with_area = 0;
     for (int p = 0; p < description->part_count && status == 0; p++) {
@@ -466,7 +495,8 @@ static int build_model(luz_model *model, const luz_model_description *descriptio
 /* The description in bytes, read and built into model (path and name
  * set first); the model is left empty on failure. */
 static int build(luz_model *model, const char *path, const unsigned char *bytes, size_t size,
-                 bool from_memory, luz_texture_budget *budget, luz_error *error)
+                 bool from_memory, luz_model_files files, luz_texture_budget *budget,
+                 luz_error *error)
 {
     model->path = copy_text(path);
     model->name = copy_text(base_name(path));
@@ -484,7 +514,8 @@ static int build(luz_model *model, const char *path, const unsigned char *bytes,
     luz_texture_budget own = {0};
     if (status == 0) status = keep_read_files(model, &description, error);
     if (status == 0)
-        status = build_model(model, &description, from_memory, budget ? budget : &own, error);
+        status = build_model(model, &description, from_memory, files, budget ? budget : &own,
+                             error);
     luz_model_description_free(&description);
     if (status != 0) luz_model_free(model);
     return status;
@@ -500,6 +531,14 @@ static int import_in_child(const void *context, uint64_t memory_limit, luz_model
 int luz_model_load(luz_model *model, const char *path, luz_texture_budget *budget,
                    luz_error *error)
 {
+    return luz_model_load_with(model, path, NULL, budget, error);
+}
+
+int luz_model_load_with(luz_model *model, const char *path, const luz_model_rules *rules,
+                        luz_texture_budget *budget, luz_error *error)
+{
+    static const luz_model_rules defaults = {0};
+    if (rules == NULL) rules = &defaults;
     memset(model, 0, sizeof *model);
     /* the model itself first, for a message of luz's own about it */
     int descriptor;
@@ -525,7 +564,7 @@ int luz_model_load(luz_model *model, const char *path, luz_texture_budget *budge
     status = luz_model_run_isolated(path, &limits, import_in_child, &source, &bytes, &byte_count,
                                     error);
     if (status != 0) return status;
-    status = build(model, path, bytes, byte_count, false, budget, error);
+    status = build(model, path, bytes, byte_count, false, rules->files, budget, error);
     free(bytes);
     /* Read, but less confined than luz means it to be: said once, with
      * the model's other warnings (io/model_confine.h). */
@@ -553,7 +592,8 @@ int luz_model_load_memory(luz_model *model, const unsigned char *bytes, size_t s
         luz_model_writer_free(&writer);
         return status;
     }
-    status = build(model, name, writer.bytes, writer.length, true, budget, error);
+    status = build(model, name, writer.bytes, writer.length, true, LUZ_MODEL_FILES_FOLDER,
+                   budget, error);
     luz_model_writer_free(&writer);
     return status;
 }

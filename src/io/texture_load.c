@@ -128,6 +128,32 @@ int luz_texture_load(const char *path, luz_texture_budget *budget, luz_texture *
     return status;
 }
 
+int luz_texture_load_beneath(const char *directory, const char *name,
+                             luz_texture_budget *budget, luz_texture **texture,
+                             luz_error *error)
+{
+    *texture = NULL;
+    char path[8192];
+    snprintf(path, sizeof path, "%s/%s", directory, name);
+    const luz_image_format format = luz_image_format_of_name(name);
+    if (format == LUZ_IMAGE_UNKNOWN)
+        return luz_error_set(error, "%s: not an image file luz reads (expected a name ending "
+                                    "in .png, .jpg, .jpeg, .bmp or .tga)", path);
+    int fd;
+    uint64_t expected;
+    int status = luz_input_open_beneath(directory, name, "an image file",
+                                        LUZ_IMAGE_FILE_MAX_BYTES, &fd, &expected, error);
+    if (status != 0) return status == LUZ_OUTSIDE_DIRECTORY ? status : LUZ_BAD_INPUT;
+    unsigned char *bytes;
+    size_t size;
+    status = luz_input_read_descriptor(fd, expected, path, "an image file",
+                                       LUZ_IMAGE_FILE_MAX_BYTES, &bytes, &size, error);
+    if (status != 0) return status == LUZ_MACHINE_FAILED ? status : LUZ_BAD_INPUT;
+    status = load_encoded(bytes, size, format, path, budget, texture, error);
+    free(bytes);
+    return status;
+}
+
 int luz_texture_load_memory(const unsigned char *bytes, size_t size, const char *name,
                             const char *format_hint, luz_texture_budget *budget,
                             luz_texture **texture, luz_error *error)

@@ -60,6 +60,15 @@ int luz_texture_create_in_budget(int width, int height, const uint8_t *rgba, con
 int luz_texture_load(const char *path, luz_texture_budget *budget, luz_texture **texture,
                      luz_error *error);
 
+/* luz_texture_load of the file name names within directory, which it may
+ * not leave (io/input_file.h's luz_input_open_beneath: an absolute name,
+ * a `..` above it or a symbolic link out of it gives
+ * LUZ_OUTSIDE_DIRECTORY); messages name DIRECTORY/NAME. For a model's
+ * textures, kept in its folder. */
+int luz_texture_load_beneath(const char *directory, const char *name,
+                             luz_texture_budget *budget, luz_texture **texture,
+                             luz_error *error);
+
 /* The same for an encoded image in memory (a model's embedded texture);
  * name is what errors call it. The format is format_hint's ("png", "jpg",
  * ...: assimp's achFormatHint) if it is not NULL or empty, else name's
