@@ -1288,7 +1288,7 @@ static void test_assimp_findings_refused(void **state)
 #if LUZ_TEST_SANITIZED
         {"ply-slow-list-count.ply", "assimp took more than", "has too many faces"},
 #else
-        {"ply-slow-list-count.ply", "needs more than 1024 MiB to read it (luz's limit", NULL},
+        {"ply-slow-list-count.ply", "needs more than 1024 MiB to read it (its memory limit", NULL},
 #endif
         /* 4.5 s before assimp refuses it: within the limit, or (under the
          * sanitizers, over 10 s) not */

@@ -65,6 +65,7 @@
 #include "luz/luz.h"
 #include "app/options.h"
 #include "io/model.h"
+#include "io/model_sandbox.h"
 #include "lab/scene.h"
 
 #define TOLERANCE 1e-5
@@ -1848,6 +1849,102 @@ static void test_corpus_files_with_missing_textures(void **state)
     }
 }
 
+/* An OBJ of 9 vertices and a million faces, each "f a b c" of single
+ * digits (8 bytes a face: the densest triangles an OBJ holds), 8 MB that
+ * assimp needs about 1.1 GB of address space to read. */
+static void write_face_dense_obj(const char *name)
+{
+    static const char corners[8][4] = {"125", "154", "236", "265", "458", "487", "569", "598"};
+    const size_t faces = 1000000;
+    char *text = malloc(200 + faces * 8);
+    assert_non_null(text);
+    size_t length = 0;
+    for (int y = 0; y < 3; y++)
+        for (int x = 0; x < 3; x++)
+            length += (size_t)sprintf(text + length, "v %d %d %d\n", x, y, (x * y) % 2);
+    for (size_t f = 0; f < faces; f++) {
+        const char *c = corners[f % 8];
+        memcpy(text + length, (char[8]){'f', ' ', c[0], ' ', c[1], ' ', c[2], '\n'}, 8);
+        length += 8;
+    }
+    write_bytes(name, text, length);
+    free(text);
+}
+
+/* A model over its memory limit is refused as such, naming the flag that
+ * raises it, exit 2 and one line, whether assimp's allocation failed
+ * cleanly (64 MiB: std::bad_alloc) or it crashed at the limit (256 MiB: a
+ * failed mmap, then SIGSEGV, reported as "crashed" before the child told
+ * the two apart); given enough (4096 MiB), the same file draws. The scene
+ * file's key does the same; values outside 64 to 1048576 are refused.
+ * Builds with AddressSanitizer or ThreadSanitizer set no memory limit:
+ * there only the refused values are checked. */
+static void test_model_memory_limit(void **state)
+{
+    (void)state;
+    REQUIRE_MODELS();
+    static const struct {
+        const char *value, *expected;
+    } bad[] = {
+        {"63", "luz-render: --model-memory: expected an integer from 64 to 1048576, got '63'\n"},
+        {"lots", "luz-render: --model-memory: expected an integer from 64 to 1048576, got "
+                 "'lots'\n"},
+    };
+    for (size_t b = 0; b < sizeof bad / sizeof bad[0]; b++) {
+        run_result result = run_render(ARGS("--model", "models/quad.obj", "--model-memory",
+                                            bad[b].value, "-o", "memory.png"));
+        assert_int_equal(result.status, 2);
+        assert_string_equal(result.err, bad[b].expected);
+        run_result_free(&result);
+    }
+    write_text("memory.luz", "model-memory = 0\nmodel = models/quad.obj\n");
+    run_result scene = run_render(ARGS("--scene", "memory.luz", "-o", "memory.png"));
+    assert_int_equal(scene.status, 2);
+    assert_int_equal(count_lines(scene.err), 1);
+    assert_contains(scene.err, "memory.luz:1: model-memory: expected an integer from 64 to 1048576");
+    run_result_free(&scene);
+    if (luz_model_limits_for(1).memory_bytes == 0) {
+        print_message("skipped: no memory limit under the sanitizers\n");
+        remove_work_file("memory.luz");
+        return;
+    }
+
+    write_face_dense_obj("models/dense.obj");
+    char model[1024];
+    work_path("models/dense.obj", model, sizeof model);
+    static const char *const limits[] = {"64", "256"};
+    for (size_t l = 0; l < 2; l++) {
+        run_result result = run_render(ARGS("--model", "models/dense.obj", "--model-memory",
+                                            limits[l], "--size", "32x32", "-o", "memory.png"));
+        char expected[1400];
+        snprintf(expected, sizeof expected, "luz-render: %s: assimp needs more than %s MiB to "
+                                             "read it (its memory limit; --model-memory MiB "
+                                             "raises it)\n", model, limits[l]);
+        assert_int_equal(result.status, 2);
+        assert_string_equal(result.err, expected);
+        run_result_free(&result);
+    }
+    write_text("memory.luz", "model-memory = 256\nsize = 32x32\nmodel = models/dense.obj\n");
+    scene = run_render(ARGS("--scene", "memory.luz", "-o", "memory.png"));
+    assert_int_equal(scene.status, 2);
+    assert_int_equal(count_lines(scene.err), 1);
+    assert_contains(scene.err, "assimp needs more than 256 MiB to read it (its memory limit; "
+                               "--model-memory MiB raises it)");
+    run_result_free(&scene);
+    char path[1024];
+    work_path("memory.png", path, sizeof path);
+    assert_int_equal(access(path, F_OK), -1);
+
+    run_result enough = run_render(ARGS("--model", "models/dense.obj", "--model-memory", "4096",
+                                        "--size", "32x32", "-o", "memory.png"));
+    assert_int_equal(enough.status, 0);
+    assert_string_equal(enough.err, "");
+    run_result_free(&enough);
+    remove_work_file("memory.png");
+    remove_work_file("memory.luz");
+    remove_work_file("models/dense.obj");
+}
+
 /* assimp's glTF importer drops a face that names a vertex past the end and
  * says so only in its log: luz refuses the model (SCENE.md: an index out
  * of range is an error), exit 2, one line naming the file; the same quad
@@ -2306,6 +2403,7 @@ int main(void)
         cmocka_unit_test(test_corpus_files_with_missing_textures),
         cmocka_unit_test(test_model_files_through_luz_render),
         cmocka_unit_test(test_gltf_index_out_of_range),
+        cmocka_unit_test(test_model_memory_limit),
         cmocka_unit_test(test_views_on_a_model),
         cmocka_unit_test(test_probe_names_a_model),
         cmocka_unit_test(test_probe_of_nan_normals),

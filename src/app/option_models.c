@@ -178,7 +178,8 @@ int luz_options_load_models(luz_options *options, luz_model_set *set,
         const luz_object_source *source = &options->object_sources[i];
         if (source->model_path == NULL || find_model(set, source->model_path) >= 0) continue;
         luz_error inner;
-        const luz_model_rules rules = {.files = options->model_files};
+        const luz_model_rules rules = {.files = options->model_files,
+                                       .memory_mib = (uint64_t)options->model_memory_mib};
         int status = load_noting_slowness(&set->models[set->count], source->model_path, &rules,
                                           budget, &inner);
         if (status != 0) {

@@ -287,6 +287,13 @@ static const option_spec option_table[] = {
                 "is drawn as a missing texture, with a warning); anywhere, wherever the names "
                 "lead",
      .default_text = "folder"},
+    /* A run's setting: what this machine can spare, not part of a view. */
+    {.name = "model-memory", .kind = OPTION_INTEGER, .offset = FIELD(model_memory_mib),
+     .min = 64, .max = 1048576, .in_scene_file = true, .syntax = "MiB",
+     .summary = "address space assimp may take to read each model, 64 to 1048576 MiB, in "
+                "place of the limit that grows with the file; raises it for a file refused "
+                "as over its memory limit",
+     .default_text = "1024 MiB + 128 bytes a byte of the file"},
     {.name = "scene", .kind = OPTION_SCENE, .syntax = "FILE",
      .summary = "read options and cubes from a scene file (the command line wins)",
      .default_text = "none"},

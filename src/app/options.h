@@ -81,6 +81,8 @@ typedef struct luz_options {
     bool skip_existing;         /* --skip-existing: leave frames whose file
                                    exists */
     int bench_frames;           /* --bench N, 0 when not benchmarking */
+    int model_memory_mib;       /* --model-memory MiB, 0: the limit that grows
+                                   with each model file (io/model_sandbox.h) */
     unsigned only_terms;        /* --only: bit (1u << luz_term) per light term
                                    kept; 0 keeps them all */
     bool reference;             /* --reference: the plain scalar fragment stage */

@@ -83,6 +83,9 @@ typedef enum luz_model_files {
 /* How a model is read; zero-initialised (or NULL), the defaults. */
 typedef struct luz_model_rules {
     luz_model_files files;
+    uint64_t memory_mib;          /* the address space assimp's process may
+                                     take, in MiB (--model-memory); 0: the
+                                     limit that grows with the file */
 } luz_model_rules;
 
 /* Whether this build reads models (built with assimp: -Dmodels). */
@@ -97,7 +100,7 @@ bool luz_models_supported(void);
  * (io/model_sandbox.h: LUZ_MODEL_SECONDS of CPU time and
  * LUZ_MODEL_SECONDS_PER_MIB more a MiB; LUZ_MODEL_MEMORY_BYTES of address
  * space and LUZ_MODEL_MEMORY_PER_BYTE more a byte of the file: 10 s and
- * 1 GiB for a small file, 550 s and 19 GB for a 1.1 GB OBJ); the
+ * 1 GiB for a small file, 550 s for a 1.1 GB OBJ; or rules->memory_mib); the
  * textures are decoded here. Returns 0;
  * LUZ_BAD_INPUT (-1) with one line naming the file and what is wrong: not
  * a regular file (it, or a file it names), unreadable, a format assimp
@@ -112,7 +115,8 @@ int luz_model_load(luz_model *model, const char *path, luz_texture_budget *budge
                    luz_error *error);
 /* luz_model_load under rules (NULL: the defaults, as luz_model_load):
  * with LUZ_MODEL_FILES_FOLDER, a texture file named outside the model's
- * folder gives a warning naming it and the rule, as a missing one does. */
+ * folder gives a warning naming it and the rule, as a missing one does;
+ * a memory_mib above 0 is assimp's memory limit (--model-memory). */
 int luz_model_load_with(luz_model *model, const char *path, const luz_model_rules *rules,
                         luz_texture_budget *budget, luz_error *error);
 

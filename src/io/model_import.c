@@ -43,6 +43,7 @@
 #include <assimp/scene.h>
 
 #include "io/input_file.h"
+#include "io/model_sandbox.h"
 #include "luz/texture.h"
 
 /* SCENE.md's steps, exactly. */
@@ -545,9 +546,7 @@ int luz_model_import(const luz_model_source *source, uint64_t memory_limit,
         free_opened(&files);
         const char *why = aiGetErrorString();
         if (memory_limit > 0 && strstr(why, "bad_alloc") != NULL)
-            return luz_error_set(error, "%s: assimp needs more than %llu MiB to read it (luz's "
-                                        "limit for a model file of this size)", path,
-                                 (unsigned long long)(memory_limit >> 20));
+            return luz_model_memory_refusal(path, memory_limit, error);
         return luz_error_set(error, "%s: not a model luz can read (%s)", path, why);
     }
     if (check_imported(scene, path, error) != 0) {

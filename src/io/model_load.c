@@ -557,7 +557,8 @@ int luz_model_load_with(luz_model *model, const char *path, const luz_model_rule
     }
     close(descriptor);
     if (luz_model_check_start(start, length, size, path, error) != 0) return LUZ_BAD_INPUT;
-    const luz_model_limits limits = luz_model_limits_for(size);
+    luz_model_limits limits = luz_model_limits_for(size);
+    if (rules->memory_mib > 0) luz_model_limits_set_memory(&limits, rules->memory_mib);
     const luz_model_source source = {.path = path};
     unsigned char *bytes;
     size_t byte_count;

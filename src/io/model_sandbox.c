@@ -52,6 +52,13 @@
 #define LUZ_ADDRESS_SPACE_RESERVED 0
 #endif
 
+int luz_model_memory_refusal(const char *path, uint64_t memory_bytes, luz_error *error)
+{
+    return luz_error_set(error, "%s: assimp needs more than %llu MiB to read it (its memory "
+                                "limit; --model-memory MiB raises it)", path,
+                         (unsigned long long)(memory_bytes >> 20));
+}
+
 luz_model_limits luz_model_limits_for(uint64_t file_size)
 {
     const double mib = (double)file_size / (1024.0 * 1024.0);
@@ -61,6 +68,13 @@ luz_model_limits luz_model_limits_for(uint64_t file_size)
                               .wall_seconds = 2.0 * cpu + 10.0,
                               .memory_bytes = LUZ_ADDRESS_SPACE_RESERVED ? 0 : memory,
                               .description_bytes = memory};
+}
+
+void luz_model_limits_set_memory(luz_model_limits *limits, uint64_t memory_mib)
+{
+    const uint64_t memory = memory_mib << 20;
+    limits->memory_bytes = LUZ_ADDRESS_SPACE_RESERVED ? 0 : memory;
+    limits->description_bytes = memory;
 }
 
 static double now_seconds(void)
@@ -96,6 +110,77 @@ static uint64_t address_space_bytes(void)
     unsigned long long pages = strtoull(text, NULL, 10);
     long page_size = sysconf(_SC_PAGESIZE);
     return page_size > 0 ? pages * (uint64_t)page_size : 0;
+}
+
+/* ---- a crash at the memory limit -------------------------------------------------------------- */
+
+/* assimp does not check every allocation: at the address-space limit it
+ * may use the null pointer a failed allocation gave, or a stack that
+ * could not grow, and die by SIGSEGV, as a bug would. (A 24 MB OBJ of 3
+ * million faces asks for 2.4 GB in one piece, mmap fails with ENOMEM,
+ * and it crashes at once.) The child tells the two apart itself when it
+ * crashes: if the last system call that failed ran out of memory (errno
+ * is ENOMEM: glibc's malloc leaves it so), or its peak address space
+ * (VmPeak, from /proc/self/status, opened before it is confined) is
+ * within an eighth of the limit, it was the limit, and it exits with
+ * CHILD_EXIT_MEMORY; any other crash goes on as a crash.
+ *
+ * A signal handler reaches only what is global: this is set once, in the
+ * child, before the handler is installed, and never in luz's process. */
+static struct {
+    int status_descriptor;   /* /proc/self/status */
+    uint64_t limit_bytes;    /* RLIMIT_AS */
+} crash_watch = {-1, 0};
+
+#define CHILD_EXIT_MEMORY 86
+
+/* VmPeak of /proc/self/status in bytes, 0 if it cannot be read; only
+ * async-signal-safe calls. */
+static uint64_t peak_address_space(int descriptor)
+{
+    char text[4096];
+    ssize_t length = pread(descriptor, text, sizeof text - 1, 0);
+    if (length <= 0) return 0;
+    text[length] = '\0';
+    for (const char *line = text; line != NULL && *line != '\0';) {
+        if (strncmp(line, "VmPeak:", 7) == 0) {
+            uint64_t kib = 0;
+            for (const char *c = line + 7; *c == ' ' || *c == '\t' || (*c >= '0' && *c <= '9');
+                 c++)
+                if (*c >= '0' && *c <= '9') kib = kib * 10 + (uint64_t)(*c - '0');
+            return kib * 1024;
+        }
+        line = strchr(line, '\n');
+        if (line != NULL) line++;
+    }
+    return 0;
+}
+
+static void on_crash(int number)
+{
+    /* the interrupted code's errno: a handler runs in its thread */
+    const bool out_of_memory = errno == ENOMEM;
+    const uint64_t peak = peak_address_space(crash_watch.status_descriptor);
+    if (out_of_memory ||
+        (peak > 0 && peak >= crash_watch.limit_bytes - crash_watch.limit_bytes / 8))
+        _exit(CHILD_EXIT_MEMORY);
+    /* A crash: the handler is reset (SA_RESETHAND) and the signal blocked
+     * until it returns; raised again, it ends the child as it would have. */
+    raise(number);
+}
+
+static void watch_crashes(uint64_t limit_bytes)
+{
+    static unsigned char stack[64 << 10];   /* the stack may be what ran out */
+    crash_watch.status_descriptor = open("/proc/self/status", O_RDONLY | O_CLOEXEC);
+    crash_watch.limit_bytes = limit_bytes;
+    if (crash_watch.status_descriptor < 0) return;
+    if (sigaltstack(&(stack_t){.ss_sp = stack, .ss_size = sizeof stack}, NULL) != 0) return;
+    struct sigaction action = {.sa_handler = on_crash, .sa_flags = SA_ONSTACK | SA_RESETHAND};
+    sigemptyset(&action.sa_mask);
+    static const int crashes[] = {SIGSEGV, SIGBUS, SIGABRT};
+    for (size_t i = 0; i < sizeof crashes / sizeof crashes[0]; i++)
+        sigaction(crashes[i], &action, NULL);
 }
 
 /* The child: its limits, its work, what it found down the pipe, _exit. */
@@ -137,6 +222,9 @@ static _Noreturn void run_child(const char *path, int pipe_end, pid_t parent,
          * textures, models read before): the limit is assimp's alone */
         const rlim_t memory = (rlim_t)(address_space_bytes() + limits->memory_bytes);
         lower_limit(RLIMIT_AS, memory, memory);
+        struct rlimit set;
+        if (getrlimit(RLIMIT_AS, &set) == 0 && set.rlim_cur != RLIM_INFINITY)
+            watch_crashes((uint64_t)set.rlim_cur);
     }
     /* the writer's buffer, which needs no memory that may have run out */
     unsigned char buffer[64 << 10];
@@ -155,9 +243,7 @@ static _Noreturn void run_child(const char *path, int pipe_end, pid_t parent,
         if (status == LUZ_MACHINE_FAILED && limits->memory_bytes > 0) {
             /* out of memory within the limit: the file asked for too much */
             status = LUZ_BAD_INPUT;
-            luz_error_set(&error, "%s: assimp needs more than %llu MiB to read it (luz's "
-                                  "limit for a model file of this size)", path,
-                          (unsigned long long)(limits->memory_bytes >> 20));
+            luz_model_memory_refusal(path, limits->memory_bytes, &error);
         }
     }
     if (status != 0) {
@@ -339,6 +425,10 @@ int luz_model_run_isolated(const char *path, const luz_model_limits *limits,
             luz_error_set(error, "%s: assimp crashed reading it (%s, signal %d)", path,
                           signal_name(number), number);
         }
+    } else if (WIFEXITED(wait_status) && WEXITSTATUS(wait_status) == CHILD_EXIT_MEMORY &&
+               limits->memory_bytes > 0) {
+        /* it crashed at its memory limit (on_crash) */
+        luz_model_memory_refusal(path, limits->memory_bytes, error);
     } else if (!WIFEXITED(wait_status) || WEXITSTATUS(wait_status) != 0) {
         luz_error_set(error, "%s: assimp failed reading it (its process exited with status %d)",
                       path, WIFEXITED(wait_status) ? WEXITSTATUS(wait_status) : -1);
