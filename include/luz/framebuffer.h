@@ -12,6 +12,11 @@
  * The visibility buffer holds, per pixel, which triangle is nearest so far
  * (0 for none): the rasteriser writes it, and the shading pass then shades
  * every pixel exactly once, for the triangle that won the depth test.
+ *
+ * A frame of four samples a pixel (luz_frame.samples) keeps each sample's
+ * depth and winner in the renderer's own buffers and writes only colour
+ * here, the resolved pixels: depth and visibility are then left as they
+ * were.
  */
 #ifndef LUZ_FRAMEBUFFER_H
 #define LUZ_FRAMEBUFFER_H
