@@ -48,6 +48,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include <stb_image.h>
 #include <stb_image_write.h>
 
 #include "file_support.h"
@@ -462,6 +463,143 @@ static void test_png_with_a_palette(void **state)
                                              200, 10, 20, 255,   30, 40, 250, 255};
     assert_decodes_to(&png, "interlaced.png", 2, 2, rgba_interlaced, 0);
     buffer_free(&png);
+}
+
+/* A valid PNG whose first IDAT chunk is empty (the PNG specification
+ * lets the zlib stream be split anywhere among the IDATs, 0 bytes
+ * included): stb_image 2.27 added 0 to a null pointer on it (undefined
+ * behaviour, which UBSan reports); libpng decodes it. 2x1 RGB, filter 0:
+ * raw row [0: 10 20 30  200 100 0]. The same file, with a first byte 0
+ * (x.png) in front, is in the texture fuzzer's corpus. */
+static buffer png_with_empty_first_idat(void)
+{
+    const unsigned char raw[] = {0, 10, 20, 30, 200, 100, 0};
+    buffer zlib = zlib_stored(raw, sizeof raw);
+    buffer png = {0};
+    put(&png, png_signature, 8);
+    const unsigned char header[13] = {0, 0, 0, 2, 0, 0, 0, 1, 8, 2, 0, 0, 0};
+    png_chunk(&png, "IHDR", header, sizeof header);
+    png_chunk(&png, "IDAT", NULL, 0);
+    png_chunk(&png, "IDAT", zlib.data, zlib.length);
+    png_chunk(&png, "IEND", NULL, 0);
+    buffer_free(&zlib);
+    return png;
+}
+
+static void test_png_with_empty_first_idat(void **state)
+{
+    (void)state;
+    buffer png = png_with_empty_first_idat();
+    const unsigned char rgba[] = {10, 20, 30, 255, 200, 100, 0, 255};
+    assert_decodes_to(&png, "empty-idat.png", 2, 1, rgba, 0);
+    /* and it is the corpus file, byte for byte */
+    const char *corpus = getenv("TEXTURE_CORPUS_EMPTY_IDAT");
+    if (corpus != NULL) {
+        size_t length;
+        char *bytes = read_file(corpus, &length);
+        assert_non_null(bytes);
+        assert_int_equal(length, png.length + 1);
+        assert_int_equal(bytes[0], 0);
+        assert_memory_equal(bytes + 1, png.data, png.length);
+        free(bytes);
+    }
+    buffer_free(&png);
+}
+
+/* libpng gives the pixels stb_image gave (luz decoded PNG with it before),
+ * for every colour type and bit depth PNG has, interlaced or not, with and
+ * without a tRNS chunk, from rows of random bytes under random filters: so
+ * no texture changes. stb_image (the tests' own libstb) is the reference. */
+static void test_png_pixels_as_stb_gave_them(void **state)
+{
+    (void)state;
+    static const struct {
+        unsigned colour, channels;
+        unsigned depths[5];
+    } types[] = {{0, 1, {1, 2, 4, 8, 16}}, {2, 3, {8, 16}}, {3, 1, {1, 2, 4, 8}},
+                 {4, 2, {8, 16}}, {6, 4, {8, 16}}};
+    uint32_t random = 2463534242u;
+    int checked = 0;
+    for (size_t t = 0; t < sizeof types / sizeof types[0]; t++) {
+        for (int d = 0; d < 5 && types[t].depths[d] != 0; d++) {
+            const unsigned depth = types[t].depths[d], colour = types[t].colour;
+            for (unsigned interlace = 0; interlace <= 1; interlace++) {
+                for (int with_trns = 0; with_trns <= (colour == 4 || colour == 6 ? 0 : 1);
+                     with_trns++) {
+                    const uint32_t width = 13, height = 7;
+                    /* the filtered rows: each pass's rows (Adam7) or the
+                     * image's, a filter byte then random bytes */
+                    buffer raw = {0};
+                    static const unsigned x0[7] = {0, 4, 0, 2, 0, 1, 0}, y0[7] = {0, 0, 4, 0, 2, 0, 1};
+                    static const unsigned dx[7] = {8, 8, 4, 4, 2, 2, 1}, dy[7] = {8, 8, 8, 4, 4, 2, 2};
+                    for (int pass = 0; pass < (interlace ? 7 : 1); pass++) {
+                        const uint32_t w = interlace ? (width > x0[pass] ? (width - x0[pass] + dx[pass] - 1) / dx[pass] : 0) : width;
+                        const uint32_t h = interlace ? (height > y0[pass] ? (height - y0[pass] + dy[pass] - 1) / dy[pass] : 0) : height;
+                        if (w == 0 || h == 0) continue;
+                        const size_t row_bytes = ((size_t)w * types[t].channels * depth + 7) / 8;
+                        for (uint32_t y = 0; y < h; y++) {
+                            random ^= random << 13, random ^= random >> 17, random ^= random << 5;
+                            put_byte(&raw, random % 5);
+                            for (size_t i = 0; i < row_bytes; i++) {
+                                random ^= random << 13, random ^= random >> 17, random ^= random << 5;
+                                unsigned char byte = (unsigned char)(random >> 24);
+                                put_byte(&raw, byte);
+                            }
+                        }
+                    }
+                    /* a palette with every index a depth allows: no index
+                     * can fall outside it whatever the filters make */
+                    unsigned char palette[256 * 3];
+                    for (int i = 0; i < 256 * 3; i++) palette[i] = (unsigned char)(i * 7 + 3);
+                    const size_t entries = colour == 3 ? (size_t)1 << depth : 0;
+                    buffer zlib = zlib_stored(raw.data, raw.length);
+                    buffer png = {0};
+                    put(&png, png_signature, 8);
+                    buffer header = {0};
+                    put_be32(&header, width);
+                    put_be32(&header, height);
+                    put_byte(&header, depth);
+                    put_byte(&header, colour);
+                    put_byte(&header, 0);
+                    put_byte(&header, 0);
+                    put_byte(&header, interlace);
+                    png_chunk(&png, "IHDR", header.data, header.length);
+                    buffer_free(&header);
+                    if (entries) png_chunk(&png, "PLTE", palette, entries * 3);
+                    if (with_trns) {
+                        /* a palette's first entries' alphas (at most as
+                         * many as it has); a grey key of 1, which half
+                         * the pixels of 1 bit meet; an RGB key of 1, 1, 1 */
+                        unsigned char trns[6] = {0, 1, 0, 1, 0, 1};
+                        size_t trns_length = colour == 3 ? (entries < 5 ? entries : 5)
+                                             : colour == 0 ? 2 : 6;
+                        if (colour == 3)
+                            for (int i = 0; i < 5; i++) trns[i] = (unsigned char)(i * 60);
+                        png_chunk(&png, "tRNS", trns, trns_length);
+                    }
+                    png_chunk(&png, "IDAT", zlib.data, zlib.length);
+                    png_chunk(&png, "IEND", NULL, 0);
+                    buffer_free(&zlib);
+                    buffer_free(&raw);
+
+                    int stb_width, stb_height, stb_channels;
+                    unsigned char *expected = stbi_load_from_memory(
+                        png.data, (int)png.length, &stb_width, &stb_height, &stb_channels, 4);
+                    if (expected == NULL)
+                        fail_msg("colour %u depth %u: stb_image refused it: %s", colour, depth,
+                                 stbi_failure_reason());
+                    char name[64];
+                    snprintf(name, sizeof name, "c%u-d%u-i%u-t%d.png", colour, depth, interlace,
+                             with_trns);
+                    assert_decodes_to(&png, name, (int)width, (int)height, expected, 0);
+                    stbi_image_free(expected);
+                    buffer_free(&png);
+                    checked++;
+                }
+            }
+        }
+    }
+    assert_int_equal(checked, 2 * (5 * 2 + 2 * 2 + 4 * 2) + 2 * (2 + 2));
 }
 
 /* 24-bit BMP, 3x2, bottom-up rows of 9 bytes padded to 12 (BGR). */
@@ -1735,6 +1873,8 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_png_from_another_encoder),
         cmocka_unit_test(test_png_with_a_palette),
+        cmocka_unit_test(test_png_with_empty_first_idat),
+        cmocka_unit_test(test_png_pixels_as_stb_gave_them),
         cmocka_unit_test(test_bmp),
         cmocka_unit_test(test_tga),
         cmocka_unit_test(test_jpeg),

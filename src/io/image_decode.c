@@ -6,8 +6,14 @@
  *      found (format, width, height).
  * Out: width x height RGBA8 pixels, row 0 on top.
  *
- * PNG, BMP and TGA go to stb_image (Debian's libstb-dev), built with
- * those three decoders only (stb_image_only.c): whatever a file's bytes
+ * PNG goes to libpng (Debian's libpng-dev), which OSS-Fuzz fuzzes
+ * continuously: stb_image 2.27's PNG decoder has undefined behaviour on a
+ * valid PNG whose first IDAT chunk is empty (it adds 0 to a null
+ * pointer). libpng is asked for exactly the pixels stb_image gave, so no
+ * image changed (decode_png says how).
+ *
+ * BMP and TGA go to stb_image (Debian's libstb-dev), built with its PNG,
+ * BMP and TGA decoders only (stb_image_only.c): whatever a file's bytes
  * say, stb_image cannot pick its GIF, PSD, HDR, PNM or PIC decoders.
  *
  * JPEG goes to libjpeg-turbo (TurboJPEG API, Debian's libturbojpeg0-dev):
@@ -17,21 +23,22 @@
  * segment) stop the decoding: a damaged JPEG is refused rather than shown
  * in part.
  *
- * A PNG's image data is inflated once before stb_image sees it, into a
+ * A PNG's image data is inflated once before libpng sees it, into a
  * buffer of exactly the size IHDR implies (image_formats.c computes it):
- * a stream that inflates to more or less is refused, so a small file
- * cannot make stb_image's growing buffer allocate gigabytes, and stb's
- * habit of reading zeros past the end of its input cannot run on. For an
- * image with a palette, the inflated rows are also unfiltered and every
- * index checked against the palette's entries: stb_image would look the
- * others up in an array it never filled.
+ * a stream that inflates to more or less is refused, so the memory a
+ * decode takes is known before it starts. For an image with a palette,
+ * the inflated rows are also unfiltered and every index checked against
+ * the palette's entries (libpng would show the others as black).
  */
 #include "io/image_decode.h"
 
+#include <setjmp.h>
 #include <stdbool.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include <png.h>
 #include <turbojpeg.h>
 
 #include "io/input_file.h"
@@ -175,7 +182,121 @@ static int check_png_data(const unsigned char *bytes, size_t size, const luz_ima
     return status;
 }
 
-/* ---- PNG, BMP, TGA: stb_image ------------------------------------------------------------ */
+/* ---- PNG: libpng ------------------------------------------------------------------------------ */
+
+/* libpng reports an error by calling this, which must not return: its
+ * message is kept and decode_png's setjmp is resumed. Its warnings (an
+ * ancillary chunk with a bad CRC, an unknown chunk) say nothing about the
+ * pixels and go unprinted: one line per failure is luz's rule. */
+typedef struct png_failure {
+    jmp_buf resume;
+    char message[160];
+} png_failure;
+
+static void png_failed(png_structp png, png_const_charp message)
+{
+    png_failure *failure = png_get_error_ptr(png);
+    snprintf(failure->message, sizeof failure->message, "%s", message ? message : "error");
+    longjmp(failure->resume, 1);
+}
+
+static void png_warned(png_structp png, png_const_charp message)
+{
+    (void)png;
+    (void)message;
+}
+
+/* The file's bytes, read by libpng through this. */
+typedef struct png_source {
+    const unsigned char *bytes;
+    size_t size, position;
+} png_source;
+
+static void png_read_bytes(png_structp png, png_bytep out, size_t length)
+{
+    png_source *source = png_get_io_ptr(png);
+    if (length > source->size - source->position) png_error(png, "truncated PNG");
+    memcpy(out, source->bytes + source->position, length);
+    source->position += length;
+}
+
+/* Decodes a PNG that image_formats.c and check_png_data have accepted into
+ * RGBA8 with libpng, transformed as stb_image transformed it, so that
+ * every image stays byte for byte what it was: a palette looked up, its
+ * tRNS entries as alpha; grey of 1, 2 or 4 bits scaled to 8 (0x55 for 1
+ * of 2 bits); a tRNS colour key compared at the file's depth, then
+ * transparent; 16 bits cut to their high byte (png_set_strip_16, as stb's
+ * >> 8); grey copied to red, green and blue; alpha 255 where the file has
+ * none. No gamma, colour profile or background is applied: stb applied
+ * none. */
+static int decode_png(const unsigned char *bytes, size_t size, const luz_image_header *header,
+                      const char *name, uint8_t **rgba, luz_error *error)
+{
+    png_failure failure = {.message = ""};
+    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &failure, png_failed,
+                                             png_warned);
+    png_infop info = png ? png_create_info_struct(png) : NULL;
+    if (info == NULL) {
+        png_destroy_read_struct(&png, NULL, NULL);
+        luz_error_set(error, "%s: out of memory decoding a %dx%d PNG", name, header->width,
+                      header->height);
+        return LUZ_MACHINE_FAILED;
+    }
+    /* Changed after setjmp and read after longjmp: volatile (C11 7.13.2.1). */
+    uint8_t *volatile pixels = NULL;
+    png_bytep *volatile rows = NULL;
+    png_source source = {.bytes = bytes, .size = size};
+    if (setjmp(failure.resume) != 0) {
+        free(pixels);
+        free(rows);
+        png_destroy_read_struct(&png, &info, NULL);
+        /* libpng's png_malloc: "Out of memory"; every other error is the
+         * file's */
+        if (strstr(failure.message, "memory") != NULL) {
+            luz_error_set(error, "%s: out of memory decoding a %dx%d PNG (%s)", name,
+                          header->width, header->height, failure.message);
+            return LUZ_MACHINE_FAILED;
+        }
+        return luz_error_set(error, "%s: corrupt PNG (%s)", name, failure.message);
+    }
+    png_set_read_fn(png, &source, png_read_bytes);
+    /* The limits luz has checked already, told to libpng too: the size,
+     * and what one ancillary chunk may take (luz reads none of them). */
+    png_set_user_limits(png, LUZ_TEXTURE_MAX_SIZE, LUZ_TEXTURE_MAX_SIZE);
+    png_set_chunk_cache_max(png, 128);
+    png_set_chunk_malloc_max(png, (png_alloc_size_t)1 << 20);
+    png_read_info(png, info);
+    png_uint_32 width, height;
+    int depth, colour_type, interlace;
+    png_get_IHDR(png, info, &width, &height, &depth, &colour_type, &interlace, NULL, NULL);
+    if (width != (png_uint_32)header->width || height != (png_uint_32)header->height)
+        png_error(png, "its IHDR changed between the checks and the decoding");
+    if (depth == 16) png_set_strip_16(png);
+    if (colour_type == PNG_COLOR_TYPE_PALETTE) png_set_palette_to_rgb(png);
+    if (colour_type == PNG_COLOR_TYPE_GRAY && depth < 8) png_set_expand_gray_1_2_4_to_8(png);
+    if (png_get_valid(png, info, PNG_INFO_tRNS)) png_set_tRNS_to_alpha(png);
+    if (colour_type == PNG_COLOR_TYPE_GRAY || colour_type == PNG_COLOR_TYPE_GRAY_ALPHA)
+        png_set_gray_to_rgb(png);
+    png_set_filler(png, 0xff, PNG_FILLER_AFTER);   /* nothing where there is alpha */
+    png_set_interlace_handling(png);
+    png_read_update_info(png, info);
+    const size_t row_bytes = (size_t)width * 4;
+    if (png_get_rowbytes(png, info) != row_bytes)
+        png_error(png, "its rows do not come out as RGBA8");
+    /* width x height x 4 fits in size_t: the budget has allowed it */
+    pixels = malloc(row_bytes * height);
+    rows = malloc(sizeof *rows * height);
+    if (pixels == NULL || rows == NULL) png_error(png, "Out of memory for its pixels");
+    for (png_uint_32 y = 0; y < height; y++) rows[y] = pixels + y * row_bytes;
+    png_read_image(png, rows);
+    png_read_end(png, NULL);
+    png_destroy_read_struct(&png, &info, NULL);
+    free(rows);
+    *rgba = pixels;
+    return 0;
+}
+
+/* ---- BMP, TGA: stb_image ------------------------------------------------------------------ */
 
 static int decode_with_stb(const unsigned char *bytes, size_t size, const luz_image_header *header,
                            const char *name, uint8_t **rgba, luz_error *error)
@@ -290,7 +411,7 @@ int luz_image_decode(const unsigned char *bytes, size_t size, const luz_image_he
     case LUZ_IMAGE_PNG: {
         int status = check_png_data(bytes, size, header, name, error);
         if (status != 0) return status;
-        return decode_with_stb(bytes, size, header, name, rgba, error);
+        return decode_png(bytes, size, header, name, rgba, error);
     }
     case LUZ_IMAGE_BMP:
     case LUZ_IMAGE_TGA:

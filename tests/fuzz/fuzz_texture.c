@@ -1,7 +1,7 @@
 /*
  * fuzz_texture.c: texture loading from memory (io/textures.h,
  * luz_texture_load_memory): the format checks of image_formats.c, the
- * budget, and the decoders (stb_image's PNG, BMP and TGA, libjpeg-turbo).
+ * budget, and the decoders (libpng, libjpeg-turbo, stb_image's BMP and TGA).
  *
  * In:  a first byte that picks the name the bytes come under (x.png,
  *      x.jpg, x.bmp, x.tga, or "*0", an embedded texture with no hint:
