@@ -1042,12 +1042,19 @@ bool luz_packet_isa_supported(luz_packet_isa isa)
     return false;
 }
 
-luz_packet_rows_function *luz_packet_rows_for(luz_packet_isa isa)
+/* The widest variant no wider than isa that the build and the CPU have
+ * (BEST: the widest of all); the rows and the list take the same. */
+static luz_packet_isa widest_available(luz_packet_isa isa)
 {
-    /* The widest variant asked for that the build and the CPU have. */
     if (isa == LUZ_PACKET_ISA_BEST) isa = LUZ_PACKET_ISA_AVX512;
     if (isa == LUZ_PACKET_ISA_AVX512 && !luz_packet_isa_supported(isa)) isa = LUZ_PACKET_ISA_AVX2;
     if (isa == LUZ_PACKET_ISA_AVX2 && !luz_packet_isa_supported(isa)) isa = LUZ_PACKET_ISA_BASELINE;
+    return isa;
+}
+
+luz_packet_rows_function *luz_packet_rows_for(luz_packet_isa isa)
+{
+    isa = widest_available(isa);
 
     switch (isa) {
 #if defined(LUZ_PACKET_HAVE_AVX512)
@@ -1065,9 +1072,7 @@ luz_packet_rows_function *luz_packet_rows_for(luz_packet_isa isa)
 
 luz_packet_list_function *luz_packet_list_for(luz_packet_isa isa)
 {
-    if (isa == LUZ_PACKET_ISA_BEST) isa = LUZ_PACKET_ISA_AVX512;
-    if (isa == LUZ_PACKET_ISA_AVX512 && !luz_packet_isa_supported(isa)) isa = LUZ_PACKET_ISA_AVX2;
-    if (isa == LUZ_PACKET_ISA_AVX2 && !luz_packet_isa_supported(isa)) isa = LUZ_PACKET_ISA_BASELINE;
+    isa = widest_available(isa);
 
     switch (isa) {
 #if defined(LUZ_PACKET_HAVE_AVX512)
