@@ -212,6 +212,17 @@ static const char *luz_render_path(void)
 /* Runs program with the NULL-terminated arguments in box->work.
  * textures_environment sets $LUZ_TEXTURES; NULL unsets it, so that no test
  * depends on the caller's environment. */
+/* argv for execv: the program, then the arguments (at most 62 of them),
+ * then NULL. */
+static void program_argv(const char *program, const char *const *arguments, char *argv[64])
+{
+    int argc = 0;
+    argv[argc++] = (char *)program;
+    for (int i = 0; arguments[i] != NULL && argc < 63; i++)
+        argv[argc++] = (char *)arguments[i];
+    argv[argc] = NULL;
+}
+
 static run_result run_program_in(const sandbox *box, const char *program,
                                  const char *const *arguments, const char *textures_environment)
 {
@@ -220,11 +231,7 @@ static run_result run_program_in(const sandbox *box, const char *program,
     snprintf(err_path, sizeof err_path, "%s/stderr", box->root);
 
     char *argv[64];
-    int argc = 0;
-    argv[argc++] = (char *)program;
-    for (int i = 0; arguments[i] != NULL && argc < 63; i++)
-        argv[argc++] = (char *)arguments[i];
-    argv[argc] = NULL;
+    program_argv(program, arguments, argv);
 
     double start = now_seconds();
     fflush(NULL);
@@ -2928,11 +2935,7 @@ static pid_t start_in(const sandbox *box, const char *const *arguments)
 {
     const char *program = luz_render_path();
     char *argv[64];
-    int argc = 0;
-    argv[argc++] = (char *)program;
-    for (int i = 0; arguments[i] != NULL && argc < 63; i++)
-        argv[argc++] = (char *)arguments[i];
-    argv[argc] = NULL;
+    program_argv(program, arguments, argv);
     fflush(NULL);
     pid_t child = fork();
     assert_true(child >= 0);
@@ -3236,11 +3239,7 @@ static int run_with_stdout_on(const sandbox *box, const char *const *arguments,
     snprintf(err_path, sizeof err_path, "%s/stderr", box->root);
     sandbox_path(box, stdout_name, out_path, sizeof out_path);
     char *argv[64];
-    int argc = 0;
-    argv[argc++] = (char *)program;
-    for (int i = 0; arguments[i] != NULL && argc < 63; i++)
-        argv[argc++] = (char *)arguments[i];
-    argv[argc] = NULL;
+    program_argv(program, arguments, argv);
     fflush(NULL);
     pid_t child = fork();
     assert_true(child >= 0);
