@@ -238,11 +238,10 @@ static void png_chunk(buffer *png, const char *type, const void *data, size_t le
 
 static const unsigned char png_signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
 
-/* A PNG: IHDR with these fields, PLTE if palette_entries > 0, one IDAT
- * holding zlib (a whole zlib stream), IEND. */
-static buffer make_png(uint32_t width, uint32_t height, unsigned depth, unsigned colour,
-                       unsigned interlace, const unsigned char *palette, size_t palette_entries,
-                       const buffer *zlib)
+/* A PNG's start: the signature, IHDR with these fields, PLTE if
+ * palette_entries > 0; the caller adds what follows. */
+static buffer png_start(uint32_t width, uint32_t height, unsigned depth, unsigned colour,
+                        unsigned interlace, const unsigned char *palette, size_t palette_entries)
 {
     buffer png = {0};
     put(&png, png_signature, 8);
@@ -257,6 +256,15 @@ static buffer make_png(uint32_t width, uint32_t height, unsigned depth, unsigned
     png_chunk(&png, "IHDR", header.data, header.length);
     buffer_free(&header);
     if (palette_entries > 0) png_chunk(&png, "PLTE", palette, palette_entries * 3);
+    return png;
+}
+
+/* A PNG: png_start, then one IDAT holding zlib (a whole zlib stream), IEND. */
+static buffer make_png(uint32_t width, uint32_t height, unsigned depth, unsigned colour,
+                       unsigned interlace, const unsigned char *palette, size_t palette_entries,
+                       const buffer *zlib)
+{
+    buffer png = png_start(width, height, depth, colour, interlace, palette, palette_entries);
     png_chunk(&png, "IDAT", zlib->data, zlib->length);
     png_chunk(&png, "IEND", NULL, 0);
     return png;
@@ -553,19 +561,8 @@ static void test_png_pixels_as_stb_gave_them(void **state)
                     for (int i = 0; i < 256 * 3; i++) palette[i] = (unsigned char)(i * 7 + 3);
                     const size_t entries = colour == 3 ? (size_t)1 << depth : 0;
                     buffer zlib = zlib_stored(raw.data, raw.length);
-                    buffer png = {0};
-                    put(&png, png_signature, 8);
-                    buffer header = {0};
-                    put_be32(&header, width);
-                    put_be32(&header, height);
-                    put_byte(&header, depth);
-                    put_byte(&header, colour);
-                    put_byte(&header, 0);
-                    put_byte(&header, 0);
-                    put_byte(&header, interlace);
-                    png_chunk(&png, "IHDR", header.data, header.length);
-                    buffer_free(&header);
-                    if (entries) png_chunk(&png, "PLTE", palette, entries * 3);
+                    buffer png = png_start(width, height, depth, colour, interlace, palette,
+                                           entries);
                     if (with_trns) {
                         /* a palette's first entries' alphas (at most as
                          * many as it has); a grey key of 1, which half
