@@ -485,6 +485,17 @@ static const error_case error_cases[] = {
      NULL, NULL, {"-o: tex/: is a directory", "(such as tex/luz.png)"}},
     {"output-ends-in-slash", {"--size", "8x8", "--textures", "none", "-o", "nowhere/"}, NULL,
      NULL, {"-o: nowhere/: ends in '/'", "(such as nowhere/luz.png)"}},
+    /* what the name says: PNG (issue 31) */
+    {"output-jpg", {"--size", "8x8", "--textures", "none", "-o", "out.jpg"}, NULL, NULL,
+     {"-o: out.jpg: expected a name ending in .png"}},
+    {"output-pattern-without-extension", {"--frames", "2", "-o", "f_%04d"}, NULL, NULL,
+     {"-o: f_%04d: expected a name ending in .png"}},
+    {"output-key-jpeg", {"--scene", "s.luz"}, "size = 8x8\ntextures = none\noutput = a.jpeg\n",
+     NULL, {"-o: a.jpeg: expected a name ending in .png"}},
+    /* a folder of the path that is a file: refused before any frame */
+    {"output-folder-is-a-file", {"--frames", "2", "-o", "corrupt/bad.png/f_%d.png"}, NULL, NULL,
+     {"-o: corrupt/bad.png/f_0.png: corrupt/bad.png is not a folder (it is a file)",
+      "expected folders that exist or can be made"}},
     /* a slice of a sequence (--frame-range, --shard) and its files */
     {"frame-range-reversed", {"--frames", "24", "--frame-range", "7:3"}, NULL, NULL,
      {"--frame-range", "0 <= A <= B <= 23", "'7:3'"}},
@@ -819,11 +830,11 @@ static void test_long_paths_come_through_whole(void **state)
     assert_refused_naming(&result, ARGS(where, model));
     run_result_free(&result);
 
-    /* an output directory that does not exist: exit 1 (the machine's
-     * failure, docs/cli.md), the path whole */
-    snprintf(output, sizeof output, "%s/no-such-directory/out.png", scene_directory);
+    /* an output folder that is a file (the scene file): exit 2, the path
+     * whole */
+    snprintf(output, sizeof output, "%s/s.luz/out.png", scene_directory);
     result = run_in(&box, ARGS("--size", "8x8", "--textures", "none", "-o", output), NULL);
-    assert_int_equal(result.status, 1);
+    assert_int_equal(result.status, 2);
     if (strstr(result.err, output) == NULL)
         fail_msg("stderr lacks the whole output path: %.300s", result.err);
     run_result_free(&result);
@@ -2403,6 +2414,49 @@ static void test_no_frame_replaces_an_input(void **state)
     sandbox_destroy(&box);
 }
 
+/* Missing folders of -o are made, as mkdir -p makes them (issue 31: the
+ * README's -o frames/... failed on a fresh clone after frame 0, exit 1);
+ * a pattern whose folder changes with the frame gets each; .PNG is a
+ * PNG's name too. */
+static void test_output_folders_are_made(void **state)
+{
+    (void)state;
+    sandbox box;
+    sandbox_create(&box);
+    run_result result = run_in(&box, ARGS("--size", "8x6", "--textures", "none", "--frames", "3",
+                                          "-o", "new/deeper/f_%d.png"), NULL);
+    assert_int_equal(result.status, 0);
+    assert_string_equal(result.err, "");
+    run_result_free(&result);
+    for (int k = 0; k < 3; k++) {
+        char name[64];
+        snprintf(name, sizeof name, "new/deeper/f_%d.png", k);
+        assert_png_size(&box, name, 8, 6);
+    }
+    result = run_in(&box, ARGS("--size", "8x6", "--textures", "none", "--frames", "2", "-o",
+                               "shot_%d//f.PNG"), NULL);
+    assert_int_equal(result.status, 0);
+    run_result_free(&result);
+    assert_png_size(&box, "shot_0/f.PNG", 8, 6);
+    assert_png_size(&box, "shot_1/f.PNG", 8, 6);
+
+    /* a folder that cannot be made, even by root (sysfs refuses mkdir):
+     * one line naming it, exit 2, no frame */
+    struct stat sys;
+    if (stat("/sys/kernel", &sys) == 0 && S_ISDIR(sys.st_mode)) {
+        result = run_in(&box, ARGS("--size", "8x6", "--textures", "none", "-o",
+                                   "/sys/luz-no-folder/f.png"), NULL);
+        assert_int_equal(result.status, 2);
+        assert_non_null(strstr(result.err, "luz-render: -o: /sys/luz-no-folder/f.png: cannot "
+                                           "create the folder /sys/luz-no-folder ("));
+        assert_int_equal(strchr(result.err, '\n') - result.err, strlen(result.err) - 1);
+        run_result_free(&result);
+    } else {
+        print_message("the folder that cannot be made: skipped, no sysfs at /sys\n");
+    }
+    sandbox_destroy(&box);
+}
+
 /* The check is new_file's, right before the rename too: a FIFO that
  * appears while the PNG is written is not replaced, and the temporary
  * file is removed. */
@@ -3436,6 +3490,7 @@ int main(void)
         cmocka_unit_test(test_save_scene_never_replaces_unless_asked),
         cmocka_unit_test(test_output_replaces_only_regular_files),
         cmocka_unit_test(test_no_frame_replaces_an_input),
+        cmocka_unit_test(test_output_folders_are_made),
         cmocka_unit_test(test_commit_checks_the_path_again),
         cmocka_unit_test(test_save_scene_past_the_file_size_limit),
         cmocka_unit_test(test_parse_precedence_and_forms),

@@ -211,9 +211,17 @@ int luz_options_add_object(luz_options *options, const luz_object *object,
  * socket, a directory or a symbolic link), and it may not be one of
  * options->inputs, by name or by device and inode: call it once the
  * textures and models are loaded. For -o -, standard output may not be
- * one of the inputs (by device and inode). Returns 0, or -1 with a
- * message that starts "-o: " ("-o -: " for standard output). */
+ * one of the inputs (by device and inode). Each folder above it that exists
+ * must be a folder (luz_new_file_folders), and the name must end in .png.
+ * Returns 0, or -1 with a message that starts "-o: " ("-o -: " for
+ * standard output). */
 int luz_options_check_outputs(const luz_options *options, luz_error *error);
+
+/* Makes the missing folders of every file luz_options_check_outputs
+ * checked, as `mkdir -p` does (Blender's habit: `-o frames/f_%04d.png`
+ * works on a fresh clone). Call it after that check and before the first
+ * frame. Returns 0, or -1 with "-o: PATH: cannot create the folder ...". */
+int luz_options_make_output_folders(const luz_options *options, luz_error *error);
 
 /* ---- models (option_models.c) ---- */
 

@@ -92,6 +92,46 @@ int luz_new_file_check_target(const char *path, luz_error *error)
                          path, kind_of_file(status.st_mode));
 }
 
+/* ---- the folders above a path ------------------------------------------------------- */
+
+int luz_new_file_folders(const char *path, bool create, luz_error *error)
+{
+    size_t length = strlen(path);
+    char *folder = malloc(length + 1);
+    if (folder == NULL)
+        return luz_error_set(error, "%s: out of memory", path);
+    /* Each prefix that ends just before a '/' (but the root's "" and the
+     * repeats of "a//b") is a folder the file needs, outermost first. */
+    int status = 0;
+    for (size_t end = 1; end < length && status == 0; end++) {
+        if (path[end] != '/' || path[end - 1] == '/')
+            continue;
+        memcpy(folder, path, end);
+        folder[end] = '\0';
+        struct stat info;
+        if (stat(folder, &info) == 0) {
+            if (!S_ISDIR(info.st_mode))
+                status = luz_error_set(error, "%s: %s is not a folder (it is %s)", path, folder,
+                                       S_ISREG(info.st_mode) ? "a file"
+                                                             : kind_of_file(info.st_mode));
+            continue;
+        }
+        if (errno != ENOENT) {
+            status = luz_error_set(error, "%s: cannot reach the folder %s (%s)", path, folder,
+                                   strerror(errno));
+        } else if (create && mkdir(folder, 0777) != 0 &&
+                   !(errno == EEXIST && stat(folder, &info) == 0 && S_ISDIR(info.st_mode))) {
+            /* EEXIST: another run (a shard) made it meanwhile */
+            status = luz_error_set(error, "%s: cannot create the folder %s (%s)", path, folder,
+                                   strerror(errno));
+        } else if (!create) {
+            break;   /* missing: the folders below it are missing too */
+        }
+    }
+    free(folder);
+    return status;
+}
+
 /* ---- writing ------------------------------------------------------------------------ */
 
 int luz_new_file_open(luz_new_file *file, const char *path, luz_error *error)

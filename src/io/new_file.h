@@ -61,6 +61,14 @@ typedef struct luz_new_file {
  * that does not exist) are left to the write, which reports them. */
 int luz_new_file_check_target(const char *path, luz_error *error);
 
+/* The folders above path (its parent, and theirs), as `mkdir -p` makes
+ * them. create false only checks: 0 if each that exists is a folder (the
+ * missing ones can be made later), else -1 with "PATH: FOLDER is not a
+ * folder (it is ...)". create true also makes the missing ones, mode 0777
+ * less the umask, and says "PATH: cannot create the folder FOLDER (why)"
+ * for the first it cannot make. A path without a '/' has none. */
+int luz_new_file_folders(const char *path, bool create, luz_error *error);
+
 /* Creates the temporary file, with the mode a plain fopen would give
  * (0666 less the umask), and holds the write signals. Returns 0, or -1
  * with a message naming path (the signals released again). */

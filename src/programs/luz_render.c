@@ -363,7 +363,9 @@ int main(int argc, char **argv)
     luz_texture_budget budget = {0};
     int loaded = luz_options_load_textures(&options, &textures, &budget, &error);
     if (loaded == 0) loaded = luz_options_load_models(&options, &models, &budget, &error);
-    if (loaded == 0 && luz_options_check_outputs(&options, &error) != 0) loaded = -1;
+    if (loaded == 0 && (luz_options_check_outputs(&options, &error) != 0 ||
+                        luz_options_make_output_folders(&options, &error) != 0))
+        loaded = -1;
     if (loaded != 0) {
         /* out of memory is the machine's failure, not the input's */
         status = loaded == LUZ_MACHINE_FAILED ? EXIT_RUNTIME : EXIT_USAGE;
