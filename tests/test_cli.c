@@ -3426,7 +3426,7 @@ static void test_stdout_stream_with_progress_bar(void **state)
 }
 
 /* Where ffmpeg is installed: the -o - stream piped into ffmpeg as the
- * README shows makes a video of 24 frames, as ffprobe counts them. */
+ * docs/sequences.md shows makes a video of 24 frames, as ffprobe counts them. */
 static void test_video_through_ffmpeg(void **state)
 {
     (void)state;

@@ -1216,7 +1216,7 @@ static void the_text(void **state)
     free(d);
 }
 
-/* The README's tour follows pixel (700, 450) of the default frame at
+/* The guided tour (docs/pipeline.md) follows pixel (700, 450) of the default frame at
  * 1280x720: its corners, worked out here by hand from SCENE.md's numbers
  * (the cube table's +Z face, cube 0 at the origin and not yet turned at
  * t = 0, the camera at (0, 0, 3) looking down -z, a 45 degree field of

@@ -1,14 +1,14 @@
 #!/bin/sh
 # The viewer's start-up, without a display: what a user sees when something
 # is wrong (exit status 2 and exactly one line on stderr that says what),
-# --help and --version, and the README's controls table against the
+# --help and --version, and docs/viewer.md's controls table against the
 # program's own (the H overlay and --help print the same list).
 #
-#   tests/viewer_startup.sh LUZ README.md
+#   tests/viewer_startup.sh LUZ docs/viewer.md
 set -u
 
 luz=$1
-readme=$2
+viewer_page=$2
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 failures=0
@@ -219,24 +219,24 @@ for option in --render-scale --print-state --scene --camera-pos --spot-outer; do
 done
 
 # The controls: --help's list (keys padded to 22 columns, as the H overlay
-# lists them) and the README's table under "## Viewer", as "keys|action".
+# lists them) and docs/viewer.md's table under "## Controls", as "keys|action".
 awk '/^Controls/ { on = 1; next }
      on && /^$/ { exit }
      on { keys = substr($0, 3, 22); sub(/ +$/, "", keys); print keys "|" substr($0, 26) }' \
     "$work/help" >"$work/help-controls"
-awk '/^## Viewer/ { viewer = 1 }
+awk '/^## Controls/ { viewer = 1 }
      viewer && /^\| keys \| action \|/ { table = 1; next }
      table && /^\| ---/ { next }
      table && !/^\|/ { exit }
      table { line = $0; sub(/^\| /, "", line); sub(/ \|$/, "", line); sub(/ \| /, "|", line); print line }' \
-    "$readme" >"$work/readme-controls"
+    "$viewer_page" >"$work/page-controls"
 if [ "$(wc -l <"$work/help-controls")" -lt 20 ]; then
     fail "found only $(wc -l <"$work/help-controls") controls in luz --help"
 fi
-if ! diff -u "$work/readme-controls" "$work/help-controls" >"$work/controls.diff"; then
-    fail "README.md's controls table differs from luz --help (and the H overlay):"
+if ! diff -u "$work/page-controls" "$work/help-controls" >"$work/controls.diff"; then
+    fail "docs/viewer.md's controls table differs from luz --help (and the H overlay):"
     cat "$work/controls.diff"
 fi
 
 [ "$failures" -eq 0 ] || exit 1
-echo "ok: start-up errors, --help, --version, README controls"
+echo "ok: start-up errors, --help, --version, docs/viewer.md's controls"

@@ -11,7 +11,7 @@
  * step mode.
  *
  * luz_controls_help lists every control of the viewer, in the order its H
- * overlay, `luz --help` and the README show them.
+ * overlay, `luz --help` and docs/viewer.md show them.
  */
 #ifndef LUZ_CONTROLS_H
 #define LUZ_CONTROLS_H
@@ -117,7 +117,7 @@ void luz_exposure_step(luz_scene *scene, int direction);
 /* N: clamp <-> neutral, from the tone map in force. */
 void luz_tone_map_toggle(luz_scene *scene);
 
-/* ---- the teaching controls (README, "Guided tour") ------------------------------- */
+/* ---- the teaching controls (docs/pipeline.md, "Guided tour") --------------------- */
 
 /* V / Shift+V: the next / previous --view (color, depth, normals, uv, mip,
  * overdraw, bands, triangles, then color again). */

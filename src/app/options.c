@@ -189,7 +189,7 @@ static const option_spec option_table[] = {
     {.name = "view", .kind = OPTION_VIEW,
      .in_scene_file = true, .saving = LUZ_OPTION_SAVED_IF_CHANGED, .syntax = "NAME",
      .summary = "what the image shows: color, or a picture of a pipeline stage: depth, "
-                "normals, uv, mip, overdraw, bands, triangles (README, Guided tour)"},
+                "normals, uv, mip, overdraw, bands, triangles (docs/pipeline.md)"},
     {.name = "interp", .kind = OPTION_INTERP,
      .in_scene_file = true, .saving = LUZ_OPTION_SAVED_IF_CHANGED,
      .syntax = "perspective|affine",

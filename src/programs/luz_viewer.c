@@ -65,7 +65,7 @@
 #error "src/meson.build passes LUZ_VERSION"
 #endif
 
-/* The smallest window (README, Viewer): every part of the HUD, the light
+/* The smallest window (docs/viewer.md): every part of the HUD, the light
  * panel and the help fits in it, the help by scrolling. */
 #define LUZ_VIEWER_MIN_WIDTH 480
 #define LUZ_VIEWER_MIN_HEIGHT 270

@@ -1,6 +1,6 @@
 #!/bin/sh
-# readme_tour.sh SOURCE_DIR LUZ_RENDER: the README's "Guided tour" says
-# nothing that the program contradicts.
+# tour.sh SOURCE_DIR LUZ_RENDER: the guided tour (docs/pipeline.md, "Guided
+# tour") says nothing that the program contradicts.
 #
 # In the section from "## Guided tour" to "### Further reading":
 #
@@ -12,7 +12,7 @@
 #              against the nearest output above it (of the commands above)
 #              that has a line "key=...": the same count of comma-separated
 #              values, each number equal to the output's rounded to the
-#              decimals the README writes ("0.961" is 0.960961 to three
+#              decimals the page writes ("0.961" is 0.960961 to three
 #              places), anything else equal as written;
 #   names      a name in backticks next to a link to a source file,
 #              "`name` in [`file`](path)" or "[`file`](path) (`name`)",
@@ -21,16 +21,16 @@
 #              somewhere in src/ or include/, unless it is a key the
 #              commands print.
 #
-# HTML comments are skipped. The README's numbers are not written down
-# here a second time: the README and the program are compared with each
+# HTML comments are skipped. The page's numbers are not written down
+# here a second time: the page and the program are compared with each
 # other, so a change to either shows up as a difference.
 set -u
 
 source_dir=$1
 luz_render=$2
-readme=$source_dir/README.md
+readme=$source_dir/docs/pipeline.md
 
-work=$(mktemp -d "${TMPDIR:-/tmp}/luz-readme-tour.XXXXXX") || exit 1
+work=$(mktemp -d "${TMPDIR:-/tmp}/luz-tour.XXXXXX") || exit 1
 trap 'rm -rf "$work"' EXIT
 mkdir "$work/run" "$work/bin" || exit 1
 # The reader's `luz-render`: the one under test, under that name.
@@ -45,7 +45,7 @@ fail() {
 }
 
 # ---- 1. The tour, cut into its pieces -----------------------------------
-# Writes, in README order:
+# Writes, in page order:
 #   $work/command.N, $work/expected.N   the N-th command block
 #   $work/items                         one item a line, tab-separated:
 #     span   LINE BLOCKS KEY VALUE      (BLOCKS: commands above it)
@@ -123,7 +123,7 @@ touch "$work/items"
 
 blocks=$(cat "$work/blocks")
 if [ "$blocks" -eq 0 ]; then
-    fail "README.md: no command blocks (\"\$ luz-render ...\") in the Guided tour"
+    fail "docs/pipeline.md: no command blocks (\"\$ luz-render ...\") in the Guided tour"
 fi
 
 # ---- 2. Each command prints what its block shows --------------------------
@@ -132,7 +132,7 @@ while [ "$n" -le "$blocks" ]; do
     command=$(cat "$work/command.$n")
     case $command in
     "luz-render "*) ;;
-    *) fail "README.md: a tour command that is not luz-render's: $command"
+    *) fail "docs/pipeline.md: a tour command that is not luz-render's: $command"
        n=$((n + 1)); continue ;;
     esac
     (cd "$work/run" && PATH="$work/bin:$PATH" sh -c "$command") \
@@ -142,7 +142,7 @@ while [ "$n" -le "$blocks" ]; do
         cat "$work/errors.$n"
     fi
     if ! cmp -s "$work/output.$n" "$work/expected.$n"; then
-        fail "README.md shows for \$ $command what it does not print (- README, + program):"
+        fail "docs/pipeline.md shows for \$ $command what it does not print (- page, + program):"
         diff "$work/expected.$n" "$work/output.$n"
     fi
     n=$((n + 1))
@@ -150,7 +150,7 @@ done
 
 # ---- 3. Every number quoted is the output's, rounded as written ------------
 spans=$(awk -F '\t' '$1 == "span"' "$work/items" | wc -l)
-[ "$spans" -gt 0 ] || fail "README.md: no \`key=value\` quoted in the Guided tour"
+[ "$spans" -gt 0 ] || fail "docs/pipeline.md: no \`key=value\` quoted in the Guided tour"
 awk -F '\t' -v work="$work" '
 function numeric(x) { return x ~ /^-?[0-9]+(\.[0-9]+)?$/ }
 # the value of "key=" in output n, or "" (found[0] says whether)
@@ -167,12 +167,12 @@ $1 == "span" {
     value = ""; found = 0
     for (n = above; n >= 1 && !found; n--) { value = lookup(n, key); source = n }
     if (!found) {
-        printf "FAIL: README.md:%d: `%s=%s`: no command above it prints a %s= line\n", line, key, quoted, key
+        printf "FAIL: docs/pipeline.md:%d: `%s=%s`: no command above it prints a %s= line\n", line, key, quoted, key
         bad++; next
     }
     count = split(quoted, want, ","); got_count = split(value, got, ",")
     if (count != got_count) {
-        printf "FAIL: README.md:%d: `%s=%s` has %d values, the output of command %d %d: %s=%s\n", line, key, quoted, count, source, got_count, key, value
+        printf "FAIL: docs/pipeline.md:%d: `%s=%s` has %d values, the output of command %d %d: %s=%s\n", line, key, quoted, count, source, got_count, key, value
         bad++; next
     }
     for (k = 1; k <= count; k++) {
@@ -186,7 +186,7 @@ $1 == "span" {
             ok = got[k] == want[k]
         }
         if (!ok) {
-            printf "FAIL: README.md:%d: `%s=%s`: value %d is %s in the output (%s=%s), %s rounded as written\n", line, key, quoted, k, got[k], key, value, rounded
+            printf "FAIL: docs/pipeline.md:%d: `%s=%s`: value %d is %s in the output (%s=%s), %s rounded as written\n", line, key, quoted, k, got[k], key, value, rounded
             bad++
         }
     }
@@ -204,15 +204,17 @@ while IFS="$tab" read -r kind line name path; do
     case $kind in
     link)
         links=$((links + 1))
+        # relative to docs/, where the page is
+        path=${path#../}
         case $path in
         src/* | include/*) ;;
-        *) fail "README.md:$line: \`$name\` is linked to $path, not a source file"
+        *) fail "docs/pipeline.md:$line: \`$name\` is linked to $path, not a source file"
            continue ;;
         esac
         if [ ! -f "$source_dir/$path" ]; then
-            fail "README.md:$line: \`$name\` in $path: there is no such file"
+            fail "docs/pipeline.md:$line: \`$name\` in $path: there is no such file"
         elif ! grep -qw -- "$name" "$source_dir/$path"; then
-            fail "README.md:$line: \`$name\` is not in $path"
+            fail "docs/pipeline.md:$line: \`$name\` is not in $path"
         fi ;;
     name)
         # a line the commands above print (`corner0_window`) is no C name
@@ -220,11 +222,11 @@ while IFS="$tab" read -r kind line name path; do
             continue
         fi
         if ! grep -rqw -- "$name" "$source_dir/src" "$source_dir/include"; then
-            fail "README.md:$line: \`$name\` occurs nowhere in src/ or include/"
+            fail "docs/pipeline.md:$line: \`$name\` occurs nowhere in src/ or include/"
         fi ;;
     esac
 done <"$work/items"
-[ "$links" -gt 0 ] || fail "README.md: no \`function\` in [\`file\`](path) in the Guided tour"
+[ "$links" -gt 0 ] || fail "docs/pipeline.md: no \`function\` in [\`file\`](path) in the Guided tour"
 
 echo "$blocks commands run, $links linked names checked"
 [ "$failures" -eq 0 ]
