@@ -33,6 +33,9 @@ readme=$source_dir/docs/pipeline.md
 work=$(mktemp -d "${TMPDIR:-/tmp}/luz-tour.XXXXXX") || exit 1
 trap 'rm -rf "$work"' EXIT
 mkdir "$work/run" "$work/bin" || exit 1
+# The commands run as from the top of the source tree: docs/ is there
+# (the gallery's scene files), nothing else.
+ln -s "$(cd "$source_dir" && pwd)/docs" "$work/run/docs" || exit 1
 # The reader's `luz-render`: the one under test, under that name.
 ln -s "$(cd "$(dirname "$luz_render")" && pwd)/$(basename "$luz_render")" \
     "$work/bin/luz-render" || exit 1
