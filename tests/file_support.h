@@ -1,6 +1,7 @@
 /*
  * file_support.h: the files and directories the tests that run programs
- * share (test_cli, test_models, test_gen_model). Include after <cmocka.h>.
+ * share (the test_cli_* programs through cli_support.h, test_options,
+ * test_models, test_gen_model). Include after <cmocka.h>.
  *
  *   read_file(path, &length)   the whole file, NUL-terminated (NULL if it
  *                              cannot be opened); free() it
