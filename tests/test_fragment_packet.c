@@ -48,6 +48,7 @@
 #include "io/textures.h"
 #include "lab/scene.h"
 #include "lab_support.h"
+#include "renderer/cpu.h"
 #include "renderer/pipeline.h"
 
 #define WIDTH 1280          /* the default scene's size */
@@ -55,19 +56,18 @@
 #define HALF_WIDTH 640      /* for the many variations, to keep the suite */
 #define HALF_HEIGHT 360     /* quick under the sanitizers */
 
-/* The fast path's compiled variants, and their names for the messages. */
-static const luz_packet_isa variants[] = {LUZ_PACKET_ISA_BASELINE, LUZ_PACKET_ISA_AVX2,
-                                          LUZ_PACKET_ISA_AVX512};
-static const char *const variant_names[] = {"baseline", "avx2", "avx512"};
+/* The fast path's compiled variants: one per instruction set (cpu.h). */
+static const luz_isa variants[] = {LUZ_ISA_SCALAR, LUZ_ISA_BASELINE, LUZ_ISA_AVX2,
+                                   LUZ_ISA_AVX512};
 #define VARIANT_COUNT (sizeof variants / sizeof variants[0])
 
 /* The reference, or the fast path in one variant. */
 typedef struct stage {
     bool reference;
-    luz_packet_isa isa;
+    luz_isa isa;   /* the fast path's (the reference's geometry: the widest) */
 } stage;
 
-static const stage reference_stage = {true, LUZ_PACKET_ISA_BEST};
+static const stage reference_stage = {true, LUZ_ISA_SCALAR};
 
 /* Draws a scene into a new width x height framebuffer. */
 static luz_framebuffer *render(const luz_scene *scene, const luz_texture_set *texture_set,
@@ -80,7 +80,7 @@ static luz_framebuffer *render(const luz_scene *scene, const luz_texture_set *te
     luz_frame frame = {0};
     assert_non_null(renderer);
     assert_non_null(framebuffer);
-    luz_renderer_set_packet_isa(renderer, how.isa);
+    if (!how.reference) luz_renderer_set_isa(renderer, how.isa);
     assert_int_equal(luz_scene_build_frame(test_lab(), scene,
                                            texture_set ? texture_set->textures : NULL,
                                            texture_set ? texture_set->count : 0,
@@ -132,8 +132,8 @@ static void assert_agreement(const char *name, const luz_scene *scene,
 {
     luz_framebuffer *expected = render(scene, texture_set, width, height, 1, reference_stage);
     for (size_t v = 0; v < VARIANT_COUNT; v++) {
-        if (!luz_packet_isa_supported(variants[v])) {
-            print_message("%-26s %-8s not supported by this CPU\n", name, variant_names[v]);
+        if (!luz_isa_available(variants[v])) {
+            print_message("%-26s %-8s not supported by this CPU\n", name, luz_isa_name(variants[v]));
             continue;
         }
         luz_framebuffer *got = render(scene, texture_set, width, height, 1,
@@ -141,7 +141,7 @@ static void assert_agreement(const char *name, const luz_scene *scene,
         agreement a = compare(expected, got);
         print_message("%-26s %-8s identical: %zu/%zu pixels (%.4f%%), %zu/%zu shaded "
                       "(%.4f%%); max difference %d\n",
-                      name, variant_names[v], a.identical, a.pixels,
+                      name, luz_isa_name(variants[v]), a.identical, a.pixels,
                       percent(a.identical, a.pixels), a.shaded_identical, a.shaded_pixels,
                       percent(a.shaded_identical, a.shaded_pixels), a.max_difference);
         luz_framebuffer_destroy(got);
@@ -301,13 +301,13 @@ static void equal_cones_divide_by_nothing(void **state)
     scene.lights.spot_inner_degrees = 10.0f;
     scene.lights.spot_outer_degrees = 10.0f;
     for (size_t v = 0; v < sizeof variants / sizeof variants[0]; v++) {
-        if (!luz_packet_isa_supported(variants[v])) continue;
+        if (!luz_isa_available(variants[v])) continue;
         feclearexcept(FE_DIVBYZERO);
         luz_framebuffer *image =
             render(&scene, lab_textures(), HALF_WIDTH, HALF_HEIGHT, 1, (stage){false, variants[v]});
         const bool divided_by_zero = fetestexcept(FE_DIVBYZERO) != 0;
         luz_framebuffer_destroy(image);
-        if (divided_by_zero) fail_msg("%s: a division by zero", variant_names[v]);
+        if (divided_by_zero) fail_msg("%s: a division by zero", luz_isa_name(variants[v]));
     }
 }
 
@@ -327,7 +327,7 @@ static void same_bytes_for_any_thread_count_and_variant(void **state)
     scene.cube_count = 40;
     luz_framebuffer *first = NULL;
     for (size_t v = 0; v < VARIANT_COUNT; v++) {
-        if (!luz_packet_isa_supported(variants[v])) continue;
+        if (!luz_isa_available(variants[v])) continue;
         const stage fast = {false, variants[v]};
         luz_framebuffer *one = render(&scene, lab_textures(), ODD_WIDTH, ODD_HEIGHT, 1, fast);
         const int thread_counts[] = {2, 3, 7};
@@ -398,7 +398,7 @@ static void ambient_only_is_exact(void **state)
 
         for (size_t v = 0; v <= VARIANT_COUNT; v++) {
             const bool reference = v == VARIANT_COUNT;
-            if (!reference && !luz_packet_isa_supported(variants[v])) continue;
+            if (!reference && !luz_isa_available(variants[v])) continue;
             const stage how = reference ? reference_stage : (stage){false, variants[v]};
             luz_framebuffer *image = render(&scene, &none, SMALL_WIDTH, SMALL_HEIGHT, 1, how);
             size_t covered = 0;
@@ -474,7 +474,7 @@ static void output_same_bytes_in_both_paths(void **state)
                       samples, moved.pixels - moved.identical, moved.pixels);
         assert_true((moved.pixels - moved.identical) * 3 > moved.pixels);
         for (size_t v = 0; v < VARIANT_COUNT; v++) {
-            if (!luz_packet_isa_supported(variants[v])) continue;
+            if (!luz_isa_available(variants[v])) continue;
             luz_framebuffer *got = render(&scene, &none, HALF_WIDTH, HALF_HEIGHT, 1,
                                           (stage){false, variants[v]});
             assert_memory_equal(got->colour, expected->colour,
@@ -525,7 +525,7 @@ static void output_leaves_marker_and_background(void **state)
         assert_true(cube_ids > 0);
         for (size_t v = 0; v <= VARIANT_COUNT; v++) {
             const bool reference = v == VARIANT_COUNT;
-            if (!reference && !luz_packet_isa_supported(variants[v])) continue;
+            if (!reference && !luz_isa_available(variants[v])) continue;
             const stage how = reference ? reference_stage : (stage){false, variants[v]};
             luz_framebuffer *image = render(&scene, &none, SMALL_WIDTH, SMALL_HEIGHT, 1, how);
             size_t marker = 0, background = 0, cube_pixels = 0;
@@ -572,7 +572,7 @@ static luz_framebuffer *render_over(const luz_frame *frame, int width, int heigh
     luz_framebuffer *framebuffer = luz_framebuffer_create(width, height, &error);
     assert_non_null(renderer);
     assert_non_null(framebuffer);
-    luz_renderer_set_packet_isa(renderer, how.isa);
+    if (!how.reference) luz_renderer_set_isa(renderer, how.isa);
     memset(framebuffer->colour, fill, (size_t)width * (size_t)height * 4);
     luz_framebuffer_use_colour(framebuffer, NULL, order);
     assert_int_equal(luz_renderer_draw(renderer, frame, framebuffer, NULL, &error), 0);
@@ -602,9 +602,9 @@ static void every_byte_written_in_either_order(void **state)
 
     for (size_t v = 0; v <= VARIANT_COUNT; v++) {
         const bool reference = v == VARIANT_COUNT;
-        if (!reference && !luz_packet_isa_supported(variants[v])) continue;
+        if (!reference && !luz_isa_available(variants[v])) continue;
         const stage how = reference ? reference_stage : (stage){false, variants[v]};
-        const char *name = reference ? "reference" : variant_names[v];
+        const char *name = reference ? "reference" : luz_isa_name(variants[v]);
         luz_framebuffer *zeros =
             render_over(&frame, SMALL_WIDTH, SMALL_HEIGHT, how, 0x00, LUZ_CHANNELS_RGBA);
         luz_framebuffer *garbage =
@@ -730,13 +730,13 @@ static void pixel_sized_triangles(void **state)
             }
         assert_true(mixed * 4 > packets);
         for (size_t v = 0; v < VARIANT_COUNT; v++) {
-            if (!luz_packet_isa_supported(variants[v])) continue;
+            if (!luz_isa_available(variants[v])) continue;
             luz_framebuffer *got = render_over(&frame, SMALL_WIDTH, SMALL_HEIGHT,
                                                (stage){false, variants[v]}, 0, LUZ_CHANNELS_RGBA);
             agreement a = compare(expected, got);
             print_message("grid %-9s %-8s identical: %zu/%zu shaded (%.4f%%); max difference "
                           "%d; %zu of %zu 4-pixel packets hold 3+ triangles\n",
-                          luz_filter_name(filters[f]), variant_names[v], a.shaded_identical,
+                          luz_filter_name(filters[f]), luz_isa_name(variants[v]), a.shaded_identical,
                           a.shaded_pixels, percent(a.shaded_identical, a.shaded_pixels),
                           a.max_difference, mixed, packets);
             assert_true(a.shaded_pixels * 10 > (size_t)SMALL_WIDTH * SMALL_HEIGHT * 9);

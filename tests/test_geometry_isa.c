@@ -25,6 +25,7 @@
 #include <cmocka.h>
 
 #include "luz/luz.h"
+#include "renderer/cpu.h"
 #include "renderer/pipeline.h"
 
 #define WIDTH 321
@@ -42,14 +43,15 @@ typedef struct snapshot {
     uint64_t submitted, clipped, culled, draws_culled;
 } snapshot;
 
-static snapshot run(const luz_frame *frame, luz_packet_isa isa, int thread_count)
+static snapshot run(const luz_frame *frame, luz_isa isa, int thread_count)
 {
     luz_error error = {{0}};
     luz_framebuffer *framebuffer = luz_framebuffer_create(WIDTH, HEIGHT, &error);
     luz_geometry *geometry = luz_geometry_create(thread_count);
     luz_thread_pool *pool = luz_thread_pool_create(thread_count);
     assert_true(framebuffer && geometry && pool);
-    luz_geometry_set_isa(geometry, isa);
+    const luz_kernels kernels = luz_kernels_of(isa);
+    luz_geometry_set_kernels(geometry, &kernels);
     const luz_uniforms uniforms = luz_uniforms_of(frame, NULL);
     luz_geometry_result result;
     assert_int_equal(luz_geometry_run(geometry, pool, frame, &uniforms, framebuffer, 16, 0,
@@ -102,7 +104,7 @@ static void snapshot_free(snapshot *s)
 static void test_same_phase_one_with_and_without_avx512(void **state)
 {
     (void)state;
-    if (!luz_packet_isa_supported(LUZ_PACKET_ISA_AVX512)) {
+    if (!luz_isa_available(LUZ_ISA_AVX512)) {
         print_message("skipped: this build or CPU has no AVX-512 (nothing to compare)\n");
         skip();
     }
@@ -158,7 +160,7 @@ static void test_same_phase_one_with_and_without_avx512(void **state)
         assert_int_equal(luz_frame_add_draw(&frame, &draw, &error), 0);
     }
 
-    snapshot baseline = run(&frame, LUZ_PACKET_ISA_BASELINE, 1);
+    snapshot baseline = run(&frame, LUZ_ISA_SCALAR, 1);
     print_message("%zu triangles set up of %llu submitted, %llu clipped, %llu culled, %llu "
                   "draws culled\n",
                   baseline.total, (unsigned long long)baseline.submitted,
@@ -178,7 +180,7 @@ static void test_same_phase_one_with_and_without_avx512(void **state)
     assert_true(far > 0 && far < 64 * 4);
     const int thread_counts[] = {1, 3};
     for (size_t k = 0; k < sizeof thread_counts / sizeof thread_counts[0]; k++) {
-        snapshot wide = run(&frame, LUZ_PACKET_ISA_AVX512, thread_counts[k]);
+        snapshot wide = run(&frame, LUZ_ISA_AVX512, thread_counts[k]);
         assert_same(&wide, &baseline, thread_counts[k] == 1 ? "AVX-512, 1 thread"
                                                             : "AVX-512, 3 threads");
         snapshot_free(&wide);

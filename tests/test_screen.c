@@ -30,13 +30,27 @@
 
 #include "test_support.h"
 
+#include "renderer/cpu.h"
 #include "renderer/pipeline.h"
 
 #define WIDTH 40
 #define HEIGHT 24
 
-static const luz_packet_isa variants[] = {LUZ_PACKET_ISA_BASELINE, LUZ_PACKET_ISA_AVX512};
-static const char *const variant_names[] = {"baseline", "AVX-512"};
+/* Every instruction set's table (cpu.h); a set without a screening
+ * variant lets every triangle through. */
+static const luz_isa variants[] = {LUZ_ISA_SCALAR, LUZ_ISA_BASELINE, LUZ_ISA_AVX2,
+                                   LUZ_ISA_AVX512};
+#define VARIANT_COUNT (int)(sizeof variants / sizeof variants[0])
+
+/* Variant v's screening; *screens: whether it drops any triangle (it then
+ * promises to check the small boxes). */
+static luz_screen_function *screening(int v, bool *screens)
+{
+    const luz_kernels kernels = luz_kernels_of(variants[v]);
+    *screens = kernels.screen != luz_screen_every_triangle;
+    assert_int_equal(kernels.screen_checks_small_boxes, *screens);
+    return kernels.screen;
+}
 
 /* A mesh of projected vertices, as luz_setup_project leaves them. */
 typedef struct mesh {
@@ -137,8 +151,7 @@ typedef struct tally {
 static tally screen_and_check(const mesh *m, int v, uint32_t first, uint32_t end)
 {
     bool checks_small_boxes = false;
-    luz_screen_function *screen = luz_screen_for(variants[v], &checks_small_boxes);
-    assert_int_equal(checks_small_boxes, variants[v] == LUZ_PACKET_ISA_AVX512);
+    luz_screen_function *screen = screening(v, &checks_small_boxes);
     uint32_t *survivors = malloc((end - first + 1) * sizeof *survivors);
     assert_non_null(survivors);
     uint32_t culled = 12345;
@@ -161,12 +174,12 @@ static tally screen_and_check(const mesh *m, int v, uint32_t first, uint32_t end
         luz_triangle triangle;
         if (kept) {
             result.kept++;
-            if (!eligible || variants[v] == LUZ_PACKET_ISA_BASELINE) continue;
-            /* What the AVX-512 variant must not leave to setup, the last
+            if (!eligible || !checks_small_boxes) continue;
+            /* What a screening variant must not leave to setup, the last
              * triangles of a range (fewer than 16) included. */
             const int64_t size = box_size(p);
             if (doubled_area(p) <= 0 || size < 0 || (size <= 2 && centres_covered(p) == 0))
-                fail_msg("%s kept triangle %u, which it should drop", variant_names[v], t);
+                fail_msg("%s kept triangle %u, which it should drop", luz_isa_name(variants[v]), t);
             /* So setup told that screening checked the small boxes
              * decides as setup testing them itself (a larger box it still
              * tests either way). */
@@ -181,10 +194,10 @@ static tally screen_and_check(const mesh *m, int v, uint32_t first, uint32_t end
             continue;
         }
         /* Dropped: it must be eligible, and a back face or cover nothing. */
-        if (!eligible) fail_msg("%s dropped triangle %u with a marked vertex", variant_names[v], t);
+        if (!eligible) fail_msg("%s dropped triangle %u with a marked vertex", luz_isa_name(variants[v]), t);
         if (doubled_area(p) <= 0) result.dropped_back++;
         else if (centres_covered(p) == 0) result.dropped_uncovered++;
-        else fail_msg("%s dropped triangle %u, which covers a centre", variant_names[v], t);
+        else fail_msg("%s dropped triangle %u, which covers a centre", luz_isa_name(variants[v]), t);
         /* And setup, the other implementation, says the same. */
         const luz_setup_result setup = luz_setup_projected(
             &m->clip[index[0]], &m->clip[index[1]], &m->clip[index[2]], &m->window[index[0]],
@@ -240,9 +253,9 @@ static void test_screening_drops_what_setup_would(void **state)
             m.indices[3 * (size_t)t + 2] = m.indices[3 * (size_t)t];
         }
     }
-    for (int v = 0; v < 2; v++) {
-        if (!luz_packet_isa_supported(variants[v])) {
-            print_message("%s: not on this CPU or build, skipped\n", variant_names[v]);
+    for (int v = 0; v < VARIANT_COUNT; v++) {
+        if (!luz_isa_available(variants[v])) {
+            print_message("%s: not on this CPU or build, skipped\n", luz_isa_name(variants[v]));
             continue;
         }
         /* Whole, and in pieces that start and end anywhere. */
@@ -258,8 +271,10 @@ static void test_screening_drops_what_setup_would(void **state)
             first = end;
         }
         print_message("%s: %d back faces and %d covering no centre dropped, %d kept\n",
-                      variant_names[v], whole.dropped_back, whole.dropped_uncovered, whole.kept);
-        if (variants[v] == LUZ_PACKET_ISA_BASELINE) {
+                      luz_isa_name(variants[v]), whole.dropped_back, whole.dropped_uncovered, whole.kept);
+        bool screens;
+        screening(v, &screens);
+        if (!screens) {
             assert_int_equal(whole.kept, triangle_count);
             continue;
         }
@@ -328,13 +343,13 @@ static void test_screening_the_split_pixel(void **state)
         assert_int_equal(centres_covered(p), covered[t]);
     }
 
-    for (int v = 0; v < 2; v++) {
-        if (!luz_packet_isa_supported(variants[v])) continue;
+    for (int v = 0; v < VARIANT_COUNT; v++) {
+        if (!luz_isa_available(variants[v])) continue;
         uint32_t survivors[16], culled = 99;
-        bool checks_small_boxes;
-        const size_t count = luz_screen_for(variants[v], &checks_small_boxes)(
-            m.indices, 0, 16, m.fixed, WIDTH, HEIGHT, survivors, &culled);
-        if (variants[v] == LUZ_PACKET_ISA_BASELINE) {
+        bool screens;
+        const size_t count = screening(v, &screens)(m.indices, 0, 16, m.fixed, WIDTH, HEIGHT,
+                                                    survivors, &culled);
+        if (!screens) {
             assert_int_equal(count, 16);
             assert_int_equal(culled, 0);
             continue;
@@ -386,10 +401,10 @@ static void test_screening_stays_within_its_arrays(void **state)
     set_vertex(&vertices, 5, -2 * one, 1 * one);
     luz_fixed_vertex p[3] = {vertices.fixed[0], vertices.fixed[1], vertices.fixed[2]};
     assert_true(doubled_area(p) > 0 && centres_covered(p) > 0);
-    for (int v = 0; v < 2; v++) {
-        if (!luz_packet_isa_supported(variants[v])) continue;
-        bool checks_small_boxes;
-        luz_screen_function *screen = luz_screen_for(variants[v], &checks_small_boxes);
+    for (int v = 0; v < VARIANT_COUNT; v++) {
+        if (!luz_isa_available(variants[v])) continue;
+        bool screens;
+        luz_screen_function *screen = screening(v, &screens);
         for (uint32_t first = 0; first <= 7; first += 7)
             for (uint32_t length = 1; length <= 48; length++)
                 for (int dropped = 0; dropped < 2; dropped++) {
@@ -405,7 +420,7 @@ static void test_screening_stays_within_its_arrays(void **state)
                     uint32_t culled = 99;
                     const size_t count = screen(indices, first, end, vertices.fixed, WIDTH,
                                                 HEIGHT, survivors, &culled);
-                    const bool drops = dropped && variants[v] == LUZ_PACKET_ISA_AVX512;
+                    const bool drops = dropped && screens;
                     assert_int_equal(count, drops ? 0 : length);
                     assert_int_equal(culled, 0);
                     for (size_t k = 0; k < count; k++)

@@ -38,6 +38,7 @@
 
 #include "test_support.h"
 
+#include "renderer/cpu.h"
 #include "renderer/pipeline.h"
 
 #define WIDTH 40
@@ -252,15 +253,22 @@ static tally check_mode(const mesh *m, luz_setup_eight_function *setup_eight, in
 _Static_assert(offsetof(luz_triangle, primitive) + sizeof(uint32_t) == sizeof(luz_triangle),
                "luz_triangle has no padding");
 
+/* The AVX-512 table's setup in lanes, or NULL where the build or CPU lacks
+ * it. */
+static luz_setup_eight_function *avx512_setup_eight(void)
+{
+    return luz_isa_available(LUZ_ISA_AVX512) ? luz_kernels_of(LUZ_ISA_AVX512).setup_eight : NULL;
+}
+
 static void test_lanes_agree_with_setup(void **state)
 {
     (void)state;
-    luz_setup_eight_function *setup_eight = luz_setup_eight_for(LUZ_PACKET_ISA_AVX512);
+    luz_setup_eight_function *setup_eight = avx512_setup_eight();
     if (setup_eight == NULL) {
         print_message("skipped: this build or CPU has no AVX-512 (setup one by one only)\n");
         skip();
     }
-    assert_true(luz_setup_eight_for(LUZ_PACKET_ISA_BASELINE) == NULL);
+    assert_true(luz_kernels_of(LUZ_ISA_SCALAR).setup_eight == NULL);
     const uint32_t triangle_count = 30000;
     mesh m = mesh_create(3 * triangle_count, triangle_count);
     uint32_t random = 77;
@@ -343,7 +351,7 @@ static void test_lanes_agree_with_setup(void **state)
 static void test_centres_on_an_edge(void **state)
 {
     (void)state;
-    luz_setup_eight_function *setup_eight = luz_setup_eight_for(LUZ_PACKET_ISA_AVX512);
+    luz_setup_eight_function *setup_eight = avx512_setup_eight();
     if (setup_eight == NULL) skip();
     mesh m = mesh_create(6, 8);
     uint32_t random = 5;
@@ -376,7 +384,7 @@ static void test_centres_on_an_edge(void **state)
 static void test_planes_that_cancel(void **state)
 {
     (void)state;
-    luz_setup_eight_function *setup_eight = luz_setup_eight_for(LUZ_PACKET_ISA_AVX512);
+    luz_setup_eight_function *setup_eight = avx512_setup_eight();
     if (setup_eight == NULL) skip();
     const uint32_t triangle_count = 4000;
     mesh m = mesh_create(3 * triangle_count, triangle_count);

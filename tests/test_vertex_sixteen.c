@@ -30,6 +30,7 @@
 
 #include "luz/mesh.h"
 #include "luz/vecmath.h"
+#include "renderer/cpu.h"
 #include "renderer/pipeline.h"
 
 #define VERTEX_COUNT 4099   /* not a multiple of 16 */
@@ -69,12 +70,13 @@ static int compare(const luz_clip_vertex *clip_a, const luz_window_vertex *windo
 static void test_lanes_agree_with_one_at_a_time(void **state)
 {
     (void)state;
-    luz_vertex_project_function *vertex_project = luz_vertex_project_for(LUZ_PACKET_ISA_AVX512);
+    luz_vertex_project_function *vertex_project =
+        luz_isa_available(LUZ_ISA_AVX512) ? luz_kernels_of(LUZ_ISA_AVX512).vertex_project : NULL;
     if (vertex_project == NULL) {
         print_message("skipped: this build or CPU has no AVX-512 (one vertex at a time only)\n");
         skip();
     }
-    assert_true(luz_vertex_project_for(LUZ_PACKET_ISA_BASELINE) == NULL);
+    assert_true(luz_kernels_of(LUZ_ISA_SCALAR).vertex_project == NULL);
     luz_vertex *vertices = calloc(VERTEX_COUNT, sizeof *vertices);
     uint32_t *indices = calloc(3, sizeof *indices);
     luz_clip_vertex *clip_a = calloc(VERTEX_COUNT, sizeof *clip_a);

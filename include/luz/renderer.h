@@ -46,11 +46,22 @@ typedef struct luz_renderer_desc {
 
 typedef struct luz_renderer luz_renderer;
 
-/* Returns the renderer, or NULL with the reason in error. */
+/* Returns the renderer, or NULL with the reason in error (an unknown or
+ * unavailable LUZ_ISA among them: luz_renderer_isa). */
 LUZ_API luz_renderer *luz_renderer_create(const luz_renderer_desc *desc, luz_error *error);
 LUZ_API void luz_renderer_destroy(luz_renderer *renderer);
 /* The number of threads that work on a frame, the caller's included. */
 LUZ_API int luz_renderer_thread_count(const luz_renderer *renderer);
+/* The instruction set the renderer's stages run in lanes: "avx512",
+ * "avx2", "sse2" (x86-64), "neon" (aarch64) or "scalar" (one lane). The
+ * widest this CPU runs, unless the environment variable LUZ_ISA names a
+ * narrower one when the renderer is made; every set draws the same image,
+ * byte for byte, only the time differs. */
+LUZ_API const char *luz_renderer_isa(const luz_renderer *renderer);
+/* LUZ_ISA as luz_renderer_create reads it: 0 if it is unset, empty or
+ * names a set this CPU runs; else -1 with the reason (a program can
+ * refuse it with its other usage errors). */
+LUZ_API int luz_isa_check(luz_error *error);
 
 /* How varyings are interpolated across a triangle on the screen. */
 typedef enum luz_interpolation {
@@ -78,6 +89,7 @@ typedef struct luz_frame_stats {
     uint64_t memory_bytes;        /* what the renderer holds for its frames'
                                      work (triangles, vertices, bins), kept
                                      from frame to frame; not the framebuffer */
+    const char *isa;              /* luz_renderer_isa: the instruction set */
 } luz_frame_stats;
 
 /* Work the caller puts on top of each band of the frame: the renderer

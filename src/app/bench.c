@@ -46,7 +46,7 @@ uint64_t luz_bench_triangles(const luz_frame *frame)
 }
 
 void luz_bench_print_case(FILE *out, const luz_options *options, int frames, int width,
-                          int height, int threads, uint64_t triangles)
+                          int height, int threads, uint64_t triangles, const char *isa)
 {
     const luz_scene *scene = &options->scene;
     int cubes = scene->cube_count;
@@ -56,9 +56,11 @@ void luz_bench_print_case(FILE *out, const luz_options *options, int frames, int
     }
     /* The teaching views are drawn by view.c, which is scalar code. */
     bool reference = options->reference || scene->view != LUZ_VIEW_COLOR;
-    fprintf(out, "frames=%d size=%dx%d threads=%d cubes=%d triangles=%llu filter=%s fragment=%s ",
+    fprintf(out,
+            "frames=%d size=%dx%d threads=%d cubes=%d triangles=%llu filter=%s fragment=%s "
+            "isa=%s ",
             frames, width, height, threads, cubes, (unsigned long long)triangles,
-            luz_filter_name(scene->filter), reference ? "reference" : "packet");
+            luz_filter_name(scene->filter), reference ? "reference" : "packet", isa);
     if (scene->view != LUZ_VIEW_COLOR)
         fprintf(out, "view=%s ", luz_view_name(scene->view));
     if (scene->interpolation != LUZ_INTERPOLATION_PERSPECTIVE)

@@ -26,11 +26,11 @@ double luz_cpu_ms(void);
 double luz_median(double *values, int count);
 
 /* The start of a --bench line, what was measured: "frames=N size=WxH
- * threads=T cubes=C triangles=N filter=F fragment=packet|reference", then view= and
- * interp= when they are not the defaults, and a trailing blank. The
- * figures follow it. */
+ * threads=T cubes=C triangles=N filter=F fragment=packet|reference
+ * isa=I" (luz_renderer_isa), then view= and interp= when they are not the
+ * defaults, and a trailing blank. The figures follow it. */
 void luz_bench_print_case(FILE *out, const luz_options *options, int frames, int width,
-                          int height, int threads, uint64_t triangles);
+                          int height, int threads, uint64_t triangles, const char *isa);
 
 /* The triangles a frame submits: its draws' meshes' counts added up. */
 uint64_t luz_bench_triangles(const luz_frame *frame);

@@ -302,7 +302,7 @@ static int bench(render_context *context, luz_renderer *renderer, luz_error *err
     }
     const uint64_t triangles = luz_bench_triangles(&context->frame);
     luz_bench_print_case(stdout, options, measured.frames, options->width, options->height,
-                         threads, triangles);
+                         threads, triangles, luz_renderer_isa(renderer));
     luz_bench_print_figures(stdout, &measured);
     if (triangles > 0)
         printf(" renderer_bytes_per_triangle=%.1f",
@@ -341,6 +341,12 @@ int main(int argc, char **argv)
     }
     if (options.version) {
         printf("luz-render %s\n", LUZ_VERSION);
+        goto done;
+    }
+    /* LUZ_ISA names the renderer's instruction set: a bad one is a usage
+     * error, refused before any file is read. */
+    if (luz_isa_check(&error) != 0) {
+        status = EXIT_USAGE;
         goto done;
     }
     if (luz_options_output_is_stdout(&options) && options.bench_frames == 0) {

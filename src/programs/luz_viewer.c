@@ -917,7 +917,7 @@ static int run_bench(viewer *v, luz_error *error)
     if (measured.frames > 0) {
         luz_bench_print_case(stdout, v->options, measured.frames, v->window_width,
                              v->window_height, luz_renderer_thread_count(v->renderer),
-                             luz_bench_triangles(&v->frame));
+                             luz_bench_triangles(&v->frame), luz_renderer_isa(v->renderer));
         if (v->settings.render_scale != 1.0f)
             printf("render_scale=%g ", v->settings.render_scale);
         printf("present=%s ", presenter_name(v));
@@ -1095,6 +1095,10 @@ int main(int argc, char **argv)
         status = EXIT_OK;
         goto done;
     }
+    /* LUZ_ISA names the renderer's instruction set: a bad one is a usage
+     * error, refused before a window opens. */
+    if (luz_isa_check(&error) != 0)
+        goto done;
     /* The run's texture budget, shared by the cube textures and the
      * models' (io/textures.h). */
     luz_texture_budget budget = {0};

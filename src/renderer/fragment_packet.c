@@ -30,15 +30,15 @@
  *     shade.h applies per pixel.
  *   - Textures. Texel addresses, bilinear weights and blends are vectors;
  *     the texel fetches are one load per lane (a "gather").
- *   - Instruction sets. src/meson.build compiles this file once for the
- *     build's target (baseline: SSE2 on x86-64; it also holds the
- *     dispatcher at the end) and once each with -mavx2 and -mavx512*, and
- *     luz_fragment_shade_rows_packet picks the widest the CPU has, so one
- *     binary runs everywhere. The variants are separate compilations, not
- *     target attributes on one function, because a vector must be as wide
- *     as the registers: GCC 12 compiles 32-byte vector comparisons for SSE2
- *     one element at a time, which made an 8-lane baseline no faster than
- *     the reference.
+ *   - Instruction sets. src/renderer/meson.build compiles this file once
+ *     for the build's target (baseline: SSE2 on x86-64, NEON on aarch64),
+ *     once with one lane (the scalar variant), and once each with -mavx2
+ *     and -mavx512*; cpu.c picks one for the renderer (the widest the CPU
+ *     has, or LUZ_ISA's), so one binary runs everywhere. The variants are
+ *     separate compilations, not target attributes on one function,
+ *     because a vector must be as wide as the registers: GCC 12 compiles
+ *     32-byte vector comparisons for SSE2 one element at a time, which
+ *     made an 8-lane baseline no faster than the reference.
  *
  * Agreement with the reference. Each lane performs the IEEE operations
  * that fragment.c, texture.c and shade.h perform for its pixel, in the same
@@ -71,8 +71,9 @@
 #include "luz/shade.h"
 #include "luz/texture.h"
 
-/* The variant this compilation builds (see src/meson.build), and its
- * lanes: as many floats as a register holds. */
+/* The variant this compilation builds (see src/renderer/meson.build), and
+ * its lanes: as many floats as a register holds, or one (the scalar
+ * variant: the same code, no vector instruction). */
 #if defined(LUZ_PACKET_AVX512)
 #if !defined(__AVX512F__) || !defined(__AVX512DQ__)
 #error "the AVX-512 variant is compiled with -mavx512f -mavx512dq ..."
@@ -87,6 +88,10 @@
 #define LANES 8
 #define VARIANT_ROWS luz_fragment_packet_rows_avx2
 #define VARIANT_LIST luz_fragment_packet_list_avx2
+#elif defined(LUZ_PACKET_SCALAR)
+#define LANES 1
+#define VARIANT_ROWS luz_fragment_packet_rows_scalar
+#define VARIANT_LIST luz_fragment_packet_list_scalar
 #else
 #define LANES 4
 #define VARIANT_ROWS luz_fragment_packet_rows_baseline
@@ -1004,102 +1009,14 @@ uint64_t VARIANT_LIST(const luz_uniforms *uniforms, const luz_draw *draws,
     return count;
 }
 
-/* ---- run-time dispatch (in the baseline variant only) ------------------ */
+/* ---- for the probe (in the baseline variant only) ---------------------- */
 
 #if defined(BASELINE_VARIANT)
-
-#if defined(LUZ_PACKET_HAVE_AVX512)
-luz_packet_rows_function luz_fragment_packet_rows_avx512;
-luz_packet_list_function luz_fragment_packet_list_avx512;
-#endif
-#if defined(LUZ_PACKET_HAVE_AVX2)
-luz_packet_rows_function luz_fragment_packet_rows_avx2;
-luz_packet_list_function luz_fragment_packet_list_avx2;
-#endif
-
-bool luz_packet_isa_supported(luz_packet_isa isa)
-{
-    switch (isa) {
-    case LUZ_PACKET_ISA_BEST:
-    case LUZ_PACKET_ISA_BASELINE:
-        return true;
-    case LUZ_PACKET_ISA_AVX512:
-#if defined(LUZ_PACKET_HAVE_AVX512)
-        __builtin_cpu_init();
-        return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
-               __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq");
-#else
-        return false;
-#endif
-    case LUZ_PACKET_ISA_AVX2:
-#if defined(LUZ_PACKET_HAVE_AVX2)
-        __builtin_cpu_init();
-        return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-#else
-        return false;
-#endif
-    }
-    return false;
-}
-
-/* The widest variant no wider than isa that the build and the CPU have
- * (BEST: the widest of all); the rows and the list take the same. */
-static luz_packet_isa widest_available(luz_packet_isa isa)
-{
-    if (isa == LUZ_PACKET_ISA_BEST) isa = LUZ_PACKET_ISA_AVX512;
-    if (isa == LUZ_PACKET_ISA_AVX512 && !luz_packet_isa_supported(isa)) isa = LUZ_PACKET_ISA_AVX2;
-    if (isa == LUZ_PACKET_ISA_AVX2 && !luz_packet_isa_supported(isa)) isa = LUZ_PACKET_ISA_BASELINE;
-    return isa;
-}
-
-luz_packet_rows_function *luz_packet_rows_for(luz_packet_isa isa)
-{
-    isa = widest_available(isa);
-
-    switch (isa) {
-#if defined(LUZ_PACKET_HAVE_AVX512)
-    case LUZ_PACKET_ISA_AVX512:
-        return luz_fragment_packet_rows_avx512;
-#endif
-#if defined(LUZ_PACKET_HAVE_AVX2)
-    case LUZ_PACKET_ISA_AVX2:
-        return luz_fragment_packet_rows_avx2;
-#endif
-    default:
-        return luz_fragment_packet_rows_baseline;
-    }
-}
-
-luz_packet_list_function *luz_packet_list_for(luz_packet_isa isa)
-{
-    isa = widest_available(isa);
-
-    switch (isa) {
-#if defined(LUZ_PACKET_HAVE_AVX512)
-    case LUZ_PACKET_ISA_AVX512:
-        return luz_fragment_packet_list_avx512;
-#endif
-#if defined(LUZ_PACKET_HAVE_AVX2)
-    case LUZ_PACKET_ISA_AVX2:
-        return luz_fragment_packet_list_avx2;
-#endif
-    default:
-        return luz_fragment_packet_list_baseline;
-    }
-}
 
 float luz_packet_level_of_detail(const luz_texture *texture, float du_dx, float dv_dx,
                                  float du_dy, float dv_dy)
 {
     return level_of_detail(texture, splat(du_dx), splat(dv_dx), splat(du_dy), splat(dv_dy))[0];
-}
-
-uint64_t luz_fragment_shade_rows_packet(luz_packet_isa isa, const luz_uniforms *uniforms,
-                                        const luz_draw *draws, const luz_triangle *const *by_id,
-                                        luz_framebuffer *framebuffer, int first_row,
-                                        int end_row)
-{
-    return luz_packet_rows_for(isa)(uniforms, draws, by_id, framebuffer, first_row, end_row);
 }
 
 #endif

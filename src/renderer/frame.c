@@ -47,6 +47,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "renderer/cpu.h"
 #include "renderer/pipeline.h"
 #include "luz/renderer.h"
 
@@ -72,9 +73,8 @@ struct luz_renderer {
     band_counters *bands;
     int band_capacity;
     bool reference;                 /* fragment.c's shading, not the packets */
-    luz_packet_rows_function *packet_rows;   /* the SIMD variant this CPU
-                                                runs, chosen at creation */
-    luz_packet_list_function *packet_list;   /* its list form (four samples) */
+    luz_kernels kernels;            /* the stages in lanes, of the instruction
+                                       set chosen at creation (cpu.h) */
     uint32_t *overdraw;             /* depth tests per pixel (per sample), for
                                        the overdraw view only; allocated when
                                        first asked */
@@ -175,7 +175,7 @@ static uint64_t shade_band(const frame_job *job, luz_framebuffer *target, int fi
                                    overdraw, worker_index);
     if (renderer->reference || uniforms->show == LUZ_VIEW_BANDS)
         return luz_fragment_shade_rows(uniforms, draws, by_id, target, first_row, end_row);
-    return renderer->packet_rows(uniforms, draws, by_id, target, first_row, end_row);
+    return renderer->kernels.packet_rows(uniforms, draws, by_id, target, first_row, end_row);
 }
 
 /* The fragment stage and the resolve of a band of four samples a pixel.
@@ -199,7 +199,7 @@ static uint64_t shade_and_resolve_samples(const frame_job *job, int first_row, i
         first_winners.visibility = samples->plane[0].visibility;
         shaded += shade_band(job, &first_winners, first_row, end_row, NULL, worker_index);
         const bool reference = job->renderer->reference || uniforms->show == LUZ_VIEW_BANDS;
-        shaded += (reference ? luz_fragment_shade_list : job->renderer->packet_list)(
+        shaded += (reference ? luz_fragment_shade_list : job->renderer->kernels.packet_list)(
             uniforms, job->frame->draws, job->geometry.by_id, framebuffer->channel_order,
             band->extra, band->extra_count, band->extra_colour);
         uint8_t background[4];
@@ -294,6 +294,8 @@ luz_renderer *luz_renderer_create(const luz_renderer_desc *desc, luz_error *erro
         return NULL;
     }
     if (threads == 0 || threads == LUZ_THREADS_AUTO) threads = online_cpus();
+    luz_isa isa;
+    if (luz_isa_chosen(&isa, error) != 0) return NULL;
 
     luz_renderer *renderer = calloc(1, sizeof *renderer);
     if (!renderer) {
@@ -301,8 +303,6 @@ luz_renderer *luz_renderer_create(const luz_renderer_desc *desc, luz_error *erro
         return NULL;
     }
     renderer->reference = desc->reference;
-    renderer->packet_rows = luz_packet_rows_for(LUZ_PACKET_ISA_BEST);
-    renderer->packet_list = luz_packet_list_for(LUZ_PACKET_ISA_BEST);
     renderer->geometry = luz_geometry_create(threads);
     renderer->pool = luz_thread_pool_create(threads);
     if (!renderer->geometry || !renderer->pool) {
@@ -310,6 +310,7 @@ luz_renderer *luz_renderer_create(const luz_renderer_desc *desc, luz_error *erro
         luz_renderer_destroy(renderer);
         return NULL;
     }
+    luz_renderer_set_isa(renderer, isa);
     return renderer;
 }
 
@@ -345,11 +346,21 @@ void luz_renderer_destroy(luz_renderer *renderer)
     free(renderer);
 }
 
-void luz_renderer_set_packet_isa(luz_renderer *renderer, luz_packet_isa isa)
+void luz_renderer_set_isa(luz_renderer *renderer, luz_isa isa)
 {
-    renderer->packet_rows = luz_packet_rows_for(isa);
-    renderer->packet_list = luz_packet_list_for(isa);
-    luz_geometry_set_isa(renderer->geometry, isa);
+    renderer->kernels = luz_kernels_of(isa);
+    luz_geometry_set_kernels(renderer->geometry, &renderer->kernels);
+}
+
+const char *luz_renderer_isa(const luz_renderer *renderer)
+{
+    return luz_isa_name(renderer->kernels.isa);
+}
+
+int luz_isa_check(luz_error *error)
+{
+    luz_isa isa;
+    return luz_isa_chosen(&isa, error);
 }
 
 int luz_renderer_thread_count(const luz_renderer *renderer)
@@ -454,6 +465,7 @@ static void collect_stats(const luz_renderer *renderer, const frame_job *job,
     stats->triangles_clipped = job->geometry.triangles_clipped;
     stats->triangles_culled = job->geometry.triangles_culled;
     stats->draws_culled = job->geometry.draws_culled;
+    stats->isa = luz_renderer_isa(renderer);
     stats->memory_bytes = luz_geometry_memory(renderer->geometry) +
                           (size_t)renderer->band_capacity * sizeof *renderer->bands +
                           renderer->overdraw_capacity * sizeof *renderer->overdraw +
@@ -557,7 +569,7 @@ int luz_renderer_draw(luz_renderer *renderer, const luz_frame *frame,
     if (job.probe)
         luz_probe_explain(job.probe, &job.uniforms, frame->draws, job.geometry.by_id,
                           job.geometry.triangle_count, framebuffer, job.samples, job.overdraw,
-                          renderer->reference ? NULL : renderer->packet_list);
+                          renderer->reference ? NULL : renderer->kernels.packet_list);
     const double end = now_ms();
 
     luz_frame_stats *stats = options->stats;

@@ -40,6 +40,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "renderer/cpu.h"
 #include "renderer/pipeline.h"
 
 /* Triangles per batch of a big draw: enough work (about 0.2 ms) to be
@@ -119,7 +120,7 @@ struct luz_geometry {
     int band_capacity;
     uint32_t *band_ids;
     size_t band_id_capacity;
-    luz_screen_function *screen;   /* screen.c's variant for this CPU */
+    luz_screen_function *screen;   /* the renderer's table's (cpu.h) */
     bool screen_checks_small_boxes;
     luz_setup_eight_function *setup_eight;   /* setup_eight.c's, or NULL */
     luz_vertex_project_function *vertex_project;   /* vertex_sixteen.c's, or NULL */
@@ -144,7 +145,8 @@ luz_geometry *luz_geometry_create(int thread_count)
     luz_geometry *geometry = calloc(1, sizeof *geometry);
     if (!geometry) return NULL;
     geometry->thread_count = thread_count;
-    luz_geometry_set_isa(geometry, LUZ_PACKET_ISA_BEST);
+    const luz_kernels widest = luz_kernels_of(luz_isa_widest());
+    luz_geometry_set_kernels(geometry, &widest);
     geometry->scratch = calloc((size_t)thread_count, sizeof *geometry->scratch);
     if (!geometry->scratch) {
         free(geometry);
@@ -179,13 +181,13 @@ void luz_geometry_destroy(luz_geometry *geometry)
     free(geometry);
 }
 
-void luz_geometry_set_isa(luz_geometry *geometry, luz_packet_isa isa)
+void luz_geometry_set_kernels(luz_geometry *geometry, const luz_kernels *kernels)
 {
-    geometry->screen = luz_screen_for(isa, &geometry->screen_checks_small_boxes);
+    geometry->screen = kernels->screen;
+    geometry->screen_checks_small_boxes = kernels->screen_checks_small_boxes;
     /* Setup in lanes trusts screening's check of the small boxes. */
-    geometry->setup_eight =
-        geometry->screen_checks_small_boxes ? luz_setup_eight_for(isa) : NULL;
-    geometry->vertex_project = luz_vertex_project_for(isa);
+    geometry->setup_eight = kernels->screen_checks_small_boxes ? kernels->setup_eight : NULL;
+    geometry->vertex_project = kernels->vertex_project;
 }
 
 size_t luz_geometry_memory(const luz_geometry *geometry)
@@ -817,7 +819,8 @@ int luz_geometry_run(luz_geometry *geometry, luz_thread_pool *pool, const luz_fr
      * samples a pixel, the baseline's screening (every triangle through)
      * and setup one triangle at a time, which test the samples. */
     if (uniforms->samples > 1) {
-        job.screen = luz_screen_for(LUZ_PACKET_ISA_BASELINE, &job.screen_checks_small_boxes);
+        job.screen = luz_screen_every_triangle;
+        job.screen_checks_small_boxes = false;
         job.setup_eight = NULL;
     }
 

@@ -12,7 +12,7 @@
  *                    crosses a plane (the others pass)   inside the clip volume
  *     -> setup.c     luz_setup_project: a luz_window_vertex per vertex
  *                                                        divided, viewport, snapped
- *     -> screen.c    luz_screen_for: the triangles setup would drop without
+ *     -> screen.c    screening: the triangles setup would drop without
  *                    a record (back faces, no pixel centre), 16 at a time
  *                    luz_setup_projected: a luz_triangle per fan triangle
  *                                                        fixed-point edges, planes
@@ -355,7 +355,7 @@ void luz_setup_project(const luz_clip_vertex *vertices, uint32_t first, uint32_t
 /* Sets up triangle (v0, v1, v2), projected as (p0, p1, p2) by
  * luz_setup_project, for a width x height viewport. small_box_checked:
  * the caller knows that if the triangle's box holds at most 2 x 2 pixel
- * centres, one of them is covered (screening checked it, luz_screen_for),
+ * centres, one of them is covered (screening checked it, screen.c),
  * so setup does not test them again; false: setup tests. */
 luz_setup_result luz_setup_projected(const luz_clip_vertex *v0, const luz_clip_vertex *v1,
                                      const luz_clip_vertex *v2, const luz_window_vertex *p0,
@@ -636,36 +636,17 @@ uint64_t luz_fragment_shade_rows(const luz_uniforms *uniforms, const luz_draw *d
  * differently) and, like it, gives each pixel a colour that depends on
  * nothing but that pixel.
  *
- * isa says which compiled variant runs: LUZ_PACKET_ISA_BEST the widest the
- * CPU supports (what the renderer uses), the others for tests. A variant
- * that the build or the CPU lacks falls back to the next narrower one. */
-typedef enum luz_packet_isa {
-    LUZ_PACKET_ISA_BEST,
-    LUZ_PACKET_ISA_BASELINE,   /* the build's target: SSE2 on x86-64, 4 lanes */
-    LUZ_PACKET_ISA_AVX2,       /* x86 AVX2 and FMA, 8 lanes */
-    LUZ_PACKET_ISA_AVX512,     /* x86 AVX-512 F, VL, BW and DQ, 16 lanes */
-} luz_packet_isa;
-
-/* Whether this build has the variant and this CPU can run it. */
-bool luz_packet_isa_supported(luz_packet_isa isa);
-/* A variant's packet loop; luz_packet_rows_for gives the one that runs for
- * isa (asking the CPU, so the renderer asks once, when it is made). */
+ * Each instruction set has its variant (cpu.h's table of kernels). */
 typedef uint64_t luz_packet_rows_function(const luz_uniforms *uniforms, const luz_draw *draws,
                                           const luz_triangle *const *by_id,
                                           luz_framebuffer *framebuffer, int first_row,
                                           int end_row);
-luz_packet_rows_function *luz_packet_rows_for(luz_packet_isa isa);
-/* luz_packet_rows_for(isa), called on the rows. */
-uint64_t luz_fragment_shade_rows_packet(luz_packet_isa isa, const luz_uniforms *uniforms,
-                                        const luz_draw *draws, const luz_triangle *const *by_id,
-                                        luz_framebuffer *framebuffer, int first_row,
-                                        int end_row);
 
 /* colours[i] = the four bytes (in order's channel order) fragment i gets,
  * exactly as a row's shading would give that pixel for that triangle:
  * fragment.c's one pixel at a time (luz_fragment_shade_list) or a
- * variant's packets of any fragments (the list function of
- * luz_packet_list_for). Returns count. */
+ * variant's packets of any fragments (the packet_list of cpu.h's
+ * table). Returns count. */
 uint64_t luz_fragment_shade_list(const luz_uniforms *uniforms, const luz_draw *draws,
                                  const luz_triangle *const *by_id, luz_channel_order order,
                                  const luz_fragment_ref *fragments, size_t count,
@@ -675,7 +656,6 @@ typedef uint64_t luz_packet_list_function(const luz_uniforms *uniforms, const lu
                                           luz_channel_order order,
                                           const luz_fragment_ref *fragments, size_t count,
                                           uint32_t *colours);
-luz_packet_list_function *luz_packet_list_for(luz_packet_isa isa);
 
 /* ---- screening (screen.c) ---------------------------------------------- */
 
@@ -684,17 +664,16 @@ luz_packet_list_function *luz_packet_list_for(luz_packet_isa isa);
  * survivors, in order, those that luz_setup_projected or the clipper must
  * still see, and returns how many; the others are back faces (counted in
  * *culled) or have no pixel centre to cover, exactly as setup would find.
- * survivors has room for end - first. The build's baseline variant lets
- * every triangle through. */
+ * survivors has room for end - first. An instruction set without a
+ * variant lets every triangle through (luz_screen_every_triangle). The
+ * variant's table (cpu.h) says whether it checks small boxes: whether it
+ * drops every triangle with valid vertices whose box of at most 2 x 2
+ * pixel centres has none covered, so that luz_setup_projected need not
+ * test a survivor's (its small_box_checked). */
 typedef size_t luz_screen_function(const uint32_t *indices, uint32_t first, uint32_t end,
                                    const luz_fixed_vertex *fixed, int width, int height,
                                    uint32_t *survivors, uint32_t *culled);
-/* The variant for isa (LUZ_PACKET_ISA_BEST: the widest there is; AVX-512 is the one
- * variant that screens), asking the CPU. *checks_small_boxes: whether the
- * variant drops every triangle with valid vertices whose box of at most
- * 2 x 2 pixel centres has none covered, so that luz_setup_projected need
- * not test a survivor's (its small_box_checked). */
-luz_screen_function *luz_screen_for(luz_packet_isa isa, bool *checks_small_boxes);
+luz_screen_function luz_screen_every_triangle;
 
 /* ---- setup in lanes (setup_eight.c) ------------------------------------ */
 
@@ -719,10 +698,6 @@ typedef bool luz_setup_eight_function(const uint32_t *indices, const uint32_t tr
                                           const luz_fixed_vertex *fixed, int width, int height,
                                           uint32_t draw_index, luz_interpolation interpolation,
                                           luz_triangle out[8], luz_setup_result result[8]);
-/* The variant for isa (LUZ_PACKET_ISA_BEST: the widest), asking the CPU;
- * NULL where there is none (the caller sets up one by one). AVX-512 is the
- * one variant, as for screening. */
-luz_setup_eight_function *luz_setup_eight_for(luz_packet_isa isa);
 
 /* ---- vertices in lanes (vertex_sixteen.c) ------------------------------- */
 
@@ -735,9 +710,6 @@ typedef void luz_vertex_project_function(const luz_draw *draw, luz_mat4 view_pro
                                          uint32_t first, uint32_t end, int width, int height,
                                          luz_clip_vertex *out, luz_window_vertex *window,
                                          luz_fixed_vertex *fixed);
-/* The variant for isa (LUZ_PACKET_ISA_BEST: the widest), asking the CPU;
- * NULL where there is none (AVX-512 is the one variant). */
-luz_vertex_project_function *luz_vertex_project_for(luz_packet_isa isa);
 
 /* For the pixel probe (probe.c): the level of detail exactly as the
  * packets compute it (their polynomial logarithm included), for one
@@ -855,14 +827,6 @@ void luz_probe_explain(luz_pixel_probe *probe, const luz_uniforms *uniforms,
                        const luz_sample_buffers *samples, const uint32_t *overdraw,
                        luz_packet_list_function *packet_list);
 
-/* ---- the renderer (frame.c) --------------------------------------------- */
-
-struct luz_renderer;
-
-/* For tests: the instruction set of the renderer's fast fragment path
- * (LUZ_PACKET_ISA_BEST unless set). */
-void luz_renderer_set_packet_isa(struct luz_renderer *renderer, luz_packet_isa isa);
-
 /* ---- threads ----------------------------------------------------------- */
 
 typedef struct luz_thread_pool luz_thread_pool;
@@ -891,11 +855,6 @@ typedef struct luz_geometry luz_geometry;
 
 luz_geometry *luz_geometry_create(int thread_count);
 void luz_geometry_destroy(luz_geometry *geometry);
-/* Which variants its passes run: isa's screening (screen.c, as
- * luz_screen_for picks it), vertices in lanes (vertex_sixteen.c) and setup
- * in lanes (setup_eight.c, only with screening that checks small boxes);
- * LUZ_PACKET_ISA_BEST when it is made. */
-void luz_geometry_set_isa(luz_geometry *geometry, luz_packet_isa isa);
 /* The bytes its buffers hold. */
 size_t luz_geometry_memory(const luz_geometry *geometry);
 

@@ -31,9 +31,9 @@
  *
  * Instruction sets: src/renderer/meson.build compiles this file once for
  * the build's target (which screens nothing: every triangle is left to
- * setup, the loop luz had before; it also holds the dispatcher) and once
- * with AVX-512, whose masks, compress and 64-bit lanes the kernel is
- * written for. As fragment_packet.c, the CPU picks a variant at run time.
+ * setup, the loop luz had before) and once with AVX-512, whose masks,
+ * compress and 64-bit lanes the kernel is written for; cpu.c puts one in
+ * the renderer's table of kernels.
  * An AVX2 variant (coordinates in 32-bit lanes, products widened in even
  * and odd halves, eight triangles a step) passed the same tests but made
  * the 1M sphere's geometry slower on this project's machines (AMD Zen 5:
@@ -244,35 +244,21 @@ size_t luz_screen_triangles_avx512(const uint32_t *indices, uint32_t first, uint
     return count;
 }
 
-#else /* the baseline variant, and the dispatcher */
+#else /* every other build of this file */
 
-/* Screens nothing: every triangle goes to setup, one by one. */
-static size_t screen_nothing(const uint32_t *indices, uint32_t first, uint32_t end,
-                             const luz_fixed_vertex *fixed, int width, int height,
-                             uint32_t *survivors, uint32_t *culled_count)
+/* Screens nothing: every triangle goes to setup, one by one (the table of
+ * an instruction set without a screening variant, cpu.c). */
+luz_screen_function luz_screen_every_triangle;
+
+size_t luz_screen_every_triangle(const uint32_t *indices, uint32_t first, uint32_t end,
+                                 const luz_fixed_vertex *fixed, int width, int height,
+                                 uint32_t *survivors, uint32_t *culled_count)
 {
     (void)indices, (void)fixed, (void)width, (void)height;
     size_t count = 0;
     for (uint32_t t = first; t < end; t++) survivors[count++] = t;
     *culled_count = 0;
     return count;
-}
-
-#if defined(LUZ_SCREEN_HAVE_AVX512)
-luz_screen_function luz_screen_triangles_avx512;
-#endif
-
-luz_screen_function *luz_screen_for(luz_packet_isa isa, bool *checks_small_boxes)
-{
-    if (isa == LUZ_PACKET_ISA_BEST) isa = LUZ_PACKET_ISA_AVX512;
-#if defined(LUZ_SCREEN_HAVE_AVX512)
-    if (isa == LUZ_PACKET_ISA_AVX512 && luz_packet_isa_supported(isa)) {
-        *checks_small_boxes = true;
-        return luz_screen_triangles_avx512;
-    }
-#endif
-    *checks_small_boxes = false;
-    return screen_nothing;
 }
 
 #endif

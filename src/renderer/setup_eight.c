@@ -50,9 +50,9 @@
  * (round to nearest even). tests/test_setup_eight.c holds every lane to
  * luz_setup_projected, field by field, bit for bit.
  *
- * Instruction sets: as screen.c, src/renderer/meson.build compiles this
- * file once for the build's target (the dispatcher alone: no variant, the
- * caller sets up one by one) and once with AVX-512.
+ * Instruction sets: src/renderer/meson.build compiles this file with
+ * AVX-512 alone; without it the caller sets up one by one (cpu.c's
+ * tables).
  */
 #include <math.h>
 #include <stddef.h>
@@ -60,7 +60,6 @@
 
 #include "renderer/pipeline.h"
 
-#if defined(LUZ_SETUP_EIGHT_AVX512)
 #if !defined(__AVX512F__) || !defined(__AVX512DQ__) || !defined(__AVX512VL__)
 #error "the AVX-512 variant is compiled with -mavx512f -mavx512dq -mavx512vl ..."
 #endif
@@ -363,21 +362,3 @@ bool luz_setup_eight_avx512(const uint32_t *indices, const uint32_t triangles[8]
     }
     return false;
 }
-
-#else /* the baseline variant: the dispatcher */
-
-#if defined(LUZ_SETUP_EIGHT_HAVE_AVX512)
-luz_setup_eight_function luz_setup_eight_avx512;
-#endif
-
-luz_setup_eight_function *luz_setup_eight_for(luz_packet_isa isa)
-{
-    if (isa == LUZ_PACKET_ISA_BEST) isa = LUZ_PACKET_ISA_AVX512;
-#if defined(LUZ_SETUP_EIGHT_HAVE_AVX512)
-    if (isa == LUZ_PACKET_ISA_AVX512 && luz_packet_isa_supported(isa))
-        return luz_setup_eight_avx512;
-#endif
-    return NULL;
-}
-
-#endif

@@ -37,9 +37,8 @@
  * to nearest even as llrint does; no fused multiply-add.
  * tests/test_vertex_sixteen.c holds every byte to the two functions.
  *
- * Instruction sets: as screen.c, src/renderer/meson.build compiles this
- * file once for the build's target (the dispatcher alone) and once with
- * AVX-512.
+ * Instruction sets: src/renderer/meson.build compiles this file with
+ * AVX-512 alone; without it vertices go one at a time (cpu.c's tables).
  */
 #include <math.h>
 #include <stddef.h>
@@ -47,7 +46,6 @@
 
 #include "renderer/pipeline.h"
 
-#if defined(LUZ_VERTEX_SIXTEEN_AVX512)
 #if !defined(__AVX512F__) || !defined(__AVX512DQ__) || !defined(__AVX512VL__)
 #error "the AVX-512 variant is compiled with -mavx512f -mavx512dq -mavx512vl ..."
 #endif
@@ -253,21 +251,3 @@ void luz_vertex_project_avx512(const luz_draw *draw, luz_mat4 view_projection, u
         if (fixed != NULL) fixed[i] = (luz_fixed_vertex){projected.fixed_x, projected.fixed_y};
     }
 }
-
-#else /* the baseline variant: the dispatcher */
-
-#if defined(LUZ_VERTEX_SIXTEEN_HAVE_AVX512)
-luz_vertex_project_function luz_vertex_project_avx512;
-#endif
-
-luz_vertex_project_function *luz_vertex_project_for(luz_packet_isa isa)
-{
-    if (isa == LUZ_PACKET_ISA_BEST) isa = LUZ_PACKET_ISA_AVX512;
-#if defined(LUZ_VERTEX_SIXTEEN_HAVE_AVX512)
-    if (isa == LUZ_PACKET_ISA_AVX512 && luz_packet_isa_supported(isa))
-        return luz_vertex_project_avx512;
-#endif
-    return NULL;
-}
-
-#endif
