@@ -31,6 +31,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <unistd.h>
 
 #include "luz/framebuffer.h"
@@ -266,6 +267,14 @@ static const option_spec option_table[] = {
                 "light terms and bytes; luz-render prints them on "
                 "stdout, one key=value a line, and writes a PNG only with -o; the viewer "
                 "opens its probe panel on the pixel",
+     .default_text = "off"},
+    {.name = "diagnose", .kind = OPTION_PATH, .offset = FIELD(diagnose_path),
+     .syntax = "FRAME.png",
+     .summary = "weigh a frame of one's own (a WebGL canvas saved as PNG) against this "
+                "setting's six single-term images: one weight per light term, the residual, "
+                "the silhouettes and the worst pixels; -o names the residual picture "
+                "(default FRAME-residual.png); exit 0 when every term is right, 1 when one "
+                "is not, 2 for a file that cannot be compared",
      .default_text = "off"},
     {.name = "model", .kind = OPTION_MODEL, .syntax = "FILE",
      .summary = "draw this model (OBJ, glTF, PLY, STL, FBX, ... read with assimp) instead of "
@@ -818,7 +827,9 @@ int luz_options_set_value(luz_options *options, const char *name, const char *va
 
     switch (spec->kind) {
     case OPTION_SIZE:
-        return set_size(options, value, where, error);
+        if (set_size(options, value, where, error) != 0) return -1;
+        options->size_given = true;
+        return 0;
     case OPTION_DOUBLE:
     case OPTION_FLOAT:
         return set_number(options, spec, value, where, error);
@@ -1138,10 +1149,12 @@ void luz_options_free(luz_options *options)
     free(options->textures_directory);
     free(options->output_path);
     free(options->scene_path);
+    free(options->diagnose_path);
     luz_input_files_free(&options->inputs);
     options->textures_directory = NULL;
     options->output_path = NULL;
     options->scene_path = NULL;
+    options->diagnose_path = NULL;
 }
 
 /* An -o pattern: at most one conversion, %d with an optional 0 flag and a
@@ -1298,6 +1311,30 @@ int luz_options_finish(luz_options *options, luz_error *error)
                              "--frame-range: expected A:B with 0 <= A <= B <= %d, frames of "
                              "--frames %d (A: and :B leave an end open), got '%s'",
                              last_frame, options->frame_count, range);
+    }
+
+    if (options->diagnose_path != NULL) {
+        if (options->probe || options->bench_frames > 0 || options->frame_count > 1 ||
+            options->shard_count > 0 || options->skip_existing || options->range_first != 0 ||
+            options->range_last != LUZ_FRAME_RANGE_OPEN)
+            return luz_error_set(error, "--diagnose: expected one frame to weigh, without "
+                                        "--probe, --bench, --frames, --frame-range, --shard or "
+                                        "--skip-existing");
+        if (luz_options_output_is_stdout(options))
+            return luz_error_set(error, "--diagnose: expected -o to name the residual picture's "
+                                        "file, got -o -");
+        if (options->output_path == NULL) {
+            /* FRAME.png -> FRAME-residual.png, beside the frame */
+            const char *path = options->diagnose_path;
+            size_t stem = strlen(path);
+            if (stem >= 4 && strcasecmp(path + stem - 4, ".png") == 0) stem -= 4;
+            char *residual = malloc(stem + sizeof "-residual.png");
+            if (residual == NULL)
+                return luz_error_set(error, "--diagnose: out of memory");
+            memcpy(residual, path, stem);
+            memcpy(residual + stem, "-residual.png", sizeof "-residual.png");
+            options->output_path = residual;
+        }
     }
 
     if (options->probe) {

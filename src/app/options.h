@@ -94,6 +94,11 @@ typedef struct luz_options {
     luz_up_axis up;
     bool probe;                 /* --probe X,Y: explain pixel (probe_x, probe_y) */
     int probe_x, probe_y;       /* column and row, row 0 on top */
+    char *diagnose_path;        /* --diagnose FRAME.png: a student's frame to
+                                   weigh against the setting (app/diagnose.h);
+                                   -o then names the residual picture */
+    bool size_given;            /* --size (or a scene file's size) was set:
+                                   else --diagnose takes the frame's size */
     bool help;
     bool version;
     luz_object *objects;        /* the user's own cubes and models (owned), as

@@ -8,6 +8,7 @@
  *   luz-render --frames 60 -o - | ffmpeg -f image2pipe -framerate 30 -i - lab.mp4
  *   luz-render --bench 20 --threads 2
  *   luz-render --probe 700,450                  why pixel (700, 450) has its colour
+ *   luz-render --diagnose mine.png --time 2     which light term a student's frame gets wrong
  *
  * The program is a thin shell around libluz: luz_options_parse() reads and
  * checks every option (and the scene file) before anything is rendered, so
@@ -19,7 +20,9 @@
  * Exit status: 0 on success; 2 for a usage error (an option, a scene file or
  * a textures directory that is not right), with one line on stderr; 1 when
  * rendering or writing fails for another reason (out of memory, a disk
- * error). docs/cli.md is the user's reference.
+ * error). --diagnose has its own: 0 when every light term of the frame is
+ * right, 1 when one is not (or rendering failed), 2 for a frame that
+ * cannot be compared. docs/cli.md is the user's reference.
  */
 #include <signal.h>
 #include <stdint.h>
@@ -33,6 +36,7 @@
 #include "luz/luz.h"
 #include "app/bench.h"
 #include "app/controls.h"
+#include "app/diagnose.h"
 #include "app/options.h"
 #include "app/panel.h"
 #include "app/probe_report.h"
@@ -328,6 +332,8 @@ int main(int argc, char **argv)
     luz_lab *lab = NULL;
     render_context context = {.options = &options, .textures = &textures};
     luz_error error = {{0}};
+    luz_student_frame student = {0};
+    bool verdict_given = false;
     int status = EXIT_OK;
 
     luz_options_init(&options);
@@ -361,6 +367,28 @@ int main(int argc, char **argv)
          * one line and status 1, rather than death by SIGPIPE. */
         signal(SIGPIPE, SIG_IGN);
     }
+    /* --diagnose: the student's frame is read first: a file that cannot be
+     * compared is the user's error, before anything is rendered; it takes
+     * the frame's size unless a size was given, and no output may replace
+     * it. */
+    if (options.diagnose_path != NULL) {
+        int read = luz_student_frame_read(options.diagnose_path, &student, &error);
+        if (read == 0 && options.size_given &&
+            (student.width != options.width || student.height != options.height))
+            read = luz_error_set(&error, "%s: %dx%d pixels; expected the %dx%d of --size (or "
+                                         "the scene file's size), the size luz renders",
+                                 options.diagnose_path, student.width, student.height,
+                                 options.width, options.height);
+        if (read == 0)
+            read = luz_input_files_add(&options.inputs, options.diagnose_path,
+                                       "the frame to diagnose", &error);
+        if (read != 0) {
+            status = read == LUZ_MACHINE_FAILED ? EXIT_RUNTIME : EXIT_USAGE;
+            goto done;
+        }
+        options.width = student.width;
+        options.height = student.height;
+    }
     /* The run's texture budget, shared by the cube textures and the
      * models' (io/textures.h). The outputs are checked once every input
      * is known: none may replace a texture, a model or the scene file, nor
@@ -393,6 +421,18 @@ int main(int argc, char **argv)
     context.thread_count = luz_renderer_thread_count(renderer);
     if (record_layer(&context, 0, &error) != 0)
         goto done;
+    if (options.diagnose_path != NULL) {
+        const luz_diagnose_setup setup = {.options = &options, .textures = &textures,
+                                          .lab = lab, .renderer = renderer,
+                                          .frame_name = options.diagnose_path,
+                                          .residual_path = options.output_path};
+        const int verdict = luz_diagnose(&setup, &student, stdout, &error);
+        if (verdict < 0)
+            goto done;
+        status = verdict;   /* a wrong term is no error message */
+        verdict_given = true;
+        goto done;
+    }
     if ((options.bench_frames > 0 ? bench(&context, renderer, &error)
          : options.probe          ? render_probe(&context, renderer, &error)
                                   : render_files(&context, renderer, &error)) != 0)
@@ -400,7 +440,7 @@ int main(int argc, char **argv)
     status = EXIT_OK;
 
 done:
-    if (status != EXIT_OK)
+    if (status != EXIT_OK && !verdict_given)
         luz_error_print("luz-render", error.message[0] ? error.message : "failed");
     luz_frame_free(&context.frame);
     luz_layer_free(&context.layer);
@@ -411,6 +451,7 @@ done:
     luz_lab_destroy(lab);
     luz_model_set_free(&models);
     luz_texture_set_free(&textures);
+    luz_student_frame_free(&student);
     luz_options_free(&options);
     /* ferror too: a write that failed earlier (--print-state past
      * ulimit -f) leaves nothing for this flush to fail on */
