@@ -21,12 +21,15 @@
  *     the setting's output (luz_diagnose_unmap). One sample a pixel: the
  *     pixels weighed are object interiors, which four samples shade
  *     exactly so.
- *  2. Which pixels: those inside one triangle of luz's frame (all 8
- *     neighbours share its triangle: a rounding of an edge between the two
- *     renderers moves no colour there), not the point light's marker
- *     (unlit: its colour is no sum of terms), with an object in the
- *     student's frame too; each channel that neither the frame nor a
- *     term's image clips is an observation.
+ *  2. Which pixels: those inside one draw of luz's frame (all 8
+ *     neighbours show the same object or mesh: a rounding of an outline
+ *     between the two renderers moves no colour there; with four samples,
+ *     the same triangle, as the samples mix the faces of an edge), not the
+ *     point light's marker (unlit: its colour is no sum of terms), with an
+ *     object in the student's frame too; each channel that neither the
+ *     frame nor a term's image clips is an observation. The draws are told
+ *     apart by drawing the setting's frame once more with each draw unlit
+ *     in a colour that is its index.
  *  3. The fit (term_fit.h): least squares over the observations, terms
  *     with too little light in view "not measurable".
  *  4. The residual, what no weighting explains: if it is large, the term
@@ -158,8 +161,9 @@ typedef struct diagnosis {
     luz_frame frame;
     /* what luz renders */
     float *basis;               /* [term][pixel][channel] colour, or BASIS_CLIPPED */
-    uint32_t *visible;          /* the objects' triangle ids, no marker (0: background) */
-    uint32_t *visible_all;      /* the setting's, the marker too */
+    int32_t *draw_at;           /* the frame's draw each pixel shows, -1: background */
+    int marker_draw;            /* the point light's marker's draw, or -1 */
+    uint32_t *triangle_at;      /* the triangle id each pixel shows, 0: background */
     uint8_t *luz_rgb;           /* the setting's image, 3 bytes a pixel */
     uint8_t clear[3];           /* the clear colour's bytes */
     bool light_on[TERMS];       /* the setting's strength above 0 */
@@ -184,16 +188,57 @@ typedef enum pixel_kind {
     PIXEL_KIND_COUNT
 } pixel_kind;
 
-static int render(diagnosis *d, const luz_scene *scene, luz_pixel_probe *probe, luz_error *error)
+static const uint8_t *framebuffer_rgb(const luz_framebuffer *fb, size_t i, uint8_t rgb[3]);
+
+static int build(diagnosis *d, const luz_scene *scene, luz_error *error)
 {
     const luz_diagnose_setup *setup = d->setup;
     const float aspect = (float)d->width / (float)d->height;
-    if (luz_scene_build_frame(setup->lab, scene, setup->textures->textures,
-                              setup->textures->count, aspect, &d->frame, error) != 0)
-        return -1;
+    return luz_scene_build_frame(setup->lab, scene, setup->textures->textures,
+                                 setup->textures->count, aspect, &d->frame, error);
+}
+
+static int draw(diagnosis *d, const luz_scene *scene, luz_pixel_probe *probe, luz_error *error)
+{
     luz_render_options render = luz_scene_render_options(scene);
     render.probe = probe;
-    return luz_renderer_draw(setup->renderer, &d->frame, d->framebuffer, &render, error);
+    return luz_renderer_draw(d->setup->renderer, &d->frame, d->framebuffer, &render, error);
+}
+
+static int render(diagnosis *d, const luz_scene *scene, luz_pixel_probe *probe, luz_error *error)
+{
+    return build(d, scene, error) == 0 ? draw(d, scene, probe, error) : -1;
+}
+
+/* Which draw each pixel shows: the setting's frame with every draw
+ * unlit in a colour that is its index (r + 256 g + 65536 b, one more than
+ * the index), the background told by the visibility buffer. */
+static int render_draws(diagnosis *d, const luz_scene *scene, luz_error *error)
+{
+    if (build(d, scene, error) != 0) return -1;
+    if (d->frame.draw_count >= (1 << 24) - 1)
+        return luz_error_set(error, "--diagnose: more draws than it can tell apart (%d)",
+                             d->frame.draw_count);
+    d->marker_draw = -1;
+    for (int k = 0; k < d->frame.draw_count; k++) {
+        if (luz_scene_object_of_draw(scene, k, &(int){0}) == LUZ_DRAW_POINT_LIGHT)
+            d->marker_draw = k;
+        const int code = k + 1;
+        d->frame.draws[k].material = (luz_material){
+            .shading = LUZ_SHADING_UNLIT,
+            .colour = {(float)(code & 255) / 255.0f, (float)((code >> 8) & 255) / 255.0f,
+                       (float)(code >> 16) / 255.0f}};
+    }
+    if (draw(d, scene, NULL, error) != 0) return -1;
+    memcpy(d->triangle_at, d->framebuffer->visibility, d->pixels * sizeof *d->triangle_at);
+    for (size_t i = 0; i < d->pixels; i++) {
+        uint8_t rgb[3];
+        framebuffer_rgb(d->framebuffer, i, rgb);
+        d->draw_at[i] = d->framebuffer->visibility[i] == 0
+                            ? -1
+                            : (int32_t)(rgb[0] + 256 * rgb[1] + 65536 * rgb[2]) - 1;
+    }
+    return 0;
 }
 
 /* The setting as it is drawn here: its colour image, one sample a pixel. */
@@ -242,10 +287,6 @@ static int render_terms(diagnosis *d, luz_error *error)
                 basis[3 * i + c] = rgb[c] < 255 ? (float)(rgb[c] / 255.0 / exp2(BASIS_BRIGHT_EV))
                                                 : BASIS_CLIPPED;
         }
-        /* The ambient image has no marker (the point light's strength is 0
-         * in it): its ids are the objects'. */
-        if (t == LUZ_TERM_AMBIENT)
-            memcpy(d->visible, d->framebuffer->visibility, d->pixels * sizeof *d->visible);
         scene = term_scene(d, (luz_term)t, 0.0f);
         if (render(d, &scene, NULL, error) != 0) return -1;
         for (size_t i = 0; i < d->pixels; i++) {
@@ -258,8 +299,11 @@ static int render_terms(diagnosis *d, luz_error *error)
         d->light_on[t] = luz_lights_term(&scene.lights, (luz_term)t)->strength > 0.0f;
     }
     luz_scene scene = setting_scene(d);
-    if (render(d, &scene, NULL, error) != 0) return -1;
-    memcpy(d->visible_all, d->framebuffer->visibility, d->pixels * sizeof *d->visible_all);
+    if (render_draws(d, &scene, error) != 0 || render(d, &scene, NULL, error) != 0) return -1;
+    /* luz's own image of the setting, at its samples a pixel: what an
+     * anti-aliased frame's outlines are compared with */
+    scene.samples = d->setup->options->scene.samples;
+    if (scene.samples > 1 && render(d, &scene, NULL, error) != 0) return -1;
     for (size_t i = 0; i < d->pixels; i++) framebuffer_rgb(d->framebuffer, i, d->luz_rgb + 3 * i);
     const luz_vec3 clear = d->frame.clear_colour;
     d->clear[0] = luz_colour_to_byte(clear.x);
@@ -280,23 +324,37 @@ static bool looks_like_background(const diagnosis *d, const uint8_t *rgb)
 
 static bool is_marker(const diagnosis *d, size_t i)
 {
-    return d->visible_all[i] != d->visible[i];
+    return d->marker_draw >= 0 && d->draw_at[i] == d->marker_draw;
+}
+
+/* Does luz draw an object at the pixel? With one sample a pixel, its
+ * centre's winner; with four, any sample's: the pixel is not the clear
+ * colour. */
+static bool luz_has_object(const diagnosis *d, size_t i)
+{
+    if (d->setup->options->scene.samples > 1)
+        return !looks_like_background(d, d->luz_rgb + 3 * i);
+    return d->draw_at[i] >= 0;
 }
 
 static void classify_pixels(diagnosis *d)
 {
+    const bool four_samples = d->setup->options->scene.samples > 1;
     for (int y = 0; y < d->height; y++)
         for (int x = 0; x < d->width; x++) {
             const size_t i = (size_t)y * d->width + x;
-            const bool has_object = d->visible_all[i] != 0;
+            const bool has_object = luz_has_object(d, i);
             bool interior = true, outline = false;
             for (int dy = -1; dy <= 1; dy++)
                 for (int dx = -1; dx <= 1; dx++) {
                     const int nx = x + dx, ny = y + dy;
                     if (nx < 0 || ny < 0 || nx >= d->width || ny >= d->height) continue;
                     const size_t n = (size_t)ny * d->width + nx;
-                    if (d->visible[n] != d->visible[i] || is_marker(d, n)) interior = false;
-                    if ((d->visible_all[n] != 0) != has_object) outline = true;
+                    if (d->draw_at[n] != d->draw_at[i] || is_marker(d, n)) interior = false;
+                    /* four samples mix the faces a pixel straddles: one
+                     * triangle's pixels only */
+                    if (four_samples && d->triangle_at[n] != d->triangle_at[i]) interior = false;
+                    if (luz_has_object(d, n) != has_object) outline = true;
                 }
             const bool student_background = looks_like_background(d, d->student->rgba + 4 * i);
             pixel_kind kind;
@@ -308,7 +366,7 @@ static void classify_pixels(diagnosis *d)
                            ? PIXEL_BACKGROUND
                            : outline ? PIXEL_MISSING_OUTLINE : PIXEL_MISSING_INSIDE;
             else if (has_object)
-                kind = interior ? PIXEL_INTERIOR : PIXEL_OUTLINE;
+                kind = interior && d->draw_at[i] >= 0 ? PIXEL_INTERIOR : PIXEL_OUTLINE;
             else if (!student_background)
                 kind = outline ? PIXEL_EXTRA_OUTLINE : PIXEL_EXTRA_INSIDE;
             else
@@ -388,6 +446,8 @@ static void compute_residual(diagnosis *d)
         float *r = d->residual + 3 * i;
         r[0] = r[1] = r[2] = NAN;
         if (d->kind[i] != PIXEL_INTERIOR && d->kind[i] != PIXEL_OUTLINE) continue;
+        /* an outline pixel of four samples mixes surfaces: no sum of terms */
+        if (d->kind[i] == PIXEL_OUTLINE && d->setup->options->scene.samples > 1) continue;
         double y[3], basis[3][TERMS];
         bool known[3];
         observe(d, i, y, basis, known);
@@ -431,6 +491,15 @@ static residual_summary summarise(const diagnosis *d)
     long channels = 0;
     for (size_t i = 0; i < d->pixels; i++) {
         const float *r = d->residual + 3 * i;
+        if (d->kind[i] == PIXEL_OUTLINE && d->setup->options->scene.samples > 1) {
+            /* four samples: luz's own image, as it is, is the measure */
+            int off = 0;
+            for (int c = 0; c < 3; c++)
+                off = fmax(off, abs((int)d->student->rgba[4 * i + c] - (int)d->luz_rgb[3 * i + c]));
+            s.outline_pixels++;
+            s.outline_over16 += off > 16;
+            continue;
+        }
         if (isnan(r[0]) && isnan(r[1]) && isnan(r[2])) continue;
         if (d->kind[i] == PIXEL_OUTLINE) {
             s.outline_pixels++;
@@ -761,16 +830,24 @@ static int diagnose_fitted(diagnosis *d, FILE *out, luz_error *error)
             "luz has background (%ld inside, %ld along outlines): %s\n",
             counts[PIXEL_MISSING_INSIDE] + counts[PIXEL_MISSING_OUTLINE],
             counts[PIXEL_EXTRA_INSIDE] + counts[PIXEL_EXTRA_OUTLINE], inside, along,
-            silhouette_wrong ? "wrong: the camera (position, yaw, pitch, field of view, "
-                               "aspect), culling or the fill rule differ"
-                             : "right");
+            !silhouette_wrong ? "right"
+            : inside == 0 && d->setup->options->scene.samples == 1
+                ? "wrong along the outlines only: the fill rule, or an anti-aliased canvas "
+                  "(then diagnose with --samples 4, or ask for antialias: false)"
+                : "wrong: the camera (position, yaw, pitch, field of view, aspect) or "
+                  "culling differ");
+    /* With four samples the outline is compared with luz's image as it
+     * is, which a wrong term changes too: judged only when the terms are
+     * right. */
+    const bool outline_judged = d->setup->options->scene.samples == 1 || !any_wrong;
     const bool outline_wrong =
-        summary.outline_over16 > 8 + summary.outline_pixels / 20;
+        outline_judged && summary.outline_over16 > 8 + summary.outline_pixels / 20;
     fprintf(out, "outline: %ld of %ld pixels along luz's edges off by more than 16: %s\n",
             summary.outline_over16, summary.outline_pixels,
-            outline_wrong ? "wrong: another surface wins there (back faces drawn: culling; "
-                            "or the depth test)"
-                          : "right");
+            !outline_judged ? "not judged (four samples a pixel, and a term is wrong)"
+            : outline_wrong ? "wrong: another surface wins there (back faces drawn: culling; "
+                              "or the depth test)"
+                            : "right");
     any_wrong = any_wrong || silhouette_wrong || outline_wrong;
 
     if (write_picture(d, error) != 0) return -1;
@@ -818,12 +895,12 @@ int luz_diagnose(const luz_diagnose_setup *setup, const luz_student_frame *stude
     d.byte_step = 1.0 / 255.0 * exp2(-(double)d.output.exposure);
     int status = -1;
     d.basis = malloc(d.pixels * 3 * TERMS * sizeof *d.basis);
-    d.visible = malloc(d.pixels * sizeof *d.visible);
-    d.visible_all = malloc(d.pixels * sizeof *d.visible_all);
+    d.draw_at = malloc(d.pixels * sizeof *d.draw_at);
+    d.triangle_at = malloc(d.pixels * sizeof *d.triangle_at);
     d.luz_rgb = malloc(d.pixels * 3);
     d.kind = malloc(d.pixels);
     d.residual = malloc(d.pixels * 3 * sizeof *d.residual);
-    if (d.basis == NULL || d.visible == NULL || d.visible_all == NULL || d.luz_rgb == NULL ||
+    if (d.basis == NULL || d.draw_at == NULL || d.triangle_at == NULL || d.luz_rgb == NULL ||
         d.kind == NULL || d.residual == NULL) {
         luz_error_set(error, "out of memory for the diagnosis");
         goto done;
@@ -832,17 +909,19 @@ int luz_diagnose(const luz_diagnose_setup *setup, const luz_student_frame *stude
     if (d.framebuffer == NULL) goto done;
     if (render_terms(&d, error) != 0) goto done;
     classify_pixels(&d);
-    fprintf(out, "diagnose: %s, %dx%d, against luz at time %g, %s at EV %g\n", setup->frame_name,
-            d.width, d.height, options->scene.time_seconds,
+    fprintf(out, "diagnose: %s, %dx%d, against luz at time %g, %s at EV %g, %d sample%s a "
+                 "pixel\n",
+            setup->frame_name, d.width, d.height, options->scene.time_seconds,
             d.output.tone_map == LUZ_TONE_MAP_NEUTRAL ? "neutral" : "clamp",
-            (double)d.output.exposure);
+            (double)d.output.exposure, options->scene.samples,
+            options->scene.samples > 1 ? "s" : "");
     status = diagnose_fitted(&d, out, error);
 done:
     luz_frame_free(&d.frame);
     if (d.framebuffer != NULL) luz_framebuffer_destroy(d.framebuffer);
     free(d.basis);
-    free(d.visible);
-    free(d.visible_all);
+    free(d.draw_at);
+    free(d.triangle_at);
     free(d.luz_rgb);
     free(d.kind);
     free(d.residual);
