@@ -171,7 +171,10 @@ typedef struct diagnosis {
     uint8_t *kind;              /* pixel_kind */
     float *residual;            /* [pixel][channel] in bytes, NAN where unknown */
     /* the fit */
-    luz_term_fit fit;
+    luz_term_fit fit;           /* one weight a term, all channels together */
+    luz_term_fit channel_fit[3];   /* one a term and channel: a term's colour */
+    double weight[3][TERMS];    /* the weights the residual is taken with:
+                                   the channel's, else the term's */
     double sigma;               /* rms residual of the fit, as colour */
     long fit_pixels, fit_observations;
 } diagnosis;
@@ -410,10 +413,22 @@ static bool in_region(const diagnosis *d, size_t i, term_region region, double t
     return region.lit ? sum > threshold : sum == 0.0;
 }
 
+/* The weights of the residual: a channel's own where it was measured
+ * (a term's colour may differ from luz's), else the term's. */
+static void choose_weights(diagnosis *d)
+{
+    for (int c = 0; c < 3; c++)
+        for (int t = 0; t < TERMS; t++)
+            d->weight[c][t] = d->channel_fit[c].measurable[t] ? d->channel_fit[c].weight[t]
+                              : d->fit.measurable[t]          ? d->fit.weight[t]
+                                                              : 0.0;
+}
+
 /* Fits the interior pixels, all but those of `excluded` (NULL: none). */
 static void fit(diagnosis *d, const term_region *excluded, const double *thresholds)
 {
-    luz_term_sums sums = {0};
+    luz_term_sums sums = {0}, channel_sums[3];
+    memset(channel_sums, 0, sizeof channel_sums);
     long pixels = 0;
     for (size_t i = 0; i < d->pixels; i++) {
         if (d->kind[i] != PIXEL_INTERIOR) continue;
@@ -423,13 +438,19 @@ static void fit(diagnosis *d, const term_region *excluded, const double *thresho
         if (observe(d, i, y, basis, known) == 0) continue;
         pixels++;
         for (int c = 0; c < 3; c++)
-            if (known[c]) luz_term_sums_add(&sums, basis[c], y[c]);
+            if (known[c]) {
+                luz_term_sums_add(&sums, basis[c], y[c]);
+                luz_term_sums_add(&channel_sums[c], basis[c], y[c]);
+            }
     }
     /* Enough of a term to weigh: what the others do not explain of it
      * adds up to 400 squared bytes (20 pixels a byte apart in each of the
      * three channels, or 4 pixels ten bytes apart ...), which bounds the
      * weight's error from the byte rounding alone near 0.3 / 20 = 0.015. */
-    luz_term_fit_solve(&sums, 400.0 * d->byte_step * d->byte_step, &d->fit);
+    const double min_pivot = 400.0 * d->byte_step * d->byte_step;
+    luz_term_fit_solve(&sums, min_pivot, &d->fit);
+    for (int c = 0; c < 3; c++) luz_term_fit_solve(&channel_sums[c], min_pivot, &d->channel_fit[c]);
+    choose_weights(d);
     d->fit_pixels = pixels;
     d->fit_observations = sums.observations;
 }
@@ -454,7 +475,7 @@ static void compute_residual(diagnosis *d)
         for (int c = 0; c < 3; c++) {
             if (!known[c]) continue;
             double predicted = 0.0;
-            for (int t = 0; t < TERMS; t++) predicted += d->fit.weight[t] * basis[c][t];
+            for (int t = 0; t < TERMS; t++) predicted += d->weight[c][t] * basis[c][t];
             r[c] = (float)((y[c] - predicted) * to_bytes);
             if (d->kind[i] == PIXEL_INTERIOR) {
                 rss += (y[c] - predicted) * (y[c] - predicted);
@@ -624,6 +645,18 @@ static int write_picture(const diagnosis *d, luz_error *error)
 
 /* ---- the verdict --------------------------------------------------------------------------- */
 
+/* The interior pixels term t lights at all. */
+static long lit_pixels(const diagnosis *d, luz_term t)
+{
+    long count = 0;
+    for (size_t i = 0; i < d->pixels; i++) {
+        if (d->kind[i] != PIXEL_INTERIOR) continue;
+        const float *b = d->basis + ((size_t)t * d->pixels + i) * 3;
+        count += b[0] != 0.0f || b[1] != 0.0f || b[2] != 0.0f;
+    }
+    return count;
+}
+
 /* The weight's tolerance: 5%, or three standard errors if the frame's
  * noise is larger. */
 static double tolerance(const diagnosis *d, int t)
@@ -699,7 +732,7 @@ static int write_worst(diagnosis *d, FILE *out, luz_error *error)
         for (int c = 0; c < 3; c++)
             for (int t = 0; t < TERMS; t++) {
                 const float b = d->basis[((size_t)t * d->pixels + i) * 3 + c];
-                colour[c] += d->fit.weight[t] * (b == BASIS_CLIPPED ? 1.0 : b);
+                colour[c] += d->weight[c][t] * (b == BASIS_CLIPPED ? 1.0 : b);
             }
         uint8_t weighted[3];
         map_colour(colour, d->output, weighted);
@@ -745,16 +778,23 @@ static int diagnose_fitted(diagnosis *d, FILE *out, luz_error *error)
     compute_residual(d);
     residual_summary summary = summarise(d);
     placement place = {0};
-    luz_term_fit first = d->fit;
+    const luz_term_fit first = d->fit;
+    luz_term_fit first_channel[3];
+    memcpy(first_channel, d->channel_fit, sizeof first_channel);
     if (residual_unexplained(&summary)) {
         place = place_residual(d, thresholds);
         if (place.found) {
             /* weigh the others where the wrong shape is not */
             fit(d, &place.region, thresholds);
-            d->fit.weight[place.region.term] = first.weight[place.region.term];
-            d->fit.measurable[place.region.term] = first.measurable[place.region.term];
-            d->fit.inverse_diagonal[place.region.term] =
-                first.inverse_diagonal[place.region.term];
+            const luz_term k = place.region.term;
+            d->fit.weight[k] = first.weight[k];
+            d->fit.measurable[k] = first.measurable[k];
+            d->fit.inverse_diagonal[k] = first.inverse_diagonal[k];
+            for (int c = 0; c < 3; c++) {
+                d->channel_fit[c].weight[k] = first_channel[c].weight[k];
+                d->channel_fit[c].measurable[k] = first_channel[c].measurable[k];
+            }
+            choose_weights(d);
             compute_residual(d);
         }
     }
@@ -765,16 +805,41 @@ static int diagnose_fitted(diagnosis *d, FILE *out, luz_error *error)
         const char *name = luz_term_name((luz_term)t);
         if (!d->fit.measurable[t]) {
             fprintf(out, "%s: not measurable (%s)\n", name,
-                    d->light_on[t] ? "too little of its light in view, or another term's "
-                                     "light looks the same here"
-                                   : "the setting has it off");
+                    !d->light_on[t]       ? "the setting has it off"
+                    : d->fit.unexplained[t] == 0.0 && lit_pixels(d, (luz_term)t) == 0
+                        ? "its light falls on no object in view"
+                        : "too little of its light in view, or another term's light looks "
+                          "the same here");
             continue;
         }
         const double w = d->fit.weight[t], tol = tolerance(d, t);
         const double se = d->sigma * sqrt(fmax(d->fit.inverse_diagonal[t], 0.0));
         fprintf(out, "%s: weight %.3f +- %.3f ", name, w, se);
         const bool shape = place.found && place.region.term == (luz_term)t;
-        if (fabs(w - 1.0) <= tol && !shape) {
+        /* its colour: the channels' weights apart by more than twice the
+         * tolerance */
+        double lowest = w, highest = w, channel_tol[3];
+        for (int c = 0; c < 3; c++) {
+            lowest = fmin(lowest, d->weight[c][t]);
+            highest = fmax(highest, d->weight[c][t]);
+            const luz_term_fit *f = &d->channel_fit[c];
+            channel_tol[c] = f->measurable[t]
+                ? fmax(tol, 3.0 * d->sigma * sqrt(fmax(f->inverse_diagonal[t], 0.0)))
+                : tol;
+        }
+        const bool colour =
+            highest - lowest > 2.0 * fmax(channel_tol[0], fmax(channel_tol[1], channel_tol[2]));
+        if (colour) {
+            fprintf(out, "wrong: its colour, red %.2f green %.2f blue %.2f of luz's\n",
+                    d->weight[0][t], d->weight[1][t], d->weight[2][t]);
+            wrong[t] = true;
+            any_wrong = true;
+            continue;
+        }
+        bool channels_right = true;
+        for (int c = 0; c < 3; c++)
+            if (fabs(d->weight[c][t] - 1.0) > channel_tol[c]) channels_right = false;
+        if (fabs(w - 1.0) <= tol && channels_right && !shape) {
             fprintf(out, "right\n");
             continue;
         }
@@ -863,13 +928,14 @@ static int diagnose_fitted(diagnosis *d, FILE *out, luz_error *error)
         fprintf(out, "right: every term measured has weight 1 and the frame is luz's\n");
         return LUZ_DIAGNOSIS_RIGHT;
     }
-    const char *separator = "wrong: ";
     if (silhouette_wrong) {
-        /* the pixels compared are not the same surfaces: that first */
-        fprintf(out, "wrong: the silhouette (the weights mean little until the silhouettes "
-                     "agree)");
-        separator = ", ";
+        /* the pixels compared are not the same surfaces: the weights of
+         * another picture say nothing of the terms */
+        fprintf(out, "wrong: the silhouette; the weights mean little until the silhouettes "
+                     "agree\n");
+        return LUZ_DIAGNOSIS_WRONG;
     }
+    const char *separator = "wrong: ";
     for (int t = 0; t < TERMS; t++)
         if (wrong[t]) {
             fprintf(out, "%s%s", separator, luz_term_name((luz_term)t));
