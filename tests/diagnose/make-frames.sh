@@ -28,3 +28,10 @@ frame ambient-1.5 --ambient 1,1,1,0.3         # ambient x 1.5
 frame specular-red --specular 1,0,0,0.5       # specular's green and blue missing
 frame no-diffuse --diffuse 1,1,1,0            # diffuse x 0
 frame moved --camera-pos 0.05,0,3             # the camera 0.05 to the right
+
+# A model, which SCENE.md tone-maps (neutral at EV -1): gen-model's sphere
+# of 2000 triangles (the test writes the same file), the sun off.
+sphere=$(mktemp -d)/sphere.obj
+"$build/tools/gen-model" --shape sphere --triangles 2000 -o "$sphere" 2>/dev/null
+frame sphere-no-sun --model "$sphere" --time 1 --directional 1,1,1,0
+rm -r "$(dirname "$sphere")"

@@ -1,0 +1,541 @@
+/*
+ * test_diagnose: luz-render --diagnose, a verdict on a student's frame
+ * (src/app/diagnose.c, the fit in src/app/term_fit.c).
+ *
+ * The fit and the output's inverse are checked against systems and bytes
+ * worked by hand. The verdicts are checked on frames rendered by
+ * tools/glref (OpenGL on llvmpipe, SCENE.md's equations in GLSL of its
+ * own), committed in tests/diagnose/ with the command that made them
+ * (make-frames.sh): each frame changes one thing of a setting, and the
+ * weight SCENE.md predicts for it is the expected value (a light's
+ * strength times k scales its term by k; the spot's strength enters
+ * squared). Then bad input: one line, exit 2, the frame untouched.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include <errno.h>
+#include <fcntl.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "luz/shade.h"
+#include "luz/framebuffer.h"
+#include "app/diagnose.h"
+#include "app/term_fit.h"
+#include "file_support.h"
+#include "test_support.h"
+
+/* ---- the fit, by hand ----------------------------------------------------------------- */
+
+/* Two terms, three observations: a = (1,0), (0,1), (1,1) and y = 1, 2, 4.
+ * G = [[2,1],[1,2]], h = (5, 6): w = G^-1 h = (1/3) [[2,-1],[-1,2]] (5, 6)
+ * = (4/3, 7/3), and (G^-1)_kk = 2/3. The other four terms are 0 on every
+ * observation: not measurable, weight 0. */
+static void test_fit_worked_by_hand(void **state)
+{
+    (void)state;
+    luz_term_sums sums = {0};
+    const double a[3][2] = {{1, 0}, {0, 1}, {1, 1}}, y[3] = {1, 2, 4};
+    for (int i = 0; i < 3; i++) {
+        double basis[LUZ_TERM_COUNT] = {0};
+        basis[LUZ_TERM_DIFFUSE] = a[i][0];
+        basis[LUZ_TERM_SPOT] = a[i][1];
+        luz_term_sums_add(&sums, basis, y[i]);
+    }
+    luz_term_fit fit;
+    luz_term_fit_solve(&sums, 1e-9, &fit);
+    assert_int_equal(fit.measurable_count, 2);
+    assert_true(fit.measurable[LUZ_TERM_DIFFUSE] && fit.measurable[LUZ_TERM_SPOT]);
+    assert_near(fit.weight[LUZ_TERM_DIFFUSE], 4.0 / 3.0, 1e-12);
+    assert_near(fit.weight[LUZ_TERM_SPOT], 7.0 / 3.0, 1e-12);
+    assert_near(fit.inverse_diagonal[LUZ_TERM_DIFFUSE], 2.0 / 3.0, 1e-12);
+    assert_near(fit.inverse_diagonal[LUZ_TERM_SPOT], 2.0 / 3.0, 1e-12);
+    for (int t = 0; t < LUZ_TERM_COUNT; t++)
+        if (t != LUZ_TERM_DIFFUSE && t != LUZ_TERM_SPOT) {
+            assert_false(fit.measurable[t]);
+            assert_true(fit.weight[t] == 0.0);
+        }
+}
+
+/* Six terms of random shape and weights chosen here: y = sum w a exactly,
+ * so the fit gives the chosen weights back. */
+static void test_fit_recovers_chosen_weights(void **state)
+{
+    (void)state;
+    const double chosen[LUZ_TERM_COUNT] = {1.0, 0.0, 0.5, 2.0, 0.25, -1.0};
+    luz_term_sums sums = {0};
+    uint32_t random = 7;
+    for (int i = 0; i < 500; i++) {
+        double basis[LUZ_TERM_COUNT], y = 0.0;
+        for (int t = 0; t < LUZ_TERM_COUNT; t++) {
+            basis[t] = test_uniform(&random, 0.0f, 1.0f);
+            y += chosen[t] * basis[t];
+        }
+        luz_term_sums_add(&sums, basis, y);
+    }
+    luz_term_fit fit;
+    luz_term_fit_solve(&sums, 1e-9, &fit);
+    assert_int_equal(fit.measurable_count, LUZ_TERM_COUNT);
+    for (int t = 0; t < LUZ_TERM_COUNT; t++) assert_near(fit.weight[t], chosen[t], 1e-9);
+}
+
+/* Directional = 2 x ambient on every observation: the two cannot be told
+ * apart, so one is not measurable and the other carries both (y = a + d
+ * = 3 ambient: ambient 3, or directional 1.5), never two wild numbers. */
+static void test_fit_alike_terms_not_measurable(void **state)
+{
+    (void)state;
+    luz_term_sums sums = {0};
+    uint32_t random = 11;
+    for (int i = 0; i < 200; i++) {
+        double basis[LUZ_TERM_COUNT] = {0};
+        basis[LUZ_TERM_AMBIENT] = test_uniform(&random, 0.1f, 1.0f);
+        basis[LUZ_TERM_DIRECTIONAL] = 2.0 * basis[LUZ_TERM_AMBIENT];
+        basis[LUZ_TERM_POINT] = test_uniform(&random, 0.0f, 1.0f);
+        luz_term_sums_add(&sums, basis,
+                          basis[LUZ_TERM_AMBIENT] + basis[LUZ_TERM_DIRECTIONAL] +
+                              basis[LUZ_TERM_POINT]);
+    }
+    luz_term_fit fit;
+    luz_term_fit_solve(&sums, 1e-6, &fit);
+    assert_int_equal(fit.measurable_count, 2);
+    assert_true(fit.measurable[LUZ_TERM_POINT]);
+    assert_near(fit.weight[LUZ_TERM_POINT], 1.0, 1e-9);
+    assert_true(fit.measurable[LUZ_TERM_AMBIENT] != fit.measurable[LUZ_TERM_DIRECTIONAL]);
+    if (fit.measurable[LUZ_TERM_AMBIENT])
+        assert_near(fit.weight[LUZ_TERM_AMBIENT], 3.0, 1e-9);
+    else
+        assert_near(fit.weight[LUZ_TERM_DIRECTIONAL], 1.5, 1e-9);
+}
+
+/* ---- the output, backwards ------------------------------------------------------------- */
+
+static void test_unmap_clamp(void **state)
+{
+    (void)state;
+    double colour[3];
+    bool known[3];
+    /* clamp at EV 0: byte / 255; 0 and 255 may hide anything beyond */
+    assert_int_equal(luz_diagnose_unmap((const uint8_t[3]){0, 128, 255},
+                                        (luz_output){0.0f, LUZ_TONE_MAP_CLAMP}, colour, known),
+                     1);
+    assert_false(known[0]);
+    assert_true(known[1]);
+    assert_false(known[2]);
+    assert_near(colour[1], 128.0 / 255.0, 1e-12);
+    /* EV -1 halved the colour: byte 128 was 2 x 128 / 255 */
+    luz_diagnose_unmap((const uint8_t[3]){1, 128, 254}, (luz_output){-1.0f, LUZ_TONE_MAP_CLAMP},
+                       colour, known);
+    assert_true(known[0] && known[1] && known[2]);
+    assert_near(colour[1], 256.0 / 255.0, 1e-12);
+}
+
+/* SCENE.md's neutral tone map below its peak of 0.76: c - 0.04 where the
+ * smallest channel is 0.08 or more; else c - (x - 6.25 x^2), x the
+ * smallest. */
+static void test_unmap_neutral(void **state)
+{
+    (void)state;
+    double colour[3];
+    bool known[3];
+    const luz_output neutral = {0.0f, LUZ_TONE_MAP_NEUTRAL};
+    /* bytes 51, 102, 153 are 0.2, 0.4, 0.6: smallest >= 0.04, so the
+     * colour was 0.24, 0.44, 0.64 */
+    assert_int_equal(luz_diagnose_unmap((const uint8_t[3]){51, 102, 153}, neutral, colour, known),
+                     3);
+    assert_near(colour[0], 0.24, 1e-12);
+    assert_near(colour[1], 0.44, 1e-12);
+    assert_near(colour[2], 0.64, 1e-12);
+    /* byte 4 is m = 4/255 < 0.04 = 6.25 x^2: x = 0.4 sqrt(m) = 0.0500979,
+     * offset x - m = 0.0344117; 100/255 + offset = 0.4265685 */
+    luz_diagnose_unmap((const uint8_t[3]){4, 100, 100}, neutral, colour, known);
+    assert_true(known[0]);
+    assert_near(colour[0], 0.4 * sqrt(4.0 / 255.0), 1e-12);
+    assert_near(colour[0], 0.0500979, 1e-7);
+    assert_near(colour[1], 0.4265685, 1e-7);
+    /* and luz's tone map takes that colour back to the bytes */
+    const luz_vec3 mapped = luz_tone_map_neutral(
+        (luz_vec3){(float)colour[0], (float)colour[1], (float)colour[2]});
+    assert_int_equal(luz_colour_to_byte(mapped.x), 4);
+    assert_int_equal(luz_colour_to_byte(mapped.y), 100);
+    /* at EV -1 the colour was twice that */
+    luz_diagnose_unmap((const uint8_t[3]){51, 102, 153}, (luz_output){-1.0f, LUZ_TONE_MAP_NEUTRAL},
+                       colour, known);
+    assert_near(colour[2], 1.28, 1e-12);
+    /* a peak of 0.76 or more was compressed; a 0 channel may hide anything */
+    assert_int_equal(luz_diagnose_unmap((const uint8_t[3]){51, 102, 194}, neutral, colour, known),
+                     0);
+    assert_int_equal(luz_diagnose_unmap((const uint8_t[3]){51, 102, 193}, neutral, colour, known),
+                     3);
+    assert_int_equal(luz_diagnose_unmap((const uint8_t[3]){0, 102, 153}, neutral, colour, known),
+                     0);
+}
+
+/* ---- luz-render --diagnose -------------------------------------------------------------- */
+
+typedef struct run {
+    int status;
+    char *out, *err;
+} run;
+
+static char work[256];   /* a temporary directory, one per test */
+
+static int make_work(void **state)
+{
+    (void)state;
+    snprintf(work, sizeof work, "/tmp/luz-test-diagnose-XXXXXX");
+    return mkdtemp(work) == NULL ? -1 : 0;
+}
+
+static int remove_work(void **state)
+{
+    (void)state;
+    remove_tree(work);
+    return 0;
+}
+
+static const char *frames_directory(void)
+{
+    const char *directory = getenv("LUZ_DIAGNOSE_FRAMES");
+    if (directory == NULL) fail_msg("LUZ_DIAGNOSE_FRAMES is not set (tests/meson.build)");
+    return directory;
+}
+
+/* luz-render with the arguments (NULL-terminated), in the work directory. */
+static run run_luz_render(const char *const *arguments)
+{
+    const char *program = getenv("LUZ_RENDER");
+    if (program == NULL) fail_msg("LUZ_RENDER is not set (tests/meson.build)");
+    char out_path[400], err_path[400];
+    snprintf(out_path, sizeof out_path, "%s/stdout", work);
+    snprintf(err_path, sizeof err_path, "%s/stderr", work);
+    char *argv[40];
+    int argc = 0;
+    argv[argc++] = (char *)program;
+    for (int i = 0; arguments[i] != NULL && argc < 39; i++) argv[argc++] = (char *)arguments[i];
+    argv[argc] = NULL;
+    fflush(NULL);
+    pid_t child = fork();
+    assert_true(child >= 0);
+    if (child == 0) {
+        int out = open(out_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        int err = open(err_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (out < 0 || err < 0 || chdir(work) != 0 || dup2(out, STDOUT_FILENO) < 0 ||
+            dup2(err, STDERR_FILENO) < 0)
+            _exit(127);
+        unsetenv("LUZ_TEXTURES");
+        execv(program, argv);
+        _exit(127);
+    }
+    int status;
+    while (waitpid(child, &status, 0) < 0) assert_int_equal(errno, EINTR);
+    run result = {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status),
+                  read_file(out_path, NULL), read_file(err_path, NULL)};
+    assert_non_null(result.out);
+    assert_non_null(result.err);
+    return result;
+}
+
+static void run_free(run *r)
+{
+    free(r->out);
+    free(r->err);
+}
+
+/* Copies a committed frame into the work directory (its residual picture
+ * is written beside it). */
+static void copy_frame(const char *name)
+{
+    char from[512], to[512];
+    snprintf(from, sizeof from, "%s/%s", frames_directory(), name);
+    snprintf(to, sizeof to, "%s/%s", work, name);
+    size_t length;
+    char *bytes = read_file(from, &length);
+    assert_non_null(bytes);
+    FILE *file = fopen(to, "wb");
+    assert_non_null(file);
+    assert_int_equal(fwrite(bytes, 1, length, file), length);
+    assert_int_equal(fclose(file), 0);
+    free(bytes);
+}
+
+/* The line of the output that starts with prefix ("point: "), or fail. */
+static const char *line_of(const char *out, const char *prefix)
+{
+    for (const char *line = out; line != NULL && *line != '\0';) {
+        if (strncmp(line, prefix, strlen(prefix)) == 0) return line;
+        line = strchr(line, '\n');
+        if (line != NULL) line++;
+    }
+    fail_msg("no line starting '%s' in:\n%s", prefix, out);
+    return NULL;
+}
+
+static bool line_has(const char *out, const char *prefix, const char *words)
+{
+    const char *line = line_of(out, prefix);
+    const char *end = strchr(line, '\n');
+    const char *found = strstr(line, words);
+    return found != NULL && (end == NULL || found < end);
+}
+
+/* The term's weight, from "NAME: weight W +- S ..." */
+static double weight_of(const char *out, const char *term)
+{
+    char prefix[32];
+    snprintf(prefix, sizeof prefix, "%s: weight ", term);
+    const char *line = line_of(out, prefix);
+    double weight;
+    assert_int_equal(sscanf(line + strlen(prefix), "%lf", &weight), 1);
+    return weight;
+}
+
+static const char *const terms[] = {"ambient", "diffuse", "specular", "point", "spot",
+                                    "directional"};
+
+/* Diagnoses a committed frame with the options of its setting. */
+static run diagnose(const char *name, const char *const *options)
+{
+    copy_frame(name);
+    const char *arguments[32] = {"--diagnose", name};
+    int count = 2;
+    for (int i = 0; options != NULL && options[i] != NULL; i++) arguments[count++] = options[i];
+    arguments[count] = NULL;
+    return run_luz_render(arguments);
+}
+
+/* Every term right, within 3% of 1: glref's frames of three settings, one
+ * anti-aliased, and a model under the neutral tone map with the sun off
+ * (there directional alone is wrong). */
+static void expect_right(const char *name, const char *const *options)
+{
+    run r = diagnose(name, options);
+    if (r.status != 0) fail_msg("%s: exit %d\n%s%s", name, r.status, r.out, r.err);
+    for (int t = 0; t < 6; t++) {
+        char prefix[32];
+        snprintf(prefix, sizeof prefix, "%s: ", terms[t]);
+        if (line_has(r.out, prefix, "not measurable")) continue;
+        assert_near(weight_of(r.out, terms[t]), 1.0, 0.03);
+        assert_true(line_has(r.out, prefix, "right"));
+    }
+    assert_true(line_has(r.out, "verdict: ", "right"));
+    assert_true(line_has(r.out, "silhouette: ", "right"));
+    assert_true(line_has(r.out, "residual: ", "the weights explain the frame"));
+    run_free(&r);
+}
+
+static void test_glref_frames_are_right(void **state)
+{
+    (void)state;
+    expect_right("right.png", NULL);
+    expect_right("right-4x.png", (const char *const[]){"--samples", "4", NULL});
+    expect_right("right-t3.png",
+                 (const char *const[]){"--time", "3", "--seed", "7", "--camera-pos",
+                                       "0.4,0.3,3.5", "--camera-yaw", "-95", "--camera-pitch",
+                                       "-4", NULL});
+}
+
+/* Pitched up 40 degrees, the spot (and the headlight's highlights) falls
+ * on no object: not measurable, and the frame is still right. */
+static void test_term_out_of_view_not_measurable(void **state)
+{
+    (void)state;
+    run r = diagnose("right-up.png", (const char *const[]){"--camera-pitch", "40", NULL});
+    assert_int_equal(r.status, 0);
+    assert_true(line_has(r.out, "spot: ", "not measurable"));
+    assert_true(line_has(r.out, "verdict: ", "right"));
+    run_free(&r);
+}
+
+/* One term scaled by k: that term's weight is k, the verdict names it
+ * alone, exit 1. */
+static void expect_scaled(const char *name, const char *term, double k, const char *words)
+{
+    run r = diagnose(name, NULL);
+    assert_int_equal(r.status, 1);
+    for (int t = 0; t < 6; t++) {
+        const bool this = strcmp(terms[t], term) == 0;
+        assert_near(weight_of(r.out, terms[t]), this ? k : 1.0, this ? 0.02 : 0.03);
+        char prefix[32];
+        snprintf(prefix, sizeof prefix, "%s: ", terms[t]);
+        assert_true(line_has(r.out, prefix, this ? words : "right"));
+    }
+    char verdict[64];
+    snprintf(verdict, sizeof verdict, "wrong: %s\n", term);
+    assert_true(line_has(r.out, "verdict: ", verdict));
+    run_free(&r);
+}
+
+static void test_scaled_and_missing_terms(void **state)
+{
+    (void)state;
+    expect_scaled("point-half.png", "point", 0.5, "scaled by 0.50");       /* 0.35 / 0.7 */
+    expect_scaled("spot-half.png", "spot", 0.25, "scaled by 0.25");        /* 0.5^2 */
+    expect_scaled("ambient-1.5.png", "ambient", 1.5, "scaled by 1.50");    /* 0.3 / 0.2 */
+    expect_scaled("no-diffuse.png", "diffuse", 0.0, "missing");
+}
+
+/* Specular of colour (1, 0, 0): red right, green and blue missing. */
+static void test_term_of_another_colour(void **state)
+{
+    (void)state;
+    run r = diagnose("specular-red.png", NULL);
+    assert_int_equal(r.status, 1);
+    const char *line = line_of(r.out, "specular: ");
+    double red, green, blue;
+    const char *colour = strstr(line, "its colour, red ");
+    assert_non_null(colour);
+    assert_int_equal(sscanf(colour, "its colour, red %lf green %lf blue %lf", &red, &green, &blue),
+                     3);
+    assert_near(red, 1.0, 0.03);
+    assert_near(green, 0.0, 0.03);
+    assert_near(blue, 0.0, 0.03);
+    assert_true(line_has(r.out, "verdict: ", "wrong: specular\n"));
+    run_free(&r);
+}
+
+/* A model: SCENE.md tone-maps it (neutral at EV -1), which the fit
+ * undoes; glref drew it with the sun off. */
+static void test_model_under_the_tone_map(void **state)
+{
+    (void)state;
+    const char *gen_model = getenv("GEN_MODEL");
+    if (gen_model == NULL) fail_msg("GEN_MODEL is not set (tests/meson.build)");
+    char sphere[400], command[1200];
+    snprintf(sphere, sizeof sphere, "%s/sphere.obj", work);
+    snprintf(command, sizeof command, "'%s' --shape sphere --triangles 2000 -o '%s' 2>/dev/null",
+             gen_model, sphere);
+    assert_int_equal(system(command), 0);
+    run r = diagnose("sphere-no-sun.png",
+                     (const char *const[]){"--model", sphere, "--time", "1", NULL});
+    assert_int_equal(r.status, 1);
+    assert_true(line_has(r.out, "diagnose: ", "neutral at EV -1"));
+    assert_near(weight_of(r.out, "directional"), 0.0, 0.02);
+    assert_true(line_has(r.out, "directional: ", "missing"));
+    for (int t = 0; t < 5; t++) {
+        char prefix[32];
+        snprintf(prefix, sizeof prefix, "%s: ", terms[t]);
+        assert_true(line_has(r.out, prefix, "right"));
+    }
+    assert_true(line_has(r.out, "verdict: ", "wrong: directional\n"));
+    run_free(&r);
+}
+
+/* The camera 0.05 to the right: the silhouettes differ inside and along
+ * the outlines, and the verdict names the silhouette. The residual
+ * picture is written beside the frame, of its size, yellow where the
+ * frame has the background and luz an object. */
+static void test_moved_camera_is_a_silhouette(void **state)
+{
+    (void)state;
+    char frame[400];
+    snprintf(frame, sizeof frame, "%s/moved.png", work);
+    run r = diagnose("moved.png", NULL);
+    assert_int_equal(r.status, 1);
+    long missing, extra, inside, along;
+    const char *line = line_of(r.out, "silhouette: ");
+    assert_int_equal(sscanf(line,
+                            "silhouette: %ld pixels background where luz has an object, %ld an "
+                            "object where luz has background (%ld inside, %ld along",
+                            &missing, &extra, &inside, &along),
+                     4);
+    assert_true(missing > 50 && extra > 50 && inside > 50);
+    assert_true(line_has(r.out, "silhouette: ", "wrong: the camera"));
+    assert_true(line_has(r.out, "verdict: ", "wrong: the silhouette"));
+    assert_true(line_has(r.out, "picture: ", "moved-residual.png"));
+
+    char picture[400];
+    snprintf(picture, sizeof picture, "%s/moved-residual.png", work);
+    luz_student_frame residual, student;
+    luz_error error;
+    assert_int_equal(luz_student_frame_read(picture, &residual, &error), 0);
+    assert_int_equal(luz_student_frame_read(frame, &student, &error), 0);
+    assert_int_equal(residual.width, 192);
+    assert_int_equal(residual.height, 108);
+    long yellow = 0;
+    for (int i = 0; i < residual.width * residual.height; i++) {
+        const uint8_t *p = residual.rgba + 4 * i;
+        yellow += p[0] == 255 && p[1] == 255 && p[2] == 0;
+    }
+    assert_int_equal(yellow, missing);
+    /* the frame itself untouched: the committed bytes */
+    char committed[512];
+    snprintf(committed, sizeof committed, "%s/moved.png", frames_directory());
+    size_t a_length, b_length;
+    char *a = read_file(committed, &a_length), *b = read_file(frame, &b_length);
+    assert_true(a_length == b_length && memcmp(a, b, a_length) == 0);
+    free(a);
+    free(b);
+    luz_student_frame_free(&residual);
+    luz_student_frame_free(&student);
+    run_free(&r);
+}
+
+/* ---- frames that cannot be compared ------------------------------------------------------ */
+
+/* Exit 2 and one line naming the file (or flag) and what was expected;
+ * no residual picture. */
+static void expect_refused(const char *const *arguments, const char *words)
+{
+    run r = run_luz_render(arguments);
+    if (r.status != 2 || strstr(r.err, words) == NULL)
+        fail_msg("exit %d, expected 2 and '%s' in: %s", r.status, words, r.err);
+    const char *end = strchr(r.err, '\n');   /* one line */
+    assert_non_null(end);
+    assert_true(end[1] == '\0');
+    assert_true(r.out[0] == '\0');
+    run_free(&r);
+}
+
+static void test_bad_frames_refused(void **state)
+{
+    (void)state;
+    copy_frame("right.png");
+    char path[400];
+    snprintf(path, sizeof path, "%s/text.png", work);
+    FILE *file = fopen(path, "w");
+    assert_non_null(file);
+    fputs("not an image\n", file);
+    fclose(file);
+    expect_refused((const char *const[]){"--diagnose", "text.png", NULL},
+                   "text.png: not a PNG file");
+    expect_refused((const char *const[]){"--diagnose", "right.png", "--size", "320x180", NULL},
+                   "right.png: 192x108 pixels; expected the 320x180");
+    expect_refused((const char *const[]){"--diagnose", "absent.png", NULL}, "absent.png");
+    expect_refused((const char *const[]){"--diagnose", "right.png", "-o", "right.png", NULL},
+                   "-o: right.png: is the frame to diagnose");
+    expect_refused((const char *const[]){"--diagnose", "right.png", "--bench", "3", NULL},
+                   "--diagnose: expected one frame");
+    /* nothing written but the text file and the frame */
+    char listing[4096] = "";
+    list_tree(work, "", listing, sizeof listing);
+    assert_string_equal(listing, "right.png\nstderr\nstdout\ntext.png\n");
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_fit_worked_by_hand),
+        cmocka_unit_test(test_fit_recovers_chosen_weights),
+        cmocka_unit_test(test_fit_alike_terms_not_measurable),
+        cmocka_unit_test(test_unmap_clamp),
+        cmocka_unit_test(test_unmap_neutral),
+        cmocka_unit_test_setup_teardown(test_glref_frames_are_right, make_work, remove_work),
+        cmocka_unit_test_setup_teardown(test_term_out_of_view_not_measurable, make_work,
+                                        remove_work),
+        cmocka_unit_test_setup_teardown(test_scaled_and_missing_terms, make_work, remove_work),
+        cmocka_unit_test_setup_teardown(test_term_of_another_colour, make_work, remove_work),
+        cmocka_unit_test_setup_teardown(test_model_under_the_tone_map, make_work, remove_work),
+        cmocka_unit_test_setup_teardown(test_moved_camera_is_a_silhouette, make_work,
+                                        remove_work),
+        cmocka_unit_test_setup_teardown(test_bad_frames_refused, make_work, remove_work),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
