@@ -1,5 +1,5 @@
 /*
- * test_controls.c: the viewer's controls (luz/controls.h) without a window.
+ * test_controls.c: the viewer's controls (app/controls.h) without a window.
  *
  * Expected values are worked out by hand from SCENE.md: the camera starts
  * at (0, 0, 3) with yaw -90 and pitch 0, so front = (cos -90, 0, sin -90)

@@ -1,5 +1,5 @@
 /*
- * test_panel.c: the viewer's 2D layer (luz/panel.h) without a window: the
+ * test_panel.c: the viewer's 2D layer (app/panel.h) without a window: the
  * sliders' table, slider edits by key and by mouse, the layout's hit
  * rectangles, the drawing primitives' pixels, and the layer filled in
  * bands of rows as the renderer's threads fill it.

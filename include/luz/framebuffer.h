@@ -29,8 +29,10 @@
 
 /* Limits that keep every size the renderer accepts safe: the rasteriser's
  * fixed-point range is proven for sides up to LUZ_MAX_DIMENSION (see
- * src/renderer/setup.c), and LUZ_MAX_PIXELS bounds the memory (13 bytes a
- * pixel: under 900 MiB). */
+ * src/renderer/setup.c), and LUZ_MAX_PIXELS bounds the memory: 12 bytes a
+ * pixel here (colour, depth and visibility, 768 MiB at the limit), and in
+ * the renderer 48 more for four samples (four such planes) and 4 a sample
+ * for the overdraw view. */
 #define LUZ_MAX_DIMENSION 16384
 #define LUZ_MAX_PIXELS (64 * 1024 * 1024)
 

@@ -1,6 +1,6 @@
 /*
  * controls.c: the viewer's controls as pure functions on scene data (see
- * luz/controls.h). No SDL here: the viewer maps keys to these calls, and
+ * app/controls.h). No SDL here: the viewer maps keys to these calls, and
  * tests/test_controls.c checks each against values worked out by hand.
  */
 #include "app/controls.h"

@@ -1,5 +1,5 @@
 /*
- * luz/controls.h: what the viewer's keys and mouse do to a scene.
+ * app/controls.h: what the viewer's keys and mouse do to a scene.
  *
  * The interactive viewer (src/programs/luz_viewer.c) reads SDL events and
  * turns them into calls of these functions; everything they change is plain

@@ -1,6 +1,6 @@
 /*
  * legend.c: the key to a view's colours, as swatches with their meaning
- * (see luz/panel.h), for the viewer's HUD and for luz-render --legend.
+ * (see app/panel.h), for the viewer's HUD and for luz-render --legend.
  *
  * Every swatch is a colour of luz/view.h's palettes, the very functions
  * view.c colours pixels with, so the key cannot drift from the picture.

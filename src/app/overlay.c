@@ -1,6 +1,6 @@
 /*
  * overlay.c: rectangles and text drawn into a framebuffer's colour (see
- * luz/panel.h), for the viewer's HUD, panel and help.
+ * app/panel.h), for the viewer's HUD, panel and help.
  *
  * The text comes from stb_easy_font, which turns a string into quads made
  * of whole font pixels (each segment of a glyph is a 1-pixel-wide bar).
@@ -82,10 +82,10 @@ static void fill_rect(luz_framebuffer *framebuffer, luz_rect rect, luz_rgba colo
      * x that sum and t = x + 128, (t + (t >> 8)) >> 8 is exactly
      * round(x / 255) for every x in [0, 255 * 255] (Jim Blinn, "Three
      * Wrongs Make a Right", 1995): no division and no branch, so four
-     * pixels go through at once; the HUD's box then costs about 0.05 ms
-     * instead of 0.2. t + (t >> 8) is at most 255 * 255 + 128 + 254 =
-     * 65407, so 16-bit lanes hold it. The alpha channel's source is 255,
-     * which keeps it at 255. */
+     * pixels go through at once (the HUD's box: docs/performance.md,
+     * "Measured in the code"). t + (t >> 8) is at most 255 * 255 + 128 +
+     * 254 = 65407, so 16-bit lanes hold it. The alpha channel's source is
+     * 255, which keeps it at 255. */
     const uint16_t keep = (uint16_t)(255u - colour.a);
     uint16_t add[4];
     for (int c = 0; c < 4; c++)
@@ -102,10 +102,10 @@ static void fill_rect(luz_framebuffer *framebuffer, luz_rect rect, luz_rgba colo
         for (; x + 16 <= row_bytes; x += 16) {
             /* When the layer is filled after the whole frame, the HUD's
              * corner has left the caches: asking for the rows four ahead,
-             * a cache line at a time, hides most of the wait (0.2 ms down
-             * to 0.13 ms for the HUD at 1280x720). Filled band by band
-             * (a luz_band_hook) the rows are still cached and
-             * the prefetch costs next to nothing. */
+             * a cache line at a time, hides most of the wait
+             * (docs/performance.md, "Measured in the code"). Filled band
+             * by band (a luz_band_hook) the rows are still cached and the
+             * prefetch costs next to nothing. */
             if ((x & 63) == 0 && y + 4 < rect.height)
                 __builtin_prefetch(row + 4 * stride + x, 1);
             byte_lanes bytes;

@@ -1,5 +1,5 @@
 /*
- * panel.c: the light panel, the HUD and the help overlay (see luz/panel.h).
+ * panel.c: the light panel, the HUD and the help overlay (see app/panel.h).
  *
  * Everything is computed from plain data: the slider table below says
  * which field of luz_lights each slider edits and over what range, the

@@ -1,5 +1,5 @@
 /*
- * luz/panel.h: the viewer's 2D layer, drawn into luz's own framebuffer.
+ * app/panel.h: the viewer's 2D layer, drawn into luz's own framebuffer.
  *
  * Text (stb_easy_font's segment font, scaled by whole pixels), filled and
  * blended rectangles, and on top of them the three things the viewer shows

@@ -1,5 +1,5 @@
 /*
- * luz/image.h: writing the framebuffer to a PNG file (or to an open
+ * io/image.h: writing the framebuffer to a PNG file (or to an open
  * stream, luz_framebuffer_write_png_stream).
  *
  * A file is written to a temporary name beside the target and renamed

@@ -13,10 +13,10 @@
  * draws each frame straight into the window's shared memory
  * (present_x11.c); elsewhere SDL presents the finished framebuffer through
  * a streaming RGBA texture. Every pixel, the HUD's text and the panel's
- * sliders included, is drawn by libluz: the 2D layer of luz/panel.h is
- * recorded first, then the renderer fills it band by band on top of the
- * scene (luz_renderer_draw with a luz_band_hook). What the keys do is in
- * luz/controls.h and what the panel does in luz/panel.h, both tested
+ * sliders included, is drawn by luz itself: the 2D layer of app/panel.h
+ * is recorded first, then the renderer fills it band by band on top of
+ * the scene (luz_renderer_draw with a luz_band_hook). What the keys do is
+ * in app/controls.h and what the panel does in app/panel.h, both tested
  * without a window; this file maps SDL's events onto them.
  *
  * Options are luz-render's scene options, read by the same parser
@@ -935,10 +935,11 @@ static int run_bench(viewer *v, luz_error *error)
  * copies nothing on the client. Otherwise SDL shows a texture: on X11
  * through SDL's software renderer, since luz's pixels are made on the CPU
  * anyway, and where OpenGL is Mesa's llvmpipe (Xvfb, a machine without a
- * GPU) its textured quad costs about 5 ms of CPU a frame against 1 ms for
- * the plain copy. LUZ_PRESENT=sdl asks for SDL's way on X11 too, and the
- * environment (SDL_RENDER_DRIVER, SDL_FRAMEBUFFER_ACCELERATION) still
- * overrides SDL's choice of renderer. */
+ * GPU) its textured quad costs several times the plain copy's CPU time
+ * (docs/performance.md, "Measured in the code"). LUZ_PRESENT=sdl asks
+ * for SDL's way on X11 too, and the environment (SDL_RENDER_DRIVER,
+ * SDL_FRAMEBUFFER_ACCELERATION) still overrides SDL's choice of
+ * renderer. */
 /* Whether WAYLAND_DISPLAY names a socket that is there, where libwayland
  * looks for it: the name itself when absolute, else in $XDG_RUNTIME_DIR.
  * Without one, asking libwayland for a display only adds its own complaint
@@ -1072,11 +1073,10 @@ int main(int argc, char **argv)
 
     luz_options_init(&options);
     /* The viewer anti-aliases unless told otherwise (--samples 1, a scene
-     * file's samples 1): on the default scene at 1280x720 on two threads of
-     * a 2-core AMD EPYC, four samples take about 6 ms a frame (tools/viewer-bench,
-     * 3 alternating rounds; one sample 4.4 ms), far within the 60 fps
-     * issue 27 asks of them. luz-render keeps one, so every image made
-     * before stays the same. */
+     * file's samples 1): on the default scene at 1280x720 on two threads,
+     * four samples are well within the 60 fps issue 27 asks of them
+     * (tools/viewer-bench; docs/performance.md, "Four samples a pixel").
+     * luz-render keeps one, so every image made before stays the same. */
     options.scene.samples = 4;
     if (scene_argv == NULL) {
         luz_error_set(&error, "out of memory");

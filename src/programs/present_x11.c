@@ -2,11 +2,11 @@
  * present_x11.c: showing frames on X11 without copying them on the client.
  *
  * SDL's way to show a frame made on the CPU (a streaming texture and its
- * software renderer) costs, per 1280x720 frame under Xvfb, about 0.4 ms to
- * copy the framebuffer into the texture, 0.4 ms to convert it to the
- * window's pixel order, and then a wait of 0.6-0.8 ms while the X server
- * copies the result into the window (SDL calls XSync after XShmPutImage).
- * Against a 4.5 ms frame that is a third of the time, and the renderer's
+ * software renderer) copies the framebuffer into the texture, converts it
+ * to the window's pixel order, and then waits while the X server copies
+ * the result into the window (SDL calls XSync after XShmPutImage). Against
+ * a frame of the default scene that was a third of the time
+ * (docs/performance.md, "Measured in the code"), and the renderer's
  * threads sit idle through all of it.
  *
  * Here luz draws each frame straight into an X shared-memory image (the

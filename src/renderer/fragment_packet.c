@@ -450,8 +450,8 @@ INLINE vuint gather(const uint8_t *texels, vint index)
  * the row will probably want, extrapolated from this packet's first and
  * last lanes, so that its cache line is on its way while this one is
  * shaded. Texel fetches that miss the cache are what the packets wait on
- * most (measured: some 20% of the time on the default scene; the hint wins
- * back about a third of it). */
+ * most, and the hint wins back part of that wait (docs/performance.md,
+ * "Measured in the code"). */
 INLINE void prefetch_ahead(const uint8_t *texels, vint index, int32_t end)
 {
     const int32_t ahead = 3 * index[LANES - 1] - 2 * index[0];

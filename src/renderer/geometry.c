@@ -648,7 +648,8 @@ static void triangles_of_draw(geometry_batch *batch, const geometry_job *job,
 /* Each triangle's bands, while its record is still in the cache (a band
  * index fits 16 bits: LUZ_MAX_DIMENSION / band height < 2^16). A band is
  * 2^band_shift rows: a shift, where a division by a variable band height
- * took 0.5-0.7 ms of the 1M sphere's geometry a frame. */
+ * took a measurable share of the 1M sphere's geometry
+ * (docs/performance.md, "Measured in the code"). */
 static bool find_band_ranges(geometry_batch *batch, int band_shift)
 {
     if (!reserve((void **)&batch->band_ranges, &batch->band_range_capacity, batch->count,

@@ -21,14 +21,21 @@
  *                                                        who is nearest
  *     -> fragment.c  colour per visible pixel            interpolate, sample, shade
  *                      (texture.c samples; the six light terms are the
- *                      inline functions of luz/shade.h)
+ *                      inline functions of luz/shade.h; fragment_packet.c
+ *                      does the same for a packet of a row's pixels, as
+ *                      many as the vectors of the set cpu.c picked hold,
+ *                      held to fragment.c by its test)
+ *     -> resolve.c   four samples a pixel: the samples'  one colour a pixel
+ *                    winners sorted, then averaged
  *     or view.c      a picture of a stage (--view)       depth, normals, uv, ...
  *     and probe.c    one pixel explained (luz/probe.h)   the same functions again
  *
- * frame.c runs them in that order: geometry_of_draw the first three,
- * bin_triangles lists each band's triangles, band_job the rest for a band
- * of rows; bands.c spreads the work over threads. Each stage is a function
- * of its inputs: no globals.
+ * frame.c's luz_renderer_draw runs them in that order, in two phases:
+ * geometry.c's luz_geometry_run the vertex stage, clipping, screening and
+ * setup, in batches over the threads, and bins each band's triangles;
+ * then frame.c's band_job the rest for a band of rows. bands.c spreads
+ * the jobs over threads. Each stage is a function of its inputs: no
+ * globals.
  */
 #ifndef LUZ_PIPELINE_H
 #define LUZ_PIPELINE_H

@@ -36,9 +36,10 @@
  * the renderer's table of kernels.
  * An AVX2 variant (coordinates in 32-bit lanes, products widened in even
  * and odd halves, eight triangles a step) passed the same tests but made
- * the 1M sphere's geometry slower on this project's machines (AMD Zen 5:
- * 30.3 against 26.5 ms; its nine 32-bit gathers a step cost more than the
- * branches they replace), so AVX2 CPUs keep the one-by-one loop.
+ * the 1M sphere's geometry slower on this project's machines (its nine
+ * 32-bit gathers a step cost more than the branches they replace;
+ * docs/performance.md, "Measured in the code"), so AVX2 CPUs keep the
+ * one-by-one loop.
  */
 #include <stddef.h>
 #include <stdint.h>
@@ -156,14 +157,15 @@ static inline __attribute__((always_inline)) void screen_eight(__m256i a, __m256
  * the corners of the first and last triangles of a group four groups on
  * are near the vertices that group will gather; a gather does not start
  * loading until it is the oldest miss, a prefetch does (the 1M sphere's
- * geometry phase: 3-4% faster with it). */
+ * geometry phase faster with it: docs/performance.md, "Measured in the
+ * code"). */
 #define SCREEN_AHEAD 64
 
 /* How many triangles ahead the loop asks for the index buffer itself,
  * read in order, 12 bytes a triangle: the hardware's prefetcher alone
  * left the loop waiting on those loads (their line the hottest of its
- * profile); 3 KB ahead, the sphere's geometry 10.8 -> 10.4 ms a frame
- * (6 KB did no better). */
+ * profile); 3 KB ahead the sphere's geometry was faster, and 6 KB did no
+ * better (docs/performance.md, "Measured in the code"). */
 #define INDEX_AHEAD 256
 
 /* Sixteen triangles from triangle_indices, of which the lanes of valid are

@@ -95,11 +95,11 @@ static luz_edge make_edge(int64_t xi, int64_t yi, int64_t xj, int64_t yj)
  * covered_lanes is the same test in lanes). Each centre's three
  * values are computed afresh, independent multiplies: stepping them from
  * the box's first centre by 256 a and 256 b runs fewer instructions but
- * took 1.5 ms longer a frame on the 1M-triangle sphere (each step waits
- * for the one before, and most boxes find a centre at once). Not raster's
+ * was slower on the 1M-triangle sphere (each step waits for the one
+ * before, and most boxes find a centre at once). Not raster's
  * luz_raster_row_span: that finds a row's whole span, where this stops at
- * the first centre, and on a million-triangle mesh calling it cost 6% of
- * the frame. */
+ * the first centre, and on a million-triangle mesh calling it cost a
+ * share of the frame (docs/performance.md, "Measured in the code"). */
 static bool covers_a_centre(const luz_triangle *triangle)
 {
     const int64_t half = LUZ_SUBPIXEL_ONE / 2;

@@ -20,7 +20,8 @@
  * one at a time setup is arithmetic, not memory (set up twice in a row,
  * the second time from the cache, a triangle costs the same): some sixty
  * cycles of integer and double-precision work, which here runs eight
- * triangles to a vector (the sphere's geometry 16.8 -> 15.3 ms a frame).
+ * triangles to a vector (faster: docs/performance.md, "Measured in the
+ * code").
  *
  * Position-only shading: with setup in lanes, a big draw's vertex pass
  * transforms positions alone and keeps only their snapped positions,
@@ -34,8 +35,8 @@
  * saves: the sphere's vertex pass wrote 60 bytes a vertex (its clip
  * vertex and snapped position; 100 with the window vertex, until setup
  * projected its corners itself) that setup read back scattered, where
- * now it writes 8 (geometry 12.1 -> 10.3 ms a frame, the whole frame
- * 20.0 -> 17.8).
+ * now it writes 8 (faster: docs/performance.md, "Measured in the
+ * code").
  *
  * The arithmetic is vertex.c's and setup.c's, operation for operation
  * (but where NaN normals, uv or matrix entries, which no check keeps
@@ -247,8 +248,8 @@ bool luz_setup_eight_avx512(const uint32_t *indices, const uint32_t triangles[8]
      * Each corner's mesh vertex is 32 contiguous bytes: loaded a lane at
      * a time and transposed into vectors (when setup read window and clip
      * vertices, a gather for each field instead made the 1M sphere's
-     * geometry 20.7 ms a frame where one triangle at a time took 16.6,
-     * and loads and transposes 15.6). */
+     * geometry slower than one triangle at a time, the loads and
+     * transposes faster: docs/performance.md, "Measured in the code"). */
     __m512d x[3], y[3], depth[3], weight[3];
     __m256 varying[3][8];
     const float *model = transform->model.m, *normal_matrix = transform->normal_matrix.m;

@@ -21,14 +21,14 @@
  *      vertex's other fields are left meaning nothing, as setup.c's
  *      leave them.
  *
- * Why: one vertex at a time, the two passes cost a 1M-triangle sphere's
- * 500k vertices about 4 ms a frame: three transforms and a divide a
- * vertex, and 52 bytes of clip vertex written, read back, then 48 bytes
- * of projection written. Here sixteen vertices are read whole and
- * transposed into lanes, transformed and projected in registers, and
- * transposed back out once (the sphere's geometry 14.9 -> 14.0 ms a
- * frame: the stores remained, until position-only shading, setup_eight.c,
- * left 8 bytes a vertex to store).
+ * Why: one vertex at a time, the two passes were a large share of a
+ * 1M-triangle sphere's geometry (500k vertices): three transforms and a
+ * divide a vertex, and 52 bytes of clip vertex written, read back, then
+ * 48 bytes of projection written. Here sixteen vertices are read whole
+ * and transposed into lanes, transformed and projected in registers, and
+ * transposed back out once (faster, though the stores remained, until
+ * position-only shading, setup_eight.c, left 8 bytes a vertex to store;
+ * docs/performance.md, "Measured in the code").
  *
  * The arithmetic is vertex.c's and setup.c's, operation for operation:
  * each transform a[0] x + a[4] y + a[8] z + a[12] summed left to right
