@@ -55,6 +55,8 @@ typedef enum key_type {
     KEY_BOOL,
     KEY_EXPOSURE,   /* a float; compared as the output in force */
     KEY_TONE_MAP,
+    KEY_BUG,        /* luz/bug.h's bug, and whether it is a quiz's */
+    KEY_QUIZ,
 } key_type;
 
 typedef struct key_field {
@@ -94,6 +96,8 @@ static const key_field key_fields[] = {
     {"paused", KEY_BOOL, AT(paused)},
     {"exposure", KEY_EXPOSURE, AT(scene.exposure)},
     {"tonemap", KEY_TONE_MAP, AT(scene.tone_map)},
+    {"bug", KEY_BUG, AT(scene.bug)},
+    {"quiz", KEY_QUIZ, AT(quiz_seed)},
 };
 
 #define KEY_COUNT (sizeof key_fields / sizeof key_fields[0])
@@ -222,6 +226,15 @@ static void assert_same_key(const luz_options *set, const luz_options *back,
         break;
     case KEY_TONE_MAP:
         assert_int_equal(luz_options_output(back).tone_map, luz_options_output(set).tone_map);
+        break;
+    /* A quiz is saved as its seed, its bug never by name: luz_options_finish
+     * chooses it again (app/quiz.h). */
+    case KEY_BUG:
+        if (!set->quiz) assert_int_equal(back->scene.bug, set->scene.bug);
+        break;
+    case KEY_QUIZ:
+        assert_int_equal(back->quiz, set->quiz);
+        if (set->quiz) assert_int_equal(back->quiz_seed, set->quiz_seed);
         break;
     case KEY_PATH: {
         const char *expected = *(char *const *)a, *actual = *(char *const *)b;
@@ -556,6 +569,64 @@ static void test_output_defaults_follow_the_models(void **state)
     }
 }
 
+/* `bug NAME` round-trips for every bug (none is not written); a quiz is
+ * written as `quiz = SEED` and its bug's name appears nowhere in the file,
+ * and reading it back and finishing chooses the same bug. */
+static void test_bug_and_quiz(void **state)
+{
+    (void)state;
+    for (int bug = 0; bug < LUZ_BUG_COUNT; bug++) {
+        luz_options options;
+        luz_options_init(&options);
+        luz_error error = {{0}};
+        assert_int_equal(luz_options_set_value(&options, "bug", luz_bug_name((luz_bug)bug),
+                                               NULL, &error),
+                         0);
+        char *text = NULL;
+        size_t size = 0;
+        FILE *memory = open_memstream(&text, &size);
+        assert_non_null(memory);
+        luz_options_write_scene(&options, memory);
+        assert_int_equal(fclose(memory), 0);
+        char line[64];
+        snprintf(line, sizeof line, "\nbug = %s\n", luz_bug_name((luz_bug)bug));
+        assert_int_equal(strstr(text, line) != NULL, bug != LUZ_BUG_NONE);
+        free(text);
+        assert_round_trip(&options);
+        luz_options_free(&options);
+    }
+    for (uint32_t seed = 0; seed < 40; seed++) {
+        luz_options options;
+        luz_options_init(&options);
+        luz_error error = {{0}};
+        char value[16];
+        snprintf(value, sizeof value, "%lu", (unsigned long)seed);
+        assert_int_equal(luz_options_set_value(&options, "quiz", value, NULL, &error), 0);
+        assert_int_equal(luz_options_finish(&options, &error), 0);
+        assert_true(options.scene.bug_hidden);
+        assert_int_not_equal(options.scene.bug, LUZ_BUG_NONE);
+        char *text = NULL;
+        size_t size = 0;
+        FILE *memory = open_memstream(&text, &size);
+        assert_non_null(memory);
+        luz_options_write_scene(&options, memory);
+        assert_int_equal(fclose(memory), 0);
+        assert_null(strstr(text, luz_bug_name(options.scene.bug)));
+        assert_null(strstr(text, "bug ="));
+        char line[40];
+        snprintf(line, sizeof line, "\nquiz = %lu\n", (unsigned long)seed);
+        assert_non_null(strstr(text, line));
+        free(text);
+        luz_options back;
+        write_and_read(&options, &back);
+        assert_int_equal(luz_options_finish(&back, &error), 0);
+        assert_int_equal(back.scene.bug, options.scene.bug);
+        assert_true(back.scene.bug_hidden);
+        luz_options_free(&back);
+        luz_options_free(&options);
+    }
+}
+
 /* The textures directory: the longest path the options hold (PATH_MAX - 1
  * bytes), plain and with a byte that needs quoting or escaping at every
  * turn (so its line is over 8000 characters), and the short oddities. */
@@ -659,6 +730,7 @@ int main(void)
         cmocka_unit_test(test_output_defaults_follow_the_models),
         cmocka_unit_test(test_textures_paths),
         cmocka_unit_test(test_object_lines),
+        cmocka_unit_test(test_bug_and_quiz),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -10,6 +10,7 @@
  *   framebuffer.h  colour, depth and visibility buffers
  *   renderer.h     the threaded pipeline that draws a frame
  *   probe.h        one pixel of a frame explained, test by test and term by term
+ *   bug.h          classic mistakes to put in on purpose, for teaching
  */
 #ifndef LUZ_LUZ_H
 #define LUZ_LUZ_H
@@ -23,5 +24,6 @@
 #include "luz/framebuffer.h"
 #include "luz/renderer.h"
 #include "luz/probe.h"
+#include "luz/bug.h"
 
 #endif

@@ -46,7 +46,9 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "luz/bug.h"
 #include "luz/frame.h"
+#include "luz/shade.h"
 #include "luz/texture.h"
 #include "luz/vecmath.h"
 #include "luz/view.h"
@@ -87,6 +89,8 @@ struct luz_pixel_probe {
     int x, y;
 
     /* ---- answered by luz_renderer_draw ---- */
+    luz_bug bug;            /* the frame's (luz/bug.h): every number below
+                               follows it */
     bool filled;            /* false: (x, y) lies outside the framebuffer,
                                and nothing below is set */
     luz_view view;          /* what the image shows there (the options') */
@@ -154,6 +158,9 @@ struct luz_pixel_probe {
     luz_shading shading;
     luz_vec3 terms[LUZ_TERM_COUNT];   /* in luz_term's order */
     luz_vec3 light;         /* their sum, added in that order */
+    luz_shade_steps steps;  /* the numbers in between: N.L, R, V.R, Lp,
+                               N.Lp, c, f_dir, dn, f_win, f_dist, the sun's
+                               direction (luz_shade_terms_explained) */
     luz_vec3 object_colour; /* C */
     luz_vec3 colour;        /* light x C x T, before the output (unlit: C) */
     /* The output (SCENE.md, "Output"; luz_shade_output), for a lit

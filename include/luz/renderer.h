@@ -23,6 +23,7 @@
 #include <stdint.h>
 
 #include "luz/api.h"
+#include "luz/bug.h"
 #include "luz/error.h"
 #include "luz/frame.h"
 #include "luz/framebuffer.h"
@@ -127,6 +128,9 @@ typedef struct luz_render_options {
     luz_frame_stats *stats;            /* NULL, or filled in */
     luz_pixel_probe *probe;            /* NULL, or the pixel at probe->x,
                                           probe->y explained (luz/probe.h) */
+    luz_bug bug;                       /* LUZ_BUG_NONE, or one classic mistake
+                                          put in (luz/bug.h); the probe's
+                                          numbers follow it */
 } luz_render_options;
 
 /* Draws the frame into the framebuffer (cleared first: every pixel is

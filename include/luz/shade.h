@@ -26,6 +26,7 @@
 #include <stdbool.h>
 
 #include "luz/api.h"
+#include "luz/bug.h"
 #include "luz/frame.h"
 #include "luz/vecmath.h"
 
@@ -181,6 +182,45 @@ static inline luz_vec3 luz_shade_terms(const luz_shade_uniforms *uniforms, luz_v
         light = luz_vec3_add(light, terms[term]);
     return light;
 }
+
+/* ---- the numbers in between (the pixel probe, and luz/bug.h) ------------ */
+
+/* What the six terms compute on the way, in SCENE.md's names: the pixel
+ * probe's intermediates. Every dot product is the one the term takes
+ * before its max(..., 0). */
+typedef struct luz_shade_steps {
+    luz_vec3 normal;        /* N as the terms read it: re-normalised (as
+                               interpolated with normal-not-normalised) */
+    float normal_length;    /* |N| */
+    luz_vec3 to_light;      /* L, the diffuse term's light vector */
+    float n_dot_l;          /* dot(N, L) */
+    luz_vec3 to_viewer;     /* V = normalize(E - P) */
+    luz_vec3 reflected;     /* R = reflect(-L, N) = -L + 2 dot(N, L) N, with
+                               L towards the headlight */
+    float v_dot_r;          /* dot(V, R); dot(N, H) with specular-half-vector */
+    luz_vec3 to_point;      /* Lp = normalize(Ppoint - P) */
+    float n_dot_lp;         /* dot(N, Lp) */
+    float spot_cos;         /* c = dot(normalize(P - E), normalize(F)) */
+    float spot_cos_inner, spot_cos_outer;   /* ci, co */
+    float f_dir;            /* the spot's cone factor */
+    float dn;               /* length(E - P) / reach */
+    float f_win;            /* max(1 - dn^4, 0)^2 */
+    float f_dist;           /* f_win * Sp.a^2 / (dn^2 + 1) */
+    luz_vec3 to_sun;        /* normalize(-d) */
+    float n_dot_sun;        /* dot(N, normalize(-d)) */
+} luz_shade_steps;
+
+/* The six terms as luz_shade_terms gives them (bit for bit with
+ * LUZ_BUG_NONE: the same operations in the same order), with the numbers
+ * in between kept in *steps (which may be NULL), and with a shading bug
+ * of luz/bug.h put in (diffuse-reversed, directional-unclamped,
+ * spot-reach-twice, normal-not-normalised, specular-half-vector; the
+ * others are not the shader's and change nothing here). Returns their
+ * sum, added in luz_term's order. src/renderer/shade_steps.c. */
+LUZ_API luz_vec3 luz_shade_terms_explained(const luz_shade_uniforms *uniforms, luz_bug bug,
+                                           luz_vec3 position, luz_vec3 normal,
+                                           luz_vec3 terms[LUZ_TERM_COUNT],
+                                           luz_shade_steps *steps);
 
 /* The sum of the six terms at world position P with normal N. */
 static inline luz_vec3 luz_shade_lighting(const luz_shade_uniforms *uniforms, luz_vec3 position,

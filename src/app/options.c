@@ -38,6 +38,7 @@
 #include "luz/renderer.h"
 #include "luz/view.h"
 #include "app/option_text.h"
+#include "app/quiz.h"
 
 #if !defined(LUZ_SOURCE_TEXTURES) || !defined(LUZ_INSTALLED_TEXTURES) || !defined(LUZ_BUILD_ROOT)
 #error "src/meson.build passes LUZ_SOURCE_TEXTURES, LUZ_INSTALLED_TEXTURES and LUZ_BUILD_ROOT"
@@ -73,6 +74,9 @@ typedef enum option_kind {
     OPTION_UP,        /* y | z | x | -y | -z | -x: --model's up axis */
     OPTION_PROBE,     /* X,Y: a pixel, checked against --size at the end */
     OPTION_MODEL_FILES, /* folder | anywhere */
+    OPTION_BUG,       /* a luz/bug.h name, or help */
+    OPTION_QUIZ,      /* a uint32: the seed of a hidden bug (app/quiz.h) */
+    OPTION_ANSWER,    /* a luz/bug.h name: the answer to --quiz */
 } option_kind;
 
 typedef struct option_spec {
@@ -196,6 +200,22 @@ static const option_spec option_table[] = {
      .syntax = "perspective|affine",
      .summary = "interpolation of texture coordinates and the other varyings: "
                 "perspective-correct, or affine in screen space (textures swim)"},
+    /* A bug is a teaching setting like the view; a quiz's is saved as
+     * the quiz, never by its name. */
+    {.name = "bug", .kind = OPTION_BUG, .in_scene_file = true,
+     .saving = LUZ_OPTION_SAVED_IF_CHANGED, .syntax = "NAME|help",
+     .summary = "draw with one classic mistake put in, in the shading or the pipeline "
+                "(the probe's numbers follow it); help lists them (docs/teaching.md)",
+     .default_text = "none"},
+    {.name = "quiz", .kind = OPTION_QUIZ, .in_scene_file = true, .saving = LUZ_OPTION_SAVED,
+     .syntax = "SEED",
+     .summary = "draw with one of the bugs, chosen from SEED (0 to 4294967295) and not named "
+                "anywhere (the probe says 'hidden'); find it, then check with --answer",
+     .default_text = "off"},
+    {.name = "answer", .kind = OPTION_ANSWER, .syntax = "NAME",
+     .summary = "with --quiz SEED: say whether the quiz's bug is NAME (exit 0) or not "
+                "(exit 1), and what it was, without drawing",
+     .default_text = "off"},
     /* The viewer's pause (T), saved when on, so that a view saved while
      * paused opens paused. luz-render's pictures are stills at `time`
      * anyway, and its --frames animate whatever this says. */
@@ -871,6 +891,31 @@ int luz_options_set_value(luz_options *options, const char *name, const char *va
         return set_shard(options, spec, value, where, error);
     case OPTION_PROBE:
         return set_probe(options, value, where, error);
+    case OPTION_BUG:
+        if (strcmp(value, "help") == 0) {
+            options->bug_help = true;
+            return 0;
+        }
+        if (!luz_bug_from_name(value, &options->scene.bug))
+            return luz_error_set(error, "%s: expected a bug's name (--bug help lists them), "
+                                        "got '%s'", where, option_quote(value).text);
+        options->bug_given = options->scene.bug != LUZ_BUG_NONE;
+        return 0;
+    case OPTION_QUIZ: {
+        long long seed;
+        if (!read_integer(value, 0, UINT32_MAX, &seed))
+            return luz_error_set(error, "%s: expected an integer from 0 to %lu, got '%s'",
+                                 where, (unsigned long)UINT32_MAX, option_quote(value).text);
+        options->quiz_seed = (uint32_t)seed;
+        options->quiz = true;
+        return 0;
+    }
+    case OPTION_ANSWER:
+        if (!luz_bug_from_name(value, &options->answer))
+            return luz_error_set(error, "%s: expected a bug's name (--bug help lists them), "
+                                        "got '%s'", where, option_quote(value).text);
+        options->answer_given = true;
+        return 0;
     case OPTION_UP:
         if (!luz_up_axis_from_name(value, &options->up))
             return luz_error_set(error, "%s: expected y, z, x, -y, -z or -x, got '%s'", where,
@@ -1000,6 +1045,19 @@ int luz_options_format(const luz_options *options, const char *name, char *buffe
         written = snprintf(buffer, size, "%s",
                            options->model_files == LUZ_MODEL_FILES_FOLDER ? "folder"
                                                                           : "anywhere");
+        break;
+    case OPTION_BUG:
+        /* A quiz's bug is not told: the quiz line stands for it. */
+        if (options->quiz) return -1;
+        written = snprintf(buffer, size, "%s", luz_bug_name(options->scene.bug));
+        break;
+    case OPTION_QUIZ:
+        if (!options->quiz) return -1;
+        written = snprintf(buffer, size, "%lu", (unsigned long)options->quiz_seed);
+        break;
+    case OPTION_ANSWER:
+        if (!options->answer_given) return -1;
+        written = snprintf(buffer, size, "%s", luz_bug_name(options->answer));
         break;
     case OPTION_MARKS: {
         if (options->mark_count == 0)
@@ -1288,6 +1346,18 @@ int luz_options_finish(luz_options *options, luz_error *error)
             return luz_error_set(error, "--up: expected --model FILE, whose up axis it names "
                                         "(a scene file's model lines take `up AXIS`)");
         options->objects[0].up = options->up;
+    }
+
+    /* A quiz draws a bug of its own (app/quiz.h), which no output names;
+     * an answer is an answer to a quiz. */
+    if (options->quiz && options->bug_given)
+        return luz_error_set(error, "--quiz: expected no --bug with it (the quiz chooses the "
+                                    "bug), got --bug %s", luz_bug_name(options->scene.bug));
+    if (options->answer_given && !options->quiz)
+        return luz_error_set(error, "--answer: expected --quiz SEED, the quiz it answers");
+    if (options->quiz) {
+        options->scene.bug = luz_quiz_bug(options->quiz_seed);
+        options->scene.bug_hidden = true;
     }
 
     /* The marks are checked once --size is known, whatever the order. */

@@ -92,6 +92,13 @@ typedef struct luz_options {
     int marks[LUZ_MAX_MARKS][2];    /* x, y of each */
     bool up_given;              /* --up AXIS: the up axis of --model's model */
     luz_up_axis up;
+    bool bug_given;             /* --bug NAME (not none): scene.bug */
+    bool bug_help;              /* --bug help: list the bugs and exit */
+    bool quiz;                  /* --quiz SEED: scene.bug chosen from quiz_seed
+                                   (app/quiz.h), hidden */
+    uint32_t quiz_seed;
+    bool answer_given;          /* --answer NAME: is the quiz's bug `answer`? */
+    luz_bug answer;
     bool probe;                 /* --probe X,Y: explain pixel (probe_x, probe_y) */
     int probe_x, probe_y;       /* column and row, row 0 on top */
     char *diagnose_path;        /* --diagnose FRAME.png: a student's frame to

@@ -126,6 +126,28 @@ static void write_history(FILE *out, const luz_pixel_probe *probe, const luz_pro
         fprintf(out, "tests_not_listed=%d\n", probe->test_count - probe->tests_kept);
 }
 
+/* The six terms' intermediates, in SCENE.md's names (docs/cli.md). */
+static void write_steps(FILE *out, const luz_shade_steps *steps)
+{
+    line_float(out, "N_length", steps->normal_length);
+    line_vec3(out, "L", steps->to_light);
+    line_float(out, "N_dot_L", steps->n_dot_l);
+    line_vec3(out, "V", steps->to_viewer);
+    line_vec3(out, "R", steps->reflected);
+    line_float(out, "V_dot_R", steps->v_dot_r);
+    line_vec3(out, "Lp", steps->to_point);
+    line_float(out, "N_dot_Lp", steps->n_dot_lp);
+    line_float(out, "c", steps->spot_cos);
+    line_float(out, "ci", steps->spot_cos_inner);
+    line_float(out, "co", steps->spot_cos_outer);
+    line_float(out, "f_dir", steps->f_dir);
+    line_float(out, "dn", steps->dn);
+    line_float(out, "f_win", steps->f_win);
+    line_float(out, "f_dist", steps->f_dist);
+    line_vec3(out, "sun", steps->to_sun);
+    line_float(out, "N_dot_sun", steps->n_dot_sun);
+}
+
 static void write_winner(FILE *out, const luz_pixel_probe *probe, const luz_probe_names *names)
 {
     const luz_probe_source source = luz_probe_source_of(names, probe->draw);
@@ -184,7 +206,8 @@ static void write_winner(FILE *out, const luz_pixel_probe *probe, const luz_prob
     }
     line_vec3(out, "texel", probe->texel);
 
-    /* the lighting */
+    /* the numbers in between (luz_shade_steps), then the lighting */
+    write_steps(out, &probe->steps);
     for (int term = 0; term < LUZ_TERM_COUNT; term++)
         line_vec3(out, luz_term_name((luz_term)term), probe->terms[term]);
     line_vec3(out, "light", probe->light);
@@ -261,6 +284,11 @@ void luz_probe_write(FILE *out, const luz_pixel_probe *probe, const luz_probe_na
     option_format_double(time, sizeof time, time_seconds);
     fprintf(out, "pixel=%d,%d\nsize=%d,%d\ntime=%s\nview=%s\n", probe->x, probe->y, width,
             height, time, luz_view_name(probe->view));
+    /* The bug, if one is on; a quiz's is not told (app/quiz.h). */
+    if (names->scene != NULL && names->scene->bug_hidden)
+        fputs("bug=hidden (quiz)\n", out);
+    else if (probe->bug != LUZ_BUG_NONE)
+        fprintf(out, "bug=%s\n", luz_bug_name(probe->bug));
     if (!probe->filled) return;
     write_history(out, probe, names);
     if (probe->triangle == 0)

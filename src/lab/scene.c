@@ -232,7 +232,8 @@ luz_output luz_scene_output(const luz_scene *scene)
 
 luz_render_options luz_scene_render_options(const luz_scene *scene)
 {
-    return (luz_render_options){.view = scene->view, .interpolation = scene->interpolation};
+    return (luz_render_options){
+        .view = scene->view, .interpolation = scene->interpolation, .bug = scene->bug};
 }
 
 const char *luz_up_axis_name(luz_up_axis up)

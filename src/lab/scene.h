@@ -150,6 +150,9 @@ typedef struct luz_scene {
     luz_filter filter;
     luz_view view;                   /* LUZ_VIEW_COLOR */
     luz_interpolation interpolation; /* LUZ_INTERPOLATION_PERSPECTIVE */
+    luz_bug bug;                     /* LUZ_BUG_NONE, or a mistake put in
+                                        (luz/bug.h) */
+    bool bug_hidden;                 /* a quiz's bug: no output names it */
     int samples;                     /* a pixel's: 1 (the default) or 4 */
     /* The output of lit colours (SCENE.md, "Output"), as far as the user
      * set it: exposure only if has_exposure, tone_map only if
@@ -208,8 +211,8 @@ const luz_mesh *luz_lab_cube_mesh(const luz_lab *lab);
  * The draws are left as they are. */
 void luz_scene_set_camera_and_lights(const luz_scene *scene, float aspect, luz_frame *frame);
 
-/* The render options the scene's teaching settings ask for (its view and
- * interpolation); every other field zero. */
+/* The render options the scene's teaching settings ask for (its view,
+ * interpolation and bug); every other field zero. */
 luz_render_options luz_scene_render_options(const luz_scene *scene);
 
 /* Fills frame with the scene at its time: camera and lights, then one draw

@@ -38,6 +38,7 @@
 #include "app/controls.h"
 #include "app/diagnose.h"
 #include "app/options.h"
+#include "app/quiz.h"
 #include "app/panel.h"
 #include "app/probe_report.h"
 #include "io/image.h"
@@ -335,6 +336,7 @@ int main(int argc, char **argv)
     luz_student_frame student = {0};
     bool verdict_given = false;
     int status = EXIT_OK;
+    bool answer_wrong = false;
 
     luz_options_init(&options);
     if (luz_options_parse(&options, argc, argv, &error) != 0) {
@@ -347,6 +349,16 @@ int main(int argc, char **argv)
     }
     if (options.version) {
         printf("luz-render %s\n", LUZ_VERSION);
+        goto done;
+    }
+    /* --bug help and --answer NAME --quiz SEED answer without drawing
+     * (app/quiz.h); a wrong answer is status 1 with no error line. */
+    if (options.bug_help) {
+        luz_quiz_print_bugs(stdout);
+        goto done;
+    }
+    if (options.answer_given) {
+        answer_wrong = luz_quiz_answer(stdout, options.quiz_seed, options.answer) != 0;
         goto done;
     }
     /* LUZ_ISA names the renderer's instruction set: a bad one is a usage
@@ -459,5 +471,5 @@ done:
         luz_error_print("luz-render", "cannot write to standard output");
         status = EXIT_RUNTIME;
     }
-    return status;
+    return status == EXIT_OK && answer_wrong ? EXIT_RUNTIME : status;
 }

@@ -50,6 +50,7 @@
 #include "app/controls.h"
 #include "app/orbit.h"
 #include "app/options.h"
+#include "app/quiz.h"
 #include "app/panel.h"
 #include "app/probe_panel.h"
 #include "io/image.h"
@@ -1068,6 +1069,7 @@ int main(int argc, char **argv)
     };
     luz_error error = {{0}};
     int status = EXIT_USAGE;
+    bool answer_wrong = false;
     char **scene_argv = calloc((size_t)argc + 1, sizeof *scene_argv);
     int scene_argc = 0;
 
@@ -1092,6 +1094,17 @@ int main(int argc, char **argv)
     }
     if (options.version) {
         printf("luz %s\n", LUZ_VERSION);
+        status = EXIT_OK;
+        goto done;
+    }
+    /* As luz-render: answered without a window (app/quiz.h). */
+    if (options.bug_help) {
+        luz_quiz_print_bugs(stdout);
+        status = EXIT_OK;
+        goto done;
+    }
+    if (options.answer_given) {
+        answer_wrong = luz_quiz_answer(stdout, options.quiz_seed, options.answer) != 0;
         status = EXIT_OK;
         goto done;
     }
@@ -1170,5 +1183,5 @@ done:
         luz_error_print("luz", "cannot write to standard output");
         status = EXIT_RUNTIME;
     }
-    return status;
+    return status == EXIT_OK && answer_wrong ? EXIT_RUNTIME : status;
 }

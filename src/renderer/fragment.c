@@ -74,12 +74,13 @@ typedef struct output_settings {
     bool identity;             /* clamp at EV 0: the colour as it is */
     float exposure_scale;      /* 2^EV */
     luz_tone_map tone_map;
+    luz_bug bug;               /* luz/bug.h: LUZ_BUG_NONE, or a mistake put in */
 } output_settings;
 
 static output_settings output_of(const luz_uniforms *uniforms)
 {
     return (output_settings){uniforms->output_is_identity, uniforms->exposure_scale,
-                             uniforms->tone_map};
+                             uniforms->tone_map, uniforms->bug};
 }
 
 /* Pixel (x, y) shaded as triangle's: interpolate, sample, light, and a lit
@@ -93,12 +94,23 @@ static inline luz_vec3 shade_pixel(const luz_shade_uniforms *uniforms,
     luz_fragment fragment;
     luz_fragment_interpolate(triangle, x, y, &fragment);
     float lambda = 0.0f;
-    if (material->texture && material->filter == LUZ_FILTER_TRILINEAR)
+    if (material->texture && material->filter == LUZ_FILTER_TRILINEAR) {
         lambda = luz_texture_level_of_detail(material->texture, fragment.du_dx, fragment.dv_dx,
                                              fragment.du_dy, fragment.dv_dy);
+        if (output->bug == LUZ_BUG_LOD_OFF_BY_ONE) lambda += 1.0f;   /* luz/bug.h */
+    }
     luz_vec3 texel = luz_texture_sample(material->texture, material->filter, fragment.uv, lambda);
-    const luz_vec3 colour = luz_shade_fragment(uniforms, fragment.position, fragment.normal,
-                                               material->colour, texel);
+    luz_vec3 colour;
+    if (output->bug == LUZ_BUG_NONE) {
+        colour = luz_shade_fragment(uniforms, fragment.position, fragment.normal,
+                                    material->colour, texel);
+    } else {   /* a shading bug, if it is one, is shade_steps.c's */
+        luz_vec3 terms[LUZ_TERM_COUNT];
+        colour = luz_shade_colour(luz_shade_terms_explained(uniforms, output->bug,
+                                                            fragment.position, fragment.normal,
+                                                            terms, NULL),
+                                  material->colour, texel);
+    }
     return output->identity ? colour
                             : luz_shade_output(colour, output->exposure_scale, output->tone_map);
 }

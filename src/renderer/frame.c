@@ -144,7 +144,13 @@ static uint64_t raster_band(const frame_job *job, int band_index, int first_row,
         }
         const uint32_t id = ids[k];
         const luz_triangle *triangle = by_id[id];
-        if (samples) {
+        if (job->uniforms.bug == LUZ_BUG_NO_DEPTH_TEST) {   /* luz/bug.h */
+            for (int s = 0; s < (samples ? samples->samples : 1); s++)
+                tested += luz_raster_triangle_always(
+                    triangle, id, samples ? &samples->plane[s] : framebuffer,
+                    luz_sample_offset_of(samples ? samples->samples : 1, s), first_row, end_row,
+                    overdraw ? overdraw + (size_t)s * pixels : NULL);
+        } else if (samples) {
             for (int s = 0; s < samples->samples; s++)
                 tested += luz_raster_triangle_sample(
                     triangle, id, &samples->plane[s], luz_sample_offset_of(samples->samples, s),
@@ -173,7 +179,9 @@ static uint64_t shade_band(const frame_job *job, luz_framebuffer *target, int fi
     if (uniforms->show != LUZ_VIEW_COLOR && uniforms->show != LUZ_VIEW_BANDS)
         return luz_view_shade_rows(uniforms, draws, by_id, target, first_row, end_row,
                                    overdraw, worker_index);
-    if (renderer->reference || uniforms->show == LUZ_VIEW_BANDS)
+    /* A frame with a bug (luz/bug.h) is shaded by the reference: the
+     * packets know nothing of bugs. */
+    if (renderer->reference || uniforms->show == LUZ_VIEW_BANDS || uniforms->bug != LUZ_BUG_NONE)
         return luz_fragment_shade_rows(uniforms, draws, by_id, target, first_row, end_row);
     return renderer->kernels.packet_rows(uniforms, draws, by_id, target, first_row, end_row);
 }
@@ -198,7 +206,8 @@ static uint64_t shade_and_resolve_samples(const frame_job *job, int first_row, i
         luz_framebuffer first_winners = *framebuffer;
         first_winners.visibility = samples->plane[0].visibility;
         shaded += shade_band(job, &first_winners, first_row, end_row, NULL, worker_index);
-        const bool reference = job->renderer->reference || uniforms->show == LUZ_VIEW_BANDS;
+        const bool reference = job->renderer->reference || uniforms->show == LUZ_VIEW_BANDS ||
+                               uniforms->bug != LUZ_BUG_NONE;
         shaded += (reference ? luz_fragment_shade_list : job->renderer->kernels.packet_list)(
             uniforms, job->frame->draws, job->geometry.by_id, framebuffer->channel_order,
             band->extra, band->extra_count, band->extra_colour);
@@ -499,7 +508,10 @@ luz_uniforms luz_uniforms_of(const luz_frame *frame, const luz_render_options *o
     uniforms.output_is_identity =
         frame->output.tone_map == LUZ_TONE_MAP_CLAMP && frame->output.exposure == 0.0f;
     uniforms.show = options->view;
-    uniforms.interpolation = options->interpolation;
+    uniforms.bug = options->bug;
+    /* uv-affine is --interp affine's switch, hidden behind a bug's name. */
+    uniforms.interpolation = options->bug == LUZ_BUG_UV_AFFINE ? LUZ_INTERPOLATION_AFFINE
+                                                               : options->interpolation;
     uniforms.samples = frame->samples > 1 ? frame->samples : 1;
     return uniforms;
 }
@@ -528,6 +540,9 @@ static int check_frame(const luz_frame *frame, const luz_render_options *options
         options->interpolation != LUZ_INTERPOLATION_AFFINE)
         return luz_error_set(error, "render options: interpolation %d is not a "
                              "luz_interpolation", (int)options->interpolation);
+    if ((unsigned)options->bug >= LUZ_BUG_COUNT)
+        return luz_error_set(error, "render options: bug %d is not a luz_bug",
+                             (int)options->bug);
     return 0;
 }
 
@@ -569,7 +584,9 @@ int luz_renderer_draw(luz_renderer *renderer, const luz_frame *frame,
     if (job.probe)
         luz_probe_explain(job.probe, &job.uniforms, frame->draws, job.geometry.by_id,
                           job.geometry.triangle_count, framebuffer, job.samples, job.overdraw,
-                          renderer->reference ? NULL : renderer->kernels.packet_list);
+                          renderer->reference || job.uniforms.bug != LUZ_BUG_NONE
+                              ? NULL
+                              : renderer->kernels.packet_list);
     const double end = now_ms();
 
     luz_frame_stats *stats = options->stats;

@@ -461,8 +461,8 @@ static void vertex_job(void *context, int range_index, int worker_index)
         job->vertex_project(draw, job->uniforms->view_projection, range->first, range->end,
                             job->width, job->height, range->out, range->window, range->fixed);
     } else {   /* (then plan kept the arena whole: keep_vertices) */
-        luz_vertex_stage_range(draw, job->uniforms->view_projection, range->first, range->end,
-                               range->out);
+        luz_vertex_stage_bug(draw, job->uniforms->view_projection, job->uniforms->bug,
+                             range->first, range->end, range->out);
         luz_setup_project(range->out, range->first, range->end, job->width, job->height,
                           range->window, range->fixed);
     }
@@ -479,7 +479,11 @@ static void set_up(geometry_batch *batch, const geometry_job *job, const luz_cli
     luz_triangle *out = &batch->triangles[batch->count];
     const int samples = job->uniforms->samples;
     luz_setup_result result =
-        samples > 1
+        job->uniforms->bug != LUZ_BUG_NONE   /* luz/bug.h */
+            ? luz_setup_projected_bug(a, b, c, window_a, window_b, window_c, job->width,
+                                      job->height, draw_index, job->uniforms->interpolation,
+                                      samples, job->uniforms->bug, out)
+        : samples > 1
             ? luz_setup_projected_samples(a, b, c, window_a, window_b, window_c, job->width,
                                           job->height, draw_index, job->uniforms->interpolation,
                                           samples, out)
@@ -532,7 +536,8 @@ static void one_triangle(geometry_batch *batch, const geometry_job *job, uint32_
     if ((code_a | code_b | code_c) == 0) {
         /* Half the triangles of a closed mesh face away: drop them here,
          * as setup would. */
-        if (!luz_setup_front_facing(window_a, window_b, window_c)) {
+        if (!luz_setup_front_facing(window_a, window_b, window_c) &&
+            job->uniforms->bug != LUZ_BUG_NO_BACKFACE_CULLING) {
             batch->culled++;
             return;
         }
@@ -709,7 +714,8 @@ static void batch_job(void *context, int batch_index, int worker_index)
                 scratch->capacity = vertex_count;
             }
             /* Vertex stage, for a draw too small to be worth its own pass. */
-            luz_vertex_stage(draw, job->uniforms->view_projection, scratch->vertices);
+            luz_vertex_stage_bug(draw, job->uniforms->view_projection, job->uniforms->bug, 0,
+                                 vertex_count, scratch->vertices);
             luz_setup_project(scratch->vertices, 0, vertex_count, job->width, job->height,
                               scratch->window, scratch->fixed);
             triangles_of_draw(batch, job, d, scratch->vertices, scratch->window, scratch->fixed,
@@ -823,6 +829,14 @@ int luz_geometry_run(luz_geometry *geometry, luz_thread_pool *pool, const luz_fr
         job.screen = luz_screen_every_triangle;
         job.screen_checks_small_boxes = false;
         job.setup_eight = NULL;
+    }
+    /* A frame with a bug (luz/bug.h) takes the plain path: the vertex
+     * stage, screening and setup in lanes know nothing of bugs. */
+    if (uniforms->bug != LUZ_BUG_NONE) {
+        job.screen = luz_screen_every_triangle;
+        job.screen_checks_small_boxes = false;
+        job.setup_eight = NULL;
+        job.vertex_project = NULL;
     }
 
     if (plan(geometry, pool, &job, error) != 0) return -1;

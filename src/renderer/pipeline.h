@@ -123,6 +123,8 @@ typedef struct luz_uniforms {
     luz_interpolation interpolation;   /* read by setup.c */
     int samples;                       /* a pixel's samples: 1 or 4 (the
                                           frame's; 0 read as 1) */
+    luz_bug bug;                       /* the render options' (luz/bug.h):
+                                          with one on, the plain paths run */
 } luz_uniforms;
 
 /* NULL options are the defaults. */
@@ -171,6 +173,15 @@ luz_draw_transform luz_draw_transform_of(const luz_draw *draw, luz_mat4 view_pro
  * the draw's (setup of the corners a big draw's vertex pass did not keep,
  * geometry.c). */
 luz_clip_vertex luz_vertex_stage_one(const luz_draw_transform *transform, uint32_t i);
+
+/* The vertex stage with a bug of luz/bug.h in (normal-matrix-is-model is
+ * the vertex stage's; any other bug gives luz_vertex_stage_range and
+ * luz_vertex_stage_one's vertices): a frame with a bug runs these, never
+ * the stage in lanes. */
+void luz_vertex_stage_bug(const luz_draw *draw, luz_mat4 view_projection, luz_bug bug,
+                          uint32_t first, uint32_t end, luz_clip_vertex *out);
+luz_clip_vertex luz_vertex_stage_one_bug(const luz_draw_transform *transform, luz_bug bug,
+                                         uint32_t i);
 
 /* ---- clipping ---------------------------------------------------------- */
 
@@ -384,6 +395,24 @@ luz_setup_result luz_setup_projected_samples(const luz_clip_vertex *v0, const lu
                                              uint32_t draw_index, luz_interpolation interpolation,
                                              int samples, luz_triangle *out);
 
+/* luz_setup_projected_samples with a bug of luz/bug.h in: with
+ * no-backface-culling a back face is set up with v1 and v2 traded (a
+ * front face over the same pixels), with fill-rule-bottom-right the
+ * samples on a bottom or right edge are covered, not those on a top or
+ * left one; any other bug sets up as luz_setup_projected_samples does. A
+ * frame with a bug sets up every triangle this way (geometry.c), and the
+ * probe finds them again through luz_setup_triangle_bug. */
+luz_setup_result luz_setup_projected_bug(const luz_clip_vertex *v0, const luz_clip_vertex *v1,
+                                         const luz_clip_vertex *v2, const luz_window_vertex *p0,
+                                         const luz_window_vertex *p1,
+                                         const luz_window_vertex *p2, int width, int height,
+                                         uint32_t draw_index, luz_interpolation interpolation,
+                                         int samples, luz_bug bug, luz_triangle *out);
+luz_setup_result luz_setup_triangle_bug(const luz_clip_vertex *v0, const luz_clip_vertex *v1,
+                                        const luz_clip_vertex *v2, int width, int height,
+                                        uint32_t draw_index, luz_interpolation interpolation,
+                                        int samples, luz_bug bug, luz_triangle *out);
+
 /* Projects, snaps and sets up triangle (v0, v1, v2) for a width x height
  * viewport: luz_setup_project and luz_setup_projected in one. With
  * LUZ_INTERPOLATION_AFFINE the varying planes hold the varyings
@@ -513,6 +542,14 @@ uint64_t luz_raster_triangle(const luz_triangle *triangle, uint32_t triangle_id,
 uint64_t luz_raster_triangle_counting(const luz_triangle *triangle, uint32_t triangle_id,
                                       luz_framebuffer *framebuffer, int first_row,
                                       int end_row, uint32_t *overdraw);
+
+/* luz/bug.h's no-depth-test: every sample at offset `sample` (one
+ * sample: the centre) of rows [first_row, end_row) inside the triangle
+ * passes; visibility takes triangle_id, depth is not written; overdraw,
+ * if not NULL, counts. Returns the tests made. */
+uint64_t luz_raster_triangle_always(const luz_triangle *triangle, uint32_t triangle_id,
+                                    luz_framebuffer *plane, luz_sample_offset sample,
+                                    int first_row, int end_row, uint32_t *overdraw);
 
 /* ---- four samples: the buffers (frame.c), raster, resolve (resolve.c) --- */
 

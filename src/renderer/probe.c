@@ -111,7 +111,7 @@ static bool covers(const luz_triangle *triangle, int x, int y, int samples, int 
  * the raster stage made them; with samples > 1, each sample's winner and
  * depth too. */
 static void record_history(luz_pixel_probe *probe, const luz_triangle *const *by_id,
-                           size_t triangle_count, int samples)
+                           size_t triangle_count, int samples, luz_bug bug)
 {
     for (int sample = 0; sample < samples; sample++) {
         float stored = 1.0f;   /* the cleared depth buffer */
@@ -120,7 +120,10 @@ static void record_history(luz_pixel_probe *probe, const luz_triangle *const *by
         for (size_t id = 1; id <= triangle_count; id++) {
             float depth;
             if (!covers(by_id[id], probe->x, probe->y, samples, sample, &depth)) continue;
-            const bool passed = depth < stored;   /* GL_LESS, as raster.c */
+            /* GL_LESS, as raster.c; every test passes with the bug
+             * no-depth-test, which writes no depth (luz/bug.h) */
+            const bool no_depth_test = bug == LUZ_BUG_NO_DEPTH_TEST;
+            const bool passed = no_depth_test || depth < stored;
             if (probe->tests_kept < LUZ_PROBE_MAX_TESTS)
                 probe->tests[probe->tests_kept++] = (luz_probe_test){
                     .sample = sample,
@@ -133,7 +136,7 @@ static void record_history(luz_pixel_probe *probe, const luz_triangle *const *by
             probe->test_count++;
             tests++;
             if (passed) {
-                stored = depth;
+                if (!no_depth_test) stored = depth;
                 winner = (uint32_t)id;
             }
         }
@@ -188,6 +191,10 @@ static luz_setup_result set_up(const luz_clip_vertex *a, const luz_clip_vertex *
                                const luz_uniforms *uniforms, uint32_t draw_index,
                                luz_triangle *out)
 {
+    if (uniforms->bug != LUZ_BUG_NONE)
+        return luz_setup_triangle_bug(a, b, c, framebuffer->width, framebuffer->height,
+                                      draw_index, uniforms->interpolation, uniforms->samples,
+                                      uniforms->bug, out);
     return luz_setup_triangle_samples(a, b, c, framebuffer->width, framebuffer->height,
                                       draw_index, uniforms->interpolation, uniforms->samples,
                                       out);
@@ -242,7 +249,8 @@ static void find_primitive(luz_pixel_probe *probe, const luz_uniforms *uniforms,
     /* The three corners through the vertex stage. */
     const luz_draw_transform transform = luz_draw_transform_of(draw, uniforms->view_projection);
     luz_clip_vertex shaded[3];
-    for (int k = 0; k < 3; k++) shaded[k] = luz_vertex_stage_one(&transform, mesh->indices[i + k]);
+    for (int k = 0; k < 3; k++)
+        shaded[k] = luz_vertex_stage_one_bug(&transform, uniforms->bug, mesh->indices[i + k]);
     const luz_clip_vertex *corners[3] = {&shaded[0], &shaded[1], &shaded[2]};
 
     luz_clip_polygon polygon;
@@ -319,12 +327,24 @@ static void shade(luz_pixel_probe *probe, const luz_uniforms *uniforms,
                                 : luz_texture_level_of_detail(texture, fragment->du_dx,
                                                               fragment->dv_dx, fragment->du_dy,
                                                               fragment->dv_dy);
+            if (uniforms->bug == LUZ_BUG_LOD_OFF_BY_ONE) probe->lambda += 1.0f;   /* as fragment.c */
             probe->levels = luz_texture_mip_levels(texture, probe->lambda);
         }
     }
     probe->texel = luz_texture_sample(texture, material->filter, fragment->uv, probe->lambda);
-    probe->light = luz_shade_terms(&uniforms->shade, fragment->position, fragment->normal,
-                                   probe->terms);
+    /* The terms the image was shaded with (luz_shade_terms, or the
+     * bug's), and the numbers in between. */
+    luz_vec3 terms[LUZ_TERM_COUNT];
+    const luz_vec3 explained = luz_shade_terms_explained(
+        &uniforms->shade, uniforms->bug, fragment->position, fragment->normal, terms,
+        &probe->steps);
+    if (uniforms->bug == LUZ_BUG_NONE) {
+        probe->light = luz_shade_terms(&uniforms->shade, fragment->position, fragment->normal,
+                                       probe->terms);
+    } else {
+        probe->light = explained;
+        memcpy(probe->terms, terms, sizeof terms);
+    }
     probe->colour = luz_shade_colour(probe->light, material->colour, probe->texel);
     /* The fragment stages skip the output at clamp and EV 0, where it
      * leaves the colour as it is; so does the probe, to give their bits. */
@@ -376,6 +396,7 @@ void luz_probe_explain(luz_pixel_probe *probe, const luz_uniforms *uniforms,
                        const luz_sample_buffers *samples, const uint32_t *overdraw,
                        luz_packet_list_function *packet_list)
 {
+    probe->bug = uniforms->bug;
     if (!probe->filled) return;
     const bool packet_path = packet_list != NULL;
     const int x = probe->x, y = probe->y;
@@ -383,7 +404,7 @@ void luz_probe_explain(luz_pixel_probe *probe, const luz_uniforms *uniforms,
     const int sample_count = samples ? samples->samples : 1;
     probe->samples = sample_count;
 
-    record_history(probe, by_id, triangle_count, sample_count);
+    record_history(probe, by_id, triangle_count, sample_count, uniforms->bug);
     uint32_t id;
     if (samples) {
         /* The first winner (resolve.c): that of the first sample a
@@ -411,6 +432,9 @@ void luz_probe_explain(luz_pixel_probe *probe, const luz_uniforms *uniforms,
         const luz_triangle *winner = by_id[id];
         probe->draw = (int)winner->draw_index;
         probe->depth = probe->depth_buffer;
+        if (uniforms->bug == LUZ_BUG_NO_DEPTH_TEST)   /* no depth written: the winner's */
+            for (int k = 0; k < probe->tests_kept; k++)
+                if (probe->tests[k].triangle == id) probe->depth = probe->tests[k].depth;
         probe->edge_distance = (float)luz_view_edge_distance(winner, x, y);
         probe->on_edge =
             luz_view_on_edge(winner, x, y, framebuffer->width, framebuffer->height);

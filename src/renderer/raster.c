@@ -144,3 +144,28 @@ uint64_t luz_raster_triangle_sample(const luz_triangle *triangle, uint32_t trian
     }
     return tests;
 }
+
+/* luz/bug.h's no-depth-test: the samples at offset `sample` of rows
+ * [first_row, end_row) inside the triangle all pass, as with GL_DEPTH_TEST
+ * off: the visibility buffer takes the triangle's id and the depth buffer
+ * is left as it is (OpenGL writes no depth with the test off). */
+uint64_t luz_raster_triangle_always(const luz_triangle *triangle, uint32_t triangle_id,
+                                    luz_framebuffer *plane, luz_sample_offset sample,
+                                    int first_row, int end_row, uint32_t *overdraw)
+{
+    int y_begin = triangle->min_y > first_row ? triangle->min_y : first_row;
+    int y_end = triangle->max_y + 1 < end_row ? triangle->max_y + 1 : end_row;
+    const bool small = luz_raster_is_small(triangle);
+    uint64_t tests = 0;
+    for (int y = y_begin; y < y_end; y++) {
+        int64_t first, last;
+        luz_raster_row_span_at(triangle, y, small, sample, &first, &last);
+        uint32_t *visibility_row = plane->visibility + (size_t)y * plane->width;
+        for (int64_t x = first; x <= last; x++) {
+            visibility_row[x] = triangle_id;
+            if (overdraw != NULL) overdraw[(size_t)y * plane->width + (size_t)x]++;
+        }
+        if (first <= last) tests += (uint64_t)(last - first + 1);
+    }
+    return tests;
+}

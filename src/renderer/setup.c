@@ -76,7 +76,11 @@ static int64_t snap(double window_coordinate)
 }
 
 
-static luz_edge make_edge(int64_t xi, int64_t yi, int64_t xj, int64_t yj)
+/* bottom_right: luz/bug.h's fill-rule-bottom-right, where the samples on
+ * an edge belong to the triangle if the edge is a bottom edge (dy = 0,
+ * dx > 0) or a right edge (dy < 0), every edge that is neither top nor
+ * left: the 1 is subtracted from the top and left edges instead. */
+static luz_edge make_edge(int64_t xi, int64_t yi, int64_t xj, int64_t yj, bool bottom_right)
 {
     luz_edge edge;
     int64_t dx = xj - xi, dy = yj - yi;
@@ -85,7 +89,7 @@ static luz_edge make_edge(int64_t xi, int64_t yi, int64_t xj, int64_t yj)
     edge.c = -(dy * xi - dx * yi);
     bool top_edge = dy == 0 && dx < 0;
     bool left_edge = dy > 0;
-    if (!top_edge && !left_edge) edge.c -= 1;
+    if ((top_edge || left_edge) == bottom_right) edge.c -= 1;
     return edge;
 }
 
@@ -227,7 +231,7 @@ setup_projected(const luz_clip_vertex *v0, const luz_clip_vertex *v1, const luz_
                 const luz_window_vertex *p0, const luz_window_vertex *p1,
                 const luz_window_vertex *p2, int width, int height, uint32_t draw_index,
                 luz_interpolation interpolation, bool small_box_checked, int samples,
-                luz_triangle *out)
+                bool bottom_right, luz_triangle *out)
 {
     /* 3. Cull back faces and degenerate triangles (and any vertex that
      * luz_setup_project found invalid). */
@@ -262,9 +266,9 @@ setup_projected(const luz_clip_vertex *v0, const luz_clip_vertex *v1, const luz_
     out->max_y = (int)max_y;
 
     /* 4. Edge k is opposite vertex k. */
-    out->edges[0] = make_edge(fixed_x[1], fixed_y[1], fixed_x[2], fixed_y[2]);
-    out->edges[1] = make_edge(fixed_x[2], fixed_y[2], fixed_x[0], fixed_y[0]);
-    out->edges[2] = make_edge(fixed_x[0], fixed_y[0], fixed_x[1], fixed_y[1]);
+    out->edges[0] = make_edge(fixed_x[1], fixed_y[1], fixed_x[2], fixed_y[2], bottom_right);
+    out->edges[1] = make_edge(fixed_x[2], fixed_y[2], fixed_x[0], fixed_y[0], bottom_right);
+    out->edges[2] = make_edge(fixed_x[0], fixed_y[0], fixed_x[1], fixed_y[1], bottom_right);
 
     /* A small triangle often covers no pixel centre at all (a triangle of
      * a million-triangle mesh is about a pixel in size, and half of those
@@ -306,7 +310,7 @@ luz_setup_result luz_setup_projected(const luz_clip_vertex *v0, const luz_clip_v
                                      luz_triangle *out)
 {
     return setup_projected(v0, v1, v2, p0, p1, p2, width, height, draw_index, interpolation,
-                           small_box_checked, 1, out);
+                           small_box_checked, 1, false, out);
 }
 
 luz_setup_result luz_setup_projected_samples(const luz_clip_vertex *v0, const luz_clip_vertex *v1,
@@ -321,7 +325,41 @@ luz_setup_result luz_setup_projected_samples(const luz_clip_vertex *v0, const lu
         return luz_setup_projected(v0, v1, v2, p0, p1, p2, width, height, draw_index,
                                    interpolation, false, out);
     return setup_projected(v0, v1, v2, p0, p1, p2, width, height, draw_index, interpolation,
-                           false, samples, out);
+                           false, samples, false, out);
+}
+
+luz_setup_result luz_setup_projected_bug(const luz_clip_vertex *v0, const luz_clip_vertex *v1,
+                                         const luz_clip_vertex *v2, const luz_window_vertex *p0,
+                                         const luz_window_vertex *p1,
+                                         const luz_window_vertex *p2, int width, int height,
+                                         uint32_t draw_index, luz_interpolation interpolation,
+                                         int samples, luz_bug bug, luz_triangle *out)
+{
+    /* no-backface-culling: a back face is a front face with two corners
+     * traded, the same triangle on the screen, its varyings carried
+     * along. */
+    if (bug == LUZ_BUG_NO_BACKFACE_CULLING && !luz_setup_front_facing(p0, p1, p2)) {
+        const luz_clip_vertex *v = v1;
+        const luz_window_vertex *p = p1;
+        v1 = v2, p1 = p2;
+        v2 = v, p2 = p;
+    }
+    return setup_projected(v0, v1, v2, p0, p1, p2, width, height, draw_index, interpolation,
+                           false, samples > 1 ? samples : 1,
+                           bug == LUZ_BUG_FILL_RULE_BOTTOM_RIGHT, out);
+}
+
+luz_setup_result luz_setup_triangle_bug(const luz_clip_vertex *v0, const luz_clip_vertex *v1,
+                                        const luz_clip_vertex *v2, int width, int height,
+                                        uint32_t draw_index, luz_interpolation interpolation,
+                                        int samples, luz_bug bug, luz_triangle *out)
+{
+    luz_clip_vertex vertices[3] = {*v0, *v1, *v2};
+    luz_window_vertex window[3];
+    for (int k = 0; k < 3; k++) vertices[k].outcode = 0;   /* project all three */
+    luz_setup_project(vertices, 0, 3, width, height, window, NULL);
+    return luz_setup_projected_bug(v0, v1, v2, &window[0], &window[1], &window[2], width,
+                                   height, draw_index, interpolation, samples, bug, out);
 }
 
 luz_setup_result luz_setup_triangle_samples(const luz_clip_vertex *v0, const luz_clip_vertex *v1,

@@ -12,6 +12,12 @@
  * the normal matrix (the inverse transpose of the model's 3x3) and are not
  * normalised here: the fragment shader re-normalises them after
  * interpolation, which SCENE.md asks for.
+ *
+ * luz/bug.h's normal-matrix-is-model sends the normal through the model
+ * matrix as a point, (M (N, 1)).xyz. (The model's plain 3x3 would be the
+ * subtler mistake, but for the lab's rigid motions and uniform scales it
+ * gives the normal matrix's direction, which re-normalising cannot tell
+ * apart: nothing would show.)
  */
 #include "renderer/pipeline.h"
 
@@ -44,12 +50,20 @@ static inline luz_vec3 transform3(const luz_mat3 *m, luz_vec3 v)
 /* One vertex: world position and normal, clip position and outcode. */
 static inline luz_clip_vertex shade_vertex(const luz_vertex *vertex, const luz_mat4 *model,
                                            const luz_mat3 *normal_matrix,
-                                           const luz_mat4 *view_projection)
+                                           const luz_mat4 *view_projection,
+                                           bool normal_as_point)
 {
     const luz_vec4 world4 =
         transform4(model, vertex->position.x, vertex->position.y, vertex->position.z, 1.0f);
     const luz_vec3 world = {world4.x, world4.y, world4.z};
-    const luz_vec3 normal = transform3(normal_matrix, vertex->normal);
+    luz_vec3 normal;
+    if (normal_as_point) {   /* the bug */
+        const luz_vec4 n =
+            transform4(model, vertex->normal.x, vertex->normal.y, vertex->normal.z, 1.0f);
+        normal = (luz_vec3){n.x, n.y, n.z};
+    } else {
+        normal = transform3(normal_matrix, vertex->normal);
+    }
     luz_clip_vertex out;
     out.position = transform4(view_projection, world.x, world.y, world.z, 1.0f);
     out.outcode = luz_clip_outcode(out.position);
@@ -70,6 +84,18 @@ void luz_vertex_stage(const luz_draw *draw, luz_mat4 view_projection, luz_clip_v
     luz_vertex_stage_range(draw, view_projection, 0, draw->mesh->vertex_count, out);
 }
 
+void luz_vertex_stage_bug(const luz_draw *draw, luz_mat4 view_projection, luz_bug bug,
+                          uint32_t first, uint32_t end, luz_clip_vertex *out)
+{
+    if (bug != LUZ_BUG_NORMAL_MATRIX_IS_MODEL) {
+        luz_vertex_stage_range(draw, view_projection, first, end, out);
+        return;
+    }
+    for (uint32_t i = first; i < end; i++)
+        out[i] = shade_vertex(&draw->mesh->vertices[i], &draw->model, NULL, &view_projection,
+                              true);
+}
+
 /* The loop of luz_vertex_stage_range: a 4x4, a 3x3 and a 4x4 transform
  * per vertex, compiled for wider vectors too (LUZ_CLONES). */
 static LUZ_CLONES void transform_vertices(const luz_mesh *mesh, const luz_mat4 *model,
@@ -78,7 +104,7 @@ static LUZ_CLONES void transform_vertices(const luz_mesh *mesh, const luz_mat4 *
                                           uint32_t end, luz_clip_vertex *out)
 {
     for (uint32_t i = first; i < end; i++)
-        out[i] = shade_vertex(&mesh->vertices[i], model, normal_matrix, view_projection);
+        out[i] = shade_vertex(&mesh->vertices[i], model, normal_matrix, view_projection, false);
 }
 
 void luz_vertex_stage_range(const luz_draw *draw, luz_mat4 view_projection, uint32_t first,
@@ -98,5 +124,12 @@ luz_draw_transform luz_draw_transform_of(const luz_draw *draw, luz_mat4 view_pro
 luz_clip_vertex luz_vertex_stage_one(const luz_draw_transform *transform, uint32_t i)
 {
     return shade_vertex(&transform->vertices[i], &transform->model, &transform->normal_matrix,
-                        &transform->view_projection);
+                        &transform->view_projection, false);
+}
+
+luz_clip_vertex luz_vertex_stage_one_bug(const luz_draw_transform *transform, luz_bug bug,
+                                         uint32_t i)
+{
+    return shade_vertex(&transform->vertices[i], &transform->model, &transform->normal_matrix,
+                        &transform->view_projection, bug == LUZ_BUG_NORMAL_MATRIX_IS_MODEL);
 }

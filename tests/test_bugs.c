@@ -1,0 +1,291 @@
+/*
+ * test_bugs.c: luz/bug.h's classic mistakes, each against what it must
+ * do, worked out by hand from SCENE.md's equations with the mistake put
+ * in; and the probe's intermediates (luz_shade_steps) against the same
+ * equations.
+ *
+ * The scene: one white untextured cube at the origin, unturned (t = 0),
+ * the camera at (0, 0, 3) looking down -Z, so that its +Z face (z = 0.5,
+ * N = (0, 0, 1)) fills the middle of a 64 x 48 image; each test lights it
+ * with the one light its bug touches. The expected numbers are computed
+ * here in double precision from P, the probed world position (itself
+ * checked against the camera ray by test_probe), with SCENE.md's
+ * formulas, not by luz's float code.
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "renderer/pipeline.h"
+#include "luz/bug.h"
+#include "luz/probe.h"
+#include "luz/renderer.h"
+#include "luz/shade.h"
+#include "lab/scene.h"
+#include "lab_support.h"
+#include "test_support.h"
+
+#define WIDTH 64
+#define HEIGHT 48
+
+static const luz_light off = {{1.0f, 1.0f, 1.0f}, 0.0f};
+
+/* The scene above with every light off. */
+static luz_scene white_cube_scene(luz_object *object)
+{
+    luz_scene scene = luz_scene_defaults();
+    *object = (luz_object){.position = {0, 0, 0}, .has_colour = true, .colour = {1, 1, 1},
+                           .texture = LUZ_TEXTURE_BY_INDEX, .scale = 1.0f};
+    scene.objects = object;
+    scene.object_count = 1;
+    scene.time_seconds = 0.0;
+    luz_lights *l = &scene.lights;
+    l->ambient = l->diffuse = l->specular = l->point = l->spot = l->directional = off;
+    return scene;
+}
+
+/* Draws the scene with the bug and probes pixel (x, y); returns its bytes. */
+static void draw_probe(const luz_scene *scene, luz_bug bug, int x, int y, bool reference,
+                       luz_pixel_probe *probe)
+{
+    luz_frame frame = {0};
+    luz_error error = {{0}};
+    assert_int_equal(luz_scene_build_frame(test_lab(), scene, NULL, 0, (float)WIDTH / HEIGHT,
+                                           &frame, &error),
+                     0);
+    luz_renderer *renderer = luz_renderer_create(
+        &(luz_renderer_desc){.thread_count = 2, .reference = reference}, &error);
+    assert_non_null(renderer);
+    luz_framebuffer *framebuffer = luz_framebuffer_create(WIDTH, HEIGHT, &error);
+    assert_non_null(framebuffer);
+    *probe = (luz_pixel_probe){.x = x, .y = y};
+    luz_render_options options = luz_scene_render_options(scene);
+    options.bug = bug;
+    options.probe = probe;
+    assert_int_equal(luz_renderer_draw(renderer, &frame, framebuffer, &options, &error), 0);
+    assert_true(probe->filled);
+    assert_int_equal(probe->bug, bug);
+    luz_framebuffer_destroy(framebuffer);
+    luz_renderer_destroy(renderer);
+    luz_frame_free(&frame);
+}
+
+typedef struct dvec3 {
+    double x, y, z;
+} dvec3;
+
+static dvec3 d3(luz_vec3 v)
+{
+    return (dvec3){v.x, v.y, v.z};
+}
+
+static double ddot(dvec3 a, dvec3 b)
+{
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+
+static dvec3 dnormalize(dvec3 a)
+{
+    const double n = sqrt(ddot(a, a));
+    return (dvec3){a.x / n, a.y / n, a.z / n};
+}
+
+static double dlength(dvec3 a)
+{
+    return sqrt(ddot(a, a));
+}
+
+static uint8_t byte_of(double c)
+{
+    return c <= 0.0 ? 0 : c >= 1.0 ? 255 : (uint8_t)floor(c * 255.0 + 0.5);
+}
+
+/* The probed pixel is the +Z face's, lit, with N = (0, 0, 1) and P on
+ * the face. */
+static void assert_on_front_face(const luz_pixel_probe *probe)
+{
+    assert_int_not_equal(probe->triangle, 0);
+    assert_int_equal(probe->shading, LUZ_SHADING_LIT);
+    assert_near(probe->position.z, 0.5, 1e-6);
+    assert_near(probe->normal.z, 1.0, 1e-6);
+}
+
+/* ---- the report's three errata ---------------------------------------------- */
+
+/* diffuse = max(dot(N, normalize(P - E)), 0): a face that looks at the
+ * headlight gets dot = -N.L_right, about -1, so no diffuse light at all,
+ * where the contract gives about 1. */
+static void diffuse_reversed(void **state)
+{
+    (void)state;
+    luz_object object;
+    luz_scene scene = white_cube_scene(&object);
+    scene.lights.diffuse = (luz_light){{1, 1, 1}, 1.0f};
+    luz_pixel_probe right, wrong;
+    draw_probe(&scene, LUZ_BUG_NONE, WIDTH / 2, HEIGHT / 2, false, &right);
+    draw_probe(&scene, LUZ_BUG_DIFFUSE_REVERSED, WIDTH / 2, HEIGHT / 2, false, &wrong);
+    assert_on_front_face(&wrong);
+
+    const dvec3 P = d3(wrong.position), E = {0, 0, 3}, N = {0, 0, 1};
+    const dvec3 towards = dnormalize((dvec3){E.x - P.x, E.y - P.y, E.z - P.z});
+    const double n_dot_l = ddot(N, towards);   /* about 0.99 */
+    assert_true(n_dot_l > 0.99);
+    /* the contract: max(N.L, 0) */
+    assert_near(right.terms[LUZ_TERM_DIFFUSE].x, n_dot_l, 1e-6);
+    assert_int_equal(right.bytes[0], byte_of(n_dot_l));
+    /* the bug: L = -towards, max(-N.L, 0) = 0 */
+    assert_near(wrong.steps.to_light.x, -towards.x, 1e-6);
+    assert_near(wrong.steps.to_light.z, -towards.z, 1e-6);
+    assert_near(wrong.steps.n_dot_l, -n_dot_l, 1e-6);
+    assert_true(wrong.terms[LUZ_TERM_DIFFUSE].x == 0.0f);
+    assert_int_equal(wrong.bytes[0], 0);
+    assert_int_equal(wrong.bytes[1], 0);
+}
+
+/* directional = dot(N, normalize(-d)) Dl.a with no clamp. At t = 0 the
+ * sun travels along d = (cos 0, sin 0, 0) = +X, so the cube's +X face,
+ * seen from (3, 0, 0), has dot(N, -d) = -1: the ambient 0.5 loses 0.3,
+ * 0.2 and byte 51, where the contract keeps 0.5, byte 128. */
+static void directional_unclamped(void **state)
+{
+    (void)state;
+    luz_object object;
+    luz_scene scene = white_cube_scene(&object);
+    scene.lights.ambient = (luz_light){{1, 1, 1}, 0.5f};
+    scene.lights.directional = (luz_light){{1, 1, 1}, 0.3f};
+    scene.camera.position = (luz_vec3){3, 0, 0};
+    scene.camera.yaw_degrees = 180.0f;   /* front (-1, 0, 0) */
+    luz_pixel_probe right, wrong;
+    draw_probe(&scene, LUZ_BUG_NONE, WIDTH / 2, HEIGHT / 2, false, &right);
+    draw_probe(&scene, LUZ_BUG_DIRECTIONAL_UNCLAMPED, WIDTH / 2, HEIGHT / 2, false, &wrong);
+    assert_int_not_equal(wrong.triangle, 0);
+    assert_near(wrong.normal.x, 1.0, 1e-6);
+    assert_near(wrong.steps.to_sun.x, -1.0, 1e-6);
+    assert_near(wrong.steps.n_dot_sun, -1.0, 1e-6);
+    assert_true(right.terms[LUZ_TERM_DIRECTIONAL].x == 0.0f);
+    assert_int_equal(right.bytes[0], 128);
+    assert_near(wrong.terms[LUZ_TERM_DIRECTIONAL].x, -0.3, 1e-6);
+    assert_near(wrong.colour.x, 0.2, 1e-6);
+    assert_int_equal(wrong.bytes[0], 51);
+}
+
+/* f_win = max(1 - (dn / reach)^4, 0)^2 with dn = |E - P| / reach: with
+ * reach 3 and |E - P| about 2.5 the contract's window is about 0.27, the
+ * report's about 0.99. */
+static void spot_reach_twice(void **state)
+{
+    (void)state;
+    luz_object object;
+    luz_scene scene = white_cube_scene(&object);
+    scene.lights.spot = (luz_light){{1, 1, 1}, 1.0f};
+    scene.lights.spot_reach = 3.0f;
+    luz_pixel_probe right, wrong;
+    draw_probe(&scene, LUZ_BUG_NONE, WIDTH / 2, HEIGHT / 2, false, &right);
+    draw_probe(&scene, LUZ_BUG_SPOT_REACH_TWICE, WIDTH / 2, HEIGHT / 2, false, &wrong);
+    assert_on_front_face(&wrong);
+
+    const dvec3 P = d3(wrong.position), E = {0, 0, 3};
+    const double dn = dlength((dvec3){E.x - P.x, E.y - P.y, E.z - P.z}) / 3.0;
+    /* the pixel is within the inner cone: f_dir = 1 */
+    assert_true(right.steps.f_dir == 1.0f && wrong.steps.f_dir == 1.0f);
+    const double win_right = pow(fmax(1.0 - pow(dn, 4.0), 0.0), 2.0);
+    const double win_wrong = pow(fmax(1.0 - pow(dn / 3.0, 4.0), 0.0), 2.0);
+    const double dist_right = win_right / (dn * dn + 1.0);
+    const double dist_wrong = win_wrong / (dn * dn + 1.0);
+    assert_near(right.steps.dn, dn, 1e-6);
+    assert_near(wrong.steps.dn, dn, 1e-6);
+    assert_near(right.steps.f_win, win_right, 1e-5);
+    assert_near(wrong.steps.f_win, win_wrong, 1e-5);
+    assert_near(right.terms[LUZ_TERM_SPOT].x, dist_right, 1e-5);
+    assert_near(wrong.terms[LUZ_TERM_SPOT].x, dist_wrong, 1e-5);
+    assert_true(win_wrong > 0.98 && win_right < 0.3);
+    assert_int_equal(right.bytes[0], byte_of(dist_right));
+    assert_int_equal(wrong.bytes[0], byte_of(dist_wrong));
+}
+
+/* ---- without a bug, the steps are the shader's own numbers ------------------ */
+
+/* luz_shade_terms_explained with no bug gives luz_shade_terms' terms to the
+ * bit, on random fragments and lights, and its steps are SCENE.md's
+ * intermediates worked in double. */
+static void steps_are_the_shader(void **state)
+{
+    (void)state;
+    uint32_t random = 12345;
+    for (int i = 0; i < 2000; i++) {
+        luz_lights lights = {0};
+        luz_light *each[6] = {&lights.ambient, &lights.diffuse, &lights.specular,
+                              &lights.point,   &lights.spot,    &lights.directional};
+        for (int k = 0; k < 6; k++)
+            *each[k] = (luz_light){{test_uniform(&random, 0, 1), test_uniform(&random, 0, 1),
+                                    test_uniform(&random, 0, 1)},
+                                   test_uniform(&random, 0, 1)};
+        lights.shininess = (float)(int)test_uniform(&random, 1, 64);
+        lights.spot_inner_degrees = test_uniform(&random, 0, 30);
+        lights.spot_outer_degrees = lights.spot_inner_degrees + test_uniform(&random, 0, 30);
+        lights.spot_reach = test_uniform(&random, 1, 20);
+        lights.point_position =
+            (luz_vec3){test_uniform(&random, -3, 3), 0.5f, test_uniform(&random, -3, 3)};
+        lights.spot_direction = (luz_vec3){test_uniform(&random, -1, 1),
+                                           test_uniform(&random, -1, 1), -1.0f};
+        lights.directional_direction =
+            (luz_vec3){test_uniform(&random, -1, 1), test_uniform(&random, -1, 1), 0.3f};
+        const luz_vec3 eye = {test_uniform(&random, -2, 2), test_uniform(&random, -2, 2), 3.0f};
+        const luz_shade_uniforms uniforms = luz_shade_uniforms_of(eye, &lights);
+        const luz_vec3 P = {test_uniform(&random, -1, 1), test_uniform(&random, -1, 1),
+                            test_uniform(&random, -1, 1)};
+        const luz_vec3 N = {test_uniform(&random, -1, 1), test_uniform(&random, -1, 1),
+                            test_uniform(&random, 0.2f, 1)};
+        luz_vec3 plain[LUZ_TERM_COUNT], explained[LUZ_TERM_COUNT];
+        luz_shade_steps steps;
+        const luz_vec3 a = luz_shade_terms(&uniforms, P, N, plain);
+        const luz_vec3 b = luz_shade_terms_explained(&uniforms, LUZ_BUG_NONE, P, N, explained,
+                                                     &steps);
+        assert_memory_equal(&a, &b, sizeof a);
+        assert_memory_equal(plain, explained, sizeof plain);
+
+        /* the steps, in double */
+        const dvec3 n = dnormalize(d3(N)), p = d3(P), e = d3(eye);
+        const dvec3 l = dnormalize((dvec3){e.x - p.x, e.y - p.y, e.z - p.z});
+        const double nl = ddot(n, l);
+        const dvec3 r = {2 * nl * n.x - l.x, 2 * nl * n.y - l.y, 2 * nl * n.z - l.z};
+        assert_near(steps.n_dot_l, nl, 1e-5);
+        assert_near(steps.reflected.x, r.x, 1e-5);
+        assert_near(steps.reflected.z, r.z, 1e-5);
+        assert_near(steps.v_dot_r, ddot(l, r), 1e-5);
+        const dvec3 lp = dnormalize((dvec3){lights.point_position.x - p.x,
+                                            lights.point_position.y - p.y,
+                                            lights.point_position.z - p.z});
+        assert_near(steps.n_dot_lp, ddot(n, lp), 1e-5);
+        const dvec3 ray = dnormalize((dvec3){p.x - e.x, p.y - e.y, p.z - e.z});
+        const double c = ddot(ray, dnormalize(d3(lights.spot_direction)));
+        assert_near(steps.spot_cos, c, 1e-5);
+        const double dn = dlength((dvec3){e.x - p.x, e.y - p.y, e.z - p.z}) / lights.spot_reach;
+        assert_near(steps.dn, dn, 1e-5);
+        const double win = pow(fmax(1 - pow(dn, 4), 0), 2);
+        assert_near(steps.f_win, win, 1e-5);
+        assert_near(steps.f_dist, win * lights.spot.strength * lights.spot.strength /
+                                      (dn * dn + 1), 1e-5);
+        const dvec3 sun = dnormalize((dvec3){-lights.directional_direction.x,
+                                             -lights.directional_direction.y,
+                                             -lights.directional_direction.z});
+        assert_near(steps.to_sun.y, sun.y, 1e-6);
+        assert_near(steps.n_dot_sun, ddot(n, sun), 1e-5);
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(diffuse_reversed),
+        cmocka_unit_test(directional_unclamped),
+        cmocka_unit_test(spot_reach_twice),
+        cmocka_unit_test(steps_are_the_shader),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
