@@ -50,13 +50,15 @@ static luz_scene white_cube_scene(luz_object *object)
 }
 
 /* Draws the scene with the bug and probes pixel (x, y); returns its bytes. */
-static void draw_probe(const luz_scene *scene, luz_bug bug, int x, int y, bool reference,
-                       luz_pixel_probe *probe)
+static void draw_probe_textured(const luz_scene *scene, luz_bug bug, int x, int y,
+                                bool reference, bool textured, luz_pixel_probe *probe)
 {
     luz_frame frame = {0};
     luz_error error = {{0}};
-    assert_int_equal(luz_scene_build_frame(test_lab(), scene, NULL, 0, (float)WIDTH / HEIGHT,
-                                           &frame, &error),
+    assert_int_equal(luz_scene_build_frame(test_lab(), scene,
+                                           textured ? lab_textures()->textures : NULL,
+                                           textured ? lab_textures()->count : 0,
+                                           (float)WIDTH / HEIGHT, &frame, &error),
                      0);
     luz_renderer *renderer = luz_renderer_create(
         &(luz_renderer_desc){.thread_count = 2, .reference = reference}, &error);
@@ -73,6 +75,12 @@ static void draw_probe(const luz_scene *scene, luz_bug bug, int x, int y, bool r
     luz_framebuffer_destroy(framebuffer);
     luz_renderer_destroy(renderer);
     luz_frame_free(&frame);
+}
+
+static void draw_probe(const luz_scene *scene, luz_bug bug, int x, int y, bool reference,
+                       luz_pixel_probe *probe)
+{
+    draw_probe_textured(scene, bug, x, y, reference, false, probe);
 }
 
 typedef struct dvec3 {
@@ -208,6 +216,266 @@ static void spot_reach_twice(void **state)
     assert_int_equal(wrong.bytes[0], byte_of(dist_wrong));
 }
 
+/* ---- the other shading and vertex bugs ---------------------------------------- */
+
+/* specular = pow(max(N.H, 0), 32) with H = normalize(L + V) = L (the
+ * headlight): N.L ~ 0.99 where V.R = 2 (N.L)^2 - 1 ~ 0.98, so the bug's
+ * highlight is pow(N.L, 32), brighter. */
+static void specular_half_vector(void **state)
+{
+    (void)state;
+    luz_object object;
+    luz_scene scene = white_cube_scene(&object);
+    scene.lights.specular = (luz_light){{1, 1, 1}, 1.0f};
+    scene.lights.shininess = 32.0f;
+    const int x = WIDTH / 2 + 9, y = HEIGHT / 2 + 5;   /* off the axis: N.L < 1 */
+    luz_pixel_probe right, wrong;
+    draw_probe(&scene, LUZ_BUG_NONE, x, y, false, &right);
+    draw_probe(&scene, LUZ_BUG_SPECULAR_HALF_VECTOR, x, y, false, &wrong);
+    assert_on_front_face(&wrong);
+    const dvec3 P = d3(wrong.position), E = {0, 0, 3}, N = {0, 0, 1};
+    const double nl = ddot(N, dnormalize((dvec3){E.x - P.x, E.y - P.y, E.z - P.z}));
+    assert_true(nl < 0.995);
+    assert_near(right.steps.v_dot_r, 2 * nl * nl - 1, 1e-6);
+    assert_near(wrong.steps.v_dot_r, nl, 1e-6);
+    assert_near(right.terms[LUZ_TERM_SPECULAR].x, pow(2 * nl * nl - 1, 32), 1e-5);
+    assert_near(wrong.terms[LUZ_TERM_SPECULAR].x, pow(nl, 32), 1e-5);
+    assert_int_equal(wrong.bytes[0], byte_of(pow(nl, 32)));
+    assert_int_equal(right.bytes[0], byte_of(pow(2 * nl * nl - 1, 32)));
+}
+
+/* normal-matrix-is-model: a cube at (1, 0, 0), unturned, seen from
+ * (1, 0, 3): its +Z face's normal (0, 0, 1) becomes (M (N, 1)).xyz =
+ * (0, 0, 1) + (1, 0, 0) = (1, 0, 1), re-normalised (0.7071, 0, 0.7071);
+ * the diffuse term follows it. */
+static void normal_matrix_is_model(void **state)
+{
+    (void)state;
+    luz_object object;
+    luz_scene scene = white_cube_scene(&object);
+    object.position = (luz_vec3){1, 0, 0};
+    scene.camera.position = (luz_vec3){1, 0, 3};
+    scene.lights.diffuse = (luz_light){{1, 1, 1}, 1.0f};
+    luz_pixel_probe right, wrong;
+    draw_probe(&scene, LUZ_BUG_NONE, WIDTH / 2, HEIGHT / 2, false, &right);
+    draw_probe(&scene, LUZ_BUG_NORMAL_MATRIX_IS_MODEL, WIDTH / 2, HEIGHT / 2, false, &wrong);
+    assert_near(right.normal.x, 0.0, 1e-6);
+    assert_near(right.normal.z, 1.0, 1e-6);
+    const double h = sqrt(0.5);
+    assert_near(wrong.normal.x, h, 1e-6);
+    assert_near(wrong.normal.y, 0.0, 1e-6);
+    assert_near(wrong.normal.z, h, 1e-6);
+    const dvec3 P = d3(wrong.position), E = {1, 0, 3};
+    const dvec3 L = dnormalize((dvec3){E.x - P.x, E.y - P.y, E.z - P.z});
+    const double expected = fmax(ddot((dvec3){h, 0, h}, L), 0.0);
+    assert_near(wrong.terms[LUZ_TERM_DIFFUSE].x, expected, 1e-5);
+    assert_int_equal(wrong.bytes[0], byte_of(expected));
+}
+
+/* normal-not-normalised: the cube scaled by 1/2 has the normal matrix
+ * (its inverse transpose) 2 I, so N = (0, 0, 2) as interpolated; the
+ * terms read it as it is: |N| = 2 and the diffuse term twice the right
+ * one (0.4 N.L against 0.2 N.L at D.a 0.2). */
+static void normal_not_normalised(void **state)
+{
+    (void)state;
+    luz_object object;
+    luz_scene scene = white_cube_scene(&object);
+    scene.lights.diffuse = (luz_light){{1, 1, 1}, 0.2f};
+    luz_frame frame = {0};
+    luz_error error = {{0}};
+    assert_int_equal(luz_scene_build_frame(test_lab(), &scene, NULL, 0, (float)WIDTH / HEIGHT,
+                                           &frame, &error),
+                     0);
+    frame.draws[0].model = luz_mat4_scale(frame.draws[0].model, (luz_vec3){0.5f, 0.5f, 0.5f});
+    luz_renderer *renderer = luz_renderer_create(&(luz_renderer_desc){.thread_count = 1}, &error);
+    luz_framebuffer *framebuffer = luz_framebuffer_create(WIDTH, HEIGHT, &error);
+    assert_non_null(renderer);
+    assert_non_null(framebuffer);
+    luz_pixel_probe probe[2];
+    for (int bug = 0; bug < 2; bug++) {
+        probe[bug] = (luz_pixel_probe){.x = WIDTH / 2, .y = HEIGHT / 2};
+        const luz_render_options options = {
+            .probe = &probe[bug], .bug = bug ? LUZ_BUG_NORMAL_NOT_NORMALISED : LUZ_BUG_NONE};
+        assert_int_equal(luz_renderer_draw(renderer, &frame, framebuffer, &options, &error), 0);
+    }
+    assert_near(probe[0].position.z, 0.25, 1e-6);
+    const dvec3 P = d3(probe[1].position), E = {0, 0, 3};
+    const double nl = dnormalize((dvec3){E.x - P.x, E.y - P.y, E.z - P.z}).z;
+    assert_near(probe[0].steps.normal_length, 1.0, 1e-6);
+    assert_near(probe[1].steps.normal_length, 2.0, 1e-6);
+    assert_near(probe[0].terms[LUZ_TERM_DIFFUSE].x, 0.2 * nl, 1e-6);
+    assert_near(probe[1].terms[LUZ_TERM_DIFFUSE].x, 0.4 * nl, 1e-6);
+    assert_int_equal(probe[1].bytes[0], byte_of(0.4 * nl));
+    luz_framebuffer_destroy(framebuffer);
+    luz_renderer_destroy(renderer);
+    luz_frame_free(&frame);
+}
+
+/* ---- the pipeline's bugs ---------------------------------------------------------- */
+
+/* uv-affine: seen at 45 degrees from (2, 0, 2), the cube's faces are not
+ * parallel to the screen; with the bug the probe's barycentric
+ * coordinates are the 2D ones of the pixel centre in the window corners
+ * (linear on the screen) and w = 1, where perspective-correct ones differ
+ * from them. */
+static void uv_affine(void **state)
+{
+    (void)state;
+    luz_object object;
+    luz_scene scene = white_cube_scene(&object);
+    scene.lights.ambient = (luz_light){{1, 1, 1}, 1.0f};
+    scene.camera.position = (luz_vec3){2, 0.3f, 2};
+    scene.camera.yaw_degrees = -135.0f;
+    const int x = WIDTH / 2 - 6, y = HEIGHT / 2 + 3;
+    for (int bug = 0; bug < 2; bug++) {
+        luz_pixel_probe probe;
+        draw_probe(&scene, bug ? LUZ_BUG_UV_AFFINE : LUZ_BUG_NONE, x, y, false, &probe);
+        assert_int_not_equal(probe.triangle, 0);
+        assert_int_equal(probe.clipped_pieces, 0);
+        const luz_vec3 *c = probe.corner_window;
+        const double px = x + 0.5, py = y + 0.5;
+        const double area = (c[1].x - c[0].x) * (c[2].y - c[0].y) -
+                            (c[2].x - c[0].x) * (c[1].y - c[0].y);
+        const double b1 = ((px - c[0].x) * (c[2].y - c[0].y) - (c[2].x - c[0].x) * (py - c[0].y)) /
+                          area;
+        const double b2 = ((c[1].x - c[0].x) * (py - c[0].y) - (px - c[0].x) * (c[1].y - c[0].y)) /
+                          area;
+        const double gap = fabs(probe.barycentric.y - b1) + fabs(probe.barycentric.z - b2);
+        if (bug) {
+            assert_true(gap < 1e-4);
+            assert_true(probe.w == 1.0f);
+        } else {
+            assert_true(gap > 1e-3);
+            assert_true(probe.w > 1.5f);
+        }
+    }
+}
+
+/* lod-off-by-one: the same pixel's level of detail one more than the
+ * contract's, and the levels read floor of it and the next. */
+static void lod_off_by_one(void **state)
+{
+    (void)state;
+    luz_object object;
+    luz_scene scene = white_cube_scene(&object);
+    object.texture = 0;
+    scene.lights.ambient = (luz_light){{1, 1, 1}, 1.0f};
+    scene.camera.position = (luz_vec3){0, 0, 12};   /* far: minified, lambda > 0 */
+    luz_pixel_probe right, wrong;
+    draw_probe_textured(&scene, LUZ_BUG_NONE, WIDTH / 2, HEIGHT / 2, true, true, &right);
+    draw_probe_textured(&scene, LUZ_BUG_LOD_OFF_BY_ONE, WIDTH / 2, HEIGHT / 2, true, true,
+                        &wrong);
+    assert_non_null(right.texture);
+    assert_true(right.lambda > 0.0f);
+    assert_near(right.lambda, log2(right.rho), 1e-5);
+    assert_true(wrong.lambda == right.lambda + 1.0f);
+    assert_int_equal(wrong.levels.lower, (int)floor(right.lambda) + 1);
+}
+
+/* A square of two triangles in NDC (identity view and projection) whose
+ * shared edge is the vertical line x_ndc = 1/64, through the centres of
+ * column 32 of a 64-wide image: left triangle first, then the right one. */
+static void draw_split_square(luz_bug bug, int y, luz_pixel_probe *probe)
+{
+    const float e = 1.0f / 64.0f;
+    const luz_vertex vertices[6] = {
+        {{-0.5f, -0.5f, 0}, {0, 0, 1}, {0, 0}}, {{e, -0.5f, 0}, {0, 0, 1}, {0, 0}},
+        {{e, 0.5f, 0}, {0, 0, 1}, {0, 0}},      {{-0.5f, -0.5f, 0}, {0, 0, 1}, {0, 0}},
+        {{e, 0.5f, 0}, {0, 0, 1}, {0, 0}},      {{-0.5f, 0.5f, 0}, {0, 0, 1}, {0, 0}},
+    };
+    const luz_vertex right_vertices[3] = {
+        {{e, -0.5f, 0}, {0, 0, 1}, {0, 0}}, {{0.5f, -0.5f, 0}, {0, 0, 1}, {0, 0}},
+        {{e, 0.5f, 0}, {0, 0, 1}, {0, 0}}};
+    luz_error error = {{0}};
+    /* the left part: a rectangle, two triangles; its right edge is x = e */
+    luz_mesh *left = luz_mesh_create(&(luz_mesh_desc){vertices, 6, NULL, NULL, 0}, &error);
+    luz_mesh *right = luz_mesh_create(&(luz_mesh_desc){right_vertices, 3, NULL, NULL, 0}, &error);
+    assert_non_null(left);
+    assert_non_null(right);
+    luz_frame frame = {.view = luz_mat4_identity(), .projection = luz_mat4_identity(),
+                       .eye = {0, 0, 3}};
+    frame.lights.ambient = (luz_light){{1, 1, 1}, 1.0f};
+    luz_draw draw = {.mesh = left, .model = luz_mat4_identity(),
+                     .material = {.colour = {1, 0, 0}}};
+    assert_int_equal(luz_frame_add_draw(&frame, &draw, &error), 0);
+    draw.mesh = right;
+    draw.material.colour = (luz_vec3){0, 0, 1};
+    assert_int_equal(luz_frame_add_draw(&frame, &draw, &error), 0);
+    luz_renderer *renderer = luz_renderer_create(&(luz_renderer_desc){.thread_count = 1}, &error);
+    luz_framebuffer *framebuffer = luz_framebuffer_create(WIDTH, HEIGHT, &error);
+    *probe = (luz_pixel_probe){.x = WIDTH / 2, .y = y};
+    const luz_render_options options = {.probe = probe, .bug = bug};
+    assert_int_equal(luz_renderer_draw(renderer, &frame, framebuffer, &options, &error), 0);
+    luz_framebuffer_destroy(framebuffer);
+    luz_renderer_destroy(renderer);
+    luz_frame_free(&frame);
+    luz_mesh_destroy(left);
+    luz_mesh_destroy(right);
+}
+
+/* Pixel (32, 24)'s centre, x = 32.5 = (1/64 + 1) / 2 x 64, lies on the
+ * shared vertical edge: a left edge of the right (blue) triangle and a
+ * right edge of the left (red) one. Top-left: blue's; bottom-right: red's. */
+static void fill_rule_bottom_right(void **state)
+{
+    (void)state;
+    luz_pixel_probe right, wrong;
+    draw_split_square(LUZ_BUG_NONE, HEIGHT / 2 + 3, &right);
+    draw_split_square(LUZ_BUG_FILL_RULE_BOTTOM_RIGHT, HEIGHT / 2 + 3, &wrong);
+    assert_int_equal(right.test_count, 1);
+    assert_int_equal(wrong.test_count, 1);
+    assert_int_equal(right.draw, 1);
+    assert_int_equal(wrong.draw, 0);
+    assert_int_equal(right.bytes[2], 255);
+    assert_int_equal(wrong.bytes[0], 255);
+}
+
+/* no-depth-test: a cube at the origin, then one behind it at z = -3 (drawn
+ * second): the centre pixel, covered by both, shows the far one, every
+ * test passes and the depth buffer keeps its 1. */
+static void no_depth_test(void **state)
+{
+    (void)state;
+    luz_object objects[2];
+    luz_scene scene = white_cube_scene(&objects[0]);
+    objects[1] = objects[0];
+    objects[1].position = (luz_vec3){0, 0, -3};
+    scene.objects = objects;
+    scene.object_count = 2;
+    scene.lights.ambient = (luz_light){{1, 1, 1}, 1.0f};
+    luz_pixel_probe right, wrong;
+    draw_probe(&scene, LUZ_BUG_NONE, WIDTH / 2, HEIGHT / 2, false, &right);
+    draw_probe(&scene, LUZ_BUG_NO_DEPTH_TEST, WIDTH / 2, HEIGHT / 2, false, &wrong);
+    assert_int_equal(right.draw, 0);
+    assert_int_equal(wrong.draw, 1);
+    assert_int_equal(wrong.test_count, 2);
+    for (int k = 0; k < wrong.tests_kept; k++) assert_true(wrong.tests[k].passed);
+    assert_true(wrong.depth_buffer == 1.0f);
+    assert_near(wrong.position.z, -2.5, 1e-5);
+}
+
+/* no-backface-culling: the centre pixel of one cube is covered by its
+ * front face (+Z) and its back face (-Z): two depth tests, the front
+ * face nearer and the winner; one test with culling. */
+static void no_backface_culling(void **state)
+{
+    (void)state;
+    luz_object object;
+    luz_scene scene = white_cube_scene(&object);
+    scene.lights.ambient = (luz_light){{1, 1, 1}, 1.0f};
+    luz_pixel_probe right, wrong;
+    draw_probe(&scene, LUZ_BUG_NONE, WIDTH / 2, HEIGHT / 2, false, &right);
+    draw_probe(&scene, LUZ_BUG_NO_BACKFACE_CULLING, WIDTH / 2, HEIGHT / 2, false, &wrong);
+    assert_int_equal(right.test_count, 1);
+    assert_int_equal(wrong.test_count, 2);
+    assert_near(wrong.position.z, 0.5, 1e-6);
+    /* the -Z face at z = -0.5 is the farther: window depth larger */
+    const luz_probe_test *a = &wrong.tests[0], *b = &wrong.tests[1];
+    assert_true((a->passed && b->depth > a->depth) || (b->passed && a->depth > b->depth));
+    assert_memory_equal(wrong.bytes, right.bytes, 3);
+}
+
 /* ---- without a bug, the steps are the shader's own numbers ------------------ */
 
 /* luz_shade_terms_explained with no bug gives luz_shade_terms' terms to the
@@ -285,7 +553,15 @@ int main(void)
         cmocka_unit_test(diffuse_reversed),
         cmocka_unit_test(directional_unclamped),
         cmocka_unit_test(spot_reach_twice),
+        cmocka_unit_test(specular_half_vector),
+        cmocka_unit_test(normal_matrix_is_model),
+        cmocka_unit_test(normal_not_normalised),
+        cmocka_unit_test(uv_affine),
+        cmocka_unit_test(lod_off_by_one),
+        cmocka_unit_test(fill_rule_bottom_right),
+        cmocka_unit_test(no_depth_test),
+        cmocka_unit_test(no_backface_culling),
         cmocka_unit_test(steps_are_the_shader),
     };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    return cmocka_run_group_tests(tests, lab_textures_load, lab_textures_free);
 }

@@ -236,6 +236,18 @@ static const error_case error_cases[] = {
      {"s.luz:1", "skip-existing", "not allowed"}},
     {"scene-reference-key", {"--scene", "s.luz"}, "reference = 1\n", NULL,
      {"s.luz:1", "reference", "not allowed"}},
+    /* --bug, --quiz and --answer (docs/teaching.md) */
+    {"bug-unknown", {"--bug", "diffuse-backwards"}, NULL, NULL,
+     {"--bug", "--bug help", "'diffuse-backwards'"}},
+    {"bug-unknown-in-scene", {"--scene", "s.luz"}, "bug = no-clipping\n", NULL,
+     {"s.luz:1", "bug", "'no-clipping'"}},
+    {"bug-with-quiz", {"--quiz", "7", "--bug", "uv-affine"}, NULL, NULL,
+     {"--quiz", "no --bug"}},
+    {"quiz-not-a-number", {"--quiz", "seven"}, NULL, NULL, {"--quiz", "'seven'"}},
+    {"quiz-too-large", {"--quiz", "4294967296"}, NULL, NULL, {"--quiz", "4294967295"}},
+    {"answer-without-quiz", {"--answer", "uv-affine"}, NULL, NULL, {"--answer", "--quiz"}},
+    {"answer-unknown", {"--quiz", "7", "--answer", "everything"}, NULL, NULL,
+     {"--answer", "'everything'"}},
     /* --exposure EV and --tonemap clamp|neutral (SCENE.md, "Output") */
     {"exposure-nan", {"--exposure", "nan"}, NULL, NULL, {"--exposure", "finite", "'nan'"}},
     {"exposure-infinite", {"--exposure", "-inf"}, NULL, NULL, {"--exposure", "finite"}},

@@ -24,6 +24,7 @@
 #include <stb_image.h>
 
 #include "app/orbit.h"
+#include "luz/bug.h"
 #include "io/textures.h"
 #include "lab/scene.h"
 
@@ -621,9 +622,69 @@ static void test_orbit_view_renders_the_same_in_luz_render(void **state)
     sandbox_destroy(&box);
 }
 
+/* --bug help lists every bug; --quiz SEED hides its bug from the probe,
+ * which names a --bug; --answer says right (0) or wrong (1). The quiz's
+ * bug is worked out here from docs/teaching.md's rule: xorshift32 four
+ * times from the seed, then floor((x >> 8) / 2^24 x 9) into its list. */
+static void test_bug_quiz_and_answer(void **state)
+{
+    (void)state;
+    static const char *const quiz_list[9] = {
+        "diffuse-reversed", "directional-unclamped", "spot-reach-twice",
+        "normal-matrix-is-model", "specular-half-vector", "uv-affine", "lod-off-by-one",
+        "no-depth-test", "no-backface-culling"};
+    sandbox box;
+    sandbox_create(&box);
+    run_result result = run_in(&box, ARGS("--bug", "help"), NULL);
+    assert_success(&result);
+    for (int bug = 1; bug < LUZ_BUG_COUNT; bug++)
+        assert_contains(result.out, luz_bug_name((luz_bug)bug));
+    run_result_free(&result);
+
+    for (uint32_t seed = 1; seed <= 3; seed++) {
+        uint32_t x = seed;
+        for (int step = 0; step < 4; step++) {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+        }
+        const char *bug = quiz_list[((x >> 8) * 9u) >> 24];
+        char seed_text[8];
+        snprintf(seed_text, sizeof seed_text, "%u", (unsigned)seed);
+        result = run_in(&box, ARGS("--quiz", seed_text, "--answer", bug), NULL);
+        assert_success(&result);
+        assert_true(strncmp(result.out, "right: ", 7) == 0);
+        assert_contains(result.out, bug);
+        run_result_free(&result);
+        const char *other = strcmp(bug, "uv-affine") == 0 ? "no-depth-test" : "uv-affine";
+        result = run_in(&box, ARGS("--quiz", seed_text, "--answer", other), NULL);
+        assert_int_equal(result.status, 1);
+        assert_string_equal(result.err, "");
+        assert_true(strncmp(result.out, "wrong: ", 7) == 0);
+        assert_contains(result.out, bug);
+        run_result_free(&result);
+        /* the probe does not tell */
+        result = run_in(&box, ARGS("--size", "32x18", "--textures", "none", "--quiz", seed_text,
+                                   "--probe", "16,9"),
+                        NULL);
+        assert_success(&result);
+        assert_contains(result.out, "\nbug=hidden (quiz)\n");
+        assert_null(strstr(result.out, bug));
+        run_result_free(&result);
+    }
+    result = run_in(&box, ARGS("--size", "32x18", "--textures", "none", "--bug",
+                               "diffuse-reversed", "--probe", "16,9"),
+                    NULL);
+    assert_success(&result);
+    assert_contains(result.out, "\nbug=diffuse-reversed\n");
+    run_result_free(&result);
+    sandbox_destroy(&box);
+}
+
 int main(void)
 {
     static const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_bug_quiz_and_answer),
         cmocka_unit_test(test_help),
         cmocka_unit_test(test_version),
         cmocka_unit_test(test_tiny_render),
