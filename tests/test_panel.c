@@ -682,6 +682,38 @@ static void test_hud_says_which_camera_is_on(void **state)
         free(drawn[k]);
 }
 
+/* A number that rounds to zero shows as 0.00, not -0.00 (issue 31): a
+ * camera at x = -0.001, pitch -0.04 and time -0.004 draws the very HUD
+ * of one at 0, 0 and 0; one at x = -0.01 another. */
+static void test_hud_shows_no_negative_zero(void **state)
+{
+    (void)state;
+    const float x[3] = {0.0f, -0.001f, -0.01f};
+    const float pitch[3] = {0.0f, -0.04f, 0.0f};
+    const double time[3] = {0.0, -0.004, 0.0};
+    uint8_t *drawn[3];
+    for (int k = 0; k < 3; k++) {
+        luz_scene scene = luz_scene_defaults();
+        scene.camera.position.x = x[k];
+        scene.camera.pitch_degrees = pitch[k];
+        scene.time_seconds = time[k];
+        luz_framebuffer *framebuffer = grey_framebuffer(640, 360, 50);
+        luz_hud hud = {.window_width = 640, .window_height = 360, .render_scale = 1.0f,
+                       .threads = 2, .scene = &scene};
+        luz_layer layer = begin(framebuffer);
+        luz_hud_draw(&layer, &hud);
+        fill_into(framebuffer, &layer);
+        drawn[k] = malloc(640 * 360 * 4);
+        assert_non_null(drawn[k]);
+        memcpy(drawn[k], framebuffer->colour, 640 * 360 * 4);
+        luz_framebuffer_destroy(framebuffer);
+    }
+    assert_memory_equal(drawn[0], drawn[1], 640 * 360 * 4);
+    assert_true(memcmp(drawn[0], drawn[2], 640 * 360 * 4) != 0);
+    for (int k = 0; k < 3; k++)
+        free(drawn[k]);
+}
+
 /* ---- the HUD's timings -------------------------------------------------------------------------- */
 
 static void test_hud_timing_averages_the_same_frames(void **state)
@@ -908,6 +940,7 @@ int main(void)
         cmocka_unit_test(test_panel_shows_the_output),
         cmocka_unit_test(test_hud_and_help_draw_within_the_framebuffer),
         cmocka_unit_test(test_hud_says_which_camera_is_on),
+        cmocka_unit_test(test_hud_shows_no_negative_zero),
         cmocka_unit_test(test_hud_timing_averages_the_same_frames),
         cmocka_unit_test(test_hud_fits_the_window_and_stays_left_of_the_panel),
         cmocka_unit_test(test_legends_have_every_entry),

@@ -218,6 +218,17 @@ for option in --render-scale --print-state --scene --camera-pos --spot-outer; do
     grep -q -- "$option" "$work/help" || fail "luz --help does not mention $option"
 done
 
+# The options' descriptions start in one column, the viewer's own too
+# (issue 31: --render-scale's and --print-state's were two further right):
+# on an option's line after its gap of two or more blanks, on the lines
+# that go on with it after blanks alone.
+awk '/^Controls/ { exit }
+     /^  -/ { if (match($0, /[^ ]  +[^ ]/)) print RSTART + RLENGTH - 1 "|" $0; next }
+     /^   / { match($0, /[^ ]/); print RSTART "|" $0 }' "$work/help" |
+    awk -F'|' '{ print $1 }' | sort -u >"$work/help-columns"
+[ "$(cat "$work/help-columns")" = 32 ] ||
+    fail "luz --help: descriptions start in columns $(tr '\n' ' ' <"$work/help-columns"), expected 32 alone"
+
 # The controls: --help's list (keys padded to 22 columns, as the H overlay
 # lists them) and docs/viewer.md's table under "## Controls", as "keys|action".
 awk '/^Controls/ { on = 1; next }

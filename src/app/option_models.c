@@ -96,8 +96,10 @@ static int load_noting_slowness(luz_model *model, const char *path, const luz_mo
     pthread_mutex_unlock(&notice.lock);
     if (watching) pthread_join(watcher, NULL);
     if (notice.said && status == 0)
-        fprintf(stderr, "luz: read %s: %llu triangles in %d meshes, %.1f s\n", model->name,
-                (unsigned long long)model->triangle_count, model->part_count,
+        fprintf(stderr, "luz: read %s: %llu triangle%s in %d mesh%s, %.1f s\n", model->name,
+                (unsigned long long)model->triangle_count,
+                model->triangle_count == 1 ? "" : "s", model->part_count,
+                model->part_count == 1 ? "" : "es",
                 (luz_wall_ms() - notice.start_ms) / 1000.0);
     pthread_cond_destroy(&notice.done_changed);
     pthread_mutex_destroy(&notice.lock);

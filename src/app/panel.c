@@ -499,6 +499,13 @@ static int hud_flow(hud_text *text, int scale, int max_width, int *height)
     return width;
 }
 
+/* value as printf shows it with `decimals` digits, but a value that
+ * rounds to zero is 0: "camera 0.00", never "-0.00" for -0.001. */
+static double shown(double value, int decimals)
+{
+    return fabs(value) < 0.5 * pow(10.0, -decimals) ? 0.0 : value;
+}
+
 void luz_hud_draw(luz_layer *layer, const luz_hud *hud)
 {
     const luz_scene *scene = hud->scene;
@@ -523,13 +530,14 @@ void luz_hud_draw(luz_layer *layer, const luz_hud *hud)
     /* Which camera the keys and the mouse move (O switches), and where it
      * is: the orbit camera's distance to its target too. */
     hud_add(&text, true, accent_colour, "%s (O)", hud->orbiting ? "orbit" : "fly");
-    hud_add(&text, false, text_colour, "camera %.2f, %.2f, %.2f", (double)camera->position.x,
-            (double)camera->position.y, (double)camera->position.z);
-    hud_add(&text, false, text_colour, "yaw %.1f", (double)camera->yaw_degrees);
-    hud_add(&text, false, text_colour, "pitch %.1f", (double)camera->pitch_degrees);
+    hud_add(&text, false, text_colour, "camera %.2f, %.2f, %.2f",
+            shown(camera->position.x, 2), shown(camera->position.y, 2),
+            shown(camera->position.z, 2));
+    hud_add(&text, false, text_colour, "yaw %.1f", shown(camera->yaw_degrees, 1));
+    hud_add(&text, false, text_colour, "pitch %.1f", shown(camera->pitch_degrees, 1));
     if (hud->orbiting)
         hud_add(&text, false, text_colour, "distance %.2f", hud->orbit_distance);
-    hud_add(&text, true, text_colour, "time %.2f s%s", scene->time_seconds,
+    hud_add(&text, true, text_colour, "time %.2f s%s", shown(scene->time_seconds, 2),
             hud->paused ? " (paused)" : "");
     hud_add(&text, false, text_colour, "filter %s", luz_filter_name(scene->filter));
     hud_add(&text, false, text_colour, "seed %lu", (unsigned long)scene->seed);

@@ -177,9 +177,10 @@ static void print_usage(FILE *out)
     fprintf(out,
             "\n"
             "The viewer's own options:\n"
-            "  --render-scale S               render S x the window's pixels, scaled up to fill\n"
-            "                                 it, 0.01 <= S <= 1 (default: 1)\n"
-            "  --print-state                  print the view as a scene file on stdout at quit\n"
+            "  --render-scale S             render S x the window's pixels, scaled up to\n"
+            "                               fill it, 0.01 <= S <= 1 (default: 1)\n"
+            "  --print-state                print the view as a scene file on stdout at\n"
+            "                               quit\n"
             "\n"
             "Controls (H shows them in the window):\n");
     for (int i = 0; i < luz_controls_help_count; i++)
