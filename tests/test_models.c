@@ -536,6 +536,11 @@ static int setup_files(void **state)
     write_text("models/nomtl.obj", nomtl_obj);
     write_text("models/quad.obj", quad_obj);
     write_text("models/lines.obj", lines_obj);
+    write_text("models/point.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n"
+                                   "property float y\nproperty float z\nend_header\n0 0 0\n");
+    write_text("models/empty.stl", "solid nothing\nendsolid nothing\n");
+    write_text("models/vertex.obj", "v 0 0 0\n");
+    write_text("models/comment.obj", "# a cube, one day\n# (nothing yet)\n");
     write_text("models/nan.obj", nan_obj);
     write_text("models/nan-normal.obj", nan_normal_obj);
     write_text("models/inf.obj", inf_obj);
@@ -1561,6 +1566,17 @@ static const refusal_case refusal_cases[] = {
     {"random bytes, .obj", "models/noise.obj", NULL, {"@", "not a model"}},
     {"random bytes, unknown extension", "models/noise.xyz", NULL, {"@", "not a model"}},
     {"lines only", "models/lines.obj", NULL, {"@", "no triangles"}},
+    /* assimp's own refusals of a file with nothing to draw, in luz's words
+     * (issue 31: "Validation failed: Mesh  contains no faces" reached the
+     * user) */
+    {"PLY of one point", "models/point.ply", NULL,
+     {"@", ": no triangles (only points or lines, or nothing)"}},
+    {"STL without a facet", "models/empty.stl", NULL,
+     {"@", ": no triangles (only points or lines, or nothing)"}},
+    {"OBJ of one vertex", "models/vertex.obj", NULL,
+     {"@", ": no triangles (only points or lines, or nothing)"}},
+    {"OBJ of a comment", "models/comment.obj", NULL,
+     {"@", ": not a model luz can read, or an empty one (no meshes in it)"}},
     {"NaN position", "models/nan.obj", NULL, {"@", "not finite"}},
     {"infinite position", "models/inf.obj", NULL, {"@", "not finite"}},
     {"NaN position in glTF", "models/nan.gltf", NULL, {"@", "not finite"}},

@@ -27,6 +27,7 @@
 
 #if defined(LUZ_HAVE_ASSIMP)
 
+#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stdbool.h>
@@ -504,6 +505,34 @@ static int describe_scene(const struct aiScene *scene, const model_files *files,
     return status;
 }
 
+/* assimp's refusal in luz's words, where it says the file holds nothing
+ * to draw: its words name its own structures (its validation's "Mesh
+ * contains no faces", an importer's "OBJ-file is too small."). Meshes
+ * without faces or vertices are what model_load.c calls a file of points
+ * or lines; no mesh at all is also what assimp makes of random bytes
+ * under a text format's name, so that says both. NULL for any other
+ * refusal. Matched without case, as found in assimp 5.2's strings. */
+static const char *nothing_to_draw(const char *why)
+{
+    static const char *const empty_meshes[] = {
+        "contains no faces", "contains no vertices", "no faces", "no vertices",
+        "file is empty",     "file is too small",
+    };
+    static const char *const no_meshes[] = {"mnummeshes is 0", "no meshes", "no data remains"};
+    char lower[256];
+    size_t n = 0;
+    for (; why[n] != '\0' && n + 1 < sizeof lower; n++)
+        lower[n] = (char)tolower((unsigned char)why[n]);
+    lower[n] = '\0';
+    for (size_t i = 0; i < sizeof no_meshes / sizeof no_meshes[0]; i++)
+        if (strstr(lower, no_meshes[i]) != NULL)
+            return "not a model luz can read, or an empty one (no meshes in it)";
+    for (size_t i = 0; i < sizeof empty_meshes / sizeof empty_meshes[0]; i++)
+        if (strstr(lower, empty_meshes[i]) != NULL)
+            return "no triangles (only points or lines, or nothing)";
+    return NULL;
+}
+
 int luz_model_import(const luz_model_source *source, uint64_t memory_limit,
                      luz_model_writer *writer, luz_error *error)
 {
@@ -547,6 +576,8 @@ int luz_model_import(const luz_model_source *source, uint64_t memory_limit,
         const char *why = aiGetErrorString();
         if (memory_limit > 0 && strstr(why, "bad_alloc") != NULL)
             return luz_model_memory_refusal(path, memory_limit, error);
+        if (nothing_to_draw(why) != NULL)
+            return luz_error_set(error, "%s: %s", path, nothing_to_draw(why));
         return luz_error_set(error, "%s: not a model luz can read (%s)", path, why);
     }
     if (check_imported(scene, path, error) != 0) {
