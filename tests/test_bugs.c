@@ -476,6 +476,76 @@ static void no_backface_culling(void **state)
     assert_memory_equal(wrong.bytes, right.bytes, 3);
 }
 
+/* ---- the probe's intermediates: matrices, edges, taps ------------------------- */
+
+/* The default camera's matrices worked by hand (SCENE.md: lookAt from
+ * (0, 0, 3) down -Z is a translation by -3; perspective 45 degrees,
+ * aspect 64/48, near 0.1, far 100); each edge function at the pixel
+ * centre from the window corners; the bilinear taps' texels and weights
+ * from uv and the texture's size, adding up to T. */
+static void probe_intermediates(void **state)
+{
+    (void)state;
+    luz_object object;
+    luz_scene scene = white_cube_scene(&object);
+    object.texture = 0;
+    scene.filter = LUZ_FILTER_BILINEAR;
+    scene.lights.ambient = (luz_light){{1, 1, 1}, 1.0f};
+    const int x = WIDTH / 2 + 7, y = HEIGHT / 2 - 5;
+    luz_pixel_probe probe;
+    draw_probe_textured(&scene, LUZ_BUG_NONE, x, y, true, true, &probe);
+    assert_on_front_face(&probe);
+
+    const double f = 1.0 / tan(22.5 * 3.14159265358979323846 / 180.0), aspect = (double)WIDTH / HEIGHT;
+    const double expected_projection[16] = {f / aspect, 0, 0, 0, 0, f, 0, 0,
+                                            0, 0, -100.1 / 99.9, -1, 0, 0, -20.0 / 99.9, 0};
+    const double expected_view[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, -3, 1};
+    for (int i = 0; i < 16; i++) {
+        assert_near(probe.projection_matrix.m[i], expected_projection[i], 1e-6);
+        assert_near(probe.view_matrix.m[i], expected_view[i], 1e-6);
+        assert_near(probe.model_matrix.m[i], i % 5 == 0 ? 1.0 : 0.0, 1e-7);   /* t = 0 */
+    }
+
+    /* edge k from corner k + 1 to corner k + 2, in 1/256 pixel */
+    const double X = 256.0 * x + 128, Y = 256.0 * y + 128;
+    for (int k = 0; k < 3; k++) {
+        const luz_vec3 i = probe.corner_window[(k + 1) % 3], j = probe.corner_window[(k + 2) % 3];
+        const double xi = 256.0 * i.x, yi = 256.0 * i.y, xj = 256.0 * j.x, yj = 256.0 * j.y;
+        const double e = (yj - yi) * (X - xi) - (xj - xi) * (Y - yi);
+        assert_true((double)probe.edges[k].value == e);
+        assert_int_equal(probe.edges[k].top, yj == yi && xj < xi);
+        assert_int_equal(probe.edges[k].left, yj > yi);
+        assert_int_equal(probe.edges[k].owns_its_samples,
+                         probe.edges[k].top || probe.edges[k].left);
+        assert_true(probe.edges[k].value >= 0);   /* the centre is inside */
+    }
+
+    /* bilinear: the texel centres around (u w - 1/2, v h - 1/2), wrapped */
+    const luz_texture *texture = probe.texture;
+    assert_non_null(texture);
+    assert_int_equal(probe.tap_count, 4);
+    const int w = texture->levels[0].width, h = texture->levels[0].height;
+    const double su = (probe.uv.x - floor(probe.uv.x)) * w - 0.5;
+    const double sv = (probe.uv.y - floor(probe.uv.y)) * h - 0.5;
+    const double fx = su - floor(su), fy = sv - floor(sv);
+    const int x0 = ((int)floor(su) + w) % w, y0 = ((int)floor(sv) + h) % h;
+    double sum = 0, red = 0;
+    for (int k = 0; k < 4; k++) {
+        const luz_probe_tap *tap = &probe.taps[k];
+        const int dx = tap->x == x0 ? 0 : 1, dy = tap->y == y0 ? 0 : 1;
+        assert_int_equal(tap->x, (x0 + dx) % w);
+        assert_int_equal(tap->y, (y0 + dy) % h);
+        assert_int_equal(tap->level, 0);
+        assert_near(tap->weight, (dx ? fx : 1 - fx) * (dy ? fy : 1 - fy), 1e-5);
+        const uint8_t *texel = texture->levels[0].texels + ((size_t)tap->y * w + tap->x) * 4;
+        assert_near(tap->texel.x, texel[0] / 255.0, 1e-7);
+        sum += tap->weight;
+        red += tap->weight * tap->texel.x;
+    }
+    assert_near(sum, 1.0, 1e-6);
+    assert_near(red, probe.texel.x, 1e-6);
+}
+
 /* ---- without a bug, the steps are the shader's own numbers ------------------ */
 
 /* luz_shade_terms_explained with no bug gives luz_shade_terms' terms to the
@@ -562,6 +632,7 @@ int main(void)
         cmocka_unit_test(no_depth_test),
         cmocka_unit_test(no_backface_culling),
         cmocka_unit_test(steps_are_the_shader),
+        cmocka_unit_test(probe_intermediates),
     };
     return cmocka_run_group_tests(tests, lab_textures_load, lab_textures_free);
 }

@@ -81,6 +81,32 @@ typedef struct luz_probe_test {
     bool passed;         /* depth < stored (LESS): the buffer now holds depth */
 } luz_probe_test;
 
+/* An edge of the winner at the pixel centre (setup.c, step 4): edge k
+ * runs from corner k + 1 to corner k + 2 (window coordinates snapped to
+ * 1/256 pixel, X = 256 x), and E(X, Y) = (Yj - Yi)(X - Xi) - (Xj - Xi)(Y - Yi)
+ * is positive inside; value is E at the centre, in 1/256 pixel units
+ * squared (twice the area of the triangle the edge and the centre make,
+ * times 65536), before the fill rule. A centre with E = 0 lies on the
+ * edge, and is the triangle's if owns_its_samples. */
+typedef struct luz_probe_edge {
+    int64_t value;
+    bool top;                /* horizontal, the triangle below it */
+    bool left;               /* the triangle to its right (it runs downwards) */
+    bool owns_its_samples;   /* top or left (SCENE.md's rule; bottom or
+                                right under fill-rule-bottom-right) */
+} luz_probe_edge;
+
+/* One texel the sampler read: where, what, and its weight in T. */
+typedef struct luz_probe_tap {
+    int level;               /* the mip level */
+    int x, y;                /* the texel, wrapped (REPEAT) */
+    luz_vec3 texel;          /* its colour, bytes / 255 */
+    float weight;            /* bilinear weight times the level's: the taps'
+                                weights add up to 1 */
+} luz_probe_tap;
+
+#define LUZ_PROBE_MAX_TAPS 8
+
 /* (renderer.h declares the type too, for luz_render_options.probe.) */
 typedef struct luz_pixel_probe luz_pixel_probe;
 
@@ -137,6 +163,12 @@ struct luz_pixel_probe {
                                front of the eye (1 for affine) */
     float depth;            /* its window depth, the winning test's */
 
+    /* The matrices of the winner's vertex stage: its draw's model matrix
+     * and the frame's view and projection. */
+    luz_mat4 model_matrix, view_matrix, projection_matrix;
+    /* The winner's three edge functions at the pixel centre. */
+    luz_probe_edge edges[3];
+
     /* The varyings, perspective-correct (luz_fragment_interpolate). */
     luz_vec3 position;      /* P, world space */
     luz_vec3 normal;        /* N, re-normalised as the shader does */
@@ -152,6 +184,9 @@ struct luz_pixel_probe {
                                nearest and bilinear, which read level 0 */
     luz_texture_mip_pair levels;   /* the levels read and the upper's weight */
     luz_vec3 texel;         /* T */
+    int tap_count;          /* the texels read: 1 (nearest), 4 (bilinear, or
+                               trilinear at one level) or 8 */
+    luz_probe_tap taps[LUZ_PROBE_MAX_TAPS];
 
     /* The lighting (luz_shade_terms); for an unlit material only
      * object_colour and colour are set. */

@@ -126,6 +126,18 @@ static void write_history(FILE *out, const luz_pixel_probe *probe, const luz_pro
         fprintf(out, "tests_not_listed=%d\n", probe->test_count - probe->tests_kept);
 }
 
+/* A matrix, row by row: key_row0= ... key_row3=, four numbers each. */
+static void line_matrix(FILE *out, const char *key, const luz_mat4 *m)
+{
+    char name[40];
+    for (int row = 0; row < 4; row++) {
+        snprintf(name, sizeof name, "%s_row%d", key, row);
+        /* column-major: element (row, column) is m[column * 4 + row] */
+        line_floats(out, name,
+                    (const float[]){m->m[row], m->m[4 + row], m->m[8 + row], m->m[12 + row]}, 4);
+    }
+}
+
 /* The six terms' intermediates, in SCENE.md's names (docs/cli.md). */
 static void write_steps(FILE *out, const luz_shade_steps *steps)
 {
@@ -176,10 +188,19 @@ static void write_winner(FILE *out, const luz_pixel_probe *probe, const luz_prob
             snprintf(key, sizeof key, "corner%d_window", k);
             line_vec3(out, key, probe->corner_window[k]);
         }
+        for (int k = 0; k < 3; k++) {
+            const luz_probe_edge *edge = &probe->edges[k];
+            fprintf(out, "edge%d=%lld top=%s left=%s owns_its_samples=%s\n", k,
+                    (long long)edge->value, edge->top ? "yes" : "no",
+                    edge->left ? "yes" : "no", edge->owns_its_samples ? "yes" : "no");
+        }
         line_vec3(out, "barycentric", probe->barycentric);
     } else {
         fputs("primitive=unknown\n", out);
     }
+    line_matrix(out, "model", &probe->model_matrix);
+    line_matrix(out, "view", &probe->view_matrix);
+    line_matrix(out, "projection", &probe->projection_matrix);
     line_float(out, "w", probe->w);
     line_float(out, "depth", probe->depth);
 
@@ -187,6 +208,8 @@ static void write_winner(FILE *out, const luz_pixel_probe *probe, const luz_prob
     line_vec3(out, "P", probe->position);
     line_vec3(out, "N", probe->normal);
     line_floats(out, "uv", (const float[]){probe->uv.x, probe->uv.y}, 2);
+    line_floats(out, "uv_dx", (const float[]){probe->du_dx, probe->dv_dx}, 2);
+    line_floats(out, "uv_dy", (const float[]){probe->du_dy, probe->dv_dy}, 2);
 
     if (probe->shading == LUZ_SHADING_UNLIT) {
         fputs("shading=unlit\n", out);
@@ -203,6 +226,18 @@ static void write_winner(FILE *out, const luz_pixel_probe *probe, const luz_prob
         line_float(out, "lod", probe->lambda);
         fprintf(out, "levels=%d,%d\n", probe->levels.lower, probe->levels.upper);
         line_float(out, "weight", probe->levels.blend);
+        for (int k = 0; k < probe->tap_count; k++) {
+            const luz_probe_tap *tap = &probe->taps[k];
+            fprintf(out, "tap=%d level=%d texel=%d,%d colour=", k, tap->level, tap->x, tap->y);
+            put_float(out, tap->texel.x);
+            fputc(',', out);
+            put_float(out, tap->texel.y);
+            fputc(',', out);
+            put_float(out, tap->texel.z);
+            fputs(" weight=", out);
+            put_float(out, tap->weight);
+            fputc('\n', out);
+        }
     }
     line_vec3(out, "texel", probe->texel);
 

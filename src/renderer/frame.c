@@ -499,6 +499,7 @@ luz_uniforms luz_uniforms_of(const luz_frame *frame, const luz_render_options *o
     memset(&uniforms, 0, sizeof uniforms);
     uniforms.view_projection = luz_mat4_multiply(frame->projection, frame->view);
     uniforms.projection = frame->projection;
+    uniforms.view = frame->view;
     uniforms.shade = luz_shade_uniforms_of(frame->eye, &frame->lights);
     uniforms.clear_colour = frame->clear_colour;
     /* 2^EV, exact for a whole EV (exp2f of an integer is a power of two). */

@@ -110,6 +110,7 @@ struct luz_mesh {
 typedef struct luz_uniforms {
     luz_mat4 view_projection;
     luz_mat4 projection;               /* the depth view reads its z row */
+    luz_mat4 view;                     /* the probe reports it */
     luz_shade_uniforms shade;          /* eye, lights, the spot's cosines */
     luz_vec3 clear_colour;
     /* The output of lit colours (luz_shade_output): 2^EV, the tone map,
@@ -804,6 +805,13 @@ static inline float luz_texture_footprint_squared(const luz_texture *texture, fl
     float y_squared = y_u * y_u + y_v * y_v;
     return x_squared > y_squared ? x_squared : y_squared;
 }
+
+/* The texels luz_texture_sample reads at uv and level of detail lambda,
+ * and each one's weight in the result (texture.c, the sampler's own
+ * arithmetic): for the pixel probe. Returns how many (at most
+ * LUZ_PROBE_MAX_TAPS); 0 without a texture. */
+int luz_texture_taps(const luz_texture *texture, luz_filter filter, luz_vec2 uv, float lambda,
+                     luz_probe_tap *taps);
 
 /* ---- views (view.c) ----------------------------------------------------- */
 

@@ -295,6 +295,25 @@ static void find_primitive(luz_pixel_probe *probe, const luz_uniforms *uniforms,
     }
 }
 
+/* The winner's edge functions at the pixel centre, as setup.c made them:
+ * a = dy and b = -dx of the edge, and c with the fill rule's 1 taken off
+ * the edges that do not own their samples (setup.c's make_edge). */
+static void explain_edges(luz_pixel_probe *probe, const luz_triangle *winner, luz_bug bug)
+{
+    const int64_t X = (int64_t)probe->x * LUZ_SUBPIXEL_ONE + LUZ_SUBPIXEL_ONE / 2;
+    const int64_t Y = (int64_t)probe->y * LUZ_SUBPIXEL_ONE + LUZ_SUBPIXEL_ONE / 2;
+    for (int k = 0; k < 3; k++) {
+        const luz_edge *edge = &winner->edges[k];
+        luz_probe_edge *out = &probe->edges[k];
+        const int64_t dy = edge->a, dx = -(int64_t)edge->b;
+        out->top = dy == 0 && dx < 0;
+        out->left = dy > 0;
+        out->owns_its_samples = (out->top || out->left) != (bug == LUZ_BUG_FILL_RULE_BOTTOM_RIGHT);
+        out->value = (int64_t)edge->a * X + (int64_t)edge->b * Y + edge->c +
+                     (out->owns_its_samples ? 0 : 1);
+    }
+}
+
 /* ---- the winner's shading ----------------------------------------------- */
 
 static void shade(luz_pixel_probe *probe, const luz_uniforms *uniforms,
@@ -332,6 +351,8 @@ static void shade(luz_pixel_probe *probe, const luz_uniforms *uniforms,
         }
     }
     probe->texel = luz_texture_sample(texture, material->filter, fragment->uv, probe->lambda);
+    probe->tap_count =
+        luz_texture_taps(texture, material->filter, fragment->uv, probe->lambda, probe->taps);
     /* The terms the image was shaded with (luz_shade_terms, or the
      * bug's), and the numbers in between. */
     luz_vec3 terms[LUZ_TERM_COUNT];
@@ -440,6 +461,10 @@ void luz_probe_explain(luz_pixel_probe *probe, const luz_uniforms *uniforms,
             luz_view_on_edge(winner, x, y, framebuffer->width, framebuffer->height);
 
         find_primitive(probe, uniforms, &draws[winner->draw_index], winner, framebuffer);
+        probe->model_matrix = draws[winner->draw_index].model;
+        probe->view_matrix = uniforms->view;
+        probe->projection_matrix = uniforms->projection;
+        explain_edges(probe, winner, uniforms->bug);
 
         luz_fragment fragment;
         luz_fragment_interpolate(winner, x, y, &fragment);

@@ -212,3 +212,47 @@ const char *luz_filter_name(luz_filter filter)
     }
     return "unknown";
 }
+
+/* The probe's account of a sample: the same wrap, texel and weight
+ * arithmetic as the samplers above. */
+static int bilinear_taps(const luz_texture *texture, int level_index, luz_vec2 uv,
+                         float level_weight, luz_probe_tap *taps)
+{
+    const luz_texture_level *level = &texture->levels[level_index];
+    int x[2], y[2];
+    float fx, fy;
+    bilinear_axis(uv.x, level->width, &x[0], &x[1], &fx);
+    bilinear_axis(uv.y, level->height, &y[0], &y[1], &fy);
+    const float wx[2] = {1.0f - fx, fx}, wy[2] = {1.0f - fy, fy};
+    const float scale = 1.0f / 255.0f;
+    for (int k = 0; k < 4; k++) {
+        const int i = k & 1, j = k >> 1;
+        const uint8_t *p = texel_address(level, x[i], y[j]);
+        taps[k] = (luz_probe_tap){level_index, x[i], y[j],
+                                  {p[0] * scale, p[1] * scale, p[2] * scale},
+                                  wx[i] * wy[j] * level_weight};
+    }
+    return 4;
+}
+
+int luz_texture_taps(const luz_texture *texture, luz_filter filter, luz_vec2 uv, float lambda,
+                     luz_probe_tap *taps)
+{
+    if (!texture) return 0;
+    if (filter == LUZ_FILTER_NEAREST) {
+        const luz_texture_level *level = &texture->levels[0];
+        int x = (int)(luz_texture_repeat(uv.x) * level->width);
+        int y = (int)(luz_texture_repeat(uv.y) * level->height);
+        if (x >= level->width) x = level->width - 1;
+        if (y >= level->height) y = level->height - 1;
+        const uint8_t *p = texel_address(level, x, y);
+        const float scale = 1.0f / 255.0f;
+        taps[0] = (luz_probe_tap){0, x, y, {p[0] * scale, p[1] * scale, p[2] * scale}, 1.0f};
+        return 1;
+    }
+    if (filter == LUZ_FILTER_BILINEAR) return bilinear_taps(texture, 0, uv, 1.0f, taps);
+    const luz_texture_mip_pair levels = luz_texture_mip_levels(texture, lambda);
+    if (levels.lower == levels.upper) return bilinear_taps(texture, levels.lower, uv, 1.0f, taps);
+    bilinear_taps(texture, levels.lower, uv, 1.0f - levels.blend, taps);
+    return 4 + bilinear_taps(texture, levels.upper, uv, levels.blend, taps + 4);
+}
