@@ -195,6 +195,18 @@ xdotool key F12
 wait_for_shot luz-shot-0003.png
 size=$(identify -format '%wx%h' luz-shot-0003.png)
 [ "$size" = 560x300 ] || fail "screenshot after the resize is $size, the window 560x300"
+# Below the documented minimum, with no window manager to refuse it: the
+# viewer makes the window 480x270 again (issue 31: the HUD was cut off).
+xdotool windowsize --sync "$window" 300 200 || fail "cannot resize the window"
+i=0
+until [ "$(xdotool getwindowgeometry "$window" | sed -n 's/.*Geometry: //p')" = 480x270 ]; do
+    i=$((i + 1))
+    [ $i -gt 100 ] && fail "resized to 300x200 without a window manager, the window stays $(
+        xdotool getwindowgeometry "$window" | sed -n 's/.*Geometry: //p'), expected 480x270"
+    sleep 0.1
+done
+xdotool windowsize --sync "$window" 560 300 || fail "cannot resize the window"
+sleep 0.5
 # No window manager runs on this X server: F11 refuses, in one line.
 xdotool key F11
 i=0

@@ -668,10 +668,27 @@ static const char *presenter_name(const viewer *v)
     return "sdl";
 }
 
+/* SDL_SetWindowMinimumSize is a hint to the window manager; with none
+ * (a bare X server, a kiosk) a resize below it is granted and the HUD cut
+ * off. A window found smaller is made the minimum again, as a window
+ * manager would have kept it. */
+static void keep_minimum_size(viewer *v)
+{
+    if (SDL_GetWindowFlags(v->window) & (SDL_WINDOW_FULLSCREEN | SDL_WINDOW_MINIMIZED))
+        return;
+    int width, height;
+    SDL_GetWindowSize(v->window, &width, &height);
+    if (width >= LUZ_VIEWER_MIN_WIDTH && height >= LUZ_VIEWER_MIN_HEIGHT)
+        return;
+    SDL_SetWindowSize(v->window, width < LUZ_VIEWER_MIN_WIDTH ? LUZ_VIEWER_MIN_WIDTH : width,
+                      height < LUZ_VIEWER_MIN_HEIGHT ? LUZ_VIEWER_MIN_HEIGHT : height);
+}
+
 /* Matches the framebuffer, and the images or the texture that show it, to
  * the window's size in pixels times the render scale. */
 static int fit_framebuffer(viewer *v, luz_error *error)
 {
+    keep_minimum_size(v);
     measure_window(v);
     float scale = v->settings.render_scale;
     int width = (int)lroundf((float)v->window_width * scale);
