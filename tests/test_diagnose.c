@@ -9,7 +9,8 @@
  * (make-frames.sh): each frame changes one thing of a setting, and the
  * weight SCENE.md predicts for it is the expected value (a light's
  * strength times k scales its term by k; the spot's strength enters
- * squared). Then bad input: one line, exit 2, the frame untouched.
+ * squared). Then bad input: one line, exit 2, the frame untouched. And
+ * the colour generator of docs/teaching.md's JavaScript, run by node.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -519,6 +520,59 @@ static void test_bad_frames_refused(void **state)
     assert_string_equal(listing, "right.png\nstderr\nstdout\ntext.png\n");
 }
 
+/* ---- the page's JavaScript ----------------------------------------------------------------- */
+
+/* docs/teaching.md's cubeColours, run by node where it is installed, gives
+ * the lab's colours (SCENE.md's generator as luz implements it) for the
+ * default seed and for seed 7. */
+static void test_page_colour_generator(void **state)
+{
+    (void)state;
+    if (system("node --version >/dev/null 2>&1") != 0) {
+        print_message("node is not installed: the page's JavaScript is not run\n");
+        skip();
+    }
+    const char *page_path = getenv("LUZ_TEACHING_DOC");
+    if (page_path == NULL) fail_msg("LUZ_TEACHING_DOC is not set (tests/meson.build)");
+    char *page = read_file(page_path, NULL);
+    assert_non_null(page);
+    const char *start = strstr(page, "function cubeColours(");
+    assert_non_null(start);
+    const char *end = strstr(start, "\n   }\n");
+    assert_non_null(end);
+    char script[600];
+    snprintf(script, sizeof script, "%s/colours.js", work);
+    FILE *file = fopen(script, "w");
+    assert_non_null(file);
+    fprintf(file, "%.*s\n", (int)(end + 5 - start), start);
+    fputs("for (const seed of [0, 7]) for (const c of cubeColours(10, seed))\n"
+          "  console.log(c.map(v => v.toPrecision(9)).join(' '));\n", file);
+    assert_int_equal(fclose(file), 0);
+    char command[1200], output[400];
+    snprintf(output, sizeof output, "%s/colours.txt", work);
+    snprintf(command, sizeof command, "node '%s' > '%s'", script, output);
+    assert_int_equal(system(command), 0);
+    char *text = read_file(output, NULL);
+    assert_non_null(text);
+    const uint32_t seeds[2] = {0, 7};
+    const char *cursor = text;
+    for (int k = 0; k < 2; k++) {
+        luz_vec3 colours[10];
+        luz_scene_random_colours(seeds[k], 10, colours);
+        for (int i = 0; i < 10; i++) {
+            double r, g, b;
+            int used;
+            assert_int_equal(sscanf(cursor, "%lf %lf %lf%n", &r, &g, &b, &used), 3);
+            cursor += used;
+            assert_near(r, colours[i].x, 1e-7);
+            assert_near(g, colours[i].y, 1e-7);
+            assert_near(b, colours[i].z, 1e-7);
+        }
+    }
+    free(text);
+    free(page);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -536,6 +590,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_moved_camera_is_a_silhouette, make_work,
                                         remove_work),
         cmocka_unit_test_setup_teardown(test_bad_frames_refused, make_work, remove_work),
+        cmocka_unit_test_setup_teardown(test_page_colour_generator, make_work, remove_work),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -691,20 +691,32 @@ static const char *shape_hint(term_region region)
     }
 }
 
-/* Up to five pixels with the largest residual, 12 pixels apart, each
- * beside luz's probe of it. */
+/* How far the frame's bytes are from luz's at pixel i. */
+static int byte_difference(const diagnosis *d, size_t i)
+{
+    int largest = 0;
+    for (int c = 0; c < 3; c++) {
+        const int off = abs((int)d->student->rgba[4 * i + c] - (int)d->luz_rgb[3 * i + c]);
+        if (off > largest) largest = off;
+    }
+    return largest;
+}
+
+/* Up to five pixels where the frame is furthest from luz's image (more
+ * than 8 off), 12 pixels apart, inside objects: the student's bytes
+ * beside luz's and the weighted terms', and luz's probe of the pixel. */
 static int write_worst(diagnosis *d, FILE *out, luz_error *error)
 {
     enum { WORST = 5, APART = 12 };
     int chosen[WORST][2];
     int count = 0;
     for (; count < WORST; count++) {
-        double largest = 2.0;
+        int largest = 8;
         long best = -1;
         for (size_t i = 0; i < d->pixels; i++) {
             if (d->kind[i] != PIXEL_INTERIOR) continue;
-            const double m = largest_abs(d->residual + 3 * i);
-            if (!(m > largest)) continue;
+            const int m = byte_difference(d, i);
+            if (m <= largest) continue;
             const int x = (int)(i % d->width), y = (int)(i / d->width);
             bool near = false;
             for (int k = 0; k < count; k++)
@@ -718,7 +730,7 @@ static int write_worst(diagnosis *d, FILE *out, luz_error *error)
         chosen[count][1] = (int)(best / d->width);
     }
     if (count == 0) {
-        fprintf(out, "worst: none off by more than 2\n");
+        fprintf(out, "worst: no pixel inside an object more than 8 off luz's\n");
         return 0;
     }
     const luz_scene scene = setting_scene(d);
