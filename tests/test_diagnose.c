@@ -38,7 +38,7 @@
 /* Two terms, three observations: a = (1,0), (0,1), (1,1) and y = 1, 2, 4.
  * G = [[2,1],[1,2]], h = (5, 6): w = G^-1 h = (1/3) [[2,-1],[-1,2]] (5, 6)
  * = (4/3, 7/3), and (G^-1)_kk = 2/3. The other four terms are 0 on every
- * observation: not measurable, weight 0. */
+ * observation: not measurable, held at weight 1. */
 static void test_fit_worked_by_hand(void **state)
 {
     (void)state;
@@ -61,7 +61,7 @@ static void test_fit_worked_by_hand(void **state)
     for (int t = 0; t < LUZ_TERM_COUNT; t++)
         if (t != LUZ_TERM_DIFFUSE && t != LUZ_TERM_SPOT) {
             assert_false(fit.measurable[t]);
-            assert_true(fit.weight[t] == 0.0);
+            assert_true(fit.weight[t] == 1.0);   /* held */
         }
 }
 
@@ -88,8 +88,9 @@ static void test_fit_recovers_chosen_weights(void **state)
 }
 
 /* Directional = 2 x ambient on every observation: the two cannot be told
- * apart, so one is not measurable and the other carries both (y = a + d
- * = 3 ambient: ambient 3, or directional 1.5), never two wild numbers. */
+ * apart, so one is not measurable and held at 1, and the other gets the
+ * rest of y = a + d + p: 1, never two wild numbers nor one term carrying
+ * both (ambient 3, or directional 1.5). */
 static void test_fit_alike_terms_not_measurable(void **state)
 {
     (void)state;
@@ -110,10 +111,8 @@ static void test_fit_alike_terms_not_measurable(void **state)
     assert_true(fit.measurable[LUZ_TERM_POINT]);
     assert_near(fit.weight[LUZ_TERM_POINT], 1.0, 1e-9);
     assert_true(fit.measurable[LUZ_TERM_AMBIENT] != fit.measurable[LUZ_TERM_DIRECTIONAL]);
-    if (fit.measurable[LUZ_TERM_AMBIENT])
-        assert_near(fit.weight[LUZ_TERM_AMBIENT], 3.0, 1e-9);
-    else
-        assert_near(fit.weight[LUZ_TERM_DIRECTIONAL], 1.5, 1e-9);
+    assert_near(fit.weight[LUZ_TERM_AMBIENT], 1.0, 1e-9);
+    assert_near(fit.weight[LUZ_TERM_DIRECTIONAL], 1.0, 1e-9);
 }
 
 /* ---- the output, backwards ------------------------------------------------------------- */

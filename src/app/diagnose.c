@@ -250,6 +250,7 @@ static luz_scene setting_scene(const diagnosis *d)
     luz_scene scene = d->setup->options->scene;
     scene.view = LUZ_VIEW_COLOR;
     scene.samples = 1;
+    scene.bug = LUZ_BUG_NONE;   /* the options refuse one; luz's images are right */
     return scene;
 }
 
@@ -420,8 +421,7 @@ static void choose_weights(diagnosis *d)
     for (int c = 0; c < 3; c++)
         for (int t = 0; t < TERMS; t++)
             d->weight[c][t] = d->channel_fit[c].measurable[t] ? d->channel_fit[c].weight[t]
-                              : d->fit.measurable[t]          ? d->fit.weight[t]
-                                                              : 0.0;
+                                                              : d->fit.weight[t];
 }
 
 /* Fits the interior pixels, all but those of `excluded` (NULL: none). */

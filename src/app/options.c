@@ -1384,6 +1384,10 @@ int luz_options_finish(luz_options *options, luz_error *error)
     }
 
     if (options->diagnose_path != NULL) {
+        if (options->bug_given || options->quiz || options->answer_given)
+            return luz_error_set(error, "--diagnose: expected the setting without --bug, --quiz "
+                                        "or --answer (luz weighs the frame against its right "
+                                        "images)");
         if (options->probe || options->bench_frames > 0 || options->frame_count > 1 ||
             options->shard_count > 0 || options->skip_existing || options->range_first != 0 ||
             options->range_last != LUZ_FRAME_RANGE_OPEN)

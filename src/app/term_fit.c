@@ -6,8 +6,9 @@
  *      and h = sum a y, a the six single-term colours, y the colour to
  *      explain; and the smallest pivot that counts as measurable.
  * Out: a luz_term_fit: which terms are measurable, their weights w
- *      (G_mm w_m = h_m over the measurable set m), and (G_mm^-1)_kk for
- *      each, from which the caller gets a weight's uncertainty.
+ *      (G_mm w_m = h_m - G_mu 1 over the measurable set m, the others u
+ *      held at 1), and (G_mm^-1)_kk for each, from which the caller gets
+ *      a weight's uncertainty.
  *
  * Why a pivoted Cholesky: G is 6 x 6 and sums at most millions of
  * products, so forming it costs nothing and loses little in double
@@ -21,7 +22,9 @@
  * that the terms chosen before it cannot explain, and once the largest
  * falls below min_pivot nothing measurable is left. Those terms are
  * reported "not measurable" instead of a wild number from a near-zero
- * pivot.
+ * pivot, and held at weight 1 (as luz has them) while the others are
+ * weighed: a term the frame cannot tell from another one then leaves the
+ * other's weight alone rather than lending it its light.
  */
 #include "app/term_fit.h"
 
@@ -94,8 +97,15 @@ void luz_term_fit_solve(const luz_term_sums *sums, double min_pivot, luz_term_fi
         rank = j + 1;
     }
 
+    /* The terms left out are held at weight 1, as luz has them: what they
+     * add is taken from y first, h_m - sum_u G_mu 1, so that a term that
+     * looks like one left out is not given its light too. */
     double h[N] = {0}, w[N] = {0};
-    for (int i = 0; i < rank; i++) h[i] = sums->projection[order[i]];
+    for (int i = 0; i < rank; i++) {
+        h[i] = sums->projection[order[i]];
+        for (int u = rank; u < N; u++) h[i] -= sums->gram[order[i]][order[u]];
+    }
+    for (int u = rank; u < N; u++) fit->weight[order[u]] = 1.0;
     solve_factored(a, rank, h, w);
     for (int i = 0; i < rank; i++) {
         fit->measurable[order[i]] = true;

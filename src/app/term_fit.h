@@ -33,8 +33,10 @@ typedef struct luz_term_fit {
                                           in view, or what is there another
                                           term (or several) explains as well;
                                           its weight is left out of the fit */
-    double weight[LUZ_TERM_COUNT];     /* the least-squares weight; 0 when
-                                          not measurable */
+    double weight[LUZ_TERM_COUNT];     /* the least-squares weight; 1 when
+                                          not measurable: held there, as luz
+                                          has it, while the others are
+                                          weighed */
     double unexplained[LUZ_TERM_COUNT];   /* the energy of term k that the
                                              terms chosen before it do not
                                              explain (the pivot of the
@@ -54,7 +56,7 @@ typedef struct luz_term_fit {
  * caller's measure of "enough light to weigh") is not measurable, and the
  * terms after it neither. The factor of a positive semi-definite G is
  * stable with this pivoting; the terms left out make the rest well
- * conditioned. */
+ * conditioned, and are held at weight 1 (their light taken from h first). */
 void luz_term_fit_solve(const luz_term_sums *sums, double min_pivot, luz_term_fit *fit);
 
 #endif
