@@ -141,8 +141,10 @@ static void test_progress_bar_on_a_terminal(void **state)
         run_on_terminal(&box, arguments, STDERR_FILENO, "/dev/null", text, sizeof text, &length),
         0);
     assert_contains(text, "\rluz-render: [");
-    assert_contains(text, "1/3 frames");
-    assert_contains(text, "3/3 frames");
+    assert_contains(text, "1/3 frames, 0:");
+    /* the time so far and the time left (issue 31): none left at the end */
+    assert_contains(text, "3/3 frames, 0:");
+    assert_contains(text, " elapsed, 0:00 left");
     assert_png_size(&box, "bar_2.png", 8, 6);
     sandbox_destroy(&box);
 }
@@ -262,6 +264,30 @@ static bool have_programs(const char *names)
     snprintf(command, sizeof command, "for p in %s; do command -v $p; done >/dev/null 2>&1",
              names);
     return system(command) == 0;
+}
+
+/* tools/render-sequence --help prints its own help, not luz-render's
+ * (issue 31), and renders nothing. */
+static void test_render_sequence_help(void **state)
+{
+    (void)state;
+    const char *tool = getenv("RENDER_SEQUENCE");
+    if (tool == NULL)
+        fail_msg("RENDER_SEQUENCE is not set (tests/meson.build sets it to tools/render-sequence)");
+    if (!have_programs("parallel")) {
+        print_message("skipped: GNU parallel is not installed\n");
+        skip();
+    }
+    sandbox box;
+    sandbox_create(&box);
+    run_result result = run_program_in(&box, tool, ARGS("--help"), NULL);
+    assert_success(&result);
+    assert_contains(result.out, "Usage: tools/render-sequence [--shards M]");
+    assert_contains(result.out, "--sshlogin LOGIN");
+    assert_null(strstr(result.out, "Usage: luz-render"));
+    assert_null(strstr(result.out, "set -eu"));
+    run_result_free(&result);
+    sandbox_destroy(&box);
 }
 
 /* The sequence in one run, and as 4 shards that tools/render-sequence runs
@@ -815,6 +841,7 @@ int main(void)
         cmocka_unit_test(test_frame_sequence),
         cmocka_unit_test(test_sequence_times),
         cmocka_unit_test(test_progress_bar_on_a_terminal),
+        cmocka_unit_test(test_render_sequence_help),
         cmocka_unit_test(test_shards_by_parallel_match_one_run),
         cmocka_unit_test(test_slices_match_one_run),
         cmocka_unit_test(test_killed_shard_resumed),

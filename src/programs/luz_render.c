@@ -186,16 +186,31 @@ static int render_probe(render_context *context, luz_renderer *renderer, luz_err
     return 0;
 }
 
-/* A bar that redraws itself on one line; only on a terminal, where it helps
- * a person, and never in a log, where it would be noise. */
-static void show_progress(int done, int total)
+/* seconds as m:ss, or h:mm:ss from an hour */
+static void format_duration(char *text, size_t size, double seconds)
+{
+    long whole = seconds > 0.0 ? (long)(seconds + 0.5) : 0;
+    if (whole >= 3600)
+        snprintf(text, size, "%ld:%02ld:%02ld", whole / 3600, whole / 60 % 60, whole % 60);
+    else
+        snprintf(text, size, "%ld:%02ld", whole / 60, whole % 60);
+}
+
+/* A bar that redraws itself on one line, with the time so far and the
+ * time left at the mean pace of the frames done; only on a terminal,
+ * where it helps a person, and never in a log, where it would be noise. */
+static void show_progress(int done, int total, double elapsed_seconds)
 {
     enum { BAR_WIDTH = 40 };
     int filled = (int)((long long)done * BAR_WIDTH / total);
     fputs("\rluz-render: [", stderr);
     for (int i = 0; i < BAR_WIDTH; i++)
         fputc(i < filled ? '#' : ' ', stderr);
-    fprintf(stderr, "] %d/%d frames", done, total);
+    char elapsed[32], left[32];
+    format_duration(elapsed, sizeof elapsed, elapsed_seconds);
+    format_duration(left, sizeof left, elapsed_seconds / done * (total - done));
+    /* blanks after: a shorter line than the last leaves none of it */
+    fprintf(stderr, "] %d/%d frames, %s elapsed, %s left  ", done, total, elapsed, left);
     if (done == total)
         fputc('\n', stderr);
     fflush(stderr);
@@ -243,6 +258,7 @@ static int render_files(render_context *context, luz_renderer *renderer, luz_err
     int first, count;
     luz_options_frames_to_render(context->options, &first, &count);
     bool progress = count > 1 && isatty(STDERR_FILENO);
+    const double start_ms = luz_wall_ms();
     for (int i = 0; i < count; i++) {
         if (render_frame(context, renderer, first + i, error) != 0) {
             if (progress)
@@ -250,7 +266,7 @@ static int render_files(render_context *context, luz_renderer *renderer, luz_err
             return -1;
         }
         if (progress)
-            show_progress(i + 1, count);
+            show_progress(i + 1, count, (luz_wall_ms() - start_ms) / 1000.0);
     }
     return 0;
 }
