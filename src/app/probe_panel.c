@@ -198,16 +198,21 @@ static void panel_rows_of(panel_rows *rows, const luz_pixel_probe *probe,
         add_text(rows, text_colour, "background: no triangle won the pixel");
     } else {
         describe_source(a, sizeof a, names, probe->draw, true);
-        add_text(rows, text_colour, "%s  triangle %lu", a, (unsigned long)probe->triangle);
+        /* two numbers for one triangle: its id in the frame (the order
+         * of drawing, from 1, as the depth tests below and the
+         * visibility buffer count) and its index in its own mesh */
+        add_text(rows, text_colour, "%s  drawn triangle #%lu of the frame", a,
+                 (unsigned long)probe->triangle);
         if (probe->primitive >= 0) {
             if (probe->clipped_pieces > 0)
                 add_text(rows, text_colour,
-                         "mesh triangle %d (%lu %lu %lu), clipped: piece %d of %d",
+                         "= its mesh's triangle %d (vertices %lu %lu %lu), clipped: "
+                         "piece %d of %d",
                          probe->primitive, (unsigned long)probe->vertices[0],
                          (unsigned long)probe->vertices[1], (unsigned long)probe->vertices[2],
                          probe->piece, probe->clipped_pieces);
             else
-                add_text(rows, text_colour, "mesh triangle %d (vertices %lu %lu %lu)",
+                add_text(rows, text_colour, "= its mesh's triangle %d (vertices %lu %lu %lu)",
                          probe->primitive, (unsigned long)probe->vertices[0],
                          (unsigned long)probe->vertices[1], (unsigned long)probe->vertices[2]);
             format_vec3(a, sizeof a, probe->barycentric);
@@ -283,7 +288,7 @@ static void panel_rows_of(panel_rows *rows, const luz_pixel_probe *probe,
         const luz_probe_test *test = &probe->tests[k];
         describe_source(a, sizeof a, names, test->draw, false);
         add_text(rows, test->passed ? text_colour : dim_colour,
-                 "%2d %s triangle %lu  %.5f %s %.5f  %s", k + 1, a,
+                 "%2d %s #%lu  %.5f %s %.5f  %s", k + 1, a,
                  (unsigned long)test->triangle, (double)test->depth, test->passed ? "<" : ">=",
                  (double)test->stored, test->passed ? "pass" : "fail");
     }

@@ -14,7 +14,8 @@
  * compact: the six term rows go, and the history lists fewer tests:
  *
  *     PROBE 700,450                        E: mode  Shift+E: close
- *     cube 0  mesh 0  triangle 1  primitive 0
+ *     cube 0  drawn triangle #1 of the frame
+ *     = its mesh's triangle 0 (vertices 0 1 2)
  *     barycentric 0.326 0.434 0.240  w 2.500  depth 0.96096
  *     P ...  N ...  uv ...
  *     texture bricks.png  rho 0.736  lod 0.000  levels 0,0 (0.00)
@@ -27,7 +28,7 @@
  *                                                 (the colour exposed and
  *                                                 tone-mapped, its bytes)
  *     2 depth tests, in draw order
- *      1 cube 0 triangle 1   0.96096 < 1.00000  pass
+ *      1 cube 0 #1  0.96096 < 1.00000  pass
  *      ...
  *
  * Like the light panel (panel.h), it is recorded into the 2D layer and
