@@ -39,6 +39,7 @@
 #include "luz/view.h"
 #include "app/option_text.h"
 #include "app/quiz.h"
+#include "io/platform.h"
 
 #if !defined(LUZ_SOURCE_TEXTURES) || !defined(LUZ_INSTALLED_TEXTURES) || !defined(LUZ_BUILD_ROOT)
 #error "src/meson.build passes LUZ_SOURCE_TEXTURES, LUZ_INSTALLED_TEXTURES and LUZ_BUILD_ROOT"
@@ -1549,13 +1550,10 @@ const char *luz_default_textures_directory(char *buffer, size_t size)
          * tree it was built from, not whatever an older install left behind;
          * an installed program has no source tree to look at. */
         char executable[4096];
-        ssize_t length = readlink("/proc/self/exe", executable, sizeof executable - 1);
         directory = LUZ_INSTALLED_TEXTURES;
-        if (length > 0) {
-            executable[length] = '\0';
-            if (path_is_under(executable, LUZ_BUILD_ROOT))
-                directory = LUZ_SOURCE_TEXTURES;
-        }
+        if (luz_platform_executable_path(executable, sizeof executable) == 0 &&
+            path_is_under(executable, LUZ_BUILD_ROOT))
+            directory = LUZ_SOURCE_TEXTURES;
     }
     if (size > 0)
         snprintf(buffer, size, "%s", directory);

@@ -12,7 +12,7 @@
  * descriptor is checked again with fstat(), so a file swapped for a FIFO
  * in between is caught too. O_NONBLOCK changes nothing for a regular file.
  */
-#define _GNU_SOURCE   /* O_PATH, syscall */
+#define _XOPEN_SOURCE 700   /* realpath (POSIX's XSI part, on every system luz builds on) */
 #include "io/input_file.h"
 
 #include <errno.h>
@@ -23,10 +23,9 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <sys/syscall.h>
 #include <unistd.h>
 
-#include <linux/openat2.h>
+#include "io/platform.h"
 
 const char *luz_input_file_kind(unsigned mode)
 {
@@ -101,53 +100,35 @@ static int outside(const char *path, const char *directory, const char *how, luz
     return LUZ_OUTSIDE_DIRECTORY;
 }
 
-/* openat2(2) with RESOLVE_BENEATH (Linux 5.6): the kernel resolves name
- * within directory_fd, refusing (EXDEV) an absolute name, a `..` above directory_fd and
- * a symbolic link that leads out (or to an absolute path), and with
- * RESOLVE_NO_MAGICLINKS /proc's links. glibc 2.36 has no wrapper. */
-static int open_beneath(int directory_fd, const char *name, int flags)
-{
-#ifdef SYS_openat2
-    struct open_how how = {.flags = (uint64_t)flags,
-                           .resolve = RESOLVE_BENEATH | RESOLVE_NO_MAGICLINKS};
-    return (int)syscall(SYS_openat2, directory_fd, name, &how, sizeof how);
-#else
-    (void)directory_fd;
-    (void)name;
-    (void)flags;
-    errno = ENOSYS;
-    return -1;
-#endif
-}
-
-/* Without openat2 (an older kernel, or a filter that forbids it): open the
- * path as it is, then ask the kernel where the descriptor leads
- * (/proc/self/fd) and check that it lies in the directory's real path.
- * The check is of the file opened, so a link changed in between changes
- * nothing. Returns an O_PATH descriptor, or -1 with the error set. */
+/* Without openat2 (an older kernel, or a filter that forbids it; or
+ * another system: io/platform.h): open the path as it is, then ask the
+ * kernel where the descriptor leads (/proc/self/fd, F_GETPATH) and check
+ * that it lies in the directory's real path. The check is of the file
+ * opened, so a link changed in between changes nothing. Returns a
+ * descriptor opened with luz_platform_path_flags, or -1 with the error
+ * set. */
 static int open_checked_by_proc(const char *directory, const char *path, int *status,
                                 luz_error *error)
 {
-    char real_directory[PATH_MAX], link[64], target[PATH_MAX + 1];
+    char real_directory[PATH_MAX], target[PATH_MAX + 1];
     if (realpath(directory, real_directory) == NULL) {
         *status = open_failed(directory, "a directory", errno, error);
         return -1;
     }
-    int fd = open(path, O_PATH | O_CLOEXEC);
+    int fd = open(path, luz_platform_path_flags() | O_CLOEXEC);
     if (fd < 0) {
         *status = open_failed(path, "an image file", errno, error);
         return -1;
     }
-    snprintf(link, sizeof link, "/proc/self/fd/%d", fd);
-    const ssize_t length = readlink(link, target, sizeof target - 1);
-    if (length < 0 || (size_t)length >= sizeof target - 1) {
+    if (luz_platform_descriptor_path(fd, target, sizeof target) != 0) {
+        const int reason = errno;
         close(fd);
-        luz_error_set(error, "%s: cannot tell whether it lies in %s (no openat2, and %s "
-                             "cannot be read)", path, directory, link);
+        luz_error_set(error, "%s: cannot tell whether it lies in %s (the system resolves no "
+                             "name within a folder, and cannot say where an open file is: %s)",
+                      path, directory, strerror(reason));
         *status = LUZ_OUTSIDE_DIRECTORY;
         return -1;
     }
-    target[length] = '\0';
     const size_t prefix = strlen(real_directory);
     const bool root = strcmp(real_directory, "/") == 0;
     if (!root && (strncmp(target, real_directory, prefix) != 0 || target[prefix] != '/')) {
@@ -173,12 +154,13 @@ int luz_input_open_beneath(const char *directory, const char *name, const char *
         return outside(name, directory, "named by an absolute path", error);
 
     /* The file without opening it for reading (O_PATH: a device or a FIFO
-     * is not opened), resolved within the directory. */
+     * is not opened; io/platform.h), resolved within the directory. */
     int status = 0;
-    int path_fd = -1, directory_fd = open(directory, O_PATH | O_DIRECTORY | O_CLOEXEC);
+    const int path_flags = luz_platform_path_flags() | O_CLOEXEC;
+    int path_fd = -1, directory_fd = open(directory, path_flags | O_DIRECTORY);
     if (directory_fd < 0)
         return open_failed(directory, "a directory", errno, error);
-    path_fd = open_beneath(directory_fd, name, O_PATH | O_CLOEXEC);
+    path_fd = luz_platform_open_beneath(directory_fd, name, path_flags);
     const bool kernel_checks = path_fd >= 0 || (errno != ENOSYS && errno != EPERM);
     if (path_fd < 0 && errno == EXDEV) {
         close(directory_fd);
@@ -207,13 +189,10 @@ int luz_input_open_beneath(const char *directory, const char *name, const char *
     int fd = -1;
     if (status == 0) {
         const int flags = O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY;
-        if (kernel_checks) {
-            fd = open_beneath(directory_fd, name, flags);
-        } else {
-            char link[64];
-            snprintf(link, sizeof link, "/proc/self/fd/%d", path_fd);
-            fd = open(link, flags);
-        }
+        if (kernel_checks)
+            fd = luz_platform_open_beneath(directory_fd, name, flags);
+        else
+            fd = luz_platform_reopen(path_fd, flags);
         struct stat opened;
         if (fd < 0)
             status = open_failed(path, what, errno, error);

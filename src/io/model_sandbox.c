@@ -11,7 +11,7 @@
  * The child is made with fork() and ends with _exit(): it runs no atexit
  * handler and flushes none of the parent's stdio buffers (luz-render may
  * hold half a PNG for standard output). It dies with its parent
- * (PR_SET_PDEATHSIG), limits itself (RLIMIT_CPU, RLIMIT_AS, no core
+ * (PR_SET_PDEATHSIG on Linux: io/platform.h), limits itself (RLIMIT_CPU, RLIMIT_AS, no core
  * files), writes to the pipe and exits. The parent
  * reads with poll() against a wall-clock deadline (a child that blocks or
  * sleeps uses no CPU time), kills the child when it passes, always reaps
@@ -19,7 +19,10 @@
  * pipe is made O_CLOEXEC; the child ignores SIGPIPE, so a parent that
  * stopped reading makes its write fail (EPIPE) and it exits.
  */
-#define _GNU_SOURCE   /* pipe2 */
+/* sigaltstack and SA_ONSTACK (POSIX's XSI part), and wait4 (4.3BSD's,
+ * which POSIX does not name but Linux, macOS and the BSDs have): glibc
+ * declares them with _DEFAULT_SOURCE, the others by default. */
+#define _DEFAULT_SOURCE
 #include "io/model_sandbox.h"
 
 #include <errno.h>
@@ -29,7 +32,6 @@
 #include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/time.h>
 #include <sys/wait.h>
@@ -38,6 +40,7 @@
 
 #include "io/input_file.h"
 #include "io/model_confine.h"
+#include "io/platform.h"
 
 /* AddressSanitizer and ThreadSanitizer reserve terabytes of address space
  * for their shadow memory: under them, RLIMIT_AS would stop everything. */
@@ -96,22 +99,6 @@ static void lower_limit(int resource, rlim_t soft, rlim_t hard)
     setrlimit(resource, &(struct rlimit){soft, hard});
 }
 
-/* The address space this process takes now, in bytes (the first field of
- * /proc/self/statm, in pages); 0 if it cannot be told. */
-static uint64_t address_space_bytes(void)
-{
-    int descriptor = open("/proc/self/statm", O_RDONLY | O_CLOEXEC);
-    if (descriptor < 0) return 0;
-    char text[128];
-    ssize_t length = read(descriptor, text, sizeof text - 1);
-    close(descriptor);
-    if (length <= 0) return 0;
-    text[length] = '\0';
-    unsigned long long pages = strtoull(text, NULL, 10);
-    long page_size = sysconf(_SC_PAGESIZE);
-    return page_size > 0 ? pages * (uint64_t)page_size : 0;
-}
-
 /* ---- a crash at the memory limit -------------------------------------------------------------- */
 
 /* assimp does not check every allocation: at the address-space limit it
@@ -128,39 +115,17 @@ static uint64_t address_space_bytes(void)
  * A signal handler reaches only what is global: this is set once, in the
  * child, before the handler is installed, and never in luz's process. */
 static struct {
-    int status_descriptor;   /* /proc/self/status */
+    int status_descriptor;   /* luz_platform_peak_address_space's */
     uint64_t limit_bytes;    /* RLIMIT_AS */
 } crash_watch = {-1, 0};
 
 #define CHILD_EXIT_MEMORY 86
 
-/* VmPeak of /proc/self/status in bytes, 0 if it cannot be read; only
- * async-signal-safe calls. */
-static uint64_t peak_address_space(int descriptor)
-{
-    char text[4096];
-    ssize_t length = pread(descriptor, text, sizeof text - 1, 0);
-    if (length <= 0) return 0;
-    text[length] = '\0';
-    for (const char *line = text; line != NULL && *line != '\0';) {
-        if (strncmp(line, "VmPeak:", 7) == 0) {
-            uint64_t kib = 0;
-            for (const char *c = line + 7; *c == ' ' || *c == '\t' || (*c >= '0' && *c <= '9');
-                 c++)
-                if (*c >= '0' && *c <= '9') kib = kib * 10 + (uint64_t)(*c - '0');
-            return kib * 1024;
-        }
-        line = strchr(line, '\n');
-        if (line != NULL) line++;
-    }
-    return 0;
-}
-
 static void on_crash(int number)
 {
     /* the interrupted code's errno: a handler runs in its thread */
     const bool out_of_memory = errno == ENOMEM;
-    const uint64_t peak = peak_address_space(crash_watch.status_descriptor);
+    const uint64_t peak = luz_platform_peak_address_space(crash_watch.status_descriptor);
     if (out_of_memory ||
         (peak > 0 && peak >= crash_watch.limit_bytes - crash_watch.limit_bytes / 8))
         _exit(CHILD_EXIT_MEMORY);
@@ -172,9 +137,9 @@ static void on_crash(int number)
 static void watch_crashes(uint64_t limit_bytes)
 {
     static unsigned char stack[64 << 10];   /* the stack may be what ran out */
-    crash_watch.status_descriptor = open("/proc/self/status", O_RDONLY | O_CLOEXEC);
+    /* where the peak cannot be read (-1), errno alone tells */
+    crash_watch.status_descriptor = luz_platform_peak_address_space_open();
     crash_watch.limit_bytes = limit_bytes;
-    if (crash_watch.status_descriptor < 0) return;
     if (sigaltstack(&(stack_t){.ss_sp = stack, .ss_size = sizeof stack}, NULL) != 0) return;
     struct sigaction action = {.sa_handler = on_crash, .sa_flags = SA_ONSTACK | SA_RESETHAND};
     sigemptyset(&action.sa_mask);
@@ -196,7 +161,8 @@ static _Noreturn void run_child(const char *path, int pipe_end, pid_t parent,
      * kernel sends it when the thread that forked ends: luz forks from its
      * main thread.) A parent that ended before the prctl took effect is
      * seen in getppid(): the child is then someone else's, and leaves. */
-    if (prctl(PR_SET_PDEATHSIG, SIGKILL) != 0 || getppid() != parent) _exit(1);
+    if ((luz_platform_die_with_parent() != 0 && errno != ENOSYS) || getppid() != parent)
+        _exit(1);
     signal(SIGPIPE, SIG_IGN);
     /* A crash ends the child with its signal, which the parent reports,
      * whatever handlers the parent had (a test framework's, a sanitizer's,
@@ -220,7 +186,7 @@ static _Noreturn void run_child(const char *path, int pipe_end, pid_t parent,
     if (limits->memory_bytes > 0) {
         /* on top of what the child shares with luz's process (the cube
          * textures, models read before): the limit is assimp's alone */
-        const rlim_t memory = (rlim_t)(address_space_bytes() + limits->memory_bytes);
+        const rlim_t memory = (rlim_t)(luz_platform_address_space() + limits->memory_bytes);
         lower_limit(RLIMIT_AS, memory, memory);
         struct rlimit set;
         if (getrlimit(RLIMIT_AS, &set) == 0 && set.rlim_cur != RLIM_INFINITY)
@@ -310,7 +276,7 @@ int luz_model_run_isolated(const char *path, const luz_model_limits *limits,
     *description = NULL;
     *size = 0;
     int ends[2];
-    if (pipe2(ends, O_CLOEXEC) != 0) {
+    if (luz_platform_pipe(ends) != 0) {
         luz_error_set(error, "%s: cannot make a pipe to read it through (%s)", path,
                       strerror(errno));
         return LUZ_MACHINE_FAILED;
