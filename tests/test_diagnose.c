@@ -478,6 +478,96 @@ static void test_moved_camera_is_a_silhouette(void **state)
     run_free(&r);
 }
 
+/* ---- luz's own --bug frames ----------------------------------------------------------------- */
+
+/* Renders a --bug frame of a setting with luz-render, then diagnoses it
+ * with the same setting. */
+static run diagnose_bug(const char *bug, const char *const *setting)
+{
+    const char *render[32] = {"--size", "192x108", "--bug", bug, "-o", "bug.png"};
+    int count = 6;
+    for (int i = 0; setting != NULL && setting[i] != NULL; i++) render[count++] = setting[i];
+    render[count] = NULL;
+    run made = run_luz_render(render);
+    assert_int_equal(made.status, 0);
+    run_free(&made);
+    const char *arguments[32] = {"--diagnose", "bug.png"};
+    count = 2;
+    for (int i = 0; setting != NULL && setting[i] != NULL; i++) arguments[count++] = setting[i];
+    arguments[count] = NULL;
+    return run_luz_render(arguments);
+}
+
+/* diffuse-reversed: L points away from the headlight, so no face in view
+ * gets diffuse light: weight 0, the other terms 1. */
+static void test_bug_diffuse_reversed(void **state)
+{
+    (void)state;
+    run r = diagnose_bug("diffuse-reversed", NULL);
+    assert_int_equal(r.status, 1);
+    assert_near(weight_of(r.out, "diffuse"), 0.0, 0.02);
+    assert_true(line_has(r.out, "diffuse: ", "missing"));
+    assert_true(line_has(r.out, "verdict: ", "wrong: diffuse\n"));
+    run_free(&r);
+}
+
+/* spot-reach-twice with a short reach (3): f_win hardly falls off, the
+ * spot is far brighter than luz's: the spot is named. */
+static void test_bug_spot_reach_twice(void **state)
+{
+    (void)state;
+    run r = diagnose_bug("spot-reach-twice", (const char *const[]){"--spot-reach", "3", NULL});
+    assert_int_equal(r.status, 1);
+    assert_true(weight_of(r.out, "spot") > 1.5);
+    assert_true(line_has(r.out, "spot: ", "wrong"));
+    assert_true(line_has(r.out, "verdict: ", "spot"));
+    run_free(&r);
+}
+
+/* no-backface-culling with the camera inside cube 0: luz culls the
+ * cube's faces (all turned away) and sees the background; the bug draws
+ * them over the whole frame. */
+static void test_bug_no_backface_culling(void **state)
+{
+    (void)state;
+    run r = diagnose_bug("no-backface-culling",
+                         (const char *const[]){"--camera-pos", "0,0,0", NULL});
+    assert_int_equal(r.status, 1);
+    long missing, extra, inside, along;
+    assert_int_equal(sscanf(line_of(r.out, "silhouette: "),
+                            "silhouette: %ld pixels background where luz has an object, %ld an "
+                            "object where luz has background (%ld inside, %ld along",
+                            &missing, &extra, &inside, &along),
+                     4);
+    assert_true(extra > 192 * 108 / 2 && inside > 192 * 108 / 2);
+    assert_true(line_has(r.out, "verdict: ", "wrong: the silhouette"));
+    run_free(&r);
+}
+
+/* fill-rule-bottom-right on one face seen head-on, its edges through
+ * pixel centres: a field of view of 2 atan(1/2) with the face 2 units
+ * away puts its edges at NDC y = +-0.5 and x = +-0.5 / aspect, pixels
+ * y = 27.5 and 82.5, x = 71.5 and 126.5 at 198x110. The bug gives the
+ * pixels on them to the other side: along the outline only. */
+static void test_bug_fill_rule(void **state)
+{
+    (void)state;
+    const char *const setting[] = {"--cubes", "1", "--camera-pos", "0,0,2.5", "--fov",
+                                   "53.13010235415598", "--size", "198x110", NULL};
+    run r = diagnose_bug("fill-rule-bottom-right", setting);
+    assert_int_equal(r.status, 1);
+    long missing, extra, inside, along;
+    assert_int_equal(sscanf(line_of(r.out, "silhouette: "),
+                            "silhouette: %ld pixels background where luz has an object, %ld an "
+                            "object where luz has background (%ld inside, %ld along",
+                            &missing, &extra, &inside, &along),
+                     4);
+    assert_int_equal(inside, 0);
+    assert_true(missing > 50 && extra > 50);
+    assert_true(line_has(r.out, "silhouette: ", "along the outlines only: the fill rule"));
+    run_free(&r);
+}
+
 /* ---- frames that cannot be compared ------------------------------------------------------ */
 
 /* Exit 2 and one line naming the file (or flag) and what was expected;
@@ -589,6 +679,10 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_moved_camera_is_a_silhouette, make_work,
                                         remove_work),
         cmocka_unit_test_setup_teardown(test_bad_frames_refused, make_work, remove_work),
+        cmocka_unit_test_setup_teardown(test_bug_diffuse_reversed, make_work, remove_work),
+        cmocka_unit_test_setup_teardown(test_bug_spot_reach_twice, make_work, remove_work),
+        cmocka_unit_test_setup_teardown(test_bug_no_backface_culling, make_work, remove_work),
+        cmocka_unit_test_setup_teardown(test_bug_fill_rule, make_work, remove_work),
         cmocka_unit_test_setup_teardown(test_page_colour_generator, make_work, remove_work),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
