@@ -124,7 +124,7 @@ static void test_bars_are_the_terms(void **state)
     const luz_scene scene = luz_scene_defaults();
     const luz_probe_names names = {.scene = &scene};
     const luz_probe_panel_layout layout =
-        luz_probe_panel_layout_for(1280, 720, probe, &names, false);
+        luz_probe_panel_layout_for(960, 540, probe, &names, false);
     assert_int_equal(layout.scale, 1);
     assert_int_equal(layout.bar_width, 120);
     assert_true(layout.bar_scale > 1.6999f && layout.bar_scale < 1.7001f);
@@ -142,7 +142,7 @@ static void test_bars_are_the_terms(void **state)
     assert_int_equal(pen - layout.light_bar[0].x, 119);
 
     picture p;
-    picture_begin(&p, 1280, 720);
+    picture_begin(&p, 960, 540);
     luz_probe_panel_draw(&p.layer, probe, &names, false);
     picture_fill(&p);
     for (int term = 0; term < LUZ_TERM_COUNT; term++) {
@@ -163,8 +163,8 @@ static void test_bars_are_the_terms(void **state)
     /* The box in the bottom-left corner, inside the frame, the history
      * listed whole. */
     assert_true(layout.box.x >= 0 && layout.box.y >= 0);
-    assert_int_equal(layout.box.y + layout.box.height, 720 - 6);
-    assert_true(layout.box.x + layout.box.width <= 1280 / 2);
+    assert_int_equal(layout.box.y + layout.box.height, 540 - 6);
+    assert_true(layout.box.x + layout.box.width <= 960 / 2);
     assert_int_equal(layout.history_rows, 3);
     picture_end(&p);
     free(probe);
@@ -205,20 +205,20 @@ static void test_the_panel_leaves_the_pixel_in_sight(void **state)
     luz_pixel_probe *probe = hand_made_probe();
     const luz_scene scene = luz_scene_defaults();
     const luz_probe_names names = {.scene = &scene};
-    probe->x = 1200;
+    probe->x = 900;
     probe->y = 100;
-    luz_probe_panel_layout layout = luz_probe_panel_layout_for(1280, 720, probe, &names, false);
+    luz_probe_panel_layout layout = luz_probe_panel_layout_for(960, 540, probe, &names, false);
     assert_int_equal(layout.box.x, 6);
     probe->x = 20;
-    probe->y = 700;
-    layout = luz_probe_panel_layout_for(1280, 720, probe, &names, false);
-    assert_int_equal(layout.box.x + layout.box.width, 1280 - 6);
+    probe->y = 520;
+    layout = luz_probe_panel_layout_for(960, 540, probe, &names, false);
+    assert_int_equal(layout.box.x + layout.box.width, 960 - 6);
     /* 8 pixels of the marker and its outline: 9 pixels to the box */
     probe->x = 6 + layout.box.width + 9;
-    layout = luz_probe_panel_layout_for(1280, 720, probe, &names, false);
+    layout = luz_probe_panel_layout_for(960, 540, probe, &names, false);
     assert_int_equal(layout.box.x, 6);
     probe->x--;
-    layout = luz_probe_panel_layout_for(1280, 720, probe, &names, false);
+    layout = luz_probe_panel_layout_for(960, 540, probe, &names, false);
     assert_true(layout.box.x > 6);
     /* too narrow for either bottom corner to leave it: the top-right one */
     probe->x = 200;
@@ -233,6 +233,40 @@ static void test_the_panel_leaves_the_pixel_in_sight(void **state)
     layout = luz_probe_panel_layout_for(400, 300, probe, &names, false);
     assert_int_equal(layout.box.x, 6);
     assert_int_equal(layout.box.y + layout.box.height, 300 - 6);
+    free(probe);
+}
+
+/* Twice the text size where the whole story fits so (issue 31: the
+ * 1280x720 window had the 6-pixel font): at 1280x720 scale 2, every row
+ * listed, the box inside the frame and within half its area, margins and
+ * bars doubled; at 960x540, where the box would be taller than half the
+ * frame, and for a pixel that the big box would hide, scale 1. */
+static void test_readable_text_where_it_fits(void **state)
+{
+    (void)state;
+    luz_pixel_probe *probe = hand_made_probe();
+    const luz_scene scene = luz_scene_defaults();
+    const luz_probe_names names = {.scene = &scene};
+    probe->x = 1200;   /* top right: the big box leaves it in sight */
+    probe->y = 100;
+    luz_probe_panel_layout layout = luz_probe_panel_layout_for(1280, 720, probe, &names, false);
+    assert_int_equal(layout.scale, 2);
+    assert_int_equal(layout.bar_width, 240);
+    assert_int_equal(layout.history_rows, 3);
+    assert_int_equal(layout.box.x, 12);
+    assert_int_equal(layout.box.y + layout.box.height, 720 - 12);
+    assert_true(layout.box.y >= 0 && layout.box.x + layout.box.width <= 1280);
+    assert_true((long long)layout.box.width * layout.box.height <= 1280 * 720 / 2);
+    layout = luz_probe_panel_layout_for(960, 540, probe, &names, false);
+    assert_int_equal(layout.scale, 1);
+    /* the centre of 1280x720, which the big box hides in every corner:
+     * the small text, whose box leaves it in sight */
+    probe->x = 640;
+    probe->y = 360;
+    layout = luz_probe_panel_layout_for(1280, 720, probe, &names, false);
+    assert_int_equal(layout.scale, 1);
+    assert_true(layout.box.x + layout.box.width < 640 - 9 || layout.box.x > 640 + 9 ||
+                layout.box.y + layout.box.height < 360 - 9 || layout.box.y > 360 + 9);
     free(probe);
 }
 
@@ -341,6 +375,7 @@ int main(void)
         cmocka_unit_test(test_a_long_history_fits_a_small_window),
         cmocka_unit_test(test_a_small_window_gets_a_compact_panel),
         cmocka_unit_test(test_the_panel_leaves_the_pixel_in_sight),
+        cmocka_unit_test(test_readable_text_where_it_fits),
         cmocka_unit_test(test_background_and_a_view),
         cmocka_unit_test(test_marker_leaves_the_pixel),
     };

@@ -351,11 +351,10 @@ static int widest_row(const panel_rows *rows, int s)
 /* compact: panel_rows_of's, and the history cut to keep the box within
  * half the frame's area. */
 static luz_probe_panel_layout layout_rows(int width, int height, const luz_pixel_probe *probe,
-                                          panel_rows *rows, bool compact)
+                                          panel_rows *rows, bool compact, int s)
 {
     luz_probe_panel_layout layout;
     memset(&layout, 0, sizeof layout);
-    const int s = (width >= 2200 && height >= 1200) ? 2 : 1;
     layout.scale = s;
     layout.row_height = ROW * s;
     layout.compact = compact;
@@ -462,12 +461,26 @@ static luz_probe_panel_layout rows_and_layout(panel_rows *rows, int width, int h
                                               const luz_pixel_probe *probe,
                                               const luz_probe_names *names, bool frozen)
 {
+    /* The text at twice the size where the whole story fits so (issue 31:
+     * at 1280x720 the pixel font's 6 pixels were hard to read): every row
+     * listed, the box within the frame and within half its area, and in
+     * a corner that leaves the pixel and its marker in sight. */
+    const long long half = (long long)width * height / 2;
     panel_rows_of(rows, probe, names, frozen, false);
-    luz_probe_panel_layout layout = layout_rows(width, height, probe, rows, false);
-    if ((long long)layout.box.width * layout.box.height <= (long long)width * height / 2)
+    const int all_rows = rows->count;
+    luz_probe_panel_layout layout = layout_rows(width, height, probe, rows, false, 2);
+    const luz_rect around = {probe->x - MARKER_REACH, probe->y - MARKER_REACH,
+                             2 * MARKER_REACH + 1, 2 * MARKER_REACH + 1};
+    if (rows->count == all_rows && (long long)layout.box.width * layout.box.height <= half &&
+        layout.box.x >= 0 && layout.box.y >= 0 && layout.box.x + layout.box.width <= width &&
+        !rects_overlap(layout.box, around))
+        return layout;
+    panel_rows_of(rows, probe, names, frozen, false);
+    layout = layout_rows(width, height, probe, rows, false, 1);
+    if ((long long)layout.box.width * layout.box.height <= half)
         return layout;
     panel_rows_of(rows, probe, names, frozen, true);
-    return layout_rows(width, height, probe, rows, true);
+    return layout_rows(width, height, probe, rows, true, 1);
 }
 
 luz_probe_panel_layout luz_probe_panel_layout_for(int width, int height,
