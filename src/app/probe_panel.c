@@ -187,6 +187,11 @@ static void panel_rows_of(panel_rows *rows, const luz_pixel_probe *probe,
     char a[96], b[96], c[96];
     add_text(rows, accent_colour, "PROBE %d,%d%s", probe->x, probe->y,
              frozen ? "  (paused: T follows again)" : "");
+    /* The bug, as luz-render --probe says it: a quiz's is not told. */
+    if (names != NULL && names->scene != NULL && names->scene->bug_hidden)
+        add_text(rows, accent_colour, "bug: hidden (quiz)");
+    else if (probe->bug != LUZ_BUG_NONE)
+        add_text(rows, accent_colour, "bug: %s", luz_bug_name(probe->bug));
     if (!probe->filled) {
         add_text(rows, dim_colour, "outside the image");
         rows->first_history = rows->count;
