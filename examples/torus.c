@@ -92,7 +92,7 @@ int main(int argc, char **argv)
     luz_draw draw = {
         .mesh = torus,
         .model = luz_mat4_rotate(luz_mat4_identity(), luz_radians(20.0f), (luz_vec3){1, 0, 0}),
-        .material = {.shading = LUZ_SHADING_LIT, .colour = {0.9f, 0.5f, 0.2f}},
+        .material = {.colour = {0.9f, 0.5f, 0.2f}, .has_colour = true},
     };
     int status = luz_frame_add_draw(&frame, &draw, &error) == 0 &&
                  luz_renderer_draw(renderer, &frame, framebuffer, NULL, &error) == 0

@@ -703,6 +703,7 @@ static void pixel_sized_triangles(void **state)
         assert_non_null(halves[half]);
         luz_draw draw = {.mesh = halves[half], .model = luz_mat4_identity()};
         draw.material.colour = half ? (luz_vec3){0.9f, 0.6f, 0.3f} : (luz_vec3){0.4f, 0.8f, 1.0f};
+        draw.material.has_colour = true;
         draw.material.texture = lab_textures()->textures[half];
         assert_int_equal(luz_frame_add_draw(&frame, &draw, &error), 0);
     }

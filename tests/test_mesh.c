@@ -225,6 +225,7 @@ static void test_index_kinds_draw_the_same_image(void **state)
         luz_frame frame = camera_frame();
         luz_draw draw = {.mesh = mesh, .model = luz_mat4_identity()};
         draw.material.colour = (luz_vec3){0.5f, 1.0f, 0.25f};
+        draw.material.has_colour = true;
         assert_int_equal(luz_frame_add_draw(&frame, &draw, &error), 0);
         images[k] = draw_image(&frame);
         luz_frame_free(&frame);
@@ -308,7 +309,7 @@ static void test_each_draw_has_its_own_material(void **state)
     const luz_material bilinear = {.colour = {1, 1, 1}, .texture = texture,
                                    .filter = LUZ_FILTER_BILINEAR};
     const luz_material unlit = {.shading = LUZ_SHADING_UNLIT, .colour = {0.2f, 0.6f, 1.0f},
-                                .texture = texture};
+                                .has_colour = true, .texture = texture};
 
     luz_frame frame = camera_frame();
     frame.lights.ambient.strength = 0.5f;
@@ -417,6 +418,204 @@ static void test_bad_frames_are_refused_with_a_reason(void **state)
     luz_renderer_destroy(renderer);
 }
 
+
+/* ---- zero means the default (luz/frame.h) ------------------------------------------------- */
+
+/* A quad over the middle of the view, at depth 2, facing the camera. */
+static luz_mesh *middle_quad(void)
+{
+    luz_vertex vertices[4];
+    quad_vertices(vertices, -0.5f, 0.5f, -0.5f, 0.5f);
+    const uint32_t indices[6] = {0, 1, 2, 0, 2, 3};
+    luz_error error = {{0}};
+    luz_mesh *mesh = luz_mesh_create(&(luz_mesh_desc){.vertices = vertices, .vertex_count = 4,
+                                                      .indices = indices, .index_count = 6},
+                                     &error);
+    assert_non_null(mesh);
+    return mesh;
+}
+
+/* A zero material is lit, white and untextured: under ambient light alone
+ * of strength 0.5, SCENE.md's colour is 0.5 x C x T = 0.5 x 1 x 1, byte
+ * round(127.5) = 128 (it was 0: black). An unlit zero material is white,
+ * 255. A colour is used once has_colour says so, black included; without
+ * it the colour field is ignored. */
+static void test_zero_material_is_lit_and_white(void **state)
+{
+    (void)state;
+    _Static_assert(LUZ_FILTER_TRILINEAR == 0 && LUZ_SHADING_LIT == 0,
+                   "a zero material samples trilinearly and is lit");
+    luz_mesh *quad = middle_quad();
+    static const struct {
+        luz_material material;
+        int byte[3];
+    } cases[] = {
+        {{0}, {128, 128, 128}},
+        {{.shading = LUZ_SHADING_UNLIT}, {255, 255, 255}},
+        {{.colour = {0.0f, 0.0f, 0.0f}, .has_colour = true}, {0, 0, 0}},
+        /* 0.5 x (1, 0.5, 0.2): 127.5, 63.75, 25.5 */
+        {{.colour = {1.0f, 0.5f, 0.2f}, .has_colour = true}, {128, 64, 26}},
+        {{.colour = {1.0f, 0.5f, 0.2f}}, {128, 128, 128}},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        luz_frame frame = camera_frame();
+        frame.lights.ambient.strength = 0.5f;
+        frame.draws = &(luz_draw){.mesh = quad, .model = luz_mat4_identity(),
+                                  .material = cases[c].material};
+        frame.draw_count = 1;
+        luz_framebuffer *framebuffer = draw_image(&frame);
+        assert_pixel(framebuffer, SIZE / 2, SIZE / 2, cases[c].byte[0], cases[c].byte[1],
+                     cases[c].byte[2]);
+        assert_pixel(framebuffer, 0, 0, 0, 0, 0);   /* the clear colour, outside the quad */
+        luz_framebuffer_destroy(framebuffer);
+    }
+    luz_mesh_destroy(quad);
+}
+
+/* A zero spot_reach is SCENE.md's 10, not a division by 0 (which left the
+ * spot dark): the spot alone, white at strength 1, on the quad at depth 2,
+ * gives reach 0 and reach 10 the same image; the middle pixel worked from
+ * SCENE.md's equations in double: the pixel centre (16.5, 16.5) of 32x32
+ * is NDC (1/32, -1/32), P = (1/16, -1/16, -2), inside the inner cone (c =
+ * 0.99902 > cos 12.5 = 0.97630, f_dir = 1), dn = |E - P| / 10 = 0.200195,
+ * f_dist = (1 - dn^4)^2 / (dn^2 + 1) = 0.958380: byte 244. */
+static void test_zero_spot_reach_is_scene_default(void **state)
+{
+    (void)state;
+    luz_mesh *quad = middle_quad();
+    luz_framebuffer *images[2];
+    const float reaches[2] = {0.0f, 10.0f};
+    for (int k = 0; k < 2; k++) {
+        luz_frame frame = camera_frame();
+        frame.lights.ambient.strength = 0.0f;
+        frame.lights.spot = (luz_light){{1.0f, 1.0f, 1.0f}, 1.0f};
+        frame.lights.spot_direction = (luz_vec3){0.0f, 0.0f, -1.0f};
+        frame.lights.spot_inner_degrees = 12.5f;
+        frame.lights.spot_outer_degrees = 17.5f;
+        frame.lights.spot_reach = reaches[k];
+        frame.draws = &(luz_draw){.mesh = quad, .model = luz_mat4_identity()};
+        frame.draw_count = 1;
+        images[k] = draw_image(&frame);
+    }
+    const double x = 1.0 / 16.0, y = -1.0 / 16.0, z = -2.0;
+    const double distance = sqrt(x * x + y * y + z * z);
+    assert_true(-z / distance > cos(12.5 * LUZ_PI / 180.0));
+    const double dn = distance / 10.0;
+    const double window = 1.0 - dn * dn * dn * dn;
+    const double spot = window * window / (dn * dn + 1.0);
+    const int byte = (int)lround(spot * 255.0);
+    assert_int_equal(byte, 244);
+    assert_pixel(images[0], SIZE / 2, SIZE / 2, byte, byte, byte);
+    assert_memory_equal(images[0]->colour, images[1]->colour, (size_t)SIZE * SIZE * 4);
+    luz_framebuffer_destroy(images[0]);
+    luz_framebuffer_destroy(images[1]);
+    luz_mesh_destroy(quad);
+}
+
+/* Lights luz/frame.h forbids are refused by luz_renderer_draw, each with
+ * a message naming the field, and the framebuffer is left as it was. */
+static void test_forbidden_lights_are_refused(void **state)
+{
+    (void)state;
+    luz_mesh *quad = middle_quad();
+    luz_error error = {{0}};
+    luz_renderer *renderer = luz_renderer_create(&(luz_renderer_desc){.thread_count = 1}, &error);
+    luz_framebuffer *framebuffer = luz_framebuffer_create(SIZE, SIZE, &error);
+    assert_non_null(renderer);
+    assert_non_null(framebuffer);
+    memset(framebuffer->colour, 77, (size_t)SIZE * SIZE * 4);
+    enum { REACH, SHININESS, INNER, OUTER, AMBIENT, SPOT };
+    static const struct {
+        int field;
+        float value;
+        const char *words;
+    } cases[] = {
+        {REACH, -1.0f, "spot_reach -1: expected a finite number above 0"},
+        {REACH, NAN, "spot_reach nan"},
+        {REACH, INFINITY, "spot_reach inf"},
+        {SHININESS, -0.5f, "shininess -0.5: expected a finite number >= 0"},
+        {SHININESS, INFINITY, "shininess inf"},
+        {INNER, 20.0f, "spot cone 20 to 17.5 degrees: expected 0 <= inner <= outer <= 89"},
+        {INNER, -1.0f, "spot cone -1 to 17.5"},
+        {OUTER, 90.0f, "spot cone 12.5 to 90"},
+        {OUTER, NAN, "spot cone 12.5 to nan"},
+        {AMBIENT, 1.5f, "the ambient light's strength 1.5: expected a number in [0, 1]"},
+        {AMBIENT, -0.25f, "the ambient light's strength -0.25"},
+        {SPOT, NAN, "the spot light's strength nan"},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        luz_frame frame = camera_frame();
+        frame.lights.spot_inner_degrees = 12.5f;
+        frame.lights.spot_outer_degrees = 17.5f;
+        switch (cases[c].field) {
+        case REACH: frame.lights.spot_reach = cases[c].value; break;
+        case SHININESS: frame.lights.shininess = cases[c].value; break;
+        case INNER: frame.lights.spot_inner_degrees = cases[c].value; break;
+        case OUTER: frame.lights.spot_outer_degrees = cases[c].value; break;
+        case AMBIENT: frame.lights.ambient.strength = cases[c].value; break;
+        default: frame.lights.spot.strength = cases[c].value; break;
+        }
+        frame.draws = &(luz_draw){.mesh = quad, .model = luz_mat4_identity()};
+        frame.draw_count = 1;
+        assert_error_says(luz_renderer_draw(renderer, &frame, framebuffer, NULL, &error), &error,
+                          cases[c].words);
+        for (size_t i = 0; i < (size_t)SIZE * SIZE * 4; i++)
+            if (framebuffer->colour[i] != 77) fail_msg("case %zu drew byte %zu", c, i);
+    }
+    /* the edges themselves are allowed: reach 0 (the default), shininess
+     * 0, a cone of 0 to 0 and of 89 to 89, strengths 0 and 1 */
+    const float cones[2] = {0.0f, 89.0f};
+    for (int k = 0; k < 2; k++) {
+        luz_frame frame = camera_frame();
+        frame.lights.spot_inner_degrees = frame.lights.spot_outer_degrees = cones[k];
+        frame.lights.spot_reach = 0.0f;
+        frame.lights.spot.strength = 1.0f;
+        frame.draws = &(luz_draw){.mesh = quad, .model = luz_mat4_identity()};
+        frame.draw_count = 1;
+        assert_int_equal(luz_renderer_draw(renderer, &frame, framebuffer, NULL, &error), 0);
+    }
+    luz_framebuffer_destroy(framebuffer);
+    luz_renderer_destroy(renderer);
+    luz_mesh_destroy(quad);
+}
+
+/* Who owns the draws (luz/frame.h): an array of the caller's, on the stack
+ * here, is never freed by luz_frame_free (free() of it aborted, and
+ * AddressSanitizer names it), and luz_frame_add_draw copies it into an
+ * array of the frame's own, leaving the caller's as it was; that one
+ * luz_frame_free frees (LeakSanitizer would see it left). */
+static void test_frame_owns_only_its_own_draws(void **state)
+{
+    (void)state;
+    luz_mesh *quad = middle_quad();
+    luz_error error = {{0}};
+    luz_draw mine[2] = {{.mesh = quad, .model = luz_mat4_identity()},
+                        {.mesh = quad, .model = luz_mat4_translate(luz_mat4_identity(),
+                                                                   (luz_vec3){1, 0, 0})}};
+    luz_frame frame = camera_frame();
+    frame.draws = mine;
+    frame.draw_count = 2;
+    luz_frame_free(&frame);
+    assert_null(frame.draws);
+    assert_int_equal(frame.draw_count, 0);
+    assert_ptr_equal(mine[0].mesh, quad);   /* the caller's array, untouched */
+
+    frame.draws = mine;
+    frame.draw_count = 2;
+    const luz_draw third = {.mesh = quad, .model = luz_mat4_identity(),
+                            .material = {.shading = LUZ_SHADING_UNLIT}};
+    assert_int_equal(luz_frame_add_draw(&frame, &third, &error), 0);
+    assert_true(frame.draws != mine);
+    assert_true(frame.draw_capacity >= 3);
+    assert_int_equal(frame.draw_count, 3);
+    assert_memory_equal(frame.draws, mine, sizeof mine);
+    assert_int_equal(frame.draws[2].material.shading, LUZ_SHADING_UNLIT);
+    assert_int_equal(mine[1].material.shading, LUZ_SHADING_LIT);
+    luz_frame_free(&frame);
+    assert_null(frame.draws);
+    assert_int_equal(frame.draw_capacity, 0);
+    luz_mesh_destroy(quad);
+}
 
 /* ---- big meshes: batches --------------------------------------------------------------- */
 
@@ -669,6 +868,10 @@ int main(void)
         cmocka_unit_test(test_zero_desc_is_one_thread_per_cpu),
         cmocka_unit_test(test_textures_and_framebuffers_say_why),
         cmocka_unit_test(test_bad_frames_are_refused_with_a_reason),
+        cmocka_unit_test(test_zero_material_is_lit_and_white),
+        cmocka_unit_test(test_zero_spot_reach_is_scene_default),
+        cmocka_unit_test(test_forbidden_lights_are_refused),
+        cmocka_unit_test(test_frame_owns_only_its_own_draws),
         cmocka_unit_test(test_big_mesh_draws_its_triangles_in_order),
         cmocka_unit_test(test_draws_out_of_sight_are_dropped_and_only_those),
     };

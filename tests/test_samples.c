@@ -64,7 +64,8 @@ static void add_triangle(scene *s, const double a[3], const double b[3], const d
     assert_non_null(mesh);
     s->meshes[s->mesh_count++] = mesh;
     luz_draw draw = {.mesh = mesh, .model = luz_mat4_identity(),
-                     .material = {.shading = LUZ_SHADING_UNLIT, .colour = colour}};
+                     .material = {.shading = LUZ_SHADING_UNLIT, .colour = colour,
+                                  .has_colour = true}};
     assert_int_equal(luz_frame_add_draw(&s->frame, &draw, &error), 0);
 }
 

@@ -13,6 +13,12 @@
  * the eye, a point light, a spot light that rides on the eye, and a
  * directional light (luz/shade.h has the equations). A light whose
  * strength is 0 adds exactly nothing, so a zero luz_lights is darkness.
+ *
+ * Zero means the default (as in sokol's descs): a zero luz_material is
+ * lit, white and untextured, sampled trilinearly; a zero spot_reach is
+ * SCENE.md's 10; a zero luz_output is clamp at EV 0; zero samples is one.
+ * luz_renderer_draw refuses, through luz_error, a value this header
+ * forbids.
  */
 #ifndef LUZ_FRAME_H
 #define LUZ_FRAME_H
@@ -34,6 +40,9 @@ typedef struct luz_light {
     float strength;  /* in [0, 1]; 0 switches the term off exactly */
 } luz_light;
 
+/* SCENE.md's spot reach, what a spot_reach of 0 means. */
+#define LUZ_SPOT_REACH_DEFAULT 10.0f
+
 typedef struct luz_lights {
     luz_light ambient;
     luz_light diffuse;      /* headlight at the eye */
@@ -41,10 +50,12 @@ typedef struct luz_lights {
     luz_light point;
     luz_light spot;         /* at the eye, shining along spot_direction */
     luz_light directional;
-    float shininess;           /* the specular exponent */
+    float shininess;           /* the specular exponent, >= 0 (0: pow(x, 0)
+                                  is 1, SCENE.md) */
     float spot_inner_degrees;  /* full intensity inside this angle */
-    float spot_outer_degrees;  /* cut-off */
-    float spot_reach;          /* distance at which the spot fades out; > 0 */
+    float spot_outer_degrees;  /* cut-off; 0 <= inner <= outer <= 89 */
+    float spot_reach;          /* distance at which the spot fades out: > 0,
+                                  or 0 for LUZ_SPOT_REACH_DEFAULT (10) */
     /* Where the lights are, in world space: in the lab these move with
      * time and with the camera. */
     luz_vec3 point_position;
@@ -76,14 +87,24 @@ typedef enum luz_shading {
                             point-light marker) */
 } luz_shading;
 
-/* What a draw is made of. A zero material is lit, black and untextured:
- * set at least the colour. */
+/* What a draw is made of. A zero material is lit, white (C = 1, 1, 1) and
+ * untextured (T = 1), sampled trilinearly: SCENE.md's white, the colour
+ * of an untextured texel. To give it a colour, set has_colour with it. */
 typedef struct luz_material {
-    luz_shading shading;
-    luz_vec3 colour;              /* objectColor C, each channel in [0, 1] */
+    luz_shading shading;          /* 0: lit */
+    luz_vec3 colour;              /* objectColor C, each channel in [0, 1]
+                                     (a model's may be more); used when
+                                     has_colour is set */
+    bool has_colour;              /* false: C = (1, 1, 1), colour ignored */
     const luz_texture *texture;   /* NULL: every texel white, T = 1 */
-    luz_filter filter;            /* how the texture is sampled (trilinear) */
+    luz_filter filter;            /* how the texture is sampled; 0: trilinear */
 } luz_material;
+
+/* The material's colour C: its colour if it has one, else white. */
+static inline luz_vec3 luz_material_colour(const luz_material *material)
+{
+    return material->has_colour ? material->colour : (luz_vec3){1.0f, 1.0f, 1.0f};
+}
 
 /* ---- output: exposure and tone map ---------------------------------------- */
 
@@ -117,6 +138,12 @@ typedef struct luz_draw {
     luz_material material;
 } luz_draw;
 
+/* Who owns what: the frame never owns the meshes and textures its draws
+ * name. Its draws array is the frame's own once luz_frame_add_draw has
+ * made it (draw_capacity > 0), and luz_frame_free frees it then; an array
+ * of the caller's (draws and draw_count set by hand, draw_capacity left 0)
+ * stays the caller's: luz_frame_free and luz_frame_add_draw never free it
+ * (add_draw copies it into an array of the frame's own first). */
 typedef struct luz_frame {
     luz_mat4 view;                /* world to eye space (luz_mat4_look_at) */
     luz_mat4 projection;          /* eye to clip space (luz_mat4_perspective) */
@@ -129,14 +156,19 @@ typedef struct luz_frame {
     luz_output output;            /* exposure and tone map of lit colours */
     luz_draw *draws;              /* drawn in this order */
     int draw_count;
-    int draw_capacity;
+    int draw_capacity;            /* > 0: draws is the frame's own (made by
+                                     luz_frame_add_draw); 0: the caller's */
 } luz_frame;
 
 /* Appends a copy of *draw to the frame's list (which grows as needed, and
- * is kept from frame to frame: set draw_count to 0 to reuse it). Returns 0,
- * or -1 with the reason if the draw has no mesh or memory ran out. */
+ * is kept from frame to frame: set draw_count to 0 to reuse it). A list of
+ * the caller's (draw_capacity 0) is first copied into one of the frame's
+ * own and left as it was. Returns 0, or -1 with the reason if the draw has
+ * no mesh or memory ran out. */
 LUZ_API int luz_frame_add_draw(luz_frame *frame, const luz_draw *draw, luz_error *error);
-/* Frees the draw list (not the meshes or textures it names). */
+/* Frees the draw list if it is the frame's own (draw_capacity > 0), never
+ * an array of the caller's, nor the meshes or textures the draws name;
+ * then the frame has no draws. */
 LUZ_API void luz_frame_free(luz_frame *frame);
 
 #endif

@@ -230,7 +230,8 @@ static int render_draws(diagnosis *d, const luz_scene *scene, luz_error *error)
         d->frame.draws[k].material = (luz_material){
             .shading = LUZ_SHADING_UNLIT,
             .colour = {(float)(code & 255) / 255.0f, (float)((code >> 8) & 255) / 255.0f,
-                       (float)(code >> 16) / 255.0f}};
+                       (float)(code >> 16) / 255.0f},
+            .has_colour = true};
     }
     if (draw(d, scene, NULL, error) != 0) return -1;
     memcpy(d->triangle_at, d->framebuffer->visibility, d->pixels * sizeof *d->triangle_at);

@@ -325,6 +325,7 @@ static int add_model(luz_frame *frame, const luz_scene *scene, const luz_object 
         draw.material.colour = object->has_colour ? object->colour
                                : part->has_colour ? part->colour
                                                   : seed_colour;
+        draw.material.has_colour = true;
         if (part->has_uvs) {
             if (object->texture != LUZ_TEXTURE_BY_INDEX && texture_count > 0)
                 draw.material.texture = textures[object->texture % texture_count];
@@ -375,6 +376,7 @@ int luz_scene_build_frame(const luz_lab *lab, const luz_scene *scene,
         draw.model = placed;
         draw.material.filter = scene->filter;
         draw.material.colour = object && object->has_colour ? object->colour : random_colour;
+        draw.material.has_colour = true;
         if (texture_count > 0) {
             int texture = object ? object->texture : LUZ_TEXTURE_BY_INDEX;
             int index = texture == LUZ_TEXTURE_BY_INDEX ? i : texture;
@@ -392,7 +394,8 @@ int luz_scene_build_frame(const luz_lab *lab, const luz_scene *scene,
             luz_mat4_translate(luz_mat4_identity(), frame->lights.point_position),
             (luz_vec3){0.2f, 0.2f, 0.2f});
         marker.material = (luz_material){.shading = LUZ_SHADING_UNLIT,
-                                         .colour = scene->lights.point.colour};
+                                         .colour = scene->lights.point.colour,
+                                         .has_colour = true};
         if (luz_frame_add_draw(frame, &marker, error) != 0) return -1;
     }
     return 0;

@@ -90,7 +90,7 @@ static inline luz_vec3 shade_pixel(const luz_shade_uniforms *uniforms,
                                    const luz_triangle *triangle, int x, int y)
 {
     const luz_material *material = &draws[triangle->draw_index].material;
-    if (material->shading == LUZ_SHADING_UNLIT) return material->colour;
+    if (material->shading == LUZ_SHADING_UNLIT) return luz_material_colour(material);
     luz_fragment fragment;
     luz_fragment_interpolate(triangle, x, y, &fragment);
     float lambda = 0.0f;
@@ -103,13 +103,13 @@ static inline luz_vec3 shade_pixel(const luz_shade_uniforms *uniforms,
     luz_vec3 colour;
     if (output->bug == LUZ_BUG_NONE) {
         colour = luz_shade_fragment(uniforms, fragment.position, fragment.normal,
-                                    material->colour, texel);
+                                    luz_material_colour(material), texel);
     } else {   /* a shading bug, if it is one, is shade_steps.c's */
         luz_vec3 terms[LUZ_TERM_COUNT];
         colour = luz_shade_colour(luz_shade_terms_explained(uniforms, output->bug,
                                                             fragment.position, fragment.normal,
                                                             terms, NULL),
-                                  material->colour, texel);
+                                  luz_material_colour(material), texel);
     }
     return output->identity ? colour
                             : luz_shade_output(colour, output->exposure_scale, output->tone_map);

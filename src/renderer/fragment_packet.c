@@ -849,7 +849,7 @@ INLINE vvec3 sample_texture(const luz_material *material, const lane_triangles *
 INLINE vuint shade_lanes(const packet_uniforms *u, const luz_material *material,
                          const lane_triangles *triangles, vint mine)
 {
-    const luz_vec3 object_colour = material->colour;
+    const luz_vec3 object_colour = luz_material_colour(material);
     if (material->shading == LUZ_SHADING_UNLIT)
         return pack_pixels((vvec3){splat(object_colour.x), splat(object_colour.y),
                                    splat(object_colour.z)},

@@ -518,9 +518,39 @@ luz_uniforms luz_uniforms_of(const luz_frame *frame, const luz_render_options *o
 }
 
 /* What the pipeline needs of the caller's data that no type can say. */
+/* What luz/frame.h forbids in the lights: a strength outside [0, 1], a
+ * negative shininess, a cone outside 0 <= inner <= outer <= 89, a reach
+ * below 0 (0 is SCENE.md's 10), or any of them not a finite number. The
+ * shading divides by the reach and raises to the shininess, so a value
+ * past these would make no picture SCENE.md defines. */
+static int check_lights(const luz_lights *lights, luz_error *error)
+{
+    const luz_light *terms[LUZ_TERM_COUNT] = {&lights->ambient, &lights->diffuse,
+                                              &lights->specular, &lights->point,
+                                              &lights->spot, &lights->directional};
+    for (int term = 0; term < LUZ_TERM_COUNT; term++) {
+        const float strength = terms[term]->strength;
+        if (!(strength >= 0.0f && strength <= 1.0f))
+            return luz_error_set(error, "frame: the %s light's strength %g: expected a number "
+                                 "in [0, 1]", luz_term_name((luz_term)term), (double)strength);
+    }
+    if (!(lights->shininess >= 0.0f && isfinite(lights->shininess)))
+        return luz_error_set(error, "frame: shininess %g: expected a finite number >= 0",
+                             (double)lights->shininess);
+    const float inner = lights->spot_inner_degrees, outer = lights->spot_outer_degrees;
+    if (!(inner >= 0.0f && inner <= outer && outer <= 89.0f))
+        return luz_error_set(error, "frame: spot cone %g to %g degrees: expected 0 <= inner <= "
+                             "outer <= 89", (double)inner, (double)outer);
+    if (!(lights->spot_reach >= 0.0f && isfinite(lights->spot_reach)))
+        return luz_error_set(error, "frame: spot_reach %g: expected a finite number above 0 "
+                             "(or 0 for SCENE.md's 10)", (double)lights->spot_reach);
+    return 0;
+}
+
 static int check_frame(const luz_frame *frame, const luz_render_options *options,
                        luz_error *error)
 {
+    if (check_lights(&frame->lights, error) != 0) return -1;
     if (frame->draw_count < 0 || (frame->draw_count > 0 && frame->draws == NULL))
         return luz_error_set(error, "frame: %d draws but no draw array", frame->draw_count);
     for (int d = 0; d < frame->draw_count; d++)

@@ -42,6 +42,9 @@ luz_shade_uniforms luz_shade_uniforms_of(luz_vec3 eye, const luz_lights *lights)
     memset(&uniforms, 0, sizeof uniforms);
     uniforms.eye = eye;
     uniforms.lights = *lights;
+    /* Zero means SCENE.md's reach (luz/frame.h); luz_renderer_draw has
+     * refused any other value that is not above 0. */
+    if (uniforms.lights.spot_reach == 0.0f) uniforms.lights.spot_reach = LUZ_SPOT_REACH_DEFAULT;
     /* In double, then rounded once: the cone's cosines as the lab has
      * always computed them. */
     uniforms.spot_cos_inner = (float)cos(lights->spot_inner_degrees * (LUZ_PI / 180.0));

@@ -134,15 +134,22 @@ int luz_frame_add_draw(luz_frame *frame, const luz_draw *draw, luz_error *error)
 {
     if (draw->mesh == NULL)
         return luz_error_set(error, "draw %d: no mesh", frame->draw_count);
-    if (frame->draw_count == frame->draw_capacity) {
-        if (frame->draw_capacity > INT_MAX / 2)
+    if (frame->draw_count < 0 || (frame->draw_count > 0 && frame->draws == NULL))
+        return luz_error_set(error, "frame: %d draws but no draw array", frame->draw_count);
+    if (frame->draw_count >= frame->draw_capacity) {
+        if (frame->draw_count > INT_MAX / 2)
             return luz_error_set(error, "draw %d: more draws than a frame holds",
                                  frame->draw_count);
-        int capacity = frame->draw_capacity ? frame->draw_capacity * 2 : 16;
-        luz_draw *draws = realloc(frame->draws, (size_t)capacity * sizeof *draws);
+        int capacity = frame->draw_count ? frame->draw_count * 2 : 16;
+        /* An array of the caller's (draw_capacity 0) is copied, never
+         * realloc'ed or freed: luz/frame.h's rule of who owns what. */
+        const bool own = frame->draw_capacity > 0;
+        luz_draw *draws = realloc(own ? frame->draws : NULL, (size_t)capacity * sizeof *draws);
         if (!draws)
             return luz_error_set(error, "draw %d: out of memory for the frame's draws",
                                  frame->draw_count);
+        if (!own && frame->draw_count > 0)
+            memcpy(draws, frame->draws, (size_t)frame->draw_count * sizeof *draws);
         frame->draws = draws;
         frame->draw_capacity = capacity;
     }
@@ -152,7 +159,7 @@ int luz_frame_add_draw(luz_frame *frame, const luz_draw *draw, luz_error *error)
 
 void luz_frame_free(luz_frame *frame)
 {
-    free(frame->draws);
+    if (frame->draw_capacity > 0) free(frame->draws);   /* else the caller's */
     frame->draws = NULL;
     frame->draw_count = frame->draw_capacity = 0;
 }

@@ -320,13 +320,13 @@ static void shade(luz_pixel_probe *probe, const luz_uniforms *uniforms,
                   const luz_material *material, const luz_fragment *fragment, bool packet_path)
 {
     probe->shading = material->shading;
-    probe->object_colour = material->colour;
+    probe->object_colour = luz_material_colour(material);
     probe->exposure = uniforms->output_exposure;
     probe->exposure_scale = uniforms->exposure_scale;
     probe->tone_map = uniforms->tone_map;
     if (material->shading == LUZ_SHADING_UNLIT) {
         /* The marker is written as it is (SCENE.md, "Output"). */
-        probe->colour = probe->exposed = probe->mapped = material->colour;
+        probe->colour = probe->exposed = probe->mapped = probe->object_colour;
         return;
     }
 
@@ -366,7 +366,7 @@ static void shade(luz_pixel_probe *probe, const luz_uniforms *uniforms,
         probe->light = explained;
         memcpy(probe->terms, terms, sizeof terms);
     }
-    probe->colour = luz_shade_colour(probe->light, material->colour, probe->texel);
+    probe->colour = luz_shade_colour(probe->light, probe->object_colour, probe->texel);
     /* The fragment stages skip the output at clamp and EV 0, where it
      * leaves the colour as it is; so does the probe, to give their bits. */
     if (uniforms->output_is_identity) {
