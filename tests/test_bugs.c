@@ -397,7 +397,7 @@ static void draw_split_square(luz_bug bug, int y, luz_pixel_probe *probe)
                        .eye = {0, 0, 3}};
     frame.lights.ambient = (luz_light){{1, 1, 1}, 1.0f};
     luz_draw draw = {.mesh = left, .model = luz_mat4_identity(),
-                     .material = {.colour = {1, 0, 0}}};
+                     .material = {.colour = {1, 0, 0}, .has_colour = true}};
     assert_int_equal(luz_frame_add_draw(&frame, &draw, &error), 0);
     draw.mesh = right;
     draw.material.colour = (luz_vec3){0, 0, 1};
