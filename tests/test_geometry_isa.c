@@ -1,8 +1,10 @@
 /*
- * test_geometry_isa.c: phase 1 (geometry.c's luz_geometry_run) with its
- * AVX-512 parts, screening (screen.c), vertices in lanes
- * (vertex_sixteen.c) and setup in lanes (setup_eight.c), against the
- * build's baseline, where each vertex and each triangle goes alone.
+ * test_geometry_isa.c: phase 1 (geometry.c's luz_geometry_run) with the
+ * parts in lanes of every instruction set this machine has (cpu.h's
+ * tables: screening, vertices in lanes and setup in lanes; AVX-512's
+ * screen.c, vertex_sixteen.c, setup_eight.c, the others' screen_lanes.c,
+ * vertex_lanes.c, setup_lanes.c), against the scalar table, where each
+ * vertex and each triangle goes alone.
  *
  * The baseline is the plain pipeline the other tests derive by hand; the
  * wide parts promise to change nothing but the time: every triangle the
@@ -19,6 +21,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -101,11 +104,11 @@ static void snapshot_free(snapshot *s)
     free(s->band_ids);
 }
 
-static void test_same_phase_one_with_and_without_avx512(void **state)
+static void test_same_phase_one_in_every_set(void **state)
 {
     (void)state;
-    if (!luz_isa_available(LUZ_ISA_AVX512)) {
-        print_message("skipped: this build or CPU has no AVX-512 (nothing to compare)\n");
+    if (luz_isa_widest() == LUZ_ISA_SCALAR) {
+        print_message("skipped: this build or CPU has scalar alone (nothing to compare)\n");
         skip();
     }
     /* The grid: z = 0.3 sin(9u) cos(7v) over [-2, 2] x [-1.2, 1.2]. */
@@ -179,12 +182,15 @@ static void test_same_phase_one_with_and_without_avx512(void **state)
     print_message("%zu triangles of the far grid set up\n", far);
     assert_true(far > 0 && far < 64 * 4);
     const int thread_counts[] = {1, 3};
-    for (size_t k = 0; k < sizeof thread_counts / sizeof thread_counts[0]; k++) {
-        snapshot wide = run(&frame, LUZ_ISA_AVX512, thread_counts[k]);
-        assert_same(&wide, &baseline, thread_counts[k] == 1 ? "AVX-512, 1 thread"
-                                                            : "AVX-512, 3 threads");
-        snapshot_free(&wide);
-    }
+    for (int isa = LUZ_ISA_SCALAR + 1; isa <= (int)luz_isa_widest(); isa++)
+        for (size_t k = 0; k < sizeof thread_counts / sizeof thread_counts[0]; k++) {
+            snapshot wide = run(&frame, (luz_isa)isa, thread_counts[k]);
+            char label[64];
+            snprintf(label, sizeof label, "%s, %d thread%s", luz_isa_name((luz_isa)isa),
+                     thread_counts[k], thread_counts[k] == 1 ? "" : "s");
+            assert_same(&wide, &baseline, label);
+            snapshot_free(&wide);
+        }
     snapshot_free(&baseline);
     luz_frame_free(&frame);
     luz_mesh_destroy(mesh);
@@ -193,7 +199,7 @@ static void test_same_phase_one_with_and_without_avx512(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_same_phase_one_with_and_without_avx512),
+        cmocka_unit_test(test_same_phase_one_in_every_set),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -9,8 +9,9 @@
  * (Xj - Xi)(Y - Yi) > 0, or = 0 on a top edge (dy = 0, dx < 0) or a left
  * edge (dy > 0). The tests count the centres by trying every pixel of the
  * viewport, and hold every variant to it: nothing dropped that covers a
- * centre, every back face dropped counted, and the AVX-512 variant
- * dropping every triangle it is meant to (a back face, a box with no
+ * centre, every back face dropped counted, and each screening variant
+ * (AVX-512's screen.c, AVX2's and NEON's screen_lanes.c) dropping every
+ * triangle it is meant to (a back face, a box with no
  * centre of the viewport, a box of up to 2 x 2 pixels with none covered).
  * luz_setup_projected, the other implementation, must agree on each
  * dropped triangle. Vertices outside a clip plane, or invalid, leave their
@@ -194,10 +195,12 @@ static tally screen_and_check(const mesh *m, int v, uint32_t first, uint32_t end
             continue;
         }
         /* Dropped: it must be eligible, and a back face or cover nothing. */
-        if (!eligible) fail_msg("%s dropped triangle %u with a marked vertex", luz_isa_name(variants[v]), t);
+        if (!eligible)
+            fail_msg("%s dropped triangle %u with a marked vertex", luz_isa_name(variants[v]), t);
         if (doubled_area(p) <= 0) result.dropped_back++;
         else if (centres_covered(p) == 0) result.dropped_uncovered++;
-        else fail_msg("%s dropped triangle %u, which covers a centre", luz_isa_name(variants[v]), t);
+        else
+            fail_msg("%s dropped triangle %u, which covers a centre", luz_isa_name(variants[v]), t);
         /* And setup, the other implementation, says the same. */
         const luz_setup_result setup = luz_setup_projected(
             &m->clip[index[0]], &m->clip[index[1]], &m->clip[index[2]], &m->window[index[0]],
@@ -271,7 +274,8 @@ static void test_screening_drops_what_setup_would(void **state)
             first = end;
         }
         print_message("%s: %d back faces and %d covering no centre dropped, %d kept\n",
-                      luz_isa_name(variants[v]), whole.dropped_back, whole.dropped_uncovered, whole.kept);
+                      luz_isa_name(variants[v]), whole.dropped_back, whole.dropped_uncovered,
+                      whole.kept);
         bool screens;
         screening(v, &screens);
         if (!screens) {

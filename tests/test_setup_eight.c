@@ -1,7 +1,8 @@
 /*
- * test_setup_eight.c: setup in lanes (src/renderer/setup_eight.c) against
- * setup one triangle at a time (luz_setup_projected), the implementation
- * the other setup tests derive by hand.
+ * test_setup_eight.c: setup in lanes, every variant this machine runs
+ * (src/renderer/setup_eight.c, setup_lanes.c), against setup one
+ * triangle at a time (luz_setup_projected), the implementation the other
+ * setup tests derive by hand.
  *
  * Its contract: all eight lanes are left to the caller when one of the
  * triangles has a marked vertex (outside a clip plane, or not projected),
@@ -31,6 +32,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -253,19 +255,68 @@ static tally check_mode(const mesh *m, luz_setup_eight_function *setup_eight, in
 _Static_assert(offsetof(luz_triangle, primitive) + sizeof(uint32_t) == sizeof(luz_triangle),
                "luz_triangle has no padding");
 
-/* The AVX-512 table's setup in lanes, or NULL where the build or CPU lacks
- * it. */
-static luz_setup_eight_function *avx512_setup_eight(void)
+/* The setup in lanes of every instruction set this build and CPU have
+ * (AVX-512's setup_eight.c, AVX2's and NEON's setup_lanes.c); returns how
+ * many, their names in names. */
+static int setup_variants(luz_setup_eight_function *variants[LUZ_ISA_COUNT],
+                          const char *names[LUZ_ISA_COUNT])
 {
-    return luz_isa_available(LUZ_ISA_AVX512) ? luz_kernels_of(LUZ_ISA_AVX512).setup_eight : NULL;
+    int count = 0;
+    for (int isa = 0; isa < LUZ_ISA_COUNT; isa++) {
+        if (!luz_isa_available((luz_isa)isa)) continue;
+        luz_setup_eight_function *setup_eight = luz_kernels_of((luz_isa)isa).setup_eight;
+        if (setup_eight == NULL) continue;
+        names[count] = luz_isa_name((luz_isa)isa);
+        variants[count++] = setup_eight;
+    }
+    return count;
+}
+
+/* check_mode for every variant: each must give the same tally. */
+static tally check_mode_all(const mesh *m, int mode, const char *label)
+{
+    luz_setup_eight_function *variants[LUZ_ISA_COUNT];
+    const char *names[LUZ_ISA_COUNT];
+    const int count = setup_variants(variants, names);
+    tally first = {0, 0, 0, 0};
+    for (int v = 0; v < count; v++) {
+        char labelled[64];
+        snprintf(labelled, sizeof labelled, "%s%s, ", label, names[v]);
+        const tally got = check_mode(m, variants[v], mode, labelled);
+        if (v == 0) first = got;
+        assert_memory_equal(&got, &first, sizeof got);
+    }
+    return first;
+}
+
+/* check_groups for every variant: each must give the same tally. */
+static tally check_groups_all(const mesh *m, luz_interpolation interpolation)
+{
+    luz_setup_eight_function *variants[LUZ_ISA_COUNT];
+    const char *names[LUZ_ISA_COUNT];
+    const int count = setup_variants(variants, names);
+    tally first = {0, 0, 0, 0};
+    for (int v = 0; v < count; v++) {
+        const tally got = check_groups(m, variants[v], interpolation);
+        if (v == 0) first = got;
+        assert_memory_equal(&got, &first, sizeof got);
+    }
+    return first;
+}
+
+/* Whether any variant runs here (else the tests skip). */
+static bool have_setup_variants(void)
+{
+    luz_setup_eight_function *variants[LUZ_ISA_COUNT];
+    const char *names[LUZ_ISA_COUNT];
+    return setup_variants(variants, names) > 0;
 }
 
 static void test_lanes_agree_with_setup(void **state)
 {
     (void)state;
-    luz_setup_eight_function *setup_eight = avx512_setup_eight();
-    if (setup_eight == NULL) {
-        print_message("skipped: this build or CPU has no AVX-512 (setup one by one only)\n");
+    if (!have_setup_variants()) {
+        print_message("skipped: this build or CPU has no setup in lanes (one by one only)\n");
         skip();
     }
     assert_true(luz_kernels_of(LUZ_ISA_SCALAR).setup_eight == NULL);
@@ -298,7 +349,7 @@ static void test_lanes_agree_with_setup(void **state)
             while (!set_collinear_front_face(&m, t, &random)) continue;
     }
     for (int mode = 0; mode < 2; mode++) {
-        const tally count = check_mode(&m, setup_eight, mode, "");
+        const tally count = check_mode_all(&m, mode, "");
         /* Each verdict is seen, often. */
         assert_true(count.visible > 3000);
         assert_true(count.culled > 3000);
@@ -339,7 +390,7 @@ static void test_lanes_agree_with_setup(void **state)
         w_from_z(), luz_mat4_rotate(luz_mat4_identity(), 0.05f, (luz_vec3){0.3f, 0.5f, 0.81f}));
     for (uint32_t i = 0; i < m.vertex_count; i++) project(&m, i);
     for (int mode = 0; mode < 2; mode++)
-        assert_true(check_mode(&m, setup_eight, mode, "turned, ").visible > 3000);
+        assert_true(check_mode_all(&m, mode, "turned, ").visible > 3000);
     mesh_destroy(&m);
 }
 
@@ -351,8 +402,7 @@ static void test_lanes_agree_with_setup(void **state)
 static void test_centres_on_an_edge(void **state)
 {
     (void)state;
-    luz_setup_eight_function *setup_eight = avx512_setup_eight();
-    if (setup_eight == NULL) skip();
+    if (!have_setup_variants()) skip();
     mesh m = mesh_create(6, 8);
     uint32_t random = 5;
     const int32_t corners[6][2] = {{102, 102}, {666, 666}, {666, 640},    /* below y = x */
@@ -369,7 +419,7 @@ static void test_centres_on_an_edge(void **state)
         m.indices[3 * t + 1] = first + (swap ? 2 : 1);
         m.indices[3 * t + 2] = first + (swap ? 1 : 2);
     }
-    const tally count = check_groups(&m, setup_eight, LUZ_INTERPOLATION_PERSPECTIVE);
+    const tally count = check_groups_all(&m, LUZ_INTERPOLATION_PERSPECTIVE);
     assert_int_equal(count.left, 0);
     assert_int_equal(count.visible, 4);
     assert_int_equal(count.offscreen, 4);
@@ -384,8 +434,7 @@ static void test_centres_on_an_edge(void **state)
 static void test_planes_that_cancel(void **state)
 {
     (void)state;
-    luz_setup_eight_function *setup_eight = avx512_setup_eight();
-    if (setup_eight == NULL) skip();
+    if (!have_setup_variants()) skip();
     const uint32_t triangle_count = 4000;
     mesh m = mesh_create(3 * triangle_count, triangle_count);
     uint32_t random = 4242;
@@ -423,7 +472,7 @@ static void test_planes_that_cancel(void **state)
         }
         for (uint32_t k = 0; k < 3; k++) project_with(&m, 3 * t + k, 0);
     }
-    const tally count = check_groups(&m, setup_eight, LUZ_INTERPOLATION_PERSPECTIVE);
+    const tally count = check_groups_all(&m, LUZ_INTERPOLATION_PERSPECTIVE);
     assert_true(count.visible > 3000);
     /* The cancellation happened: values far below their terms. */
     int tiny = 0, planes = 0;

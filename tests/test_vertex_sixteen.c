@@ -1,8 +1,9 @@
 /*
- * test_vertex_sixteen.c: the vertex stage and projection in lanes
- * (src/renderer/vertex_sixteen.c) against the same stages one vertex at a
- * time (luz_vertex_stage_range, then luz_setup_project), the functions
- * the other tests derive by hand.
+ * test_vertex_sixteen.c: the vertex stage and projection in lanes, every
+ * variant this machine runs (src/renderer/vertex_sixteen.c,
+ * vertex_lanes.c), against the same stages one vertex at a time
+ * (luz_vertex_stage_range, then luz_setup_project), the functions the
+ * other tests derive by hand.
  *
  * Its contract: every byte of every clip vertex the same, every snapped
  * position (fixed) the same, and every window vertex the same but for
@@ -67,16 +68,10 @@ static int compare(const luz_clip_vertex *clip_a, const luz_window_vertex *windo
     return marked;
 }
 
-static void test_lanes_agree_with_one_at_a_time(void **state)
+/* One variant's vertex pass against the two functions, on the same
+ * vertices, cameras and ranges whatever the variant. */
+static void check_variant(luz_vertex_project_function *vertex_project)
 {
-    (void)state;
-    luz_vertex_project_function *vertex_project =
-        luz_isa_available(LUZ_ISA_AVX512) ? luz_kernels_of(LUZ_ISA_AVX512).vertex_project : NULL;
-    if (vertex_project == NULL) {
-        print_message("skipped: this build or CPU has no AVX-512 (one vertex at a time only)\n");
-        skip();
-    }
-    assert_true(luz_kernels_of(LUZ_ISA_SCALAR).vertex_project == NULL);
     luz_vertex *vertices = calloc(VERTEX_COUNT, sizeof *vertices);
     uint32_t *indices = calloc(3, sizeof *indices);
     luz_clip_vertex *clip_a = calloc(VERTEX_COUNT, sizeof *clip_a);
@@ -218,6 +213,27 @@ static void test_lanes_agree_with_one_at_a_time(void **state)
     free(window_b);
     free(fixed_a);
     free(fixed_b);
+}
+
+/* Every instruction set's vertex pass in lanes that this build and CPU
+ * have (AVX-512's vertex_sixteen.c, AVX2's and NEON's vertex_lanes.c). */
+static void test_lanes_agree_with_one_at_a_time(void **state)
+{
+    (void)state;
+    assert_true(luz_kernels_of(LUZ_ISA_SCALAR).vertex_project == NULL);
+    int tested = 0;
+    for (int isa = 0; isa < LUZ_ISA_COUNT; isa++) {
+        if (!luz_isa_available((luz_isa)isa)) continue;
+        luz_vertex_project_function *vertex_project = luz_kernels_of((luz_isa)isa).vertex_project;
+        if (vertex_project == NULL) continue;
+        print_message("%s:\n", luz_isa_name((luz_isa)isa));
+        check_variant(vertex_project);
+        tested++;
+    }
+    if (tested == 0) {
+        print_message("skipped: this build or CPU has no vertex pass in lanes\n");
+        skip();
+    }
 }
 
 int main(void)

@@ -25,6 +25,14 @@ luz_screen_function luz_screen_every_triangle;
 #if defined(LUZ_HAVE_AVX2)
 luz_packet_rows_function luz_fragment_packet_rows_avx2;
 luz_packet_list_function luz_fragment_packet_list_avx2;
+luz_screen_function luz_screen_triangles_avx2;
+luz_setup_eight_function luz_setup_eight_avx2;
+luz_vertex_project_function luz_vertex_project_avx2;
+#endif
+#if defined(LUZ_HAVE_NEON)
+luz_screen_function luz_screen_triangles_neon;
+luz_setup_eight_function luz_setup_eight_neon;
+luz_vertex_project_function luz_vertex_project_neon;
 #endif
 #if defined(LUZ_HAVE_AVX512)
 luz_packet_rows_function luz_fragment_packet_rows_avx512;
@@ -164,11 +172,21 @@ luz_kernels luz_kernels_of(luz_isa isa)
         kernels.packet_list = luz_fragment_packet_list_scalar;
         break;
     case LUZ_ISA_BASELINE:
+#if defined(LUZ_HAVE_NEON)
+        kernels.screen = luz_screen_triangles_neon;
+        kernels.screen_checks_small_boxes = true;
+        kernels.setup_eight = luz_setup_eight_neon;
+        kernels.vertex_project = luz_vertex_project_neon;
+#endif
         break;
     case LUZ_ISA_AVX2:
 #if defined(LUZ_HAVE_AVX2)
         kernels.packet_rows = luz_fragment_packet_rows_avx2;
         kernels.packet_list = luz_fragment_packet_list_avx2;
+        kernels.screen = luz_screen_triangles_avx2;
+        kernels.screen_checks_small_boxes = true;
+        kernels.setup_eight = luz_setup_eight_avx2;
+        kernels.vertex_project = luz_vertex_project_avx2;
 #endif
         break;
     case LUZ_ISA_AVX512:

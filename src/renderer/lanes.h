@@ -1,0 +1,369 @@
+/*
+ * lanes.h: the vectors the geometry kernels in lanes are written with
+ * (screen_lanes.c, setup_lanes.c, vertex_lanes.c), once for every width.
+ *
+ * A kernel is plain C on GCC / clang vector extensions (`vector_size`, as
+ * fragment_packet.c): `a + b` on two vi64 adds LANES pairs of int64, a
+ * comparison gives all ones or all zeros per lane, and the compiler turns
+ * each operation into the instructions of the file's instruction set,
+ * splitting a vector wider than a register into several. src/renderer/
+ * meson.build compiles each kernel once per set, with one of
+ *
+ *   LUZ_LANES_AVX2     x86-64 AVX2 and FMA (FMA unused: -ffp-contract=off)
+ *   LUZ_LANES_NEON     aarch64 Advanced SIMD (the build's target)
+ *   LUZ_LANES_AVX512   x86-64 AVX-512 F, VL, BW, DQ: screen_lanes.c only,
+ *                      not built (AVX-512 keeps its intrinsic kernels,
+ *                      faster; the AVX-512 forms below are for measuring
+ *                      this source against them)
+ *
+ * and the file picks its LANES for each (the triangles or vertices of a
+ * step). A handful of operations that the extensions cannot say, or say
+ * slowly, are the functions below, with an instruction-set form where
+ * one exists and a portable loop otherwise: the signed 32 x 32 -> 64-bit
+ * product, a lane mask as bits, the gather of snapped positions, the
+ * transposes between a structure per lane and a vector per field, and
+ * appending the kept lanes to a list. Every one of them computes exactly
+ * what its loop says; the kernels' arithmetic is the scalar reference's,
+ * operation for operation (see each kernel), so every width gives the
+ * same bits.
+ */
+#ifndef LUZ_LANES_H
+#define LUZ_LANES_H
+
+#include <stdint.h>
+#include <string.h>
+
+#include "renderer/pipeline.h"
+
+#if !defined(LANES)
+#error "define LANES (the lanes of a step) before including lanes.h"
+#endif
+#if defined(__AVX2__)
+#include <immintrin.h>
+#endif
+#if defined(__ARM_NEON) && defined(__aarch64__)
+#include <arm_neon.h>
+#endif
+
+#define LANES_INLINE static inline __attribute__((always_inline))
+
+/* A vector wider than the registers (int64 lanes with AVX2) is passed in
+ * memory between functions, which GCC warns has changed; these functions
+ * are always inlined, so no vector crosses a call. */
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
+
+typedef float vf32 __attribute__((vector_size(LANES * sizeof(float))));
+typedef int32_t vi32 __attribute__((vector_size(LANES * sizeof(int32_t))));
+typedef uint32_t vu32 __attribute__((vector_size(LANES * sizeof(uint32_t))));
+/* 64-bit lanes: half as many, so that every vector is one register (a
+ * vector wider than the registers is split by the compiler, but its
+ * comparisons are done one element at a time). A step's 64-bit work is
+ * done in two halves, lanes 0 .. HALF - 1 and HALF .. LANES - 1. */
+#define HALF (LANES / 2)
+typedef double vf64 __attribute__((vector_size(HALF * sizeof(double))));
+typedef int64_t vi64 __attribute__((vector_size(HALF * sizeof(int64_t))));
+
+/* ---- lanes of masks and values ------------------------------------------ */
+
+LANES_INLINE vi32 splat32(int32_t value)
+{
+    return (vi32){0} + value;
+}
+
+LANES_INLINE vi64 splat64(int64_t value)
+{
+    return (vi64){0} + value;
+}
+
+LANES_INLINE vf32 splatf(float value)
+{
+    return value - (vf32){0};   /* x - 0 is x, even for x = -0 */
+}
+
+LANES_INLINE vf64 splatd(double value)
+{
+    return value - (vf64){0};
+}
+
+/* mask ? a : b, lane by lane (a mask lane is all ones or all zeros). */
+LANES_INLINE vi32 select32(vi32 mask, vi32 a, vi32 b)
+{
+    return (a & mask) | (b & ~mask);
+}
+
+LANES_INLINE vi64 select64(vi64 mask, vi64 a, vi64 b)
+{
+    return (a & mask) | (b & ~mask);
+}
+
+LANES_INLINE vf32 selectf(vi32 mask, vf32 a, vf32 b)
+{
+    return (vf32)select32(mask, (vi32)a, (vi32)b);
+}
+
+LANES_INLINE vf64 selectd(vi64 mask, vf64 a, vf64 b)
+{
+    return (vf64)select64(mask, (vi64)a, (vi64)b);
+}
+
+LANES_INLINE vi32 min32(vi32 a, vi32 b)
+{
+    return select32(a < b, a, b);
+}
+
+LANES_INLINE vi32 max32(vi32 a, vi32 b)
+{
+    return select32(a > b, a, b);
+}
+
+/* Half h (0: lanes 0 .. HALF - 1, 1: the rest) of 32-bit lanes,
+ * sign-extended to 64 bits (a mask stays a mask). */
+LANES_INLINE vi64 widen_half(vi32 v, int h)
+{
+#if LANES == 16
+    typedef int32_t half_vector __attribute__((vector_size(8 * sizeof(int32_t))));
+    const half_vector part = h == 0 ? __builtin_shufflevector(v, v, 0, 1, 2, 3, 4, 5, 6, 7)
+                                    : __builtin_shufflevector(v, v, 8, 9, 10, 11, 12, 13, 14, 15);
+#elif LANES == 8
+    typedef int32_t half_vector __attribute__((vector_size(4 * sizeof(int32_t))));
+    const half_vector part = h == 0 ? __builtin_shufflevector(v, v, 0, 1, 2, 3)
+                                    : __builtin_shufflevector(v, v, 4, 5, 6, 7);
+#elif LANES == 4
+    typedef int32_t half_vector __attribute__((vector_size(2 * sizeof(int32_t))));
+    const half_vector part = h == 0 ? __builtin_shufflevector(v, v, 0, 1)
+                                    : __builtin_shufflevector(v, v, 2, 3);
+#else
+#error "lanes.h: 4, 8 or 16 lanes"
+#endif
+    return __builtin_convertvector(part, vi64);
+}
+
+/* Bit i set where lane i of the mask is. */
+LANES_INLINE unsigned lane_bits(vi32 mask)
+{
+#if LANES == 16 && defined(__AVX512DQ__)
+    return (unsigned)_mm512_movepi32_mask((__m512i)mask);
+#elif LANES == 8 && defined(__AVX2__)
+    return (unsigned)_mm256_movemask_ps((__m256)mask);
+#elif LANES == 4 && defined(__SSE2__)
+    return (unsigned)_mm_movemask_ps((__m128)mask);
+#else
+    unsigned bits = 0;
+    for (int i = 0; i < LANES; i++) bits |= (unsigned)(mask[i] != 0) << i;
+    return bits;
+#endif
+}
+
+/* The lanes whose bits are set, as a mask. */
+LANES_INLINE vi32 lanes_of_bits(unsigned bits)
+{
+    vi32 bit;
+    for (int i = 0; i < LANES; i++) bit[i] = (int32_t)(1u << i);
+    return (splat32((int32_t)bits) & bit) != 0;
+}
+
+/* Half h of float lanes, widened to double (exact). */
+LANES_INLINE vf64 widen_half_float(vf32 v, int h)
+{
+#if LANES == 16
+    typedef float half_vector __attribute__((vector_size(8 * sizeof(float))));
+    const half_vector part = h == 0 ? __builtin_shufflevector(v, v, 0, 1, 2, 3, 4, 5, 6, 7)
+                                    : __builtin_shufflevector(v, v, 8, 9, 10, 11, 12, 13, 14, 15);
+#elif LANES == 8
+    typedef float half_vector __attribute__((vector_size(4 * sizeof(float))));
+    const half_vector part = h == 0 ? __builtin_shufflevector(v, v, 0, 1, 2, 3)
+                                    : __builtin_shufflevector(v, v, 4, 5, 6, 7);
+#else
+    typedef float half_vector __attribute__((vector_size(2 * sizeof(float))));
+    const half_vector part = h == 0 ? __builtin_shufflevector(v, v, 0, 1)
+                                    : __builtin_shufflevector(v, v, 2, 3);
+#endif
+    return __builtin_convertvector(part, vf64);
+}
+
+/* Bit i set where lane i of a 64-bit mask is. */
+LANES_INLINE unsigned lane_bits64(vi64 mask)
+{
+#if HALF == 8 && defined(__AVX512DQ__)
+    return (unsigned)_mm512_movepi64_mask((__m512i)mask);
+#elif HALF == 4 && defined(__AVX2__)
+    return (unsigned)_mm256_movemask_pd((__m256d)mask);
+#elif HALF == 2 && defined(__SSE2__)
+    return (unsigned)_mm_movemask_pd((__m128d)mask);
+#else
+    unsigned bits = 0;
+    for (int i = 0; i < HALF; i++) bits |= (unsigned)(mask[i] != 0) << i;
+    return bits;
+#endif
+}
+
+/* a * b for 64-bit lanes that hold signed 32-bit values, each product
+ * exact in 64 bits (vpmuldq; smull). */
+LANES_INLINE vi64 multiply_wide(vi64 a, vi64 b)
+{
+#if HALF == 8 && defined(__AVX512F__)
+    return (vi64)_mm512_mul_epi32((__m512i)a, (__m512i)b);
+#elif HALF == 4 && defined(__AVX2__)
+    return (vi64)_mm256_mul_epi32((__m256i)a, (__m256i)b);
+#elif HALF == 2 && defined(__ARM_NEON) && defined(__aarch64__)
+    return (vi64)vmull_s32(vmovn_s64((int64x2_t)a), vmovn_s64((int64x2_t)b));
+#else
+    return a * b;
+#endif
+}
+
+/* |a| of float and double lanes: the sign bit cleared. */
+LANES_INLINE vf32 absf(vf32 a)
+{
+    return (vf32)((vi32)a & 0x7fffffff);
+}
+
+/* x rounded to the nearest integer, ties to even (llrint in the default
+ * rounding mode), for |x| < 2^51: adding 1.5 * 2^52 leaves no bit below
+ * the units, and taking it away again is exact. */
+LANES_INLINE vf64 round_to_even(vf64 x)
+{
+    const double magic = 6755399441055744.0;   /* 1.5 * 2^52 */
+    return (x + magic) - magic;
+}
+
+/* ---- from memory to lanes and back ------------------------------------ */
+
+/* The snapped (X, Y) of the vertices of index (a vertex each lane). */
+LANES_INLINE void gather_fixed(vi32 index, const luz_fixed_vertex *fixed, vi32 *x, vi32 *y)
+{
+    _Static_assert(sizeof(luz_fixed_vertex) == 8, "a vertex's x and y are one 64-bit load");
+#if LANES == 16 && defined(__AVX512F__)
+    /* A 64-bit gather a vertex, for each half. */
+    const __m512i low = _mm512_i32gather_epi64(_mm512_castsi512_si256((__m512i)index),
+                                               (const void *)fixed, 8);
+    const __m512i high = _mm512_i32gather_epi64(_mm512_extracti64x4_epi64((__m512i)index, 1),
+                                                (const void *)fixed, 8);
+    *x = (vi32)_mm512_inserti64x4(_mm512_castsi256_si512(_mm512_cvtepi64_epi32(low)),
+                                  _mm512_cvtepi64_epi32(high), 1);
+    *y = (vi32)_mm512_inserti64x4(
+        _mm512_castsi256_si512(_mm512_cvtepi64_epi32(_mm512_srli_epi64(low, 32))),
+        _mm512_cvtepi64_epi32(_mm512_srli_epi64(high, 32)), 1);
+#else
+    for (int i = 0; i < LANES; i++) {
+        (*x)[i] = fixed[index[i]].x;
+        (*y)[i] = fixed[index[i]].y;
+    }
+#endif
+}
+
+/* Lanes l of the 8 floats at from[l] (l < LANES): column[k][l] =
+ * from[l][k], a transpose of LANES rows of 8 into 8 vectors. */
+LANES_INLINE void load_columns8(const float *const from[LANES], vf32 column[8])
+{
+#if LANES == 8 && defined(__AVX2__)
+    __m256 rows[8];
+    for (int l = 0; l < 8; l++) rows[l] = _mm256_loadu_ps(from[l]);
+    const __m256 t0 = _mm256_unpacklo_ps(rows[0], rows[1]);
+    const __m256 t1 = _mm256_unpackhi_ps(rows[0], rows[1]);
+    const __m256 t2 = _mm256_unpacklo_ps(rows[2], rows[3]);
+    const __m256 t3 = _mm256_unpackhi_ps(rows[2], rows[3]);
+    const __m256 t4 = _mm256_unpacklo_ps(rows[4], rows[5]);
+    const __m256 t5 = _mm256_unpackhi_ps(rows[4], rows[5]);
+    const __m256 t6 = _mm256_unpacklo_ps(rows[6], rows[7]);
+    const __m256 t7 = _mm256_unpackhi_ps(rows[6], rows[7]);
+    const __m256 u0 = _mm256_shuffle_ps(t0, t2, 0x44), u1 = _mm256_shuffle_ps(t0, t2, 0xee);
+    const __m256 u2 = _mm256_shuffle_ps(t1, t3, 0x44), u3 = _mm256_shuffle_ps(t1, t3, 0xee);
+    const __m256 u4 = _mm256_shuffle_ps(t4, t6, 0x44), u5 = _mm256_shuffle_ps(t4, t6, 0xee);
+    const __m256 u6 = _mm256_shuffle_ps(t5, t7, 0x44), u7 = _mm256_shuffle_ps(t5, t7, 0xee);
+    column[0] = (vf32)_mm256_permute2f128_ps(u0, u4, 0x20);
+    column[1] = (vf32)_mm256_permute2f128_ps(u1, u5, 0x20);
+    column[2] = (vf32)_mm256_permute2f128_ps(u2, u6, 0x20);
+    column[3] = (vf32)_mm256_permute2f128_ps(u3, u7, 0x20);
+    column[4] = (vf32)_mm256_permute2f128_ps(u0, u4, 0x31);
+    column[5] = (vf32)_mm256_permute2f128_ps(u1, u5, 0x31);
+    column[6] = (vf32)_mm256_permute2f128_ps(u2, u6, 0x31);
+    column[7] = (vf32)_mm256_permute2f128_ps(u3, u7, 0x31);
+#elif LANES == 16 && defined(__AVX512F__)
+    union { vf32 v; __m256 half[2]; } out[8];
+    for (int h = 0; h < 2; h++) {
+        __m256 rows[8];
+        for (int l = 0; l < 8; l++) rows[l] = _mm256_loadu_ps(from[8 * h + l]);
+        const __m256 t0 = _mm256_unpacklo_ps(rows[0], rows[1]);
+        const __m256 t1 = _mm256_unpackhi_ps(rows[0], rows[1]);
+        const __m256 t2 = _mm256_unpacklo_ps(rows[2], rows[3]);
+        const __m256 t3 = _mm256_unpackhi_ps(rows[2], rows[3]);
+        const __m256 t4 = _mm256_unpacklo_ps(rows[4], rows[5]);
+        const __m256 t5 = _mm256_unpackhi_ps(rows[4], rows[5]);
+        const __m256 t6 = _mm256_unpacklo_ps(rows[6], rows[7]);
+        const __m256 t7 = _mm256_unpackhi_ps(rows[6], rows[7]);
+        const __m256 u0 = _mm256_shuffle_ps(t0, t2, 0x44), u1 = _mm256_shuffle_ps(t0, t2, 0xee);
+        const __m256 u2 = _mm256_shuffle_ps(t1, t3, 0x44), u3 = _mm256_shuffle_ps(t1, t3, 0xee);
+        const __m256 u4 = _mm256_shuffle_ps(t4, t6, 0x44), u5 = _mm256_shuffle_ps(t4, t6, 0xee);
+        const __m256 u6 = _mm256_shuffle_ps(t5, t7, 0x44), u7 = _mm256_shuffle_ps(t5, t7, 0xee);
+        out[0].half[h] = _mm256_permute2f128_ps(u0, u4, 0x20);
+        out[1].half[h] = _mm256_permute2f128_ps(u1, u5, 0x20);
+        out[2].half[h] = _mm256_permute2f128_ps(u2, u6, 0x20);
+        out[3].half[h] = _mm256_permute2f128_ps(u3, u7, 0x20);
+        out[4].half[h] = _mm256_permute2f128_ps(u0, u4, 0x31);
+        out[5].half[h] = _mm256_permute2f128_ps(u1, u5, 0x31);
+        out[6].half[h] = _mm256_permute2f128_ps(u2, u6, 0x31);
+        out[7].half[h] = _mm256_permute2f128_ps(u3, u7, 0x31);
+    }
+    for (int k = 0; k < 8; k++) column[k] = out[k].v;
+#else
+    for (int k = 0; k < 8; k++)
+        for (int l = 0; l < LANES; l++) column[k][l] = from[l][k];
+#endif
+}
+
+/* The other way: to[l][k] = column[k][l] for k < 8, l < LANES (eight
+ * words a lane, stored whole). */
+LANES_INLINE void store_columns8(float *const to[LANES], const vf32 column[8])
+{
+#if LANES == 8 && defined(__AVX2__)
+    /* A transpose is its own inverse. */
+    vf32 rows[8];
+    const float *from[8];
+    float block[8][8];
+    for (int k = 0; k < 8; k++) {
+        memcpy(block[k], &column[k], sizeof block[k]);
+        from[k] = block[k];
+    }
+    load_columns8(from, rows);
+    for (int l = 0; l < 8; l++) memcpy(to[l], &rows[l], 8 * sizeof(float));
+#else
+    for (int l = 0; l < LANES; l++)
+        for (int k = 0; k < 8; k++) to[l][k] = column[k][l];
+#endif
+}
+
+/* Appends first + l for each lane l of bits to list, in order, and
+ * returns how many; bits has none of lanes valid and above, and list has
+ * room for `valid` more past *count. */
+LANES_INLINE unsigned append_lanes(uint32_t *list, size_t *count, uint32_t first, unsigned bits,
+                                   int valid)
+{
+#if LANES == 16 && defined(__AVX512F__)
+    const __m512i lane = _mm512_set_epi32(15, 14, 13, 12, 11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0);
+    const __m512i value = _mm512_add_epi32(_mm512_set1_epi32((int)first), lane);
+    (void)valid;
+    const unsigned kept = (unsigned)__builtin_popcount(bits);
+    /* The compress in a register, then a plain (masked) store: AMD's Zen 4
+     * runs a compress straight to memory as slow microcode. */
+    _mm512_mask_storeu_epi32(list + *count, (__mmask16)((1u << kept) - 1),
+                             _mm512_maskz_compress_epi32((__mmask16)bits, value));
+    *count += kept;
+    return kept;
+#else
+    /* Each lane written at the end of the list, which moves on only past
+     * the kept ones: no branch per lane. */
+    size_t at = *count;
+    for (int l = 0; l < valid; l++) {
+        list[at] = first + (uint32_t)l;
+        at += bits >> l & 1u;
+    }
+    const unsigned kept = (unsigned)(at - *count);
+    *count = at;
+    return kept;
+#endif
+}
+
+#endif

@@ -1,0 +1,224 @@
+/*
+ * screen_lanes.c: screening (screen.c's job: the cheap decisions of
+ * triangle setup, many triangles at once) written once on lanes.h's
+ * portable vectors, for the instruction sets without AVX-512: 8 triangles
+ * a step with AVX2, 4 with NEON.
+ *
+ * In, out and the arithmetic: screen.c's, decision for decision (the
+ * doubled area and the edge functions at the box's centres in 64-bit
+ * lanes, each 32 x 32-bit product exact; the box in 32-bit lanes, where
+ * every coordinate fits), so tests/test_screen.c holds every variant to
+ * luz_setup_projected alike.
+ *
+ * The AVX-512 variant stays screen.c's, written in intrinsics: this
+ * kernel compiled for AVX-512 gave the same survivors but took 6% more
+ * CPU time on the 1M sphere (32.4 against 30.4 ms a frame; its masks are
+ * vectors, where the intrinsics keep them in mask registers).
+ */
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include "renderer/pipeline.h"
+
+/* Vertex indices are below 2^28: they fit a signed 32-bit lane. */
+_Static_assert(LUZ_MESH_MAX_VERTICES <= (1u << 30), "vertex indices fit an int32 lane");
+
+#if defined(LUZ_LANES_AVX512)
+#define LANES 16
+#define SCREEN_LANES luz_screen_triangles_lanes_avx512
+#elif defined(LUZ_LANES_AVX2)
+#define LANES 8
+#define SCREEN_LANES luz_screen_triangles_avx2
+#elif defined(LUZ_LANES_NEON)
+#define LANES 4
+#define SCREEN_LANES luz_screen_triangles_neon
+#else
+#error "screen_lanes.c is compiled for one instruction set: -DLUZ_LANES_AVX2, ..."
+#endif
+
+#include "renderer/lanes.h"
+
+/* Lane j of *a, *b, *c: indices 3 j, 3 j + 1, 3 j + 2 of the step's 3
+ * LANES indices, loaded as three vectors (first, second, third). Each
+ * takes what lies in the first two, then the rest from the third. */
+LANES_INLINE void corner_indices(vi32 first, vi32 second, vi32 third, vi32 *a, vi32 *b, vi32 *c)
+{
+#if LANES == 16
+    *a = __builtin_shufflevector(
+        __builtin_shufflevector(first, second, 0, 3, 6, 9, 12, 15, 18, 21, 24, 27, 30, 0, 0, 0,
+                                0, 0),
+        third, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 17, 20, 23, 26, 29);
+    *b = __builtin_shufflevector(
+        __builtin_shufflevector(first, second, 1, 4, 7, 10, 13, 16, 19, 22, 25, 28, 31, 0, 0, 0,
+                                0, 0),
+        third, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 18, 21, 24, 27, 30);
+    *c = __builtin_shufflevector(
+        __builtin_shufflevector(first, second, 2, 5, 8, 11, 14, 17, 20, 23, 26, 29, 0, 0, 0, 0,
+                                0, 0),
+        third, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 16, 19, 22, 25, 28, 31);
+#elif LANES == 8
+    *a = __builtin_shufflevector(__builtin_shufflevector(first, second, 0, 3, 6, 9, 12, 15, 0, 0),
+                                 third, 0, 1, 2, 3, 4, 5, 10, 13);
+    *b = __builtin_shufflevector(__builtin_shufflevector(first, second, 1, 4, 7, 10, 13, 0, 0, 0),
+                                 third, 0, 1, 2, 3, 4, 8, 11, 14);
+    *c = __builtin_shufflevector(__builtin_shufflevector(first, second, 2, 5, 8, 11, 14, 0, 0, 0),
+                                 third, 0, 1, 2, 3, 4, 9, 12, 15);
+#elif LANES == 4
+    *a = __builtin_shufflevector(__builtin_shufflevector(first, second, 0, 3, 6, 0), third, 0, 1,
+                                 2, 5);
+    *b = __builtin_shufflevector(__builtin_shufflevector(first, second, 1, 4, 7, 0), third, 0, 1,
+                                 2, 6);
+    *c = __builtin_shufflevector(__builtin_shufflevector(first, second, 2, 5, 0, 0), third, 0, 1,
+                                 4, 7);
+#else
+#error "corner_indices: 4, 8 or 16 lanes"
+#endif
+}
+
+/* E >= 0 at the centres (X, Y), (X + 256, Y), (X, Y + 256), (X + 256,
+ * Y + 256) for the edge from (xi, yi) to (xj, yj), in 64-bit lanes (half
+ * a step); four masks. */
+LANES_INLINE void edge_at_centres(vi64 xi, vi64 yi, vi64 xj, vi64 yj, vi64 sample_x,
+                                  vi64 sample_y, vi64 inside[4])
+{
+    const vi64 dx = xj - xi, dy = yj - yi;
+    /* make_edge's fill rule: a top edge (dy = 0, dx < 0) or a left edge
+     * (dy > 0) keeps E = 0, the others need E >= 1. */
+    const vi64 top_or_left = ((dy == 0) & (dx < 0)) | (dy > 0);
+    const vi64 bias = ~top_or_left & 1;
+    const vi64 column0 = multiply_wide(dy, sample_x - xi);
+    const vi64 column1 = column0 + (dy << LUZ_SUBPIXEL_BITS);
+    const vi64 row0 = multiply_wide(dx, sample_y - yi) + bias;
+    const vi64 row1 = row0 + (dx << LUZ_SUBPIXEL_BITS);
+    inside[0] &= column0 >= row0;
+    inside[1] &= column1 >= row0;
+    inside[2] &= column0 >= row1;
+    inside[3] &= column1 >= row1;
+}
+
+/* How many triangles ahead the loop asks for the vertices it will gather.
+ * A mesh's triangles in file order walk its vertices mostly forward, so
+ * the corners of the first and last triangles of a step four AVX-512
+ * steps on are near the vertices that step will gather; a gather does not
+ * start loading until it is the oldest miss, a prefetch does (the 1M
+ * sphere's geometry phase: 3-4% faster with it). */
+#define SCREEN_AHEAD 64
+
+/* How many triangles ahead the loop asks for the index buffer itself,
+ * read in order, 12 bytes a triangle: the hardware's prefetcher alone
+ * left the loop waiting on those loads (their line the hottest of its
+ * profile); 3 KB ahead, the sphere's geometry 10.8 -> 10.4 ms a frame
+ * (6 KB did no better). */
+#define INDEX_AHEAD 256
+
+/* LANES triangles from triangle_indices, of which the first `valid` are
+ * real (the others read vertex 0, which a draw with triangles has): which
+ * setup would cull, and which it would find offscreen. Their survivors
+ * are appended at survivors + *count, the back faces counted. */
+LANES_INLINE void screen_step(const uint32_t *triangle_indices, uint32_t t, int valid,
+                              const luz_fixed_vertex *fixed, int width, int height,
+                              uint32_t *survivors, size_t *count, uint32_t *culled_total)
+{
+    vi32 loaded[3];
+    if (valid == LANES) {
+        memcpy(loaded, triangle_indices, sizeof loaded);
+    } else {   /* the last few: no index is read past the last triangle */
+        memset(loaded, 0, sizeof loaded);
+        memcpy(loaded, triangle_indices, 3 * (size_t)valid * sizeof *triangle_indices);
+    }
+    vi32 a, b, c;
+    corner_indices(loaded[0], loaded[1], loaded[2], &a, &b, &c);
+    vi32 x0, y0, x1, y1, x2, y2;
+    gather_fixed(a, fixed, &x0, &y0);
+    gather_fixed(b, fixed, &x1, &y1);
+    gather_fixed(c, fixed, &x2, &y2);
+
+    /* A marker (LUZ_WINDOW_INVALID, LUZ_WINDOW_CLIPPED) is below every
+     * snapped coordinate, -2^24: such a triangle is left to setup. Its
+     * lanes compute on 0 instead, so that no difference below overflows. */
+    const vi32 lowest = splat32(-(1 << 24));
+    const vi32 eligible = (x0 >= lowest) & (x1 >= lowest) & (x2 >= lowest);
+    x0 &= eligible, x1 &= eligible, x2 &= eligible;
+
+    /* The box of pixel centres, as setup's: the x whose centre 256 x +
+     * 128 lies within [min X, max X], from ceil((min X - 128) / 256) =
+     * -((128 - min X) >> 8) to floor((max X - 128) / 256) = (max X - 128)
+     * >> 8 (arithmetic shifts: floors), clamped to the viewport; likewise
+     * y. Empty where min > max. */
+    const vi32 half = splat32(LUZ_SUBPIXEL_ONE / 2), zero = splat32(0);
+    const vi32 min_x = max32(-((half - min32(x0, min32(x1, x2))) >> LUZ_SUBPIXEL_BITS), zero);
+    const vi32 min_y = max32(-((half - min32(y0, min32(y1, y2))) >> LUZ_SUBPIXEL_BITS), zero);
+    const vi32 max_x = min32((max32(x0, max32(x1, x2)) - half) >> LUZ_SUBPIXEL_BITS,
+                             splat32(width - 1));
+    const vi32 max_y = min32((max32(y0, max32(y1, y2)) - half) >> LUZ_SUBPIXEL_BITS,
+                             splat32(height - 1));
+    const vi32 empty = (min_x > max_x) | (min_y > max_y);
+    const vi32 second_column = max_x > min_x, second_row = max_y > min_y;
+    const vi32 small = (max_x - min_x <= 1) & (max_y - min_y <= 1);
+
+    /* The box's first centre, X = 256 x + 128, and its (up to) three
+     * neighbours; a centre counts where it lies in the box. */
+    const vi32 sample_x = (min_x << LUZ_SUBPIXEL_BITS) + half;
+    const vi32 sample_y = (min_y << LUZ_SUBPIXEL_BITS) + half;
+
+    /* In 64-bit lanes, half a step at a time: step 3, the doubled area,
+     * as luz_setup_front_facing (differences below 2^25: each product
+     * exact in 64 bits), and the edges at the box's centres. */
+    unsigned front = 0, covers = 0;
+    for (int h = 0; h < 2; h++) {
+        const vi64 wx0 = widen_half(x0, h), wy0 = widen_half(y0, h);
+        const vi64 wx1 = widen_half(x1, h), wy1 = widen_half(y1, h);
+        const vi64 wx2 = widen_half(x2, h), wy2 = widen_half(y2, h);
+        const vi64 area = multiply_wide(wy1 - wy0, wx2 - wx0) - multiply_wide(wx1 - wx0, wy2 - wy0);
+        front |= lane_bits64(area > 0) << (h * HALF);
+        const vi64 wsample_x = widen_half(sample_x, h), wsample_y = widen_half(sample_y, h);
+        vi64 inside[4] = {splat64(-1), widen_half(second_column, h), widen_half(second_row, h),
+                          widen_half(second_column & second_row, h)};
+        edge_at_centres(wx1, wy1, wx2, wy2, wsample_x, wsample_y, inside);   /* edge 0: 1 -> 2 */
+        edge_at_centres(wx2, wy2, wx0, wy0, wsample_x, wsample_y, inside);   /* edge 1: 2 -> 0 */
+        edge_at_centres(wx0, wy0, wx1, wy1, wsample_x, wsample_y, inside);   /* edge 2: 0 -> 1 */
+        covers |= lane_bits64(inside[0] | inside[1] | inside[2] | inside[3]) << (h * HALF);
+    }
+
+    const unsigned valid_lanes = (unsigned)((1ull << valid) - 1);
+    const unsigned eligible_bits = lane_bits(eligible) & valid_lanes;
+    const unsigned culled = eligible_bits & ~front;
+    const unsigned offscreen =
+        eligible_bits & front & (lane_bits(empty) | (lane_bits(small) & ~covers));
+    append_lanes(survivors, count, t, valid_lanes & ~culled & ~offscreen, valid);
+    *culled_total += (uint32_t)__builtin_popcount(culled);
+}
+
+luz_screen_function SCREEN_LANES;
+
+size_t SCREEN_LANES(const uint32_t *indices, uint32_t first, uint32_t end,
+                    const luz_fixed_vertex *fixed, int width, int height, uint32_t *survivors,
+                    uint32_t *culled_count)
+{
+    size_t count = 0;
+    uint32_t culled_total = 0;
+    uint32_t t = first;
+    for (; end - t >= LANES; t += LANES) {
+        const uint32_t *triangle_indices = indices + 3 * (size_t)t;
+        if (end - t >= LANES + SCREEN_AHEAD) {
+            const uint32_t *ahead = triangle_indices + 3 * SCREEN_AHEAD;
+            __builtin_prefetch(&fixed[ahead[0]]);
+            __builtin_prefetch(&fixed[ahead[1]]);
+            __builtin_prefetch(&fixed[ahead[2]]);
+            __builtin_prefetch(&fixed[ahead[3 * LANES - 3]]);
+            __builtin_prefetch(&fixed[ahead[3 * LANES - 2]]);
+            __builtin_prefetch(&fixed[ahead[3 * LANES - 1]]);
+        }
+        if (end - t >= LANES + INDEX_AHEAD)
+            for (int line = 0; line < 3 * LANES; line += 16)   /* 64 bytes a line */
+                __builtin_prefetch(triangle_indices + 3 * INDEX_AHEAD + line);
+        screen_step(triangle_indices, t, LANES, fixed, width, height, survivors, &count,
+                    &culled_total);
+    }
+    if (t < end)   /* the last few */
+        screen_step(indices + 3 * (size_t)t, t, (int)(end - t), fixed, width, height, survivors,
+                    &count, &culled_total);
+    *culled_count = culled_total;
+    return count;
+}

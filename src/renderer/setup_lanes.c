@@ -1,0 +1,374 @@
+/*
+ * setup_lanes.c: setup in lanes (setup_eight.c's job: the vertex stage of
+ * eight triangles' corners, their projection and setup.c's
+ * luz_setup_projected, one triangle a lane) written once on lanes.h's
+ * portable vectors, for the instruction sets without AVX-512: the eight
+ * triangles in one step of 8 float lanes with AVX2, two of 4 with NEON.
+ *
+ * In, out and the arithmetic: setup_eight.c's (see there, and setup.c),
+ * operation for operation: the transforms in float, summed left to right;
+ * the projection, the determinant, its reciprocal and each plane in
+ * double, each rounded to float as a C cast does; the box in 32-bit
+ * lanes, the doubled area, the edges' constants and the small boxes'
+ * centres in 64-bit lanes, every 32 x 32-bit product exact. No fused
+ * multiply-add (-ffp-contract=off). tests/test_setup_eight.c holds every
+ * variant's lanes to luz_setup_projected, field by field, bit for bit.
+ * The AVX-512 variant stays setup_eight.c's, in intrinsics.
+ */
+#include <math.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include "renderer/pipeline.h"
+
+#if defined(LUZ_LANES_AVX2)
+#define LANES 8
+#define SETUP_LANES luz_setup_eight_avx2
+#elif defined(LUZ_LANES_NEON)
+#define LANES 4
+#define SETUP_LANES luz_setup_eight_neon
+#else
+#error "setup_lanes.c is compiled for one instruction set: -DLUZ_LANES_AVX2, ..."
+#endif
+
+#include "renderer/lanes.h"
+
+#define STEP 8                  /* triangles a call (luz_setup_eight_function) */
+#define GROUPS (STEP / LANES)   /* steps of LANES lanes a call */
+
+_Static_assert(LUZ_VARYING_COUNT == 8 && LUZ_VARYING_POSITION == 0 && LUZ_VARYING_NORMAL == 3 &&
+                   LUZ_VARYING_UV == 6,
+               "the varyings are world position, normal and uv: eight floats");
+_Static_assert(sizeof(luz_vertex) == 8 * sizeof(float) && offsetof(luz_vertex, normal) == 12 &&
+                   offsetof(luz_vertex, uv) == 24,
+               "a mesh vertex is eight floats: position, normal, uv");
+_Static_assert(LUZ_MESH_MAX_VERTICES <= (1u << 30), "vertex indices fit an int32");
+_Static_assert(offsetof(luz_triangle, edges) == 16 && sizeof(luz_edge) == 16,
+               "the box and the edges are the record's first 64 bytes");
+_Static_assert(offsetof(luz_triangle, reference_x) == 64 &&
+                   offsetof(luz_triangle, depth) == 72 &&
+                   offsetof(luz_triangle, inverse_w) == 84 &&
+                   offsetof(luz_triangle, varyings) == 96 &&
+                   offsetof(luz_triangle, draw_index) == 192,
+               "the reference point and the planes are 32 floats from byte 64");
+
+/* Half h of 32-bit lanes as doubles (exact; from the 32-bit values, which
+ * every instruction set converts in lanes). */
+LANES_INLINE vf64 double_half(vi32 v, int h)
+{
+    typedef int32_t half_ints __attribute__((vector_size(HALF * sizeof(int32_t))));
+    half_ints part;
+    memcpy(&part, (const int32_t *)&v + h * HALF, sizeof part);
+    return __builtin_convertvector(part, vf64);
+}
+
+/* Doubles rounded to float (as a C cast: to nearest even), into lanes
+ * h * HALF .. of column. */
+LANES_INLINE void put_half(float column[LANES], int h, vf64 value)
+{
+    typedef float half_floats __attribute__((vector_size(HALF * sizeof(float))));
+    const half_floats narrow = __builtin_convertvector(value, half_floats);
+    memcpy(&column[h * HALF], &narrow, sizeof narrow);
+}
+
+/* vertex.c's transform4 with w = 1, row r of a column-major 4 x 4: a[r] x
+ * + a[4 + r] y + a[8 + r] z + a[12 + r], summed left to right in float
+ * (a[12 + r] * 1.0f is a[12 + r] exactly)... */
+LANES_INLINE vf32 transform_row(const float *a, int r, vf32 x, vf32 y, vf32 z)
+{
+    return ((a[r] * x + a[4 + r] * y) + a[8 + r] * z) + a[12 + r];
+}
+
+/* ... and its transform3, row r of a column-major 3 x 3. */
+LANES_INLINE vf32 transform_row3(const float *a, int r, vf32 x, vf32 y, vf32 z)
+{
+    return (a[r] * x + a[3 + r] * y) + a[6 + r] * z;
+}
+
+/* make_plane for half a step: the plane through (x_k, y_k, value_k), its
+ * value at (rx, ry) and its gradient (before rounding to float). */
+LANES_INLINE void make_plane_half(vf64 x10, vf64 x20, vf64 y10, vf64 y20,
+                                  vf64 inverse_determinant, vf64 rx0, vf64 ry0, vf64 value0,
+                                  vf64 value1, vf64 value2, vf64 out[3])
+{
+    const vf64 d1 = value1 - value0, d2 = value2 - value0;
+    const vf64 dx = (d1 * y20 - d2 * y10) * inverse_determinant;
+    const vf64 dy = (d2 * x10 - d1 * x20) * inverse_determinant;
+    out[0] = (value0 + dx * rx0) + dy * ry0;
+    out[1] = dx;
+    out[2] = dy;
+}
+
+/* setup.c's covers_a_centre for the lanes of half h in testing: those
+ * whose box, (min_x, min_y) and box_width x box_height pixels, has a
+ * centre where the three edges' E = a X + b Y + c >= 0 (|a|, |b| < 2^26,
+ * centres below 2^23: each product exact in 64 bits). */
+LANES_INLINE unsigned covered_half(unsigned testing, vi64 min_x, vi64 min_y, vi64 box_width,
+                                   vi64 box_height, const vi64 a[3], const vi64 b[3],
+                                   const vi64 c[3])
+{
+    const vi64 half = splat64(LUZ_SUBPIXEL_ONE / 2);
+    const vi64 centres = multiply_wide(box_width, box_height);   /* at most 16 */
+    vi64 column = splat64(0), row = splat64(0), visited = splat64(0);
+    unsigned covered = 0, left = testing;
+    while (left != 0) {
+        const vi64 sample_x = ((min_x + column) << LUZ_SUBPIXEL_BITS) + half;
+        const vi64 sample_y = ((min_y + row) << LUZ_SUBPIXEL_BITS) + half;
+        unsigned inside = left;
+        for (int k = 0; k < 3; k++)
+            inside &= lane_bits64(multiply_wide(a[k], sample_x) + multiply_wide(b[k], sample_y) +
+                                      c[k] >=
+                                  0);
+        covered |= inside;
+        visited += 1;
+        left &= ~inside & lane_bits64(visited < centres);
+        column += 1;
+        const vi64 wrap = column == box_width;
+        column = select64(wrap, splat64(0), column);
+        row -= wrap;   /* wrap is -1 where a row ends */
+    }
+    return covered;
+}
+
+/* The corners' vertex indices (corner[k]) and snapped positions of a
+ * group of LANES triangles. */
+typedef struct group_corners {
+    vi32 vertex[3];
+    vi32 x[3], y[3];
+} group_corners;
+
+/* Sets up the group of LANES triangles (corners as gathered), into out
+ * and result. */
+LANES_INLINE void setup_group(const group_corners *corners, const luz_draw_transform *transform,
+                              int width, int height, uint32_t draw_index,
+                              luz_interpolation interpolation, luz_triangle out[LANES],
+                              luz_setup_result result[LANES])
+{
+    const vi32 *fx = corners->x, *fy = corners->y;
+
+    /* The box of pixel centres, as setup's (screen_lanes.c). */
+    const vi32 half = splat32(LUZ_SUBPIXEL_ONE / 2), zero = splat32(0);
+    const vi32 min_x = max32(-((half - min32(fx[0], min32(fx[1], fx[2]))) >> LUZ_SUBPIXEL_BITS),
+                             zero);
+    const vi32 min_y = max32(-((half - min32(fy[0], min32(fy[1], fy[2]))) >> LUZ_SUBPIXEL_BITS),
+                             zero);
+    const vi32 max_x = min32((max32(fx[0], max32(fx[1], fx[2])) - half) >> LUZ_SUBPIXEL_BITS,
+                             splat32(width - 1));
+    const vi32 max_y = min32((max32(fy[0], max32(fy[1], fy[2])) - half) >> LUZ_SUBPIXEL_BITS,
+                             splat32(height - 1));
+    const unsigned empty = lane_bits((min_x > max_x) | (min_y > max_y));
+    /* A box of up to LUZ_SETUP_SMALL_BOX_PIXELS but more than 2 x 2: its
+     * centres are tested (covered_half). (An empty box's sizes may be 0
+     * or negative; it is OFFSCREEN whatever they are.) */
+    const vi32 box_width = max_x - min_x + 1, box_height = max_y - min_y + 1;
+    /* (Multiplied as unsigned: an empty box's sizes may be anything, and
+     * its product wrap; a box that is not empty has at most 2^28 pixels.) */
+    const vi32 box_pixels = (vi32)((vu32)box_width * (vu32)box_height);
+    const unsigned small = lane_bits(box_pixels <= LUZ_SETUP_SMALL_BOX_PIXELS);
+    const unsigned up_to_2x2 = lane_bits((box_width <= 2) & (box_height <= 2));
+
+    /* 4. Edge k is opposite vertex k, from (x[i], y[i]) to (x[j], y[j]):
+     * a = dy, b = -dx, c = -(dy xi - dx yi), less 1 unless it is a top edge
+     * (dy = 0, dx < 0) or a left edge (dy > 0). */
+    static const int from[3] = {1, 2, 0}, to[3] = {2, 0, 1};
+    vi32 edge_a[3], edge_b[3], top_or_left[3];
+#pragma GCC unroll 3
+    for (int k = 0; k < 3; k++) {
+        const vi32 dx = fx[to[k]] - fx[from[k]], dy = fy[to[k]] - fy[from[k]];
+        edge_a[k] = dy;
+        edge_b[k] = -dx;
+        top_or_left[k] = ((dy == 0) & (dx < 0)) | (dy > 0);
+    }
+
+    /* The vertex stage and steps 1-2 again, per corner, from the mesh. */
+    vf32 varying[3][8];
+    vf64 x[3][2], y[3][2], depth[3][2], weight[3][2];
+    const float *model = transform->model.m, *normal_matrix = transform->normal_matrix.m;
+    const float *view_projection = transform->view_projection.m;
+#pragma GCC unroll 3
+    for (int k = 0; k < 3; k++) {
+        const float *from_vertex[LANES];
+        for (int lane = 0; lane < LANES; lane++)
+            from_vertex[lane] = &transform->vertices[corners->vertex[k][lane]].position.x;
+        vf32 in[8];
+        load_columns8(from_vertex, in);
+        /* vertex.c: world = model p, normal = N n, clip = VP world. */
+        const vf32 world_x = transform_row(model, 0, in[0], in[1], in[2]);
+        const vf32 world_y = transform_row(model, 1, in[0], in[1], in[2]);
+        const vf32 world_z = transform_row(model, 2, in[0], in[1], in[2]);
+        varying[k][LUZ_VARYING_POSITION + 0] = world_x;
+        varying[k][LUZ_VARYING_POSITION + 1] = world_y;
+        varying[k][LUZ_VARYING_POSITION + 2] = world_z;
+        for (int r = 0; r < 3; r++)
+            varying[k][LUZ_VARYING_NORMAL + r] =
+                transform_row3(normal_matrix, r, in[3], in[4], in[5]);
+        varying[k][LUZ_VARYING_UV + 0] = in[6];
+        varying[k][LUZ_VARYING_UV + 1] = in[7];
+        const vf32 clip[4] = {transform_row(view_projection, 0, world_x, world_y, world_z),
+                              transform_row(view_projection, 1, world_x, world_y, world_z),
+                              transform_row(view_projection, 2, world_x, world_y, world_z),
+                              transform_row(view_projection, 3, world_x, world_y, world_z)};
+        /* setup.c: divide, viewport (the snap is fixed's, gathered). */
+#pragma GCC unroll 2
+        for (int h = 0; h < 2; h++) {
+            const vf64 one = splatd(1.0);
+            const vf64 inverse_w = one / widen_half_float(clip[3], h);
+            const vf64 x_ndc = widen_half_float(clip[0], h) * inverse_w;
+            const vf64 y_ndc = widen_half_float(clip[1], h) * inverse_w;
+            vf64 window_x = (x_ndc + 1.0) * 0.5 * (double)width;
+            vf64 window_y = (1.0 - y_ndc) * 0.5 * (double)height;
+            const double limit = LUZ_COORDINATE_LIMIT / LUZ_SUBPIXEL_ONE;
+            window_x = selectd(window_x > limit, splatd(limit), window_x);
+            window_x = selectd(window_x < -limit, splatd(-limit), window_x);
+            window_y = selectd(window_y > limit, splatd(limit), window_y);
+            window_y = selectd(window_y < -limit, splatd(-limit), window_y);
+            x[k][h] = window_x;
+            y[k][h] = window_y;
+            depth[k][h] = (widen_half_float(clip[2], h) * inverse_w + 1.0) * 0.5;
+            weight[k][h] = interpolation == LUZ_INTERPOLATION_AFFINE ? one : inverse_w;
+        }
+    }
+
+    /* 3 and 5, half a step at a time: the doubled area, the edges'
+     * constants, the planes from the exact window positions relative to
+     * the snapped vertex 0. Column j of `column` holds float j of the
+     * record from byte 64 for every lane. */
+    float column[32][LANES];
+    int32_t word[16][LANES];
+    unsigned back = 0, solvable = 0, covered = 0;
+    vi64 c[2][3];
+#pragma GCC unroll 2
+    for (int h = 0; h < 2; h++) {
+        vi64 wx[3], wy[3];
+        for (int k = 0; k < 3; k++) wx[k] = widen_half(fx[k], h), wy[k] = widen_half(fy[k], h);
+        back |= lane_bits64(multiply_wide(wy[1] - wy[0], wx[2] - wx[0]) -
+                                multiply_wide(wx[1] - wx[0], wy[2] - wy[0]) <=
+                            0)
+                << (h * HALF);
+        vi64 a[3], b[3];
+        for (int k = 0; k < 3; k++) {
+            const vi64 dx = wx[to[k]] - wx[from[k]], dy = wy[to[k]] - wy[from[k]];
+            a[k] = widen_half(edge_a[k], h);
+            b[k] = widen_half(edge_b[k], h);
+            c[h][k] = -(multiply_wide(dy, wx[from[k]]) - multiply_wide(dx, wy[from[k]])) -
+                      (~widen_half(top_or_left[k], h) & 1);
+        }
+        const unsigned to_test = (~back & ~empty & small & ~up_to_2x2) >> (h * HALF) &
+                                 ((1u << HALF) - 1);
+        covered |= covered_half(to_test, widen_half(min_x, h), widen_half(min_y, h),
+                                widen_half(box_width, h), widen_half(box_height, h), a, b,
+                                c[h])
+                   << (h * HALF);
+
+        const vf64 x10 = x[1][h] - x[0][h], x20 = x[2][h] - x[0][h];
+        const vf64 y10 = y[1][h] - y[0][h], y20 = y[2][h] - y[0][h];
+        const vf64 determinant = x10 * y20 - x20 * y10;
+        /* setup.c: !(determinant != 0.0) || !isfinite(determinant) culls. */
+        const vf64 magnitude = (vf64)((vi64)determinant & 0x7fffffffffffffff);
+        solvable |= lane_bits64((determinant != 0.0) & (magnitude < (double)INFINITY))
+                    << (h * HALF);
+        /* (A lane that cannot be solved divides 1 by 1 instead: it is
+         * culled whatever its planes, and -fsanitize=float-divide-by-zero
+         * traps a division by 0.) */
+        const vf64 inverse_determinant =
+            1.0 / selectd(determinant != 0.0, determinant, splatd(1.0));
+        /* fixed / 256: exact, a power of two. */
+        const vf64 rx = double_half(fx[0], h) / (double)LUZ_SUBPIXEL_ONE;
+        const vf64 ry = double_half(fy[0], h) / (double)LUZ_SUBPIXEL_ONE;
+        const vf64 rx0 = rx - x[0][h], ry0 = ry - y[0][h];
+        put_half(column[0], h, rx);
+        put_half(column[1], h, ry);
+        vf64 plane[3];
+        make_plane_half(x10, x20, y10, y20, inverse_determinant, rx0, ry0, depth[0][h],
+                        depth[1][h], depth[2][h], plane);
+        for (int j = 0; j < 3; j++) put_half(column[2 + j], h, plane[j]);
+        make_plane_half(x10, x20, y10, y20, inverse_determinant, rx0, ry0, weight[0][h],
+                        weight[1][h], weight[2][h], plane);
+        for (int j = 0; j < 3; j++) put_half(column[5 + j], h, plane[j]);
+        for (int i = 0; i < LUZ_VARYING_COUNT; i++) {
+            vf64 value[3];
+            for (int k = 0; k < 3; k++)
+                value[k] = widen_half_float(varying[k][i], h) * weight[k][h];
+            make_plane_half(x10, x20, y10, y20, inverse_determinant, rx0, ry0, value[0],
+                            value[1], value[2], plane);
+            for (int j = 0; j < 3; j++) put_half(column[8 + 3 * i + j], h, plane[j]);
+        }
+        /* The edges' constants as their low and high words. */
+        for (int k = 0; k < 3; k++)
+            for (int i = 0; i < HALF; i++) {
+                const uint64_t value = (uint64_t)c[h][k][i];
+                word[6 + 4 * k][h * HALF + i] = (int32_t)(uint32_t)value;
+                word[7 + 4 * k][h * HALF + i] = (int32_t)(uint32_t)(value >> 32);
+            }
+    }
+
+    /* The box and edges as sixteen 32-bit words a lane: min x, min y,
+     * max x, max y, then a, b and c (low, high) of each edge. */
+    memcpy(word[0], &min_x, sizeof word[0]);
+    memcpy(word[1], &min_y, sizeof word[1]);
+    memcpy(word[2], &max_x, sizeof word[2]);
+    memcpy(word[3], &max_y, sizeof word[3]);
+    for (int k = 0; k < 3; k++) {
+        memcpy(word[4 + 4 * k], &edge_a[k], sizeof word[0]);
+        memcpy(word[5 + 4 * k], &edge_b[k], sizeof word[0]);
+    }
+    /* Each lane's record: words 0-15, then the 32 floats, eight at a
+     * time through the transposes. */
+    for (int q = 0; q < 6; q++) {
+        vf32 rows[8];
+        float *to_record[LANES];
+        for (int j = 0; j < 8; j++) {
+            if (q < 2) memcpy(&rows[j], word[8 * q + j], sizeof rows[j]);
+            else memcpy(&rows[j], column[8 * (q - 2) + j], sizeof rows[j]);
+        }
+        for (int lane = 0; lane < LANES; lane++)
+            to_record[lane] = (float *)(void *)&out[lane] + 8 * q;
+        store_columns8(to_record, rows);
+    }
+    for (int lane = 0; lane < LANES; lane++) out[lane].draw_index = draw_index;
+
+    /* Each lane's verdict in setup's order: culled (a back face), off
+     * screen (no centre in the box, or in a box of 3 to 16 centres none
+     * covered), then culled again (no plane can be solved). */
+    const unsigned offscreen = empty | (~back & ~empty & small & ~up_to_2x2 & ~covered);
+    for (int lane = 0; lane < LANES; lane++) {
+        const unsigned bit = 1u << lane;
+        result[lane] = (back & bit)        ? LUZ_SETUP_CULLED
+                       : (offscreen & bit) ? LUZ_SETUP_OFFSCREEN
+                       : (solvable & bit)  ? LUZ_SETUP_VISIBLE
+                                           : LUZ_SETUP_CULLED;
+    }
+}
+
+luz_setup_eight_function SETUP_LANES;
+
+bool SETUP_LANES(const uint32_t *indices, const uint32_t triangles[8],
+                 const luz_draw_transform *transform, const luz_fixed_vertex *fixed, int width,
+                 int height, uint32_t draw_index, luz_interpolation interpolation,
+                 luz_triangle out[8], luz_setup_result result[8])
+{
+    /* The corners of every group first: a marked vertex (below -2^24)
+     * leaves all eight to the caller before any record is written.
+     * Marked vertices come in runs (a draw across a clip plane, whose back
+     * faces screening cannot judge either): such a call is left whole. */
+    group_corners corners[GROUPS];
+    unsigned marked = 0;
+    for (int g = 0; g < GROUPS; g++) {
+        int32_t vertex[3][LANES];
+        for (int lane = 0; lane < LANES; lane++)
+            for (int k = 0; k < 3; k++)
+                vertex[k][lane] =
+                    (int32_t)indices[3 * (size_t)triangles[g * LANES + lane] + (size_t)k];
+        for (int k = 0; k < 3; k++) {
+            memcpy(&corners[g].vertex[k], vertex[k], sizeof vertex[k]);
+            gather_fixed(corners[g].vertex[k], fixed, &corners[g].x[k], &corners[g].y[k]);
+            marked |= lane_bits(corners[g].x[k] < -(1 << 24));
+        }
+    }
+    if (marked != 0) return true;
+    for (int g = 0; g < GROUPS; g++)
+        setup_group(&corners[g], transform, width, height, draw_index, interpolation,
+                    &out[g * LANES], &result[g * LANES]);
+    return false;
+}
