@@ -340,7 +340,24 @@ cd "$work" || exit 1
 pixel_of() {   # pixel_of IMAGE X Y: "r,g,b"
     convert "$1" -format "%[fx:int(255*p{$2,$3}.r)],%[fx:int(255*p{$2,$3}.g)],%[fx:int(255*p{$2,$3}.b)]" info:
 }
+# capture NAME [BEFORE]: the window into NAME. With BEFORE (an earlier
+# capture), it first waits, up to 20 s, until the window differs from it:
+# under a sanitizer on a loaded machine a key or click can take more than
+# a fixed half second to reach the screen. Then half a second more, for a
+# second key of the same xdotool call.
 capture() {
+    if [ $# -ge 2 ]; then
+        i=0
+        while :; do
+            import -window "$window" "$work/poll.png" 2>>"$work/stderr" ||
+                fail "cannot read the window back"
+            [ "$(compare -metric AE "$work/poll.png" "$work/$2" null: 2>&1 >/dev/null)" != 0 ] &&
+                break
+            i=$((i + 1))
+            [ $i -gt 100 ] && fail "the window still shows $2 after 20 s"
+            sleep 0.2
+        done
+    fi
     sleep 0.5
     import -window "$window" "$work/$1" 2>>"$work/stderr" || fail "cannot read the window back"
 }
@@ -351,9 +368,16 @@ wait_for_window "luz (probe)"
 panel_crop=200x100+10+420   # inside the panel, below the HUD
 scene_crop=100x100+700+300  # the scene, right of the panel
 xdotool key t e
+# T pauses: wait until the scene stands still before the first capture
+i=0
 capture before.png
+until capture settled.png && [ "$(differing_pixels "$work/before.png" "$work/settled.png" "$scene_crop")" = 0 ]; do
+    i=$((i + 1))
+    [ $i -gt 40 ] && fail "the scene still moves 20 s after T"
+    mv "$work/settled.png" "$work/before.png"
+done
 xdotool mousemove --window "$window" 480 270 click 1
-capture probe.png
+capture probe.png before.png
 for arm in "483 270" "488 270" "472 270" "480 275" "480 262"; do
     set -- $arm
     [ "$(pixel_of "$work/probe.png" "$1" "$2")" = "255,230,40" ] ||
@@ -364,21 +388,21 @@ done
 changed=$(differing_pixels "$work/before.png" "$work/probe.png" "$panel_crop")
 [ "$changed" -gt 5000 ] || fail "E and a click changed $changed pixels at the bottom left: no probe panel"
 xdotool key v
-capture probe-v.png
+capture probe-v.png probe.png
 changed=$(differing_pixels "$work/probe.png" "$work/probe-v.png" "$scene_crop")
 [ "$changed" -gt 1000 ] || fail "V changed only $changed pixels of the scene"
 changed=$(differing_pixels "$work/probe.png" "$work/probe-v.png" "$panel_crop")
 [ "$changed" -eq 0 ] || fail "paused, V changed $changed pixels of the frozen probe panel"
 xdotool key shift+v shift+e
-capture unprobed.png
+capture unprobed.png probe-v.png
 [ "$(pixel_of "$work/unprobed.png" 483 270)" = "$(pixel_of "$work/before.png" 483 270)" ] ||
     fail "Shift+E left the marker: $(pixel_of "$work/unprobed.png" 483 270)"
 changed=$(differing_pixels "$work/before.png" "$work/unprobed.png" "$panel_crop")
 [ "$changed" -eq 0 ] || fail "Shift+E left $changed pixels of the probe panel"
 xdotool mousemove --window "$window" 480 270 click 1
 xdotool key t
-capture live-1.png
-capture live-2.png
+capture live-1.png unprobed.png
+capture live-2.png live-1.png
 changed=$(differing_pixels "$work/live-1.png" "$work/live-2.png" "$panel_crop")
 [ "$changed" -gt 50 ] || fail "the running probe panel changed only $changed pixels in half a second"
 xdotool key Escape
