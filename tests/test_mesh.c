@@ -438,8 +438,9 @@ static luz_mesh *middle_quad(void)
 /* A zero material is lit, white and untextured: under ambient light alone
  * of strength 0.5, SCENE.md's colour is 0.5 x C x T = 0.5 x 1 x 1, byte
  * round(127.5) = 128 (it was 0: black). An unlit zero material is white,
- * 255. A colour is used once has_colour says so, black included; without
- * it the colour field is ignored. */
+ * 255. A colour other than (0, 0, 0) is used as given, with or without
+ * has_colour (a caller who sets only the colour gets it); black needs
+ * has_colour. */
 static void test_zero_material_is_lit_and_white(void **state)
 {
     (void)state;
@@ -455,7 +456,9 @@ static void test_zero_material_is_lit_and_white(void **state)
         {{.colour = {0.0f, 0.0f, 0.0f}, .has_colour = true}, {0, 0, 0}},
         /* 0.5 x (1, 0.5, 0.2): 127.5, 63.75, 25.5 */
         {{.colour = {1.0f, 0.5f, 0.2f}, .has_colour = true}, {128, 64, 26}},
-        {{.colour = {1.0f, 0.5f, 0.2f}}, {128, 128, 128}},
+        {{.colour = {1.0f, 0.5f, 0.2f}}, {128, 64, 26}},
+        /* 0.5 x (0, 0.5, 0): a colour with one zero channel stays itself */
+        {{.colour = {0.0f, 0.5f, 0.0f}}, {0, 64, 0}},
     };
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
         luz_frame frame = camera_frame();

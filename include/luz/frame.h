@@ -89,21 +89,25 @@ typedef enum luz_shading {
 
 /* What a draw is made of. A zero material is lit, white (C = 1, 1, 1) and
  * untextured (T = 1), sampled trilinearly: SCENE.md's white, the colour
- * of an untextured texel. To give it a colour, set has_colour with it. */
+ * of an untextured texel. A colour that is not (0, 0, 0) is used as it
+ * is; has_colour asks for the colour even when it is black. */
 typedef struct luz_material {
     luz_shading shading;          /* 0: lit */
     luz_vec3 colour;              /* objectColor C, each channel in [0, 1]
-                                     (a model's may be more); used when
-                                     has_colour is set */
-    bool has_colour;              /* false: C = (1, 1, 1), colour ignored */
+                                     (a model's may be more); (0, 0, 0)
+                                     means white unless has_colour */
+    bool has_colour;              /* true: C = colour, black included */
     const luz_texture *texture;   /* NULL: every texel white, T = 1 */
     luz_filter filter;            /* how the texture is sampled; 0: trilinear */
 } luz_material;
 
-/* The material's colour C: its colour if it has one, else white. */
+/* The material's colour C: its colour if it has one (has_colour, or any
+ * channel not zero), else white. */
 static inline luz_vec3 luz_material_colour(const luz_material *material)
 {
-    return material->has_colour ? material->colour : (luz_vec3){1.0f, 1.0f, 1.0f};
+    const luz_vec3 c = material->colour;
+    const bool given = material->has_colour || c.x != 0.0f || c.y != 0.0f || c.z != 0.0f;
+    return given ? c : (luz_vec3){1.0f, 1.0f, 1.0f};
 }
 
 /* ---- output: exposure and tone map ---------------------------------------- */
