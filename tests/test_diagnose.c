@@ -32,6 +32,7 @@
 #include "app/term_fit.h"
 #include "file_support.h"
 #include "test_support.h"
+#include "cli_support.h"
 
 /* ---- the fit, by hand ----------------------------------------------------------------- */
 
@@ -208,39 +209,15 @@ static const char *frames_directory(void)
     return directory;
 }
 
-/* luz-render with the arguments (NULL-terminated), in the work directory. */
+/* luz-render with the arguments (NULL-terminated), in the work directory,
+ * its stdout and stderr captured there (cli_support.h's runner). */
 static run run_luz_render(const char *const *arguments)
 {
-    const char *program = getenv("LUZ_RENDER");
-    if (program == NULL) fail_msg("LUZ_RENDER is not set (tests/meson.build)");
-    char out_path[400], err_path[400];
-    snprintf(out_path, sizeof out_path, "%s/stdout", work);
-    snprintf(err_path, sizeof err_path, "%s/stderr", work);
-    char *argv[40];
-    int argc = 0;
-    argv[argc++] = (char *)program;
-    for (int i = 0; arguments[i] != NULL && argc < 39; i++) argv[argc++] = (char *)arguments[i];
-    argv[argc] = NULL;
-    fflush(NULL);
-    pid_t child = fork();
-    assert_true(child >= 0);
-    if (child == 0) {
-        int out = open(out_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        int err = open(err_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        if (out < 0 || err < 0 || chdir(work) != 0 || dup2(out, STDOUT_FILENO) < 0 ||
-            dup2(err, STDERR_FILENO) < 0)
-            _exit(127);
-        unsetenv("LUZ_TEXTURES");
-        execv(program, argv);
-        _exit(127);
-    }
-    int status;
-    while (waitpid(child, &status, 0) < 0) assert_int_equal(errno, EINTR);
-    run result = {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status),
-                  read_file(out_path, NULL), read_file(err_path, NULL)};
-    assert_non_null(result.out);
-    assert_non_null(result.err);
-    return result;
+    sandbox box;
+    snprintf(box.root, sizeof box.root, "%s", work);
+    snprintf(box.work, sizeof box.work, "%s", work);
+    const run_result result = run_in(&box, arguments, NULL);
+    return (run){result.status, result.out, result.err};
 }
 
 static void run_free(run *r)
