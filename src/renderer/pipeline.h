@@ -429,6 +429,79 @@ luz_setup_result luz_setup_triangle_samples(const luz_clip_vertex *v0, const luz
                                             uint32_t draw_index, luz_interpolation interpolation,
                                             int samples, luz_triangle *out);
 
+/* ---- the shading planes (planes.c) ---------------------------------------- */
+
+/* What the stages that shade a pixel interpolate across a triangle and
+ * the raster stage never reads: 1/w and every varying/w (for affine
+ * interpolation: 1 and every varying), each a plane through the
+ * triangle's reference point (setup.c's step 5). Laid out as the
+ * record's inverse_w and varyings. */
+typedef struct luz_shading_planes {
+    luz_plane inverse_w;
+    luz_plane varyings[LUZ_VARYING_COUNT];
+} luz_shading_planes;
+
+/* What every plane of a triangle is solved from: its corners' exact
+ * window positions, 1 / the determinant of its edge vectors, and the
+ * reference point, the snapped vertex 0. */
+typedef struct luz_plane_basis {
+    double x[3], y[3];
+    double inverse_determinant;
+    double rx, ry;
+} luz_plane_basis;
+
+/* The basis of triangle (p0, p1, p2); false, and out untouched, when no
+ * plane can be solved (a determinant of 0 or not finite: setup culls). */
+bool luz_plane_basis_of(const luz_window_vertex *p0, const luz_window_vertex *p1,
+                        const luz_window_vertex *p2, luz_plane_basis *out);
+
+/* The plane through (x_k, y_k, value_k), k = 0..2 (Cramer's rule on the
+ * two edge vectors), given by its value at the reference point, each
+ * rounded to float. Inlined, so that the ten planes of a triangle share
+ * the differences of x and y (computed once; the arithmetic of each plane
+ * is unchanged). setup.c's depth plane and planes.c's others. */
+static inline __attribute__((always_inline)) luz_plane
+luz_plane_through(const luz_plane_basis *basis, double value0, double value1, double value2)
+{
+    const double *x = basis->x, *y = basis->y;
+    double d1 = value1 - value0, d2 = value2 - value0;
+    double dx = (d1 * (y[2] - y[0]) - d2 * (y[1] - y[0])) * basis->inverse_determinant;
+    double dy = (d2 * (x[1] - x[0]) - d1 * (x[2] - x[0])) * basis->inverse_determinant;
+    luz_plane plane;
+    plane.value = (float)(value0 + dx * (basis->rx - x[0]) + dy * (basis->ry - y[0]));
+    plane.dx = (float)dx;
+    plane.dy = (float)dy;
+    return plane;
+}
+
+/* The shading planes of triangle (v0, v1, v2), projected as (p0, p1,
+ * p2), whose basis is basis: the bits setup writes in its record. */
+void luz_planes_solve(const luz_plane_basis *basis, const luz_window_vertex *p0,
+                      const luz_window_vertex *p1, const luz_window_vertex *p2,
+                      const luz_clip_vertex *v0, const luz_clip_vertex *v1,
+                      const luz_clip_vertex *v2, luz_interpolation interpolation,
+                      luz_shading_planes *out);
+
+typedef enum luz_planes_result {
+    LUZ_PLANES_SOLVED,
+    LUZ_PLANES_CLIPPED,   /* a corner outside a clip plane: the records are
+                             the clipper's fan, not this triangle */
+    LUZ_PLANES_NONE,      /* setup makes no record of it (a corner not
+                             projectable, or no plane to solve) */
+} luz_planes_result;
+
+/* The shading planes of mesh triangle `primitive` (vertices indices[3
+ * primitive ..]) of a draw whose transforms are transform, in a frame of
+ * width x height with bug in (luz/bug.h): its corners through the vertex
+ * stage and projection again (luz_vertex_stage_one_bug,
+ * luz_setup_project_vertex), then luz_planes_solve, with corners 1 and 2
+ * traded where no-backface-culling sets a back face up so. SOLVED: the
+ * planes of the record setup made of it, bit for bit. */
+luz_planes_result luz_planes_of_primitive(const luz_draw_transform *transform,
+                                          const uint32_t *indices, uint32_t primitive, int width,
+                                          int height, luz_interpolation interpolation, luz_bug bug,
+                                          luz_shading_planes *out);
+
 /* ---- rasterisation and depth test -------------------------------------- */
 
 /* The per-pixel arithmetic of the raster stage, shared by raster.c's loops

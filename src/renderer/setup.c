@@ -42,7 +42,9 @@
  *    the exact (unsnapped) vertex positions. Dividing the interpolated
  *    varying/w by the interpolated 1/w gives the perspective-correct
  *    value (Heckbert and Moreton, "Interpolation for polygon texture
- *    mapping and shading").
+ *    mapping and shading"). The arithmetic of each plane is planes.c's
+ *    (luz_plane_through, luz_planes_solve), which can solve the 1/w and
+ *    varying planes again later from the mesh triangle alone.
  *    LUZ_INTERPOLATION_AFFINE, the teaching toggle (--interp affine), solves
  *    the planes of the varyings themselves and makes the 1/w plane the
  *    constant 1, so the same division in the fragment stage returns the
@@ -58,6 +60,7 @@
  * viewport below 2^52: far from 2^63.
  */
 #include <math.h>
+#include <string.h>
 
 #include "renderer/pipeline.h"
 
@@ -142,53 +145,6 @@ static bool covers_a_sample(const luz_triangle *triangle, int samples)
         }
     }
     return false;
-}
-
-/* The plane through (x_k, y_k, value_k), k = 0..2 (Cramer's rule on the
- * two edge vectors), given by its value at the reference point (rx, ry).
- * Inlined, so that the ten calls of a triangle share the differences of
- * x and y (the compiler computes them once; the arithmetic of each plane
- * is unchanged). */
-static inline __attribute__((always_inline)) luz_plane
-make_plane(const double x[3], const double y[3], double inverse_determinant, double rx, double ry,
-           double value0, double value1, double value2)
-{
-    double d1 = value1 - value0, d2 = value2 - value0;
-    double dx = (d1 * (y[2] - y[0]) - d2 * (y[1] - y[0])) * inverse_determinant;
-    double dy = (d2 * (x[1] - x[0]) - d1 * (x[2] - x[0])) * inverse_determinant;
-    luz_plane plane;
-    plane.value = (float)(value0 + dx * (rx - x[0]) + dy * (ry - y[0]));
-    plane.dx = (float)dx;
-    plane.dy = (float)dy;
-    return plane;
-}
-
-/* Step 5's planes for depth, 1/w and every varying/w (this file's top),
- * into out: the same arithmetic for ten planes of every triangle that
- * covers a pixel, most of a million-triangle mesh's setup, so compiled
- * for wider vectors too (LUZ_CLONES). Counted with callgrind on a
- * 150k-triangle sphere, the AVX2 clone takes setup from 44 to 35 million
- * instructions a frame. */
-static LUZ_CLONES void solve_planes(const double x[3], const double y[3],
-                                    double inverse_determinant, double rx, double ry,
-                                    const double depth[3], const double inverse_w[3],
-                                    const luz_clip_vertex *v0, const luz_clip_vertex *v1,
-                                    const luz_clip_vertex *v2, luz_interpolation interpolation,
-                                    luz_triangle *out)
-{
-    out->depth = make_plane(x, y, inverse_determinant, rx, ry, depth[0], depth[1], depth[2]);
-    /* The weight each vertex's varyings are divided by: 1/w for
-     * perspective-correct interpolation, 1 for affine. */
-    double weight[3] = {inverse_w[0], inverse_w[1], inverse_w[2]};
-    if (interpolation == LUZ_INTERPOLATION_AFFINE) weight[0] = weight[1] = weight[2] = 1.0;
-    out->inverse_w = make_plane(x, y, inverse_determinant, rx, ry,
-                                weight[0], weight[1], weight[2]);
-    for (int i = 0; i < LUZ_VARYING_COUNT; i++) {
-        out->varyings[i] = make_plane(x, y, inverse_determinant, rx, ry,
-                                      v0->varyings[i] * weight[0],
-                                      v1->varyings[i] * weight[1],
-                                      v2->varyings[i] * weight[2]);
-    }
 }
 
 luz_window_vertex luz_setup_project_vertex(const luz_clip_vertex *vertex, int width, int height)
@@ -287,17 +243,17 @@ setup_projected(const luz_clip_vertex *v0, const luz_clip_vertex *v1, const luz_
      * every varying would be read as if its vertices had moved by up to
      * 1/512 pixel, enough to flip a nearest-filtered texel. They are stored
      * relative to the snapped vertex 0, which a float holds exactly. */
-    const double x[3] = {p0->x, p1->x, p2->x}, y[3] = {p0->y, p1->y, p2->y};
-    const double depth[3] = {p0->depth, p1->depth, p2->depth};
-    const double inverse_w[3] = {p0->inverse_w, p1->inverse_w, p2->inverse_w};
-    double determinant = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
-    if (!(determinant != 0.0) || !isfinite(determinant)) return LUZ_SETUP_CULLED;
-    double inverse_determinant = 1.0 / determinant;
-    double rx = (double)fixed_x[0] / LUZ_SUBPIXEL_ONE, ry = (double)fixed_y[0] / LUZ_SUBPIXEL_ONE;
-    out->reference_x = (float)rx;
-    out->reference_y = (float)ry;
-    solve_planes(x, y, inverse_determinant, rx, ry, depth, inverse_w, v0, v1, v2, interpolation,
-                 out);
+    luz_plane_basis basis;
+    if (!luz_plane_basis_of(p0, p1, p2, &basis)) return LUZ_SETUP_CULLED;
+    out->reference_x = (float)basis.rx;
+    out->reference_y = (float)basis.ry;
+    out->depth = luz_plane_through(&basis, p0->depth, p1->depth, p2->depth);
+    /* 1/w and the varyings: planes.c's, which can solve them again later
+     * from the mesh triangle alone. */
+    luz_shading_planes shading;
+    luz_planes_solve(&basis, p0, p1, p2, v0, v1, v2, interpolation, &shading);
+    out->inverse_w = shading.inverse_w;
+    memcpy(out->varyings, shading.varyings, sizeof out->varyings);
     out->draw_index = draw_index;
     return LUZ_SETUP_VISIBLE;
 }
