@@ -14,7 +14,9 @@
  * filling the view, the same grid crossing the near plane and the guard
  * band (clipped triangles among the screened ones), one wholly behind
  * the camera, and one so far away that each thousand of its triangles
- * leave fewer than eight to set up.
+ * leave fewer than eight to set up. Then the same frame at four samples
+ * a pixel (the tables' screen_four and setup_eight_four against
+ * luz_setup_projected_samples one triangle at a time).
  */
 #include <math.h>
 #include <setjmp.h>
@@ -181,17 +183,29 @@ static void test_same_phase_one_in_every_set(void **state)
     for (size_t id = 1; id <= baseline.total; id++) far += baseline.records[id].draw_index == 3;
     print_message("%zu triangles of the far grid set up\n", far);
     assert_true(far > 0 && far < 64 * 4);
+    /* At four samples a pixel more triangles cover a sample than a
+     * centre: more are set up, of the same submitted. */
+    frame.samples = 4;
+    snapshot baseline_four = run(&frame, LUZ_ISA_SCALAR, 1);
+    frame.samples = 0;
+    print_message("%zu triangles set up at four samples a pixel\n", baseline_four.total);
+    assert_true(baseline_four.total > baseline.total);
+    assert_true(baseline_four.submitted == baseline.submitted);
     const int thread_counts[] = {1, 3};
-    for (int isa = LUZ_ISA_SCALAR + 1; isa <= (int)luz_isa_widest(); isa++)
-        for (size_t k = 0; k < sizeof thread_counts / sizeof thread_counts[0]; k++) {
-            snapshot wide = run(&frame, (luz_isa)isa, thread_counts[k]);
-            char label[64];
-            snprintf(label, sizeof label, "%s, %d thread%s", luz_isa_name((luz_isa)isa),
-                     thread_counts[k], thread_counts[k] == 1 ? "" : "s");
-            assert_same(&wide, &baseline, label);
-            snapshot_free(&wide);
-        }
+    for (int samples = 1; samples <= 4; samples += 3)
+        for (int isa = LUZ_ISA_SCALAR + 1; isa <= (int)luz_isa_widest(); isa++)
+            for (size_t k = 0; k < sizeof thread_counts / sizeof thread_counts[0]; k++) {
+                frame.samples = samples;
+                snapshot wide = run(&frame, (luz_isa)isa, thread_counts[k]);
+                char label[64];
+                snprintf(label, sizeof label, "%s, %d thread%s, %d sample%s",
+                         luz_isa_name((luz_isa)isa), thread_counts[k],
+                         thread_counts[k] == 1 ? "" : "s", samples, samples == 1 ? "" : "s");
+                assert_same(&wide, samples == 1 ? &baseline : &baseline_four, label);
+                snapshot_free(&wide);
+            }
     snapshot_free(&baseline);
+    snapshot_free(&baseline_four);
     luz_frame_free(&frame);
     luz_mesh_destroy(mesh);
 }

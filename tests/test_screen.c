@@ -16,6 +16,12 @@
  * luz_setup_projected, the other implementation, must agree on each
  * dropped triangle. Vertices outside a clip plane, or invalid, leave their
  * triangles to setup.
+ *
+ * The same for four samples a pixel (luz_kernels' screen_four): the
+ * samples are SCENE.md's (x + sx, y + sy), (sx, sy) = (0.375, 0.125),
+ * (0.875, 0.375), (0.125, 0.625), (0.625, 0.875), in the definitions
+ * instead of the centre, and luz_setup_projected_samples(..., 4, ...)
+ * the other implementation.
  */
 #define _DEFAULT_SOURCE   /* MAP_ANONYMOUS */
 #include <setjmp.h>
@@ -43,14 +49,29 @@ static const luz_isa variants[] = {LUZ_ISA_SCALAR, LUZ_ISA_BASELINE, LUZ_ISA_AVX
                                    LUZ_ISA_AVX512};
 #define VARIANT_COUNT (int)(sizeof variants / sizeof variants[0])
 
-/* Variant v's screening; *screens: whether it drops any triangle (it then
- * promises to check the small boxes). */
-static luz_screen_function *screening(int v, bool *screens)
+/* Variant v's screening for pixels of `samples` samples (1 or 4);
+ * *screens: whether it drops any triangle (it then promises to check the
+ * small boxes). */
+static luz_screen_function *screening(int v, int samples, bool *screens)
 {
     const luz_kernels kernels = luz_kernels_of(variants[v]);
+    if (samples == 4) {
+        *screens = kernels.screen_four != NULL;
+        return *screens ? kernels.screen_four : luz_screen_every_triangle;
+    }
     *screens = kernels.screen != luz_screen_every_triangle;
     assert_int_equal(kernels.screen_checks_small_boxes, *screens);
     return kernels.screen;
+}
+
+/* A pixel's sample points, from its corner, in 1/256 pixel (SCENE.md,
+ * "Anti-aliasing": the centre for one sample, else the 4x pattern). */
+static const int64_t centre_offset[1][2] = {{128, 128}};
+static const int64_t four_offsets[4][2] = {{96, 32}, {224, 96}, {32, 160}, {160, 224}};
+
+static const int64_t (*offsets_of(int samples))[2]
+{
+    return samples == 4 ? four_offsets : centre_offset;
 }
 
 /* A mesh of projected vertices, as luz_setup_project leaves them. */
@@ -103,29 +124,46 @@ static int64_t doubled_area(const luz_fixed_vertex p[3])
            ((int64_t)p[1].x - p[0].x) * ((int64_t)p[2].y - p[0].y);
 }
 
-static int centres_covered(const luz_fixed_vertex p[3])
+/* The sample points of the viewport the triangle covers (one sample a
+ * pixel: its centre). */
+static int samples_covered(const luz_fixed_vertex p[3], int samples)
 {
     int count = 0;
     for (int y = 0; y < HEIGHT; y++)
-        for (int x = 0; x < WIDTH; x++) {
-            const int64_t sx = 256 * (int64_t)x + 128, sy = 256 * (int64_t)y + 128;
-            bool inside = true;
-            for (int k = 0; k < 3; k++) {
-                const luz_fixed_vertex from = p[(k + 1) % 3], to = p[(k + 2) % 3];
-                const int64_t dx = (int64_t)to.x - from.x, dy = (int64_t)to.y - from.y;
-                const int64_t e = dy * (sx - from.x) - dx * (sy - from.y);
-                const bool top = dy == 0 && dx < 0, left = dy > 0;
-                inside = inside && (e > 0 || (e == 0 && (top || left)));
+        for (int x = 0; x < WIDTH; x++)
+            for (int s = 0; s < samples; s++) {
+                const int64_t sx = 256 * (int64_t)x + offsets_of(samples)[s][0];
+                const int64_t sy = 256 * (int64_t)y + offsets_of(samples)[s][1];
+                bool inside = true;
+                for (int k = 0; k < 3; k++) {
+                    const luz_fixed_vertex from = p[(k + 1) % 3], to = p[(k + 2) % 3];
+                    const int64_t dx = (int64_t)to.x - from.x, dy = (int64_t)to.y - from.y;
+                    const int64_t e = dy * (sx - from.x) - dx * (sy - from.y);
+                    const bool top = dy == 0 && dx < 0, left = dy > 0;
+                    inside = inside && (e > 0 || (e == 0 && (top || left)));
+                }
+                count += inside;
             }
-            count += inside;
-        }
     return count;
 }
 
-/* The pixels whose centres lie within the triangle's box, clamped to the
- * viewport: -1 if none, else the larger of its width and height. */
-static int64_t box_size(const luz_fixed_vertex p[3])
+static int centres_covered(const luz_fixed_vertex p[3])
 {
+    return samples_covered(p, 1);
+}
+
+/* The pixels one of whose samples (one: the centre) lies within the
+ * triangle's box, clamped to the viewport: -1 if none, else the larger of
+ * its width and height. */
+static int64_t box_size(const luz_fixed_vertex p[3], int samples)
+{
+    int64_t nearest = 256, farthest = 0;   /* a sample from the pixel's corner */
+    for (int s = 0; s < samples; s++)
+        for (int axis = 0; axis < 2; axis++) {
+            const int64_t offset = offsets_of(samples)[s][axis];
+            if (offset < nearest) nearest = offset;
+            if (offset > farthest) farthest = offset;
+        }
     int64_t lo_x = INT64_MAX, hi_x = INT64_MIN, lo_y = INT64_MAX, hi_y = INT64_MIN;
     for (int k = 0; k < 3; k++) {
         if (p[k].x < lo_x) lo_x = p[k].x;
@@ -133,12 +171,13 @@ static int64_t box_size(const luz_fixed_vertex p[3])
         if (p[k].y < lo_y) lo_y = p[k].y;
         if (p[k].y > hi_y) hi_y = p[k].y;
     }
-    /* Centres 256 x + 128 within [lo, hi], x within the viewport. */
+    /* A sample of pixel x within [lo, hi]: 256 x + farthest >= lo and
+     * 256 x + nearest <= hi, x within the viewport. */
     int64_t first_x = 0, last_x = WIDTH - 1, first_y = 0, last_y = HEIGHT - 1;
-    while (first_x < WIDTH && 256 * first_x + 128 < lo_x) first_x++;
-    while (last_x >= 0 && 256 * last_x + 128 > hi_x) last_x--;
-    while (first_y < HEIGHT && 256 * first_y + 128 < lo_y) first_y++;
-    while (last_y >= 0 && 256 * last_y + 128 > hi_y) last_y--;
+    while (first_x < WIDTH && 256 * first_x + farthest < lo_x) first_x++;
+    while (last_x >= 0 && 256 * last_x + nearest > hi_x) last_x--;
+    while (first_y < HEIGHT && 256 * first_y + farthest < lo_y) first_y++;
+    while (last_y >= 0 && 256 * last_y + nearest > hi_y) last_y--;
     if (first_x > last_x || first_y > last_y) return -1;
     const int64_t w = last_x - first_x + 1, h = last_y - first_y + 1;
     return w > h ? w : h;
@@ -148,11 +187,12 @@ typedef struct tally {
     int dropped_back, dropped_uncovered, kept;
 } tally;
 
-/* Screens triangles [first, end) with variant v and checks every verdict. */
-static tally screen_and_check(const mesh *m, int v, uint32_t first, uint32_t end)
+/* Screens triangles [first, end) with variant v for pixels of `samples`
+ * samples and checks every verdict. */
+static tally screen_and_check(const mesh *m, int v, int samples, uint32_t first, uint32_t end)
 {
     bool checks_small_boxes = false;
-    luz_screen_function *screen = screening(v, &checks_small_boxes);
+    luz_screen_function *screen = screening(v, samples, &checks_small_boxes);
     uint32_t *survivors = malloc((end - first + 1) * sizeof *survivors);
     assert_non_null(survivors);
     uint32_t culled = 12345;
@@ -178,34 +218,37 @@ static tally screen_and_check(const mesh *m, int v, uint32_t first, uint32_t end
             if (!eligible || !checks_small_boxes) continue;
             /* What a screening variant must not leave to setup, the last
              * triangles of a range (fewer than 16) included. */
-            const int64_t size = box_size(p);
-            if (doubled_area(p) <= 0 || size < 0 || (size <= 2 && centres_covered(p) == 0))
-                fail_msg("%s kept triangle %u, which it should drop", luz_isa_name(variants[v]), t);
+            const int64_t size = box_size(p, samples);
+            if (doubled_area(p) <= 0 || size < 0 ||
+                (size <= 2 && samples_covered(p, samples) == 0))
+                fail_msg("%s kept triangle %u, which it should drop (%d samples)",
+                         luz_isa_name(variants[v]), t, samples);
             /* So setup told that screening checked the small boxes
              * decides as setup testing them itself (a larger box it still
              * tests either way). */
-            const luz_setup_result trusting = luz_setup_projected(
+            const luz_setup_result trusting = luz_setup_projected_samples(
                 &m->clip[index[0]], &m->clip[index[1]], &m->clip[index[2]],
                 &m->window[index[0]], &m->window[index[1]], &m->window[index[2]], WIDTH, HEIGHT,
-                0, LUZ_INTERPOLATION_PERSPECTIVE, checks_small_boxes, &triangle);
-            assert_int_equal(trusting, luz_setup_projected(
+                0, LUZ_INTERPOLATION_PERSPECTIVE, checks_small_boxes, samples, &triangle);
+            assert_int_equal(trusting, luz_setup_projected_samples(
                 &m->clip[index[0]], &m->clip[index[1]], &m->clip[index[2]],
                 &m->window[index[0]], &m->window[index[1]], &m->window[index[2]], WIDTH,
-                HEIGHT, 0, LUZ_INTERPOLATION_PERSPECTIVE, false, &triangle));
+                HEIGHT, 0, LUZ_INTERPOLATION_PERSPECTIVE, false, samples, &triangle));
             continue;
         }
         /* Dropped: it must be eligible, and a back face or cover nothing. */
         if (!eligible)
             fail_msg("%s dropped triangle %u with a marked vertex", luz_isa_name(variants[v]), t);
         if (doubled_area(p) <= 0) result.dropped_back++;
-        else if (centres_covered(p) == 0) result.dropped_uncovered++;
+        else if (samples_covered(p, samples) == 0) result.dropped_uncovered++;
         else
-            fail_msg("%s dropped triangle %u, which covers a centre", luz_isa_name(variants[v]), t);
+            fail_msg("%s dropped triangle %u, which covers a sample (%d a pixel)",
+                     luz_isa_name(variants[v]), t, samples);
         /* And setup, the other implementation, says the same. */
-        const luz_setup_result setup = luz_setup_projected(
+        const luz_setup_result setup = luz_setup_projected_samples(
             &m->clip[index[0]], &m->clip[index[1]], &m->clip[index[2]], &m->window[index[0]],
             &m->window[index[1]], &m->window[index[2]], WIDTH, HEIGHT, 0,
-            LUZ_INTERPOLATION_PERSPECTIVE, false, &triangle);
+            LUZ_INTERPOLATION_PERSPECTIVE, false, samples, &triangle);
         assert_int_equal(setup, doubled_area(p) <= 0 ? LUZ_SETUP_CULLED : LUZ_SETUP_OFFSCREEN);
     }
     /* The survivors are in order, each once, and within the range. */
@@ -213,6 +256,52 @@ static tally screen_and_check(const mesh *m, int v, uint32_t first, uint32_t end
     assert_int_equal(culled, (uint32_t)result.dropped_back);
     free(survivors);
     return result;
+}
+
+/* Screens the random mesh m with every variant for pixels of `samples`
+ * samples: whole, and in pieces. */
+static void screen_random_mesh(const mesh *m, int samples, uint32_t *random,
+                               int *uncovered_of_one)
+{
+    const uint32_t triangle_count = m->triangle_count;
+    for (int v = 0; v < VARIANT_COUNT; v++) {
+        if (!luz_isa_available(variants[v])) {
+            print_message("%s: not on this CPU or build, skipped\n", luz_isa_name(variants[v]));
+            continue;
+        }
+        /* Whole, and in pieces that start and end anywhere. */
+        tally whole = screen_and_check(m, v, samples, 0, triangle_count);
+        tally pieces = {0, 0, 0};
+        for (uint32_t first = 0; first < triangle_count;) {
+            const uint32_t end = first + 1 + test_random(random) % 70;
+            const tally piece = screen_and_check(m, v, samples, first,
+                                                 end < triangle_count ? end : triangle_count);
+            pieces.dropped_back += piece.dropped_back;
+            pieces.dropped_uncovered += piece.dropped_uncovered;
+            pieces.kept += piece.kept;
+            first = end;
+        }
+        print_message("%s, %d sample%s: %d back faces and %d covering no sample dropped, %d "
+                      "kept\n", luz_isa_name(variants[v]), samples, samples > 1 ? "s" : "",
+                      whole.dropped_back, whole.dropped_uncovered, whole.kept);
+        bool screens;
+        screening(v, samples, &screens);
+        if (!screens) {
+            assert_int_equal(whole.kept, triangle_count);
+            continue;
+        }
+        /* Both kinds of drop happen, often, and each triangle's verdict
+         * is its own: the pieces (most of them shorter than 16, screened
+         * in masked lanes) drop exactly what the whole range does. Four
+         * samples cover more: fewer triangles cover none. */
+        assert_true(whole.dropped_back > 5000);
+        assert_true(whole.dropped_uncovered > (samples == 1 ? 2000 : 1000));
+        if (samples == 1) *uncovered_of_one = whole.dropped_uncovered;
+        else assert_true(whole.dropped_uncovered < *uncovered_of_one);
+        assert_int_equal(pieces.kept, whole.kept);
+        assert_int_equal(pieces.dropped_back, whole.dropped_back);
+        assert_int_equal(pieces.dropped_uncovered, whole.dropped_uncovered);
+    }
 }
 
 /* RANDOM TRIANGLES, most a pixel or two across, around and beyond a 40 x
@@ -256,41 +345,9 @@ static void test_screening_drops_what_setup_would(void **state)
             m.indices[3 * (size_t)t + 2] = m.indices[3 * (size_t)t];
         }
     }
-    for (int v = 0; v < VARIANT_COUNT; v++) {
-        if (!luz_isa_available(variants[v])) {
-            print_message("%s: not on this CPU or build, skipped\n", luz_isa_name(variants[v]));
-            continue;
-        }
-        /* Whole, and in pieces that start and end anywhere. */
-        tally whole = screen_and_check(&m, v, 0, triangle_count);
-        tally pieces = {0, 0, 0};
-        for (uint32_t first = 0; first < triangle_count;) {
-            const uint32_t end = first + 1 + test_random(&random) % 70;
-            const tally piece = screen_and_check(&m, v, first,
-                                                 end < triangle_count ? end : triangle_count);
-            pieces.dropped_back += piece.dropped_back;
-            pieces.dropped_uncovered += piece.dropped_uncovered;
-            pieces.kept += piece.kept;
-            first = end;
-        }
-        print_message("%s: %d back faces and %d covering no centre dropped, %d kept\n",
-                      luz_isa_name(variants[v]), whole.dropped_back, whole.dropped_uncovered,
-                      whole.kept);
-        bool screens;
-        screening(v, &screens);
-        if (!screens) {
-            assert_int_equal(whole.kept, triangle_count);
-            continue;
-        }
-        /* Both kinds of drop happen, often, and each triangle's verdict
-         * is its own: the pieces (most of them shorter than 16, screened
-         * in masked lanes) drop exactly what the whole range does. */
-        assert_true(whole.dropped_back > 5000);
-        assert_true(whole.dropped_uncovered > 2000);
-        assert_int_equal(pieces.kept, whole.kept);
-        assert_int_equal(pieces.dropped_back, whole.dropped_back);
-        assert_int_equal(pieces.dropped_uncovered, whole.dropped_uncovered);
-    }
+    int uncovered_of_one = 0;   /* the last variant's drops at one sample */
+    screen_random_mesh(&m, 1, &random, &uncovered_of_one);
+    screen_random_mesh(&m, 4, &random, &uncovered_of_one);
     free(order);
     mesh_destroy(&m);
 }
@@ -351,8 +408,8 @@ static void test_screening_the_split_pixel(void **state)
         if (!luz_isa_available(variants[v])) continue;
         uint32_t survivors[16], culled = 99;
         bool screens;
-        const size_t count = screening(v, &screens)(m.indices, 0, 16, m.fixed, WIDTH, HEIGHT,
-                                                    survivors, &culled);
+        const size_t count = screening(v, 1, &screens)(m.indices, 0, 16, m.fixed, WIDTH,
+                                                       HEIGHT, survivors, &culled);
         if (!screens) {
             assert_int_equal(count, 16);
             assert_int_equal(culled, 0);
@@ -366,8 +423,60 @@ static void test_screening_the_split_pixel(void **state)
         assert_int_equal(survivors[2], 5);
         for (uint32_t k = 3; k < 12; k++) assert_int_equal(survivors[k], k + 4);
         /* And each verdict against the definitions and setup. */
-        screen_and_check(&m, v, 0, 16);
+        screen_and_check(&m, v, 1, 0, 16);
     }
+    mesh_destroy(&m);
+}
+
+/* HAND-MADE, four samples: two front faces inside pixel (1, 1), neither
+ * over its centre (384, 384): one over its sample 0, (1.375, 1.125) =
+ * (352, 288), which four-sample screening keeps, one between the
+ * samples, which it drops as one-sample screening drops both; then
+ * fourteen copies of the first. */
+static void test_screening_four_samples(void **state)
+{
+    (void)state;
+    mesh m = mesh_create(6, 16);
+    set_vertex(&m, 0, 340, 280);   /* legs of 30 and 20 round (352, 288) */
+    set_vertex(&m, 1, 340, 300);
+    set_vertex(&m, 2, 370, 280);
+    set_vertex(&m, 3, 290, 290);   /* (290..310, 290..310): no sample */
+    set_vertex(&m, 4, 290, 310);
+    set_vertex(&m, 5, 310, 290);
+    for (uint32_t t = 0; t < 16; t++)
+        for (uint32_t k = 0; k < 3; k++) m.indices[3 * t + k] = (t == 1 ? 3 : 0) + k;
+    for (uint32_t t = 0; t < 2; t++) {
+        const luz_fixed_vertex p[3] = {m.fixed[3 * t], m.fixed[3 * t + 1], m.fixed[3 * t + 2]};
+        assert_true(doubled_area(p) > 0);
+        assert_int_equal(centres_covered(p), 0);
+        assert_int_equal(samples_covered(p, 4), t == 0 ? 1 : 0);
+    }
+    int screened = 0;
+    for (int v = 0; v < VARIANT_COUNT; v++) {
+        if (!luz_isa_available(variants[v])) continue;
+        for (int samples = 1; samples <= 4; samples += 3) {
+            uint32_t survivors[16], culled = 99;
+            bool screens;
+            const size_t count = screening(v, samples, &screens)(m.indices, 0, 16, m.fixed,
+                                                                 WIDTH, HEIGHT, survivors,
+                                                                 &culled);
+            assert_int_equal(culled, 0);
+            if (!screens) {
+                assert_int_equal(count, 16);
+                continue;
+            }
+            screened += samples == 4;
+            if (samples == 1) {
+                assert_int_equal(count, 0);
+                continue;
+            }
+            assert_int_equal(count, 15);   /* all but triangle 1 */
+            assert_int_equal(survivors[0], 0);
+            for (uint32_t k = 1; k < 15; k++) assert_int_equal(survivors[k], k + 1);
+            screen_and_check(&m, v, 4, 0, 16);
+        }
+    }
+    print_message("%d variants screen four samples\n", screened);
     mesh_destroy(&m);
 }
 
@@ -408,7 +517,7 @@ static void test_screening_stays_within_its_arrays(void **state)
     for (int v = 0; v < VARIANT_COUNT; v++) {
         if (!luz_isa_available(variants[v])) continue;
         bool screens;
-        luz_screen_function *screen = screening(v, &screens);
+        luz_screen_function *screen = screening(v, 1, &screens);
         for (uint32_t first = 0; first <= 7; first += 7)
             for (uint32_t length = 1; length <= 48; length++)
                 for (int dropped = 0; dropped < 2; dropped++) {
@@ -441,6 +550,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_screening_drops_what_setup_would),
         cmocka_unit_test(test_screening_the_split_pixel),
+        cmocka_unit_test(test_screening_four_samples),
         cmocka_unit_test(test_screening_stays_within_its_arrays),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

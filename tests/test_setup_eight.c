@@ -184,8 +184,10 @@ typedef struct tally {
     int left, visible, culled, offscreen;
 } tally;
 
+/* Every group of eight of m's triangles through setup_eight, for pixels
+ * of `samples` samples, against luz_setup_projected_samples. */
 static tally check_groups(const mesh *m, luz_setup_eight_function *setup_eight,
-                          luz_interpolation interpolation)
+                          luz_interpolation interpolation, int samples)
 {
     tally count = {0, 0, 0, 0};
     for (uint32_t group = 0; group + 8 <= m->triangle_count; group += 8) {
@@ -215,10 +217,10 @@ static tally check_groups(const mesh *m, luz_setup_eight_function *setup_eight,
             const uint32_t *index = &m->indices[3 * (size_t)t];
             luz_triangle expected;
             memset(&expected, 0x5A, sizeof expected);
-            const luz_setup_result one = luz_setup_projected(
+            const luz_setup_result one = luz_setup_projected_samples(
                 &m->clip[index[0]], &m->clip[index[1]], &m->clip[index[2]], &m->window[index[0]],
                 &m->window[index[1]], &m->window[index[2]], WIDTH, HEIGHT, 7, interpolation, true,
-                &expected);
+                samples, &expected);
             if (result[lane] != one)
                 fail_msg("triangle %u: result %d, setup says %d", t, (int)result[lane], (int)one);
             if (one == LUZ_SETUP_VISIBLE) {
@@ -239,14 +241,14 @@ static tally check_groups(const mesh *m, luz_setup_eight_function *setup_eight,
 /* check_groups in interpolation mode 0 (perspective) or 1 (affine), its
  * tally printed after label. */
 static tally check_mode(const mesh *m, luz_setup_eight_function *setup_eight, int mode,
-                        const char *label)
+                        int samples, const char *label)
 {
     const luz_interpolation interpolation =
         mode ? LUZ_INTERPOLATION_AFFINE : LUZ_INTERPOLATION_PERSPECTIVE;
-    const tally count = check_groups(m, setup_eight, interpolation);
-    print_message("%s%s: %d visible, %d culled, %d off screen, %d left to setup\n", label,
-                  luz_interpolation_name(interpolation), count.visible, count.culled,
-                  count.offscreen, count.left);
+    const tally count = check_groups(m, setup_eight, interpolation, samples);
+    print_message("%s%s, %d sample%s: %d visible, %d culled, %d off screen, %d left to setup\n",
+                  label, luz_interpolation_name(interpolation), samples, samples > 1 ? "s" : "",
+                  count.visible, count.culled, count.offscreen, count.left);
     return count;
 }
 
@@ -256,15 +258,18 @@ _Static_assert(offsetof(luz_triangle, primitive) + sizeof(uint32_t) == sizeof(lu
                "luz_triangle has no padding");
 
 /* The setup in lanes of every instruction set this build and CPU have
- * (AVX-512's setup_eight.c, AVX2's and NEON's setup_lanes.c); returns how
+ * (AVX-512's setup_eight.c, AVX2's and NEON's setup_lanes.c), for pixels
+ * of `samples` samples (1: setup_eight, 4: setup_eight_four); returns how
  * many, their names in names. */
 static int setup_variants(luz_setup_eight_function *variants[LUZ_ISA_COUNT],
-                          const char *names[LUZ_ISA_COUNT])
+                          const char *names[LUZ_ISA_COUNT], int samples)
 {
     int count = 0;
     for (int isa = 0; isa < LUZ_ISA_COUNT; isa++) {
         if (!luz_isa_available((luz_isa)isa)) continue;
-        luz_setup_eight_function *setup_eight = luz_kernels_of((luz_isa)isa).setup_eight;
+        const luz_kernels kernels = luz_kernels_of((luz_isa)isa);
+        luz_setup_eight_function *setup_eight =
+            samples == 1 ? kernels.setup_eight : kernels.setup_eight_four;
         if (setup_eight == NULL) continue;
         names[count] = luz_isa_name((luz_isa)isa);
         variants[count++] = setup_eight;
@@ -273,16 +278,16 @@ static int setup_variants(luz_setup_eight_function *variants[LUZ_ISA_COUNT],
 }
 
 /* check_mode for every variant: each must give the same tally. */
-static tally check_mode_all(const mesh *m, int mode, const char *label)
+static tally check_mode_all(const mesh *m, int mode, int samples, const char *label)
 {
     luz_setup_eight_function *variants[LUZ_ISA_COUNT];
     const char *names[LUZ_ISA_COUNT];
-    const int count = setup_variants(variants, names);
+    const int count = setup_variants(variants, names, samples);
     tally first = {0, 0, 0, 0};
     for (int v = 0; v < count; v++) {
         char labelled[64];
         snprintf(labelled, sizeof labelled, "%s%s, ", label, names[v]);
-        const tally got = check_mode(m, variants[v], mode, labelled);
+        const tally got = check_mode(m, variants[v], mode, samples, labelled);
         if (v == 0) first = got;
         assert_memory_equal(&got, &first, sizeof got);
     }
@@ -294,10 +299,10 @@ static tally check_groups_all(const mesh *m, luz_interpolation interpolation)
 {
     luz_setup_eight_function *variants[LUZ_ISA_COUNT];
     const char *names[LUZ_ISA_COUNT];
-    const int count = setup_variants(variants, names);
+    const int count = setup_variants(variants, names, 1);
     tally first = {0, 0, 0, 0};
     for (int v = 0; v < count; v++) {
-        const tally got = check_groups(m, variants[v], interpolation);
+        const tally got = check_groups(m, variants[v], interpolation, 1);
         if (v == 0) first = got;
         assert_memory_equal(&got, &first, sizeof got);
     }
@@ -309,7 +314,7 @@ static bool have_setup_variants(void)
 {
     luz_setup_eight_function *variants[LUZ_ISA_COUNT];
     const char *names[LUZ_ISA_COUNT];
-    return setup_variants(variants, names) > 0;
+    return setup_variants(variants, names, 1) > 0;
 }
 
 static void test_lanes_agree_with_setup(void **state)
@@ -349,13 +354,23 @@ static void test_lanes_agree_with_setup(void **state)
             while (!set_collinear_front_face(&m, t, &random)) continue;
     }
     for (int mode = 0; mode < 2; mode++) {
-        const tally count = check_mode_all(&m, mode, "");
+        const tally count = check_mode_all(&m, mode, 1, "");
         /* Each verdict is seen, often. */
         assert_true(count.visible > 3000);
         assert_true(count.culled > 3000);
         assert_true(count.offscreen > 1000);
         assert_true(count.left > 300);
     }
+    /* Four samples a pixel (setup_eight_four): the box and the small
+     * boxes' test are the samples', so more triangles are visible and
+     * fewer off screen, but still many (a box of 3 to 16 pixels with no
+     * sample covered, or none in the viewport). */
+    const tally one = check_mode_all(&m, 0, 1, "");
+    const tally four = check_mode_all(&m, 0, 4, "");
+    assert_true(four.visible > one.visible);
+    assert_true(four.offscreen < one.offscreen);
+    assert_true(four.offscreen > 500);
+    assert_int_equal(four.left, one.left);
     /* The collinear front faces reached the determinant: setup culls each
      * there, not before (some are in groups left to setup). */
     int collinear_culled = 0;
@@ -390,7 +405,8 @@ static void test_lanes_agree_with_setup(void **state)
         w_from_z(), luz_mat4_rotate(luz_mat4_identity(), 0.05f, (luz_vec3){0.3f, 0.5f, 0.81f}));
     for (uint32_t i = 0; i < m.vertex_count; i++) project(&m, i);
     for (int mode = 0; mode < 2; mode++)
-        assert_true(check_mode_all(&m, mode, "turned, ").visible > 3000);
+        for (int samples = 1; samples <= 4; samples += 3)
+            assert_true(check_mode_all(&m, mode, samples, "turned, ").visible > 3000);
     mesh_destroy(&m);
 }
 

@@ -37,8 +37,8 @@ luz_vertex_project_function luz_vertex_project_neon;
 #if defined(LUZ_HAVE_AVX512)
 luz_packet_rows_function luz_fragment_packet_rows_avx512;
 luz_packet_list_function luz_fragment_packet_list_avx512;
-luz_screen_function luz_screen_triangles_avx512;
-luz_setup_eight_function luz_setup_eight_avx512;
+luz_screen_function luz_screen_triangles_avx512, luz_screen_triangles_four_avx512;
+luz_setup_eight_function luz_setup_eight_avx512, luz_setup_eight_four_avx512;
 luz_vertex_project_function luz_vertex_project_avx512;
 #endif
 
@@ -165,6 +165,8 @@ luz_kernels luz_kernels_of(luz_isa isa)
         .screen_checks_small_boxes = false,
         .setup_eight = NULL,
         .vertex_project = NULL,
+        .screen_four = NULL,
+        .setup_eight_four = NULL,
     };
     switch (isa) {
     case LUZ_ISA_SCALAR:
@@ -197,6 +199,8 @@ luz_kernels luz_kernels_of(luz_isa isa)
         kernels.screen_checks_small_boxes = true;
         kernels.setup_eight = luz_setup_eight_avx512;
         kernels.vertex_project = luz_vertex_project_avx512;
+        kernels.screen_four = luz_screen_triangles_four_avx512;
+        kernels.setup_eight_four = luz_setup_eight_four_avx512;
 #endif
         break;
     }

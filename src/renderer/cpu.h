@@ -63,6 +63,11 @@ typedef struct luz_kernels {
     bool screen_checks_small_boxes;          /* luz_screen_function's promise */
     luz_setup_eight_function *setup_eight;   /* NULL: one triangle at a time */
     luz_vertex_project_function *vertex_project;   /* NULL: one vertex at a time */
+    /* The same two for four samples a pixel (SCENE.md, "Anti-aliasing"):
+     * the box and the small boxes' test are the samples'. NULL: every
+     * triangle through, and one at a time (luz_setup_projected_samples). */
+    luz_screen_function *screen_four;        /* checks the small boxes */
+    luz_setup_eight_function *setup_eight_four;
 } luz_kernels;
 
 /* The table of isa, which must be available. */

@@ -124,6 +124,8 @@ struct luz_geometry {
     bool screen_checks_small_boxes;
     luz_setup_eight_function *setup_eight;   /* setup_eight.c's, or NULL */
     luz_vertex_project_function *vertex_project;   /* vertex_sixteen.c's, or NULL */
+    luz_screen_function *screen_four;        /* the same two for four samples */
+    luz_setup_eight_function *setup_eight_four;   /* a pixel (or NULL) */
 };
 
 /* What the jobs of one frame's geometry share. */
@@ -188,6 +190,8 @@ void luz_geometry_set_kernels(luz_geometry *geometry, const luz_kernels *kernels
     /* Setup in lanes trusts screening's check of the small boxes. */
     geometry->setup_eight = kernels->screen_checks_small_boxes ? kernels->setup_eight : NULL;
     geometry->vertex_project = kernels->vertex_project;
+    geometry->screen_four = kernels->screen_four;
+    geometry->setup_eight_four = kernels->screen_four != NULL ? kernels->setup_eight_four : NULL;
 }
 
 size_t luz_geometry_memory(const luz_geometry *geometry)
@@ -486,7 +490,7 @@ static void set_up(geometry_batch *batch, const geometry_job *job, const luz_cli
         : samples > 1
             ? luz_setup_projected_samples(a, b, c, window_a, window_b, window_c, job->width,
                                           job->height, draw_index, job->uniforms->interpolation,
-                                          samples, out)
+                                          small_box_checked, samples, out)
             : luz_setup_projected(a, b, c, window_a, window_b, window_c, job->width,
                                   job->height, draw_index, job->uniforms->interpolation,
                                   small_box_checked, out);
@@ -822,13 +826,15 @@ int luz_geometry_run(luz_geometry *geometry, luz_thread_pool *pool, const luz_fr
         .vertex_project = geometry->vertex_project,
     };
     memset(out, 0, sizeof *out);
-    /* Screening and setup in lanes look for pixel centres: with more
-     * samples a pixel, the baseline's screening (every triangle through)
-     * and setup one triangle at a time, which test the samples. */
+    /* With four samples a pixel, screening and setup in lanes of their
+     * own, which test the samples where the others test the centres (or,
+     * in a table without them, every triangle through and set up one at
+     * a time by luz_setup_projected_samples). */
     if (uniforms->samples > 1) {
-        job.screen = luz_screen_every_triangle;
-        job.screen_checks_small_boxes = false;
-        job.setup_eight = NULL;
+        job.screen = geometry->screen_four != NULL ? geometry->screen_four
+                                                   : luz_screen_every_triangle;
+        job.screen_checks_small_boxes = geometry->screen_four != NULL;
+        job.setup_eight = geometry->setup_eight_four;
     }
     /* A frame with a bug (luz/bug.h) takes the plain path: the vertex
      * stage, screening and setup in lanes know nothing of bugs. */

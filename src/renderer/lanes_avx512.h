@@ -37,33 +37,51 @@ luz_doubled_area_lanes(__m512i x0, __m512i y0, __m512i x1, __m512i y1, __m512i x
         _mm512_mul_epi32(_mm512_sub_epi64(x1, x0), _mm512_sub_epi64(y2, y0)));
 }
 
-/* luz_setup_projected's box of pixel centres of the same eight: the x
- * whose centre 256 x + 128 lies within [min X, max X], from
- * ceil((min X - 128) / 256) = -((128 - min X) >> 8) to floor((max X -
- * 128) / 256) = (max X - 128) >> 8 (arithmetic shifts: floors), clamped
- * to the viewport; likewise y. Empty where min > max. */
+/* luz_setup_projected_samples's box of the same eight triangles for
+ * pixels of `samples` samples (1 or 4; a constant where it is inlined):
+ * the x one of whose samples may lie within [min X, max X], from
+ * ceil((min X - high) / 256) = -((high - min X) >> 8) to floor((max X -
+ * low) / 256) = (max X - low) >> 8 (arithmetic shifts: floors), low and
+ * high the nearest and farthest a sample lies from the pixel's corner
+ * (luz_sample_reach_low, _high: 32 and 224 for four samples; 128 and
+ * 128, the centre, for one), clamped to the viewport; likewise y. Empty
+ * where min > max. */
 static inline __attribute__((always_inline)) void
-luz_centre_box_lanes(__m512i x0, __m512i y0, __m512i x1, __m512i y1, __m512i x2, __m512i y2,
-                     int width, int height, __m512i *min_x, __m512i *min_y, __m512i *max_x,
-                     __m512i *max_y)
+luz_sample_box_lanes(__m512i x0, __m512i y0, __m512i x1, __m512i y1, __m512i x2, __m512i y2,
+                     int width, int height, int samples, __m512i *min_x, __m512i *min_y,
+                     __m512i *max_x, __m512i *max_y)
 {
-    const __m512i half = _mm512_set1_epi64(LUZ_SUBPIXEL_ONE / 2), zero = _mm512_setzero_si512();
+    const __m512i low = _mm512_set1_epi64(luz_sample_reach_low(samples));
+    const __m512i high = _mm512_set1_epi64(luz_sample_reach_high(samples));
+    const __m512i zero = _mm512_setzero_si512();
     const __m512i min_fx = _mm512_min_epi64(x0, _mm512_min_epi64(x1, x2));
     const __m512i max_fx = _mm512_max_epi64(x0, _mm512_max_epi64(x1, x2));
     const __m512i min_fy = _mm512_min_epi64(y0, _mm512_min_epi64(y1, y2));
     const __m512i max_fy = _mm512_max_epi64(y0, _mm512_max_epi64(y1, y2));
     *min_x = _mm512_max_epi64(
-        _mm512_sub_epi64(zero, _mm512_srai_epi64(_mm512_sub_epi64(half, min_fx),
+        _mm512_sub_epi64(zero, _mm512_srai_epi64(_mm512_sub_epi64(high, min_fx),
                                                  LUZ_SUBPIXEL_BITS)),
         zero);
     *min_y = _mm512_max_epi64(
-        _mm512_sub_epi64(zero, _mm512_srai_epi64(_mm512_sub_epi64(half, min_fy),
+        _mm512_sub_epi64(zero, _mm512_srai_epi64(_mm512_sub_epi64(high, min_fy),
                                                  LUZ_SUBPIXEL_BITS)),
         zero);
-    *max_x = _mm512_min_epi64(_mm512_srai_epi64(_mm512_sub_epi64(max_fx, half), LUZ_SUBPIXEL_BITS),
+    *max_x = _mm512_min_epi64(_mm512_srai_epi64(_mm512_sub_epi64(max_fx, low), LUZ_SUBPIXEL_BITS),
                               _mm512_set1_epi64(width - 1));
-    *max_y = _mm512_min_epi64(_mm512_srai_epi64(_mm512_sub_epi64(max_fy, half), LUZ_SUBPIXEL_BITS),
+    *max_y = _mm512_min_epi64(_mm512_srai_epi64(_mm512_sub_epi64(max_fy, low), LUZ_SUBPIXEL_BITS),
                               _mm512_set1_epi64(height - 1));
+}
+
+/* luz_setup_projected's box of pixel centres: the x whose centre 256 x +
+ * 128 lies within [min X, max X], from ceil((min X - 128) / 256) =
+ * -((128 - min X) >> 8) to floor((max X - 128) / 256) = (max X - 128) >>
+ * 8 (arithmetic shifts: floors), clamped to the viewport; likewise y. */
+static inline __attribute__((always_inline)) void
+luz_centre_box_lanes(__m512i x0, __m512i y0, __m512i x1, __m512i y1, __m512i x2, __m512i y2,
+                     int width, int height, __m512i *min_x, __m512i *min_y, __m512i *max_x,
+                     __m512i *max_y)
+{
+    luz_sample_box_lanes(x0, y0, x1, y1, x2, y2, width, height, 1, min_x, min_y, max_x, max_y);
 }
 
 /* setup.c's luz_setup_project_vertex for eight vertices of clip position (x, y,

@@ -385,16 +385,17 @@ luz_setup_result luz_setup_projected(const luz_clip_vertex *v0, const luz_clip_v
 
 /* The same for a pixel of `samples` samples (1 or 4): the box holds the
  * pixels one of whose samples may be inside, and a small triangle is kept
- * if it covers one of its box's samples (the geometry of a four-sample
- * frame calls this, without screening or setup in lanes, which look at
- * pixel centres only). samples 1 is luz_setup_projected. */
+ * if it covers one of its box's samples (small_box_checked: screening for
+ * that many samples, luz_kernels' screen_four, has tested a box of up to
+ * 2 x 2 pixels). samples 1 is luz_setup_projected. */
 luz_setup_result luz_setup_projected_samples(const luz_clip_vertex *v0, const luz_clip_vertex *v1,
                                              const luz_clip_vertex *v2,
                                              const luz_window_vertex *p0,
                                              const luz_window_vertex *p1,
                                              const luz_window_vertex *p2, int width, int height,
                                              uint32_t draw_index, luz_interpolation interpolation,
-                                             int samples, luz_triangle *out);
+                                             bool small_box_checked, int samples,
+                                             luz_triangle *out);
 
 /* luz_setup_projected_samples with a bug of luz/bug.h in: with
  * no-backface-culling a back face is set up with v1 and v2 traded (a

@@ -12,6 +12,10 @@
  *      back faces and zero areas (CULLED), and front faces whose box holds
  *      no pixel centre of the viewport or, for a box of up to 2 x 2
  *      pixels, whose box's centres all fall outside the edges (OFFSCREEN).
+ *      For four samples a pixel (luz_screen_triangles_four_avx512) the
+ *      same with the samples of SCENE.md's pattern for the centres: the
+ *      box of luz_setup_projected_samples, and its 2 x 2 pixels' sixteen
+ *      samples tested.
  *
  * Why: on a mesh of a million triangles nearly every triangle is one of
  * those (the 1M sphere: 569k back faces and 191k front faces between
@@ -80,10 +84,14 @@ static __m512i corner_indices(__m512i first, __m512i second, __m512i third, int 
     return _mm512_permutex2var_epi32(two, _mm512_loadu_si512(from_third[corner]), third);
 }
 
-/* E >= 0 at the centres (X, Y), (X + 256, Y), (X, Y + 256), (X + 256,
- * Y + 256) for the edge from (xi, yi) to (xj, yj); four masks. */
-static inline __attribute__((always_inline)) void edge_at_centres(__m512i xi, __m512i yi, __m512i xj, __m512i yj, __m512i sample_x,
-                            __m512i sample_y, __mmask8 inside[4])
+/* E >= 0 for the edge from (xi, yi) to (xj, yj) at each sample of the
+ * pixels (x, y), (x + 1, y), (x, y + 1), (x + 1, y + 1), whose corner
+ * (x, y) is (corner_x, corner_y) = (256 x, 256 y): inside[pixel][sample]
+ * for `samples` samples a pixel (luz_sample_offset_of: one, the centre,
+ * or SCENE.md's four), a mask each. */
+static inline __attribute__((always_inline)) void
+edge_at_samples(__m512i xi, __m512i yi, __m512i xj, __m512i yj, __m512i corner_x,
+                __m512i corner_y, int samples, __mmask8 inside[4][LUZ_MAX_SAMPLES])
 {
     const __m512i dx = _mm512_sub_epi64(xj, xi), dy = _mm512_sub_epi64(yj, yi);
     const __m512i zero = _mm512_setzero_si512();
@@ -93,21 +101,29 @@ static inline __attribute__((always_inline)) void edge_at_centres(__m512i xi, __
                                   _mm512_cmplt_epi64_mask(dx, zero)) |
                                  _mm512_cmpgt_epi64_mask(dy, zero);
     const __m512i bias = _mm512_mask_blend_epi64(top_or_left, _mm512_set1_epi64(1), zero);
-    const __m512i column0 = _mm512_mul_epi32(dy, _mm512_sub_epi64(sample_x, xi));
-    const __m512i column1 = _mm512_add_epi64(column0, _mm512_slli_epi64(dy, LUZ_SUBPIXEL_BITS));
-    const __m512i row0 = _mm512_add_epi64(_mm512_mul_epi32(dx, _mm512_sub_epi64(sample_y, yi)),
-                                          bias);
-    const __m512i row1 = _mm512_add_epi64(row0, _mm512_slli_epi64(dx, LUZ_SUBPIXEL_BITS));
-    inside[0] &= _mm512_cmpge_epi64_mask(column0, row0);
-    inside[1] &= _mm512_cmpge_epi64_mask(column1, row0);
-    inside[2] &= _mm512_cmpge_epi64_mask(column0, row1);
-    inside[3] &= _mm512_cmpge_epi64_mask(column1, row1);
+    for (int s = 0; s < samples; s++) {
+        const luz_sample_offset offset = luz_sample_offset_of(samples, s);
+        const __m512i sample_x = _mm512_add_epi64(corner_x, _mm512_set1_epi64(offset.x));
+        const __m512i sample_y = _mm512_add_epi64(corner_y, _mm512_set1_epi64(offset.y));
+        const __m512i column0 = _mm512_mul_epi32(dy, _mm512_sub_epi64(sample_x, xi));
+        const __m512i column1 =
+            _mm512_add_epi64(column0, _mm512_slli_epi64(dy, LUZ_SUBPIXEL_BITS));
+        const __m512i row0 =
+            _mm512_add_epi64(_mm512_mul_epi32(dx, _mm512_sub_epi64(sample_y, yi)), bias);
+        const __m512i row1 = _mm512_add_epi64(row0, _mm512_slli_epi64(dx, LUZ_SUBPIXEL_BITS));
+        inside[0][s] &= _mm512_cmpge_epi64_mask(column0, row0);
+        inside[1][s] &= _mm512_cmpge_epi64_mask(column1, row0);
+        inside[2][s] &= _mm512_cmpge_epi64_mask(column0, row1);
+        inside[3][s] &= _mm512_cmpge_epi64_mask(column1, row1);
+    }
 }
 
 /* Eight triangles, (a, b, c) vertex indices: which setup would cull, and
- * which it would find offscreen. */
-static inline __attribute__((always_inline)) void screen_eight(__m256i a, __m256i b, __m256i c, const luz_fixed_vertex *fixed,
-                         int width, int height, __mmask8 *culled, __mmask8 *offscreen)
+ * which it would find offscreen, for pixels of `samples` samples (the
+ * box and the covered test are the samples': luz_setup_projected_samples). */
+static inline __attribute__((always_inline)) void
+screen_eight(__m256i a, __m256i b, __m256i c, const luz_fixed_vertex *fixed, int width,
+             int height, int samples, __mmask8 *culled, __mmask8 *offscreen)
 {
     __m512i x0, y0, x1, y1, x2, y2;
     luz_gather_fixed(a, fixed, &x0, &y0);
@@ -125,9 +141,11 @@ static inline __attribute__((always_inline)) void screen_eight(__m256i a, __m256
     const __mmask8 front = _mm512_cmpgt_epi64_mask(luz_doubled_area_lanes(x0, y0, x1, y1, x2, y2),
                                                    _mm512_setzero_si512());
 
-    /* The box of pixel centres, as setup's. */
+    /* The box of the pixels whose samples (one: the centre) may be
+     * inside, as setup's. */
     __m512i min_x, min_y, max_x, max_y;
-    luz_centre_box_lanes(x0, y0, x1, y1, x2, y2, width, height, &min_x, &min_y, &max_x, &max_y);
+    luz_sample_box_lanes(x0, y0, x1, y1, x2, y2, width, height, samples, &min_x, &min_y, &max_x,
+                         &max_y);
     const __mmask8 empty = _mm512_cmpgt_epi64_mask(min_x, max_x) |
                            _mm512_cmpgt_epi64_mask(min_y, max_y);
     const __m512i one = _mm512_set1_epi64(1);
@@ -137,16 +155,23 @@ static inline __attribute__((always_inline)) void screen_eight(__m256i a, __m256
         _mm512_cmple_epi64_mask(_mm512_sub_epi64(max_x, min_x), one) &
         _mm512_cmple_epi64_mask(_mm512_sub_epi64(max_y, min_y), one);
 
-    /* The box's first centre, X = 256 x + 128, and its (up to) three
-     * neighbours; a centre counts where it lies in the box. */
-    const __m512i half = _mm512_set1_epi64(LUZ_SUBPIXEL_ONE / 2);
-    const __m512i sample_x = _mm512_add_epi64(_mm512_slli_epi64(min_x, LUZ_SUBPIXEL_BITS), half);
-    const __m512i sample_y = _mm512_add_epi64(_mm512_slli_epi64(min_y, LUZ_SUBPIXEL_BITS), half);
-    __mmask8 inside[4] = {0xff, second_column, second_row, second_column & second_row};
-    edge_at_centres(x1, y1, x2, y2, sample_x, sample_y, inside);   /* edge 0: 1 -> 2 */
-    edge_at_centres(x2, y2, x0, y0, sample_x, sample_y, inside);   /* edge 1: 2 -> 0 */
-    edge_at_centres(x0, y0, x1, y1, sample_x, sample_y, inside);   /* edge 2: 0 -> 1 */
-    const __mmask8 covers = inside[0] | inside[1] | inside[2] | inside[3];
+    /* The samples of the box's first pixel and its (up to) three
+     * neighbours; a sample counts where its pixel lies in the box. */
+    const __m512i corner_x = _mm512_slli_epi64(min_x, LUZ_SUBPIXEL_BITS);
+    const __m512i corner_y = _mm512_slli_epi64(min_y, LUZ_SUBPIXEL_BITS);
+    __mmask8 inside[4][LUZ_MAX_SAMPLES];
+    for (int s = 0; s < samples; s++) {
+        inside[0][s] = 0xff;
+        inside[1][s] = second_column;
+        inside[2][s] = second_row;
+        inside[3][s] = second_column & second_row;
+    }
+    edge_at_samples(x1, y1, x2, y2, corner_x, corner_y, samples, inside);   /* edge 0: 1 -> 2 */
+    edge_at_samples(x2, y2, x0, y0, corner_x, corner_y, samples, inside);   /* edge 1: 2 -> 0 */
+    edge_at_samples(x0, y0, x1, y1, corner_x, corner_y, samples, inside);   /* edge 2: 0 -> 1 */
+    __mmask8 covers = 0;
+    for (int s = 0; s < samples; s++)
+        covers |= inside[0][s] | inside[1][s] | inside[2][s] | inside[3][s];
 
     *culled = eligible & ~front;
     *offscreen = eligible & front & (empty | (small & ~covers));
@@ -174,8 +199,8 @@ static inline __attribute__((always_inline)) void screen_eight(__m256i a, __m256
  * appended at survivors + *count, the back faces counted. */
 static inline __attribute__((always_inline)) void
 screen_sixteen(const uint32_t *triangle_indices, uint32_t t, __mmask16 valid,
-               const luz_fixed_vertex *fixed, int width, int height, uint32_t *survivors,
-               size_t *count, uint32_t *culled_total)
+               const luz_fixed_vertex *fixed, int width, int height, int samples,
+               uint32_t *survivors, size_t *count, uint32_t *culled_total)
 {
     const unsigned index_count = 3u * (unsigned)__builtin_popcount(valid);   /* 0 .. 48 */
     const __mmask16 load0 = (__mmask16)(index_count >= 16 ? 0xffffu : (1u << index_count) - 1);
@@ -193,9 +218,9 @@ screen_sixteen(const uint32_t *triangle_indices, uint32_t t, __mmask16 valid,
     const __m512i c = corner_indices(first16, second16, third16, 2);
     __mmask8 culled_low, offscreen_low, culled_high, offscreen_high;
     screen_eight(_mm512_castsi512_si256(a), _mm512_castsi512_si256(b), _mm512_castsi512_si256(c),
-                 fixed, width, height, &culled_low, &offscreen_low);
+                 fixed, width, height, samples, &culled_low, &offscreen_low);
     screen_eight(_mm512_extracti64x4_epi64(a, 1), _mm512_extracti64x4_epi64(b, 1),
-                 _mm512_extracti64x4_epi64(c, 1), fixed, width, height, &culled_high,
+                 _mm512_extracti64x4_epi64(c, 1), fixed, width, height, samples, &culled_high,
                  &offscreen_high);
     const __mmask16 culled = (__mmask16)((culled_low | (unsigned)culled_high << 8) & valid);
     const __mmask16 kept =
@@ -212,11 +237,12 @@ screen_sixteen(const uint32_t *triangle_indices, uint32_t t, __mmask16 valid,
     *culled_total += (uint32_t)__builtin_popcount(culled);
 }
 
-luz_screen_function luz_screen_triangles_avx512;
-
-size_t luz_screen_triangles_avx512(const uint32_t *indices, uint32_t first, uint32_t end,
-                                   const luz_fixed_vertex *fixed, int width, int height,
-                                   uint32_t *survivors, uint32_t *culled_count)
+/* Screening for pixels of `samples` samples, 1 or 4 (a constant in each
+ * of the two functions below). */
+static inline __attribute__((always_inline)) size_t
+screen_triangles(const uint32_t *indices, uint32_t first, uint32_t end,
+                 const luz_fixed_vertex *fixed, int width, int height, int samples,
+                 uint32_t *survivors, uint32_t *culled_count)
 {
     size_t count = 0;
     uint32_t culled_total = 0;
@@ -236,14 +262,34 @@ size_t luz_screen_triangles_avx512(const uint32_t *indices, uint32_t first, uint
             for (int line = 0; line < 3; line++)   /* 48 indices: three lines */
                 _mm_prefetch((const char *)(triangle_indices + 3 * INDEX_AHEAD + 16 * line),
                              _MM_HINT_T0);
-        screen_sixteen(triangle_indices, t, 0xffff, fixed, width, height, survivors, &count,
-                       &culled_total);
+        screen_sixteen(triangle_indices, t, 0xffff, fixed, width, height, samples, survivors,
+                       &count, &culled_total);
     }
     if (t < end)   /* the last few, in masked lanes */
         screen_sixteen(indices + 3 * (size_t)t, t, (__mmask16)((1u << (end - t)) - 1), fixed,
-                       width, height, survivors, &count, &culled_total);
+                       width, height, samples, survivors, &count, &culled_total);
     *culled_count = culled_total;
     return count;
+}
+
+luz_screen_function luz_screen_triangles_avx512, luz_screen_triangles_four_avx512;
+
+size_t luz_screen_triangles_avx512(const uint32_t *indices, uint32_t first, uint32_t end,
+                                   const luz_fixed_vertex *fixed, int width, int height,
+                                   uint32_t *survivors, uint32_t *culled_count)
+{
+    return screen_triangles(indices, first, end, fixed, width, height, 1, survivors,
+                            culled_count);
+}
+
+/* The same for four samples a pixel (SCENE.md, "Anti-aliasing"): what
+ * luz_setup_projected_samples(..., 4, ...) drops without a record. */
+size_t luz_screen_triangles_four_avx512(const uint32_t *indices, uint32_t first, uint32_t end,
+                                        const luz_fixed_vertex *fixed, int width, int height,
+                                        uint32_t *survivors, uint32_t *culled_count)
+{
+    return screen_triangles(indices, first, end, fixed, width, height, 4, survivors,
+                            culled_count);
 }
 
 #else /* every other build of this file */

@@ -275,13 +275,14 @@ luz_setup_result luz_setup_projected_samples(const luz_clip_vertex *v0, const lu
                                              const luz_window_vertex *p1,
                                              const luz_window_vertex *p2, int width, int height,
                                              uint32_t draw_index, luz_interpolation interpolation,
-                                             int samples, luz_triangle *out)
+                                             bool small_box_checked, int samples,
+                                             luz_triangle *out)
 {
     if (samples <= 1)
         return luz_setup_projected(v0, v1, v2, p0, p1, p2, width, height, draw_index,
-                                   interpolation, false, out);
+                                   interpolation, small_box_checked, out);
     return setup_projected(v0, v1, v2, p0, p1, p2, width, height, draw_index, interpolation,
-                           false, samples, false, out);
+                           small_box_checked, samples, false, out);
 }
 
 luz_setup_result luz_setup_projected_bug(const luz_clip_vertex *v0, const luz_clip_vertex *v1,
@@ -328,7 +329,7 @@ luz_setup_result luz_setup_triangle_samples(const luz_clip_vertex *v0, const luz
     for (int k = 0; k < 3; k++) vertices[k].outcode = 0;   /* project all three */
     luz_setup_project(vertices, 0, 3, width, height, window, NULL);
     return luz_setup_projected_samples(v0, v1, v2, &window[0], &window[1], &window[2], width,
-                                       height, draw_index, interpolation, samples, out);
+                                       height, draw_index, interpolation, false, samples, out);
 }
 
 luz_setup_result luz_setup_triangle(const luz_clip_vertex *v0, const luz_clip_vertex *v1,

@@ -14,7 +14,10 @@
  *      writes for the corners' clip vertices (luz_vertex_stage_one) and
  *      their projection; or, when one of the eight has a vertex outside a
  *      clip plane or not projected (the clipper's or setup's own
- *      business), all eight left to luz_setup_projected.
+ *      business), all eight left to luz_setup_projected. For four samples
+ *      a pixel, luz_setup_eight_four_avx512: the same as
+ *      luz_setup_projected_samples(..., small_box_checked = true, 4, ...)
+ *      for triangles luz_screen_triangles_four_avx512 let through.
  *
  * Why: on a mesh of a million triangles about a quarter reach setup, and
  * one at a time setup is arithmetic, not memory (set up twice in a row,
@@ -147,37 +150,45 @@ make_plane_eight(__m512d x10, __m512d x20, __m512d y10, __m512d y20, __m512d inv
     return (plane_eight){_mm512_cvtpd_ps(value), _mm512_cvtpd_ps(dx), _mm512_cvtpd_ps(dy)};
 }
 
-/* setup.c's covers_a_centre for the lanes of testing: the mask of those
- * whose box, (min_x, min_y) and box_width x box_height pixels, has a
- * centre where the three edges' E = a X + b Y + c >= 0. The centres are
+/* setup.c's covers_a_centre (covers_a_sample for `samples` samples a
+ * pixel, luz_sample_offset_of) for the lanes of testing: the mask of
+ * those whose box, (min_x, min_y) and box_width x box_height pixels, has a
+ * sample where the three edges' E = a X + b Y + c >= 0. The pixels are
  * visited in every lane at once, column by column and row by row from
  * each box's corner, until each lane tested has found one or run out
- * (|a|, |b| < 2^26 and centres below 2^23: each product fits 32 x 32 ->
+ * (|a|, |b| < 2^26 and samples below 2^23: each product fits 32 x 32 ->
  * 64 bits, as setup.c's proof has it). */
 static inline __attribute__((always_inline)) __mmask8
 covered_lanes(__mmask8 testing, __m512i min_x, __m512i min_y, __m512i box_width,
-              __m512i box_height, const __m512i a[3], const __m512i b[3], const __m512i c[3])
+              __m512i box_height, const __m512i a[3], const __m512i b[3], const __m512i c[3],
+              int samples)
 {
     const __m512i one = _mm512_set1_epi64(1), zero = _mm512_setzero_si512();
-    const __m512i half = _mm512_set1_epi64(LUZ_SUBPIXEL_ONE / 2);
     const __m512i centres = _mm512_mullo_epi64(box_width, box_height);
     __m512i column = zero, row = zero, visited = zero;
     __mmask8 covered = 0, left = testing;
     while (left != 0) {
-        const __m512i sample_x = _mm512_add_epi64(
-            _mm512_slli_epi64(_mm512_add_epi64(min_x, column), LUZ_SUBPIXEL_BITS), half);
-        const __m512i sample_y = _mm512_add_epi64(
-            _mm512_slli_epi64(_mm512_add_epi64(min_y, row), LUZ_SUBPIXEL_BITS), half);
-        __mmask8 inside = left;
-        for (int k = 0; k < 3; k++)
-            inside &= _mm512_cmpge_epi64_mask(
-                _mm512_add_epi64(_mm512_add_epi64(_mm512_mul_epi32(a[k], sample_x),
-                                                  _mm512_mul_epi32(b[k], sample_y)),
-                                 c[k]),
-                zero);
-        covered |= inside;
+        const __m512i corner_x =
+            _mm512_slli_epi64(_mm512_add_epi64(min_x, column), LUZ_SUBPIXEL_BITS);
+        const __m512i corner_y =
+            _mm512_slli_epi64(_mm512_add_epi64(min_y, row), LUZ_SUBPIXEL_BITS);
+        __mmask8 inside_any = 0;
+        for (int s = 0; s < samples; s++) {
+            const luz_sample_offset offset = luz_sample_offset_of(samples, s);
+            const __m512i sample_x = _mm512_add_epi64(corner_x, _mm512_set1_epi64(offset.x));
+            const __m512i sample_y = _mm512_add_epi64(corner_y, _mm512_set1_epi64(offset.y));
+            __mmask8 inside = left;
+            for (int k = 0; k < 3; k++)
+                inside &= _mm512_cmpge_epi64_mask(
+                    _mm512_add_epi64(_mm512_add_epi64(_mm512_mul_epi32(a[k], sample_x),
+                                                      _mm512_mul_epi32(b[k], sample_y)),
+                                     c[k]),
+                    zero);
+            inside_any |= inside;
+        }
+        covered |= inside_any;
         visited = _mm512_add_epi64(visited, one);
-        left &= (__mmask8)~inside & _mm512_cmplt_epi64_mask(visited, centres);
+        left &= (__mmask8)~inside_any & _mm512_cmplt_epi64_mask(visited, centres);
         column = _mm512_add_epi64(column, one);
         const __mmask8 wrap = _mm512_cmpeq_epi64_mask(column, box_width);
         column = _mm512_mask_mov_epi64(column, wrap, zero);
@@ -186,13 +197,14 @@ covered_lanes(__mmask8 testing, __m512i min_x, __m512i min_y, __m512i box_width,
     return covered;
 }
 
-luz_setup_eight_function luz_setup_eight_avx512;
-
-bool luz_setup_eight_avx512(const uint32_t *indices, const uint32_t triangles[8],
-                            const luz_draw_transform *transform,
-                            const luz_fixed_vertex *fixed, int width, int height,
-                            uint32_t draw_index, luz_interpolation interpolation,
-                            luz_triangle out[8], luz_setup_result result[8])
+/* Setup in lanes for pixels of `samples` samples, 1 or 4 (a constant in
+ * each of the two functions below): the box and the small boxes' test are
+ * the samples' (luz_setup_projected_samples). */
+static inline __attribute__((always_inline)) bool
+setup_eight(const uint32_t *indices, const uint32_t triangles[8],
+            const luz_draw_transform *transform, const luz_fixed_vertex *fixed, int width,
+            int height, uint32_t draw_index, luz_interpolation interpolation, int samples,
+            luz_triangle out[8], luz_setup_result result[8])
 {
     /* The corners' vertex indices, a lane per triangle. */
     int32_t corner[3][8];
@@ -219,10 +231,11 @@ bool luz_setup_eight_avx512(const uint32_t *indices, const uint32_t triangles[8]
     const __mmask8 back = _mm512_cmple_epi64_mask(
         luz_doubled_area_lanes(fx0, fy0, fx1, fy1, fx2, fy2), _mm512_setzero_si512());
 
-    /* The box of pixel centres, as setup's. */
+    /* The box of the pixels whose samples (one: the centre) may be
+     * inside, as setup's. */
     __m512i min_x, min_y, max_x, max_y;
-    luz_centre_box_lanes(fx0, fy0, fx1, fy1, fx2, fy2, width, height, &min_x, &min_y, &max_x,
-                         &max_y);
+    luz_sample_box_lanes(fx0, fy0, fx1, fy1, fx2, fy2, width, height, samples, &min_x, &min_y,
+                         &max_x, &max_y);
     const __mmask8 empty = _mm512_cmpgt_epi64_mask(min_x, max_x) |
                            _mm512_cmpgt_epi64_mask(min_y, max_y);
     /* A box of up to LUZ_SETUP_SMALL_BOX_PIXELS but more than 2 x 2:
@@ -353,7 +366,8 @@ bool luz_setup_eight_avx512(const uint32_t *indices, const uint32_t triangles[8]
      * screen (no centre in the box, or in a box of 3 to 16 centres none
      * covered), then culled again (no plane can be solved). */
     const unsigned offscreen =
-        empty | (to_test & ~covered_lanes(to_test, min_x, min_y, box_width, box_height, a, b, c));
+        empty | (to_test &
+                 ~covered_lanes(to_test, min_x, min_y, box_width, box_height, a, b, c, samples));
     for (int lane = 0; lane < 8; lane++) {
         const unsigned bit = 1u << lane;
         result[lane] = (back & bit)        ? LUZ_SETUP_CULLED
@@ -362,4 +376,28 @@ bool luz_setup_eight_avx512(const uint32_t *indices, const uint32_t triangles[8]
                                            : LUZ_SETUP_CULLED;
     }
     return false;
+}
+
+luz_setup_eight_function luz_setup_eight_avx512, luz_setup_eight_four_avx512;
+
+bool luz_setup_eight_avx512(const uint32_t *indices, const uint32_t triangles[8],
+                            const luz_draw_transform *transform,
+                            const luz_fixed_vertex *fixed, int width, int height,
+                            uint32_t draw_index, luz_interpolation interpolation,
+                            luz_triangle out[8], luz_setup_result result[8])
+{
+    return setup_eight(indices, triangles, transform, fixed, width, height, draw_index,
+                       interpolation, 1, out, result);
+}
+
+/* The same for four samples a pixel: luz_setup_projected_samples(..., 4,
+ * ...) for triangles luz_screen_triangles_four_avx512 let through. */
+bool luz_setup_eight_four_avx512(const uint32_t *indices, const uint32_t triangles[8],
+                                 const luz_draw_transform *transform,
+                                 const luz_fixed_vertex *fixed, int width, int height,
+                                 uint32_t draw_index, luz_interpolation interpolation,
+                                 luz_triangle out[8], luz_setup_result result[8])
+{
+    return setup_eight(indices, triangles, transform, fixed, width, height, draw_index,
+                       interpolation, 4, out, result);
 }
