@@ -254,6 +254,33 @@ LANES_INLINE void gather_fixed(vi32 index, const luz_fixed_vertex *fixed, vi32 *
 #endif
 }
 
+#if defined(__AVX2__)
+/* An 8 x 8 transpose of floats in registers: row[l][k] becomes row[k][l]. */
+LANES_INLINE void transpose8_avx2(__m256 row[8])
+{
+    const __m256 t0 = _mm256_unpacklo_ps(row[0], row[1]);
+    const __m256 t1 = _mm256_unpackhi_ps(row[0], row[1]);
+    const __m256 t2 = _mm256_unpacklo_ps(row[2], row[3]);
+    const __m256 t3 = _mm256_unpackhi_ps(row[2], row[3]);
+    const __m256 t4 = _mm256_unpacklo_ps(row[4], row[5]);
+    const __m256 t5 = _mm256_unpackhi_ps(row[4], row[5]);
+    const __m256 t6 = _mm256_unpacklo_ps(row[6], row[7]);
+    const __m256 t7 = _mm256_unpackhi_ps(row[6], row[7]);
+    const __m256 u0 = _mm256_shuffle_ps(t0, t2, 0x44), u1 = _mm256_shuffle_ps(t0, t2, 0xee);
+    const __m256 u2 = _mm256_shuffle_ps(t1, t3, 0x44), u3 = _mm256_shuffle_ps(t1, t3, 0xee);
+    const __m256 u4 = _mm256_shuffle_ps(t4, t6, 0x44), u5 = _mm256_shuffle_ps(t4, t6, 0xee);
+    const __m256 u6 = _mm256_shuffle_ps(t5, t7, 0x44), u7 = _mm256_shuffle_ps(t5, t7, 0xee);
+    row[0] = _mm256_permute2f128_ps(u0, u4, 0x20);
+    row[1] = _mm256_permute2f128_ps(u1, u5, 0x20);
+    row[2] = _mm256_permute2f128_ps(u2, u6, 0x20);
+    row[3] = _mm256_permute2f128_ps(u3, u7, 0x20);
+    row[4] = _mm256_permute2f128_ps(u0, u4, 0x31);
+    row[5] = _mm256_permute2f128_ps(u1, u5, 0x31);
+    row[6] = _mm256_permute2f128_ps(u2, u6, 0x31);
+    row[7] = _mm256_permute2f128_ps(u3, u7, 0x31);
+}
+#endif
+
 /* Lanes l of the 8 floats at from[l] (l < LANES): column[k][l] =
  * from[l][k], a transpose of LANES rows of 8 into 8 vectors. */
 LANES_INLINE void load_columns8(const float *const from[LANES], vf32 column[8])
@@ -261,51 +288,15 @@ LANES_INLINE void load_columns8(const float *const from[LANES], vf32 column[8])
 #if LANES == 8 && defined(__AVX2__)
     __m256 rows[8];
     for (int l = 0; l < 8; l++) rows[l] = _mm256_loadu_ps(from[l]);
-    const __m256 t0 = _mm256_unpacklo_ps(rows[0], rows[1]);
-    const __m256 t1 = _mm256_unpackhi_ps(rows[0], rows[1]);
-    const __m256 t2 = _mm256_unpacklo_ps(rows[2], rows[3]);
-    const __m256 t3 = _mm256_unpackhi_ps(rows[2], rows[3]);
-    const __m256 t4 = _mm256_unpacklo_ps(rows[4], rows[5]);
-    const __m256 t5 = _mm256_unpackhi_ps(rows[4], rows[5]);
-    const __m256 t6 = _mm256_unpacklo_ps(rows[6], rows[7]);
-    const __m256 t7 = _mm256_unpackhi_ps(rows[6], rows[7]);
-    const __m256 u0 = _mm256_shuffle_ps(t0, t2, 0x44), u1 = _mm256_shuffle_ps(t0, t2, 0xee);
-    const __m256 u2 = _mm256_shuffle_ps(t1, t3, 0x44), u3 = _mm256_shuffle_ps(t1, t3, 0xee);
-    const __m256 u4 = _mm256_shuffle_ps(t4, t6, 0x44), u5 = _mm256_shuffle_ps(t4, t6, 0xee);
-    const __m256 u6 = _mm256_shuffle_ps(t5, t7, 0x44), u7 = _mm256_shuffle_ps(t5, t7, 0xee);
-    column[0] = (vf32)_mm256_permute2f128_ps(u0, u4, 0x20);
-    column[1] = (vf32)_mm256_permute2f128_ps(u1, u5, 0x20);
-    column[2] = (vf32)_mm256_permute2f128_ps(u2, u6, 0x20);
-    column[3] = (vf32)_mm256_permute2f128_ps(u3, u7, 0x20);
-    column[4] = (vf32)_mm256_permute2f128_ps(u0, u4, 0x31);
-    column[5] = (vf32)_mm256_permute2f128_ps(u1, u5, 0x31);
-    column[6] = (vf32)_mm256_permute2f128_ps(u2, u6, 0x31);
-    column[7] = (vf32)_mm256_permute2f128_ps(u3, u7, 0x31);
+    transpose8_avx2(rows);
+    for (int k = 0; k < 8; k++) column[k] = (vf32)rows[k];
 #elif LANES == 16 && defined(__AVX512F__)
     union { vf32 v; __m256 half[2]; } out[8];
     for (int h = 0; h < 2; h++) {
         __m256 rows[8];
         for (int l = 0; l < 8; l++) rows[l] = _mm256_loadu_ps(from[8 * h + l]);
-        const __m256 t0 = _mm256_unpacklo_ps(rows[0], rows[1]);
-        const __m256 t1 = _mm256_unpackhi_ps(rows[0], rows[1]);
-        const __m256 t2 = _mm256_unpacklo_ps(rows[2], rows[3]);
-        const __m256 t3 = _mm256_unpackhi_ps(rows[2], rows[3]);
-        const __m256 t4 = _mm256_unpacklo_ps(rows[4], rows[5]);
-        const __m256 t5 = _mm256_unpackhi_ps(rows[4], rows[5]);
-        const __m256 t6 = _mm256_unpacklo_ps(rows[6], rows[7]);
-        const __m256 t7 = _mm256_unpackhi_ps(rows[6], rows[7]);
-        const __m256 u0 = _mm256_shuffle_ps(t0, t2, 0x44), u1 = _mm256_shuffle_ps(t0, t2, 0xee);
-        const __m256 u2 = _mm256_shuffle_ps(t1, t3, 0x44), u3 = _mm256_shuffle_ps(t1, t3, 0xee);
-        const __m256 u4 = _mm256_shuffle_ps(t4, t6, 0x44), u5 = _mm256_shuffle_ps(t4, t6, 0xee);
-        const __m256 u6 = _mm256_shuffle_ps(t5, t7, 0x44), u7 = _mm256_shuffle_ps(t5, t7, 0xee);
-        out[0].half[h] = _mm256_permute2f128_ps(u0, u4, 0x20);
-        out[1].half[h] = _mm256_permute2f128_ps(u1, u5, 0x20);
-        out[2].half[h] = _mm256_permute2f128_ps(u2, u6, 0x20);
-        out[3].half[h] = _mm256_permute2f128_ps(u3, u7, 0x20);
-        out[4].half[h] = _mm256_permute2f128_ps(u0, u4, 0x31);
-        out[5].half[h] = _mm256_permute2f128_ps(u1, u5, 0x31);
-        out[6].half[h] = _mm256_permute2f128_ps(u2, u6, 0x31);
-        out[7].half[h] = _mm256_permute2f128_ps(u3, u7, 0x31);
+        transpose8_avx2(rows);
+        for (int k = 0; k < 8; k++) out[k].half[h] = rows[k];
     }
     for (int k = 0; k < 8; k++) column[k] = out[k].v;
 #else
@@ -314,25 +305,69 @@ LANES_INLINE void load_columns8(const float *const from[LANES], vf32 column[8])
 #endif
 }
 
-/* The other way: to[l][k] = column[k][l] for k < 8, l < LANES (eight
- * words a lane, stored whole). */
-LANES_INLINE void store_columns8(float *const to[LANES], const vf32 column[8])
+/* The other way: to[l][k] = column[k][l] for k < count (a multiple of
+ * 8), l < LANES: each lane's count words, stored whole and lane after
+ * lane, so that each lane's bytes are written in order (on the 1M sphere
+ * writing eight records 32 bytes at a time, the first 32 bytes of each,
+ * then the next, made AVX2's setup slower). The transposes stay in
+ * registers: through memory, the halves a vector was stored as would be
+ * loaded back whole, which the CPU cannot forward from its store buffer. */
+LANES_INLINE void store_columns(float *const to[LANES], const vf32 *column, int count)
 {
 #if LANES == 8 && defined(__AVX2__)
-    /* A transpose is its own inverse. */
-    vf32 rows[8];
-    const float *from[8];
-    float block[8][8];
-    for (int k = 0; k < 8; k++) {
-        memcpy(block[k], &column[k], sizeof block[k]);
-        from[k] = block[k];
+    __m256 rows[count / 8][8];
+    for (int q = 0; q < count / 8; q++) {
+        for (int k = 0; k < 8; k++) rows[q][k] = (__m256)column[8 * q + k];
+        transpose8_avx2(rows[q]);   /* a transpose is its own inverse */
     }
-    load_columns8(from, rows);
-    for (int l = 0; l < 8; l++) memcpy(to[l], &rows[l], 8 * sizeof(float));
+    for (int l = 0; l < 8; l++)
+        for (int q = 0; q < count / 8; q++) _mm256_storeu_ps(to[l] + 8 * q, rows[q][l]);
 #else
     for (int l = 0; l < LANES; l++)
-        for (int k = 0; k < 8; k++) to[l][k] = column[k][l];
+        for (int k = 0; k < count; k++) to[l][k] = column[k][l];
 #endif
+}
+
+/* Two halves of 64-bit lanes made one vector of 32-bit lanes, in
+ * registers: the doubles rounded to float (as a C cast: to nearest
+ * even), or the integers' low or high words (little-endian: a 64-bit
+ * lane's low word is its first 32-bit element). */
+#if LANES == 16
+#define LANES_JOIN(a, b) \
+    __builtin_shufflevector(a, b, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15)
+#define LANES_EVEN(a, b) \
+    __builtin_shufflevector(a, b, 0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30)
+#define LANES_ODD(a, b) \
+    __builtin_shufflevector(a, b, 1, 3, 5, 7, 9, 11, 13, 15, 17, 19, 21, 23, 25, 27, 29, 31)
+#elif LANES == 8
+#define LANES_JOIN(a, b) __builtin_shufflevector(a, b, 0, 1, 2, 3, 4, 5, 6, 7)
+#define LANES_EVEN(a, b) __builtin_shufflevector(a, b, 0, 2, 4, 6, 8, 10, 12, 14)
+#define LANES_ODD(a, b) __builtin_shufflevector(a, b, 1, 3, 5, 7, 9, 11, 13, 15)
+#elif LANES == 4
+#define LANES_JOIN(a, b) __builtin_shufflevector(a, b, 0, 1, 2, 3)
+#define LANES_EVEN(a, b) __builtin_shufflevector(a, b, 0, 2, 4, 6)
+#define LANES_ODD(a, b) __builtin_shufflevector(a, b, 1, 3, 5, 7)
+#endif
+
+LANES_INLINE vf32 narrow_join(vf64 low, vf64 high)
+{
+    typedef float half_floats __attribute__((vector_size(HALF * sizeof(float))));
+    return LANES_JOIN(__builtin_convertvector(low, half_floats),
+                      __builtin_convertvector(high, half_floats));
+}
+
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+#error "lanes.h: low_words and high_words assume little-endian lanes"
+#endif
+
+LANES_INLINE vi32 low_words(vi64 low, vi64 high)
+{
+    return LANES_EVEN((vi32)low, (vi32)high);
+}
+
+LANES_INLINE vi32 high_words(vi64 low, vi64 high)
+{
+    return LANES_ODD((vi32)low, (vi32)high);
 }
 
 /* Appends first + l for each lane l of bits to list, in order, and

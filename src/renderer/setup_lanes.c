@@ -63,15 +63,6 @@ LANES_INLINE vf64 double_half(vi32 v, int h)
     return __builtin_convertvector(part, vf64);
 }
 
-/* Doubles rounded to float (as a C cast: to nearest even), into lanes
- * h * HALF .. of column. */
-LANES_INLINE void put_half(float column[LANES], int h, vf64 value)
-{
-    typedef float half_floats __attribute__((vector_size(HALF * sizeof(float))));
-    const half_floats narrow = __builtin_convertvector(value, half_floats);
-    memcpy(&column[h * HALF], &narrow, sizeof narrow);
-}
-
 /* vertex.c's transform4 with w = 1, row r of a column-major 4 x 4: a[r] x
  * + a[4 + r] y + a[8 + r] z + a[12 + r], summed left to right in float
  * (a[12 + r] * 1.0f is a[12 + r] exactly)... */
@@ -232,12 +223,10 @@ LANES_INLINE void setup_group(const group_corners *corners, const luz_draw_trans
 
     /* 3 and 5, half a step at a time: the doubled area, the edges'
      * constants, the planes from the exact window positions relative to
-     * the snapped vertex 0. Column j of `column` holds float j of the
-     * record from byte 64 for every lane. */
-    float column[32][LANES];
-    int32_t word[16][LANES];
+     * the snapped vertex 0. */
     unsigned back = 0, solvable = 0, covered = 0;
-    vi64 c[2][3];
+    vi64 c[3][2];
+    vf64 x10[2], x20[2], y10[2], y20[2], inverse_determinant[2], rx[2], ry[2], rx0[2], ry0[2];
 #pragma GCC unroll 2
     for (int h = 0; h < 2; h++) {
         vi64 wx[3], wy[3];
@@ -246,24 +235,25 @@ LANES_INLINE void setup_group(const group_corners *corners, const luz_draw_trans
                                 multiply_wide(wx[1] - wx[0], wy[2] - wy[0]) <=
                             0)
                 << (h * HALF);
-        vi64 a[3], b[3];
+        vi64 a[3], b[3], c_half[3];
         for (int k = 0; k < 3; k++) {
             const vi64 dx = wx[to[k]] - wx[from[k]], dy = wy[to[k]] - wy[from[k]];
             a[k] = widen_half(edge_a[k], h);
             b[k] = widen_half(edge_b[k], h);
-            c[h][k] = -(multiply_wide(dy, wx[from[k]]) - multiply_wide(dx, wy[from[k]])) -
-                      (~widen_half(top_or_left[k], h) & 1);
+            c_half[k] = -(multiply_wide(dy, wx[from[k]]) - multiply_wide(dx, wy[from[k]])) -
+                        (~widen_half(top_or_left[k], h) & 1);
+            c[k][h] = c_half[k];
         }
         const unsigned to_test = (~back & ~empty & small & ~up_to_2x2) >> (h * HALF) &
                                  ((1u << HALF) - 1);
         covered |= covered_half(to_test, widen_half(min_x, h), widen_half(min_y, h),
                                 widen_half(box_width, h), widen_half(box_height, h), a, b,
-                                c[h])
+                                c_half)
                    << (h * HALF);
 
-        const vf64 x10 = x[1][h] - x[0][h], x20 = x[2][h] - x[0][h];
-        const vf64 y10 = y[1][h] - y[0][h], y20 = y[2][h] - y[0][h];
-        const vf64 determinant = x10 * y20 - x20 * y10;
+        x10[h] = x[1][h] - x[0][h], x20[h] = x[2][h] - x[0][h];
+        y10[h] = y[1][h] - y[0][h], y20[h] = y[2][h] - y[0][h];
+        const vf64 determinant = x10[h] * y20[h] - x20[h] * y10[h];
         /* setup.c: !(determinant != 0.0) || !isfinite(determinant) culls. */
         const vf64 magnitude = (vf64)((vi64)determinant & 0x7fffffffffffffff);
         solvable |= lane_bits64((determinant != 0.0) & (magnitude < (double)INFINITY))
@@ -271,61 +261,57 @@ LANES_INLINE void setup_group(const group_corners *corners, const luz_draw_trans
         /* (A lane that cannot be solved divides 1 by 1 instead: it is
          * culled whatever its planes, and -fsanitize=float-divide-by-zero
          * traps a division by 0.) */
-        const vf64 inverse_determinant =
-            1.0 / selectd(determinant != 0.0, determinant, splatd(1.0));
+        inverse_determinant[h] = 1.0 / selectd(determinant != 0.0, determinant, splatd(1.0));
         /* fixed / 256: exact, a power of two. */
-        const vf64 rx = double_half(fx[0], h) / (double)LUZ_SUBPIXEL_ONE;
-        const vf64 ry = double_half(fy[0], h) / (double)LUZ_SUBPIXEL_ONE;
-        const vf64 rx0 = rx - x[0][h], ry0 = ry - y[0][h];
-        put_half(column[0], h, rx);
-        put_half(column[1], h, ry);
-        vf64 plane[3];
-        make_plane_half(x10, x20, y10, y20, inverse_determinant, rx0, ry0, depth[0][h],
-                        depth[1][h], depth[2][h], plane);
-        for (int j = 0; j < 3; j++) put_half(column[2 + j], h, plane[j]);
-        make_plane_half(x10, x20, y10, y20, inverse_determinant, rx0, ry0, weight[0][h],
-                        weight[1][h], weight[2][h], plane);
-        for (int j = 0; j < 3; j++) put_half(column[5 + j], h, plane[j]);
-        for (int i = 0; i < LUZ_VARYING_COUNT; i++) {
+        rx[h] = double_half(fx[0], h) / (double)LUZ_SUBPIXEL_ONE;
+        ry[h] = double_half(fy[0], h) / (double)LUZ_SUBPIXEL_ONE;
+        rx0[h] = rx[h] - x[0][h], ry0[h] = ry[h] - y[0][h];
+    }
+
+    /* The record's floats from byte 64, each a vector of LANES made in
+     * registers from its two halves: the reference point, then depth, 1/w
+     * and each varying/w as (value, dx, dy); column j holds float j of
+     * every lane. */
+    vf32 column[32];
+    column[0] = narrow_join(rx[0], rx[1]);
+    column[1] = narrow_join(ry[0], ry[1]);
+    vf64 plane[2][3];
+    for (int h = 0; h < 2; h++)
+        make_plane_half(x10[h], x20[h], y10[h], y20[h], inverse_determinant[h], rx0[h], ry0[h],
+                        depth[0][h], depth[1][h], depth[2][h], plane[h]);
+    for (int j = 0; j < 3; j++) column[2 + j] = narrow_join(plane[0][j], plane[1][j]);
+    for (int h = 0; h < 2; h++)
+        make_plane_half(x10[h], x20[h], y10[h], y20[h], inverse_determinant[h], rx0[h], ry0[h],
+                        weight[0][h], weight[1][h], weight[2][h], plane[h]);
+    for (int j = 0; j < 3; j++) column[5 + j] = narrow_join(plane[0][j], plane[1][j]);
+    for (int i = 0; i < LUZ_VARYING_COUNT; i++) {
+        for (int h = 0; h < 2; h++) {
             vf64 value[3];
             for (int k = 0; k < 3; k++)
                 value[k] = widen_half_float(varying[k][i], h) * weight[k][h];
-            make_plane_half(x10, x20, y10, y20, inverse_determinant, rx0, ry0, value[0],
-                            value[1], value[2], plane);
-            for (int j = 0; j < 3; j++) put_half(column[8 + 3 * i + j], h, plane[j]);
+            make_plane_half(x10[h], x20[h], y10[h], y20[h], inverse_determinant[h], rx0[h],
+                            ry0[h], value[0], value[1], value[2], plane[h]);
         }
-        /* The edges' constants as their low and high words. */
-        for (int k = 0; k < 3; k++)
-            for (int i = 0; i < HALF; i++) {
-                const uint64_t value = (uint64_t)c[h][k][i];
-                word[6 + 4 * k][h * HALF + i] = (int32_t)(uint32_t)value;
-                word[7 + 4 * k][h * HALF + i] = (int32_t)(uint32_t)(value >> 32);
-            }
+        for (int j = 0; j < 3; j++)
+            column[8 + 3 * i + j] = narrow_join(plane[0][j], plane[1][j]);
     }
 
     /* The box and edges as sixteen 32-bit words a lane: min x, min y,
-     * max x, max y, then a, b and c (low, high) of each edge. */
-    memcpy(word[0], &min_x, sizeof word[0]);
-    memcpy(word[1], &min_y, sizeof word[1]);
-    memcpy(word[2], &max_x, sizeof word[2]);
-    memcpy(word[3], &max_y, sizeof word[3]);
+     * max x, max y, then a, b and c (low word, high word) of each edge. */
+    vi32 word[16] = {min_x, min_y, max_x, max_y};
     for (int k = 0; k < 3; k++) {
-        memcpy(word[4 + 4 * k], &edge_a[k], sizeof word[0]);
-        memcpy(word[5 + 4 * k], &edge_b[k], sizeof word[0]);
+        word[4 + 4 * k] = edge_a[k];
+        word[5 + 4 * k] = edge_b[k];
+        word[6 + 4 * k] = low_words(c[k][0], c[k][1]);
+        word[7 + 4 * k] = high_words(c[k][0], c[k][1]);
     }
-    /* Each lane's record: words 0-15, then the 32 floats, eight at a
-     * time through the transposes. */
-    for (int q = 0; q < 6; q++) {
-        vf32 rows[8];
-        float *to_record[LANES];
-        for (int j = 0; j < 8; j++) {
-            if (q < 2) memcpy(&rows[j], word[8 * q + j], sizeof rows[j]);
-            else memcpy(&rows[j], column[8 * (q - 2) + j], sizeof rows[j]);
-        }
-        for (int lane = 0; lane < LANES; lane++)
-            to_record[lane] = (float *)(void *)&out[lane] + 8 * q;
-        store_columns8(to_record, rows);
-    }
+    /* Each lane's record: words 0-15, then the 32 floats. */
+    vf32 record[48];
+    for (int j = 0; j < 16; j++) record[j] = (vf32)word[j];
+    for (int j = 0; j < 32; j++) record[16 + j] = column[j];
+    float *to_record[LANES];
+    for (int lane = 0; lane < LANES; lane++) to_record[lane] = (float *)(void *)&out[lane];
+    store_columns(to_record, record, 48);
     for (int lane = 0; lane < LANES; lane++) out[lane].draw_index = draw_index;
 
     /* Each lane's verdict in setup's order: culled (a back face), off
