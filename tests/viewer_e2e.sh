@@ -33,7 +33,9 @@
 #    the bottom left leaves the middle in sight), paused: E and a click in
 #    the middle mark a pixel of cube 0; the window shows the marker's yellow
 #    arms 3 to 8 pixels around it, the pixel itself as before, and the
-#    panel. V shows another view and the paused panel stays as it was;
+#    panel. U turns the panel to a page of numbers (the pixel still in
+#    sight), Shift+U back to the story, pixel for pixel as it was.
+#    V shows another view and the paused panel stays as it was;
 #    Shift+E takes marker and panel away. Marked again and running (T),
 #    the panel follows the turning cube: its numbers change.
 # 7c. The orbit camera, in the lab (O; a model's scene starts with it):
@@ -387,6 +389,21 @@ done
     fail "the marked pixel is covered: $(pixel_of "$work/probe.png" 480 270)"
 changed=$(differing_pixels "$work/before.png" "$work/probe.png" "$panel_crop")
 [ "$changed" -gt 5000 ] || fail "E and a click changed $changed pixels at the bottom left: no probe panel"
+# U turns the panel to its pages of numbers (the vertex stage first):
+# the panel changes, the pixel stays in sight; Shift+U turns back to the
+# story, as it was.
+xdotool key u
+capture probe-u.png probe.png
+changed=$(differing_pixels "$work/probe.png" "$work/probe-u.png" "$panel_crop")
+[ "$changed" -gt 1000 ] || fail "U changed only $changed pixels of the probe panel"
+[ "$(pixel_of "$work/probe-u.png" 480 270)" = "$(pixel_of "$work/before.png" 480 270)" ] ||
+    fail "the panel's page of numbers covers the marked pixel"
+[ "$(pixel_of "$work/probe-u.png" 483 270)" = "255,230,40" ] ||
+    fail "the page of numbers covers the marker"
+xdotool key shift+u
+capture probe-story.png probe-u.png
+changed=$(differing_pixels "$work/probe.png" "$work/probe-story.png" "$panel_crop")
+[ "$changed" -eq 0 ] || fail "Shift+U left $changed pixels of the panel other than the story's"
 xdotool key v
 capture probe-v.png probe.png
 changed=$(differing_pixels "$work/probe.png" "$work/probe-v.png" "$scene_crop")

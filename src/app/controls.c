@@ -228,7 +228,7 @@ const luz_control_help luz_controls_help[] = {
     {"X, B", "interpolation perspective-correct / affine; 1 / 4 samples a pixel"},
     {"G", "step mode: draw the frame triangle by triangle, slowly"},
     {"E", "probe mode: click a pixel to see why it has its colour; T freezes the panel"},
-    {"Shift+E", "forget the probed pixel and close its panel"},
+    {"Shift+E / U", "close the probe panel / its next page"},
     {"T", "pause / resume the animation"},
     {"I", "HUD on / off"},
     {"H", "this help on / off"},

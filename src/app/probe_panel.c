@@ -23,6 +23,8 @@ enum {
     MARGIN = 6,        /* between the box and the framebuffer's edge */
     GAP = 4,           /* between the parts of a row */
     BAR_WIDTH = 120,   /* a bar's full width */
+    SHORT_BAR_WIDTH = 96,  /* ... on the light's page of numbers, whose rows
+                              are longer: 640x360 keeps the centre in sight */
     SWATCH = 16,       /* a swatch's width; its height is a row's less 3 */
     LABEL = 78,        /* the width of a term's label column */
     MARKER_REACH = 9,  /* the marker's arms reach 8 pixels, its outline 9 */
@@ -55,6 +57,7 @@ typedef enum row_kind {
     ROW_SWATCHES,   /* up to three: label, swatch, values */
     ROW_TERM,       /* label, bar, values */
     ROW_LIGHT,      /* label, the six bars end to end, values */
+    ROW_LABELLED,   /* label, values in a column after it */
 } row_kind;
 
 typedef struct panel_row {
@@ -76,6 +79,7 @@ typedef struct panel_rows {
     int count;
     int first_history;        /* the row of the first test listed, or count */
     int history_total;        /* the tests there are to list */
+    int bar_width;            /* a bar's full width at scale 1 */
 } panel_rows;
 
 static panel_row *add_row(panel_rows *rows, row_kind kind, luz_rgba colour)
@@ -98,6 +102,21 @@ static void add_text(panel_rows *rows, luz_rgba colour, const char *format, ...)
     va_list arguments;
     va_start(arguments, format);
     vsnprintf(row->text, sizeof row->text, format, arguments);
+    va_end(arguments);
+}
+
+static void add_labelled(panel_rows *rows, luz_rgba colour, const char *label,
+                         const char *format, ...) __attribute__((format(printf, 4, 5)));
+
+static void add_labelled(panel_rows *rows, luz_rgba colour, const char *label,
+                         const char *format, ...)
+{
+    panel_row *row = add_row(rows, ROW_LABELLED, colour);
+    if (row == NULL) return;
+    snprintf(row->text, sizeof row->text, "%s", label);
+    va_list arguments;
+    va_start(arguments, format);
+    vsnprintf(row->values, sizeof row->values, format, arguments);
     va_end(arguments);
 }
 
@@ -180,25 +199,10 @@ static void add_view_rows(panel_rows *rows, const luz_pixel_probe *probe)
 
 /* compact: the six term rows left out (the light row's bar still shows
  * each term, in its colour, end to end). */
-static void panel_rows_of(panel_rows *rows, const luz_pixel_probe *probe,
-                          const luz_probe_names *names, bool frozen, bool compact)
+static void story_rows(panel_rows *rows, const luz_pixel_probe *probe,
+                       const luz_probe_names *names, bool compact)
 {
-    rows->count = 0;
     char a[96], b[96], c[96];
-    add_text(rows, accent_colour, "PROBE %d,%d%s", probe->x, probe->y,
-             frozen ? "  (paused: T follows again)" : "");
-    /* The bug, as luz-render --probe says it: a quiz's is not told. */
-    if (names != NULL && names->scene != NULL && names->scene->bug_hidden)
-        add_text(rows, accent_colour, "bug: hidden (quiz)");
-    else if (probe->bug != LUZ_BUG_NONE)
-        add_text(rows, accent_colour, "bug: %s", luz_bug_name(probe->bug));
-    if (!probe->filled) {
-        add_text(rows, dim_colour, "outside the image");
-        rows->first_history = rows->count;
-        rows->history_total = 0;
-        return;
-    }
-
     if (probe->triangle == 0) {
         add_text(rows, text_colour, "background: no triangle won the pixel");
     } else {
@@ -299,6 +303,190 @@ static void panel_rows_of(panel_rows *rows, const luz_pixel_probe *probe,
     }
 }
 
+/* ---- the numbers in between: one page per stage ------------------------------------ */
+
+/* Three numbers, as the panel shows them (format_vec3, without a buffer). */
+#define VEC3_ARGS(v) (double)(v).x, (double)(v).y, (double)(v).z
+
+/* The vertex stage (tour step 2): clip = projection x view x model x (P, 1)
+ * for each corner; the matrices row by row (docs/cli.md's model_row0 ...). */
+static void vertex_rows(panel_rows *rows, const luz_pixel_probe *probe)
+{
+    add_text(rows, dim_colour, "clip = projection x view x model x (P, 1)");
+    const struct {
+        const char *name;
+        const luz_mat4 *matrix;
+    } matrices[3] = {{"model", &probe->model_matrix},
+                     {"view", &probe->view_matrix},
+                     {"projection", &probe->projection_matrix}};
+    for (int k = 0; k < 3; k++)
+        for (int row = 0; row < 4; row++) {
+            /* column-major: element (row, column) is m[column * 4 + row] */
+            const float *m = matrices[k].matrix->m;
+            add_labelled(rows, text_colour, row == 0 ? matrices[k].name : "",
+                         "%7.3f %7.3f %7.3f %7.3f", (double)m[row], (double)m[4 + row],
+                         (double)m[8 + row], (double)m[12 + row]);
+        }
+    if (probe->primitive < 0) return;
+    for (int k = 0; k < 3; k++) {
+        char label[32];
+        snprintf(label, sizeof label, "clip %d", k);
+        add_labelled(rows, text_colour, label, "%.3f %.3f %.3f %.3f",
+                     (double)probe->corner_clip[k].x, (double)probe->corner_clip[k].y,
+                     (double)probe->corner_clip[k].z, (double)probe->corner_clip[k].w);
+    }
+}
+
+/* Setup, rasterisation, interpolation and the texture (tour steps 4 to 7). */
+static void raster_rows(panel_rows *rows, const luz_pixel_probe *probe,
+                        const luz_probe_names *names)
+{
+    char label[32];
+    if (probe->primitive >= 0) {
+        for (int k = 0; k < 3; k++) {
+            snprintf(label, sizeof label, "window %d", k);
+            add_labelled(rows, text_colour, label, "%.3f %.3f %.5f",
+                         VEC3_ARGS(probe->corner_window[k]));
+        }
+        /* the edge functions in 1/256 pixel squared units (probe.h), as
+         * the rasteriser compares them with 0 */
+        for (int k = 0; k < 3; k++) {
+            const luz_probe_edge *edge = &probe->edges[k];
+            snprintf(label, sizeof label, "edge %d", k);
+            add_labelled(rows, text_colour, label, "%lld%s%s  %s", (long long)edge->value,
+                         edge->top ? "  top" : "", edge->left ? "  left" : "",
+                         edge->value > 0 || (edge->value == 0 && edge->owns_its_samples)
+                             ? "inside"
+                         : edge->value == 0 ? "on it, not its"
+                                            : "outside");
+        }
+        add_labelled(rows, text_colour, "barycentric", "%.3f %.3f %.3f",
+                     VEC3_ARGS(probe->barycentric));
+    }
+    add_labelled(rows, text_colour, "w, depth", "%.3f  %.5f", (double)probe->w,
+                 (double)probe->depth);
+    add_labelled(rows, text_colour, "uv", "%.3f %.3f", (double)probe->uv.x, (double)probe->uv.y);
+    add_labelled(rows, text_colour, "uv / dx, dy", "%.4f %.4f   %.4f %.4f", (double)probe->du_dx,
+                 (double)probe->dv_dx, (double)probe->du_dy, (double)probe->dv_dy);
+    if (probe->shading == LUZ_SHADING_UNLIT) {
+        add_text(rows, dim_colour, "unlit: no texture");
+        return;
+    }
+    if (probe->texture == NULL) {
+        add_text(rows, text_colour, "texture none: T = 1");
+        return;
+    }
+    add_labelled(rows, text_colour, "texture", "%s  %s",
+                 luz_probe_texture_name(names, probe->draw, probe->texture),
+                 luz_filter_name(probe->filter));
+    add_labelled(rows, text_colour, "rho, lod", "%.3f  %.3f  levels %d,%d (%.2f)",
+                 (double)probe->rho, (double)probe->lambda, probe->levels.lower,
+                 probe->levels.upper, (double)probe->levels.blend);
+    /* two taps a row: trilinear's eight in four rows */
+    for (int k = 0; k < probe->tap_count; k += 2) {
+        char taps[2][64] = {"", ""};
+        for (int j = 0; j < 2 && k + j < probe->tap_count; j++) {
+            const luz_probe_tap *tap = &probe->taps[k + j];
+            snprintf(taps[j], sizeof taps[j], "L%d %d,%d x%.3f", tap->level, tap->x, tap->y,
+                     (double)tap->weight);
+        }
+        snprintf(label, sizeof label, k == 0 ? "taps" : "");
+        add_labelled(rows, text_colour, label, "%s  %s", taps[0], taps[1]);
+    }
+    add_labelled(rows, text_colour, "T", "%.3f %.3f %.3f", VEC3_ARGS(probe->texel));
+}
+
+/* The six terms' intermediates (tour step 8, SCENE.md's names; the font
+ * has no dot operator: N.L is dot(N, L)), then the terms and their sum. */
+static void light_rows(panel_rows *rows, const luz_pixel_probe *probe, bool compact)
+{
+    if (probe->shading == LUZ_SHADING_UNLIT) {
+        add_text(rows, dim_colour, "unlit: its colour is C, no light");
+        return;
+    }
+    const luz_shade_steps *steps = &probe->steps;
+    add_labelled(rows, text_colour, "N", "%.3f %.3f %.3f  |N| %.3f", VEC3_ARGS(probe->normal),
+                 (double)steps->normal_length);
+    add_labelled(rows, text_colour, "L", "%.3f %.3f %.3f  N.L %.3f", VEC3_ARGS(steps->to_light),
+                 (double)steps->n_dot_l);
+    add_labelled(rows, text_colour, "V", "%.3f %.3f %.3f", VEC3_ARGS(steps->to_viewer));
+    add_labelled(rows, text_colour, "R", "%.3f %.3f %.3f  V.R %.3f", VEC3_ARGS(steps->reflected),
+                 (double)steps->v_dot_r);
+    add_labelled(rows, text_colour, "Lp", "%.3f %.3f %.3f  N.Lp %.3f",
+                 VEC3_ARGS(steps->to_point), (double)steps->n_dot_lp);
+    add_labelled(rows, text_colour, "spot", "c %.3f  ci %.3f  co %.3f",
+                 (double)steps->spot_cos, (double)steps->spot_cos_inner,
+                 (double)steps->spot_cos_outer);
+    add_labelled(rows, text_colour, "", "f_dir %.3f  dn %.3f", (double)steps->f_dir,
+                 (double)steps->dn);
+    add_labelled(rows, text_colour, "", "f_win %.3f  f_dist %.3f", (double)steps->f_win,
+                 (double)steps->f_dist);
+    add_labelled(rows, text_colour, "sun", "%.3f %.3f %.3f  N.sun %.3f",
+                 VEC3_ARGS(steps->to_sun), (double)steps->n_dot_sun);
+    for (int term = 0; term < LUZ_TERM_COUNT && !compact; term++) {
+        panel_row *row = add_row(rows, ROW_TERM, text_colour);
+        if (row == NULL) break;
+        row->term = term;
+        snprintf(row->text, sizeof row->text, "%s", luz_term_name((luz_term)term));
+        format_vec3(row->values, sizeof row->values, probe->terms[term]);
+    }
+    panel_row *row = add_row(rows, ROW_LIGHT, accent_colour);
+    if (row != NULL) {
+        snprintf(row->text, sizeof row->text, "light");
+        format_vec3(row->values, sizeof row->values, probe->light);
+    }
+}
+
+static const char *const page_titles[LUZ_PROBE_PAGE_COUNT] = {
+    "",
+    "  vertex (tour 2)",
+    "  raster (tour 4-7)",
+    "  light (tour 8)",
+};
+
+luz_probe_page luz_probe_page_next(luz_probe_page page, bool back)
+{
+    const int count = LUZ_PROBE_PAGE_COUNT;
+    return (luz_probe_page)((((int)page + (back ? -1 : 1)) % count + count) % count);
+}
+
+/* compact: the six term rows left out (the light row's bar still shows
+ * each term, in its colour, end to end). */
+static void panel_rows_of(panel_rows *rows, const luz_pixel_probe *probe,
+                          const luz_probe_names *names, bool frozen, bool compact,
+                          luz_probe_page page)
+{
+    rows->count = 0;
+    if ((unsigned)page >= LUZ_PROBE_PAGE_COUNT) page = LUZ_PROBE_PAGE_STORY;
+    rows->bar_width = page == LUZ_PROBE_PAGE_STORY ? BAR_WIDTH : SHORT_BAR_WIDTH;
+    /* (the pages of numbers are narrower than the story: a short note) */
+    add_text(rows, accent_colour, "PROBE %d,%d%s%s", probe->x, probe->y, page_titles[page],
+             !frozen                         ? ""
+             : page == LUZ_PROBE_PAGE_STORY ? "  (paused: T follows again)"
+                                            : "  (paused)");
+    /* The bug, as luz-render --probe says it: a quiz's is not told. */
+    if (names != NULL && names->scene != NULL && names->scene->bug_hidden)
+        add_text(rows, accent_colour, "bug: hidden (quiz)");
+    else if (probe->bug != LUZ_BUG_NONE)
+        add_text(rows, accent_colour, "bug: %s", luz_bug_name(probe->bug));
+    rows->history_total = 0;
+    if (!probe->filled) {
+        add_text(rows, dim_colour, "outside the image");
+    } else if (page == LUZ_PROBE_PAGE_STORY) {
+        story_rows(rows, probe, names, compact);
+        return;
+    } else if (probe->triangle == 0) {
+        add_text(rows, text_colour, "background: no triangle won the pixel");
+    } else if (page == LUZ_PROBE_PAGE_VERTEX) {
+        vertex_rows(rows, probe);
+    } else if (page == LUZ_PROBE_PAGE_RASTER) {
+        raster_rows(rows, probe, names);
+    } else {
+        light_rows(rows, probe, compact);
+    }
+    rows->first_history = rows->count;
+}
+
 /* ---- layout ----------------------------------------------------------------------- */
 
 static int swatch_row_width(const panel_row *row, int s)
@@ -310,7 +498,7 @@ static int swatch_row_width(const panel_row *row, int s)
     return width;
 }
 
-static int row_width(const panel_row *row, int s)
+static int row_width(const panel_row *row, int bar_width, int s)
 {
     switch (row->kind) {
     case ROW_TEXT:
@@ -319,7 +507,9 @@ static int row_width(const panel_row *row, int s)
         return swatch_row_width(row, s);
     case ROW_TERM:
     case ROW_LIGHT:
-        return (LABEL + BAR_WIDTH + GAP) * s + luz_overlay_text_width(row->values, s);
+        return (LABEL + bar_width + GAP) * s + luz_overlay_text_width(row->values, s);
+    case ROW_LABELLED:
+        return LABEL * s + luz_overlay_text_width(row->values, s);
     }
     return 0;
 }
@@ -347,7 +537,7 @@ static int widest_row(const panel_rows *rows, int s)
 {
     int inner = 0;
     for (int i = 0; i < rows->count; i++) {
-        int w = row_width(&rows->rows[i], s);
+        int w = row_width(&rows->rows[i], rows->bar_width, s);
         if (w > inner) inner = w;
     }
     return inner;
@@ -433,7 +623,7 @@ static luz_probe_panel_layout layout_rows(int width, int height, const luz_pixel
 
     /* The bars: a term's mean channel, on a scale of at least 1, so that
      * the sum of a bright pixel still fits. */
-    layout.bar_width = BAR_WIDTH * s;
+    layout.bar_width = rows->bar_width * s;
     layout.bar_scale = mean(probe->light) > 1.0f ? mean(probe->light) : 1.0f;
     const int bar_height = (ROW - 4) * s;
     for (int i = 0; i < rows->count; i++) {
@@ -464,14 +654,15 @@ static luz_probe_panel_layout layout_rows(int width, int height, const luz_pixel
  * frame's area, the compact one. */
 static luz_probe_panel_layout rows_and_layout(panel_rows *rows, int width, int height,
                                               const luz_pixel_probe *probe,
-                                              const luz_probe_names *names, bool frozen)
+                                              const luz_probe_names *names, bool frozen,
+                                              luz_probe_page page)
 {
     /* The text at twice the size where the whole story fits so (issue 31:
      * at 1280x720 the pixel font's 6 pixels were hard to read): every row
      * listed, the box within the frame and within half its area, and in
      * a corner that leaves the pixel and its marker in sight. */
     const long long half = (long long)width * height / 2;
-    panel_rows_of(rows, probe, names, frozen, false);
+    panel_rows_of(rows, probe, names, frozen, false, page);
     const int all_rows = rows->count;
     luz_probe_panel_layout layout = layout_rows(width, height, probe, rows, false, 2);
     const luz_rect around = {probe->x - MARKER_REACH, probe->y - MARKER_REACH,
@@ -480,23 +671,24 @@ static luz_probe_panel_layout rows_and_layout(panel_rows *rows, int width, int h
         layout.box.x >= 0 && layout.box.y >= 0 && layout.box.x + layout.box.width <= width &&
         !rects_overlap(layout.box, around))
         return layout;
-    panel_rows_of(rows, probe, names, frozen, false);
+    panel_rows_of(rows, probe, names, frozen, false, page);
     layout = layout_rows(width, height, probe, rows, false, 1);
     if ((long long)layout.box.width * layout.box.height <= half)
         return layout;
-    panel_rows_of(rows, probe, names, frozen, true);
+    panel_rows_of(rows, probe, names, frozen, true, page);
     return layout_rows(width, height, probe, rows, true, 1);
 }
 
 luz_probe_panel_layout luz_probe_panel_layout_for(int width, int height,
                                                   const luz_pixel_probe *probe,
-                                                  const luz_probe_names *names, bool frozen)
+                                                  const luz_probe_names *names, bool frozen,
+                                              luz_probe_page page)
 {
     luz_probe_panel_layout layout;
     memset(&layout, 0, sizeof layout);
     panel_rows *rows = malloc(sizeof *rows);
     if (rows == NULL) return layout;
-    layout = rows_and_layout(rows, width, height, probe, names, frozen);
+    layout = rows_and_layout(rows, width, height, probe, names, frozen, page);
     free(rows);
     return layout;
 }
@@ -512,15 +704,15 @@ static void draw_swatch(luz_layer *layer, luz_rect swatch, int s, luz_rgba colou
 }
 
 void luz_probe_panel_draw(luz_layer *layer, const luz_pixel_probe *probe,
-                          const luz_probe_names *names, bool frozen)
+                          const luz_probe_names *names, bool frozen, luz_probe_page page)
 {
     panel_rows *rows = malloc(sizeof *rows);
     if (rows == NULL) return;
     const luz_probe_panel_layout layout =
-        rows_and_layout(rows, layer->width, layer->height, probe, names, frozen);
+        rows_and_layout(rows, layer->width, layer->height, probe, names, frozen, page);
     const int s = layout.scale;
     luz_overlay_fill(layer, layout.box, box_colour);
-    const char *hint = "E: mode  Shift+E: close";
+    const char *hint = "E: mode  U: more  Shift+E: close";
     const int hint_width = luz_overlay_text_width(hint, s);
 
     const int x = layout.box.x + PAD * s;
@@ -530,6 +722,10 @@ void luz_probe_panel_draw(luz_layer *layer, const luz_pixel_probe *probe,
         switch (row->kind) {
         case ROW_TEXT:
             luz_overlay_text(layer, x, y, s, row->text, row->colour);
+            break;
+        case ROW_LABELLED:
+            luz_overlay_text(layer, x, y, s, row->text, dim_colour);
+            luz_overlay_text(layer, x + LABEL * s, y, s, row->values, row->colour);
             break;
         case ROW_SWATCHES:
             for (int k = 0; k < row->swatch_count; k++) {
@@ -582,4 +778,36 @@ void luz_probe_marker_draw(luz_layer *layer, int x, int y)
                                            arms[i].height + 2},
                          outline);
     for (int i = 0; i < 4; i++) luz_overlay_fill(layer, arms[i], core);
+}
+
+int luz_probe_panel_text(const luz_pixel_probe *probe, const luz_probe_names *names,
+                         bool frozen, luz_probe_page page, char (*lines)[LUZ_PROBE_PANEL_LINE],
+                         int max_lines)
+{
+    panel_rows *rows = malloc(sizeof *rows);
+    if (rows == NULL) return 0;
+    panel_rows_of(rows, probe, names, frozen, false, page);
+    for (int i = 0; i < rows->count && i < max_lines; i++) {
+        const panel_row *row = &rows->rows[i];
+        switch (row->kind) {
+        case ROW_TEXT:
+            snprintf(lines[i], LUZ_PROBE_PANEL_LINE, "%s", row->text);
+            break;
+        case ROW_SWATCHES: {
+            int used = 0;
+            lines[i][0] = '\0';
+            for (int k = 0; k < row->swatch_count && used < LUZ_PROBE_PANEL_LINE; k++)
+                used += snprintf(lines[i] + used, (size_t)(LUZ_PROBE_PANEL_LINE - used),
+                                 "%s%s %s", k ? "  " : "", row->swatch_label[k],
+                                 row->swatch_values[k]);
+            break;
+        }
+        default:
+            snprintf(lines[i], LUZ_PROBE_PANEL_LINE, "%s %s", row->text, row->values);
+            break;
+        }
+    }
+    const int count = rows->count;
+    free(rows);
+    return count;
 }

@@ -31,6 +31,20 @@
  *      1 cube 0 #1  0.96096 < 1.00000  pass
  *      ...
  *
+ * U turns the panel's page (Shift+U back): after the story above come the
+ * numbers in between, one page per stage of the tour (docs/pipeline.md),
+ * each short enough to keep the panel's text large and the pixel in sight:
+ *
+ *     vertex (tour step 2): the model, view and projection matrices, row
+ *         by row, once per probe, and the winner's corners in clip space;
+ *     raster (steps 4 to 7): the corners in the window, the three edge
+ *         functions at the pixel centre, top / left and whose the centre
+ *         is, barycentric, w, depth, uv and its derivatives, rho, lambda,
+ *         the levels and every tap of the filter (level, texel, weight);
+ *     light (step 8): |N|, L and N.L, V, R and V.R, Lp and N.Lp, the
+ *         spot's c, ci, co, f_dir, dn, f_win and f_dist, the sun and N.sun,
+ *         then the six terms with their bars and their sum.
+ *
  * Like the light panel (panel.h), it is recorded into the 2D layer and
  * needs no window: what it draws is tested with a framebuffer.
  */
@@ -42,6 +56,18 @@
 #include "luz/probe.h"
 #include "app/panel.h"
 #include "app/probe_report.h"
+
+/* The panel's pages, in the order U shows them. */
+typedef enum luz_probe_page {
+    LUZ_PROBE_PAGE_STORY,    /* why the pixel has its colour */
+    LUZ_PROBE_PAGE_VERTEX,   /* the numbers in between: the vertex stage */
+    LUZ_PROBE_PAGE_RASTER,   /* ... setup, rasterisation, interpolation, texture */
+    LUZ_PROBE_PAGE_LIGHT,    /* ... the six light terms */
+    LUZ_PROBE_PAGE_COUNT
+} luz_probe_page;
+
+/* The page after (or, back, before) page, round the ring. */
+luz_probe_page luz_probe_page_next(luz_probe_page page, bool back);
 
 /* The colour that stands for each term in the panel's bars (not the
  * light's own colour: six white lights would give six white bars). */
@@ -83,12 +109,22 @@ typedef struct luz_probe_panel_layout {
 
 luz_probe_panel_layout luz_probe_panel_layout_for(int width, int height,
                                                   const luz_pixel_probe *probe,
-                                                  const luz_probe_names *names, bool frozen);
+                                                  const luz_probe_names *names, bool frozen,
+                                                  luz_probe_page page);
 
-/* Records the panel for a probe of the viewer's frame: frozen says the
- * animation is paused and the story is the one it had then. */
+/* Records the panel's page for a probe of the viewer's frame: frozen says
+ * the animation is paused and the story is the one it had then. */
 void luz_probe_panel_draw(luz_layer *layer, const luz_pixel_probe *probe,
-                          const luz_probe_names *names, bool frozen);
+                          const luz_probe_names *names, bool frozen, luz_probe_page page);
+
+/* The page's rows as text, as they are drawn before any is cut for room
+ * (a term's row: its label, then its values; a row of swatches: each
+ * label, then its values), at most max_lines of them into lines; returns
+ * how many rows there are. For tests, which read the words. */
+#define LUZ_PROBE_PANEL_LINE 200
+int luz_probe_panel_text(const luz_pixel_probe *probe, const luz_probe_names *names,
+                         bool frozen, luz_probe_page page, char (*lines)[LUZ_PROBE_PANEL_LINE],
+                         int max_lines);
 
 /* Records a cross-hair around pixel (x, y), leaving the pixel itself
  * uncovered. */

@@ -237,6 +237,7 @@ typedef struct viewer {
     bool probe_asked;                /* probe on the next frame, paused or not */
     int probe_x, probe_y;            /* the marked pixel */
     luz_pixel_probe probe;
+    luz_probe_page probe_page;       /* U: the panel's page */
     bool paused_before_step;         /* the step mode freezes the animation */
     uint32_t step_limit;             /* triangles to draw now, 0 for all */
 
@@ -520,6 +521,7 @@ static void handle_key(viewer *v, const SDL_KeyboardEvent *key)
             update_cursor(v);
         }
         break;
+    case SDLK_u: v->probe_page = luz_probe_page_next(v->probe_page, shift); break;
     case SDLK_t: v->paused = !v->paused; break;
     case SDLK_i: v->hud_visible = !v->hud_visible; break;
     case SDLK_h:
@@ -763,7 +765,8 @@ static int record_overlays(viewer *v, luz_error *error)
          * bottom-left corner. */
         if (v->probe_marked && v->probe.filled) {
             const luz_probe_names names = {.scene = &v->options->scene, .textures = v->textures};
-            luz_probe_panel_draw(layer, &v->probe, &names, v->paused && !v->probe_asked);
+            luz_probe_panel_draw(layer, &v->probe, &names, v->paused && !v->probe_asked,
+                                 v->probe_page);
             luz_probe_marker_draw(layer, v->probe.x, v->probe.y);
         }
         if (v->panel_open)
