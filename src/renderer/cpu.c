@@ -22,6 +22,11 @@
 luz_packet_rows_function luz_fragment_packet_rows_scalar, luz_fragment_packet_rows_baseline;
 luz_packet_list_function luz_fragment_packet_list_scalar, luz_fragment_packet_list_baseline;
 luz_screen_function luz_screen_every_triangle;
+#if defined(LUZ_HAVE_SSE2)
+luz_screen_function luz_screen_triangles_sse2;
+luz_setup_eight_function luz_setup_eight_sse2;
+luz_vertex_project_function luz_vertex_project_sse2;
+#endif
 #if defined(LUZ_HAVE_AVX2)
 luz_packet_rows_function luz_fragment_packet_rows_avx2;
 luz_packet_list_function luz_fragment_packet_list_avx2;
@@ -179,6 +184,11 @@ luz_kernels luz_kernels_of(luz_isa isa)
         kernels.screen_checks_small_boxes = true;
         kernels.setup_eight = luz_setup_eight_neon;
         kernels.vertex_project = luz_vertex_project_neon;
+#elif defined(LUZ_HAVE_SSE2)
+        kernels.screen = luz_screen_triangles_sse2;
+        kernels.screen_checks_small_boxes = true;
+        kernels.setup_eight = luz_setup_eight_sse2;
+        kernels.vertex_project = luz_vertex_project_sse2;
 #endif
         break;
     case LUZ_ISA_AVX2:

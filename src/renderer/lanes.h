@@ -11,6 +11,7 @@
  *
  *   LUZ_LANES_AVX2     x86-64 AVX2 and FMA (FMA unused: -ffp-contract=off)
  *   LUZ_LANES_NEON     aarch64 Advanced SIMD (the build's target)
+ *   LUZ_LANES_SSE2     x86-64's baseline, SSE2 (the build's target)
  *   LUZ_LANES_AVX512   x86-64 AVX-512 F, VL, BW, DQ: screen_lanes.c only,
  *                      not built (AVX-512 keeps its intrinsic kernels,
  *                      faster; the AVX-512 forms below are for measuring
@@ -40,6 +41,8 @@
 #endif
 #if defined(__AVX2__)
 #include <immintrin.h>
+#elif defined(__SSE2__)
+#include <emmintrin.h>
 #endif
 #if defined(__ARM_NEON) && defined(__aarch64__)
 #include <arm_neon.h>
@@ -199,6 +202,32 @@ LANES_INLINE unsigned lane_bits64(vi64 mask)
 #endif
 }
 
+/* Bit i set where 64-bit lane i is negative: its sign bit, read as a
+ * double's on x86 (movmskpd; SSE2 has no 64-bit comparison, and a
+ * comparison emulated there goes one lane at a time). */
+LANES_INLINE unsigned negative_bits64(vi64 v)
+{
+#if HALF == 4 && defined(__AVX2__)
+    return (unsigned)_mm256_movemask_pd((__m256d)v);
+#elif HALF == 2 && defined(__SSE2__)
+    return (unsigned)_mm_movemask_pd((__m128d)v);
+#else
+    return lane_bits64(v < 0);
+#endif
+}
+
+/* All ones in the negative 64-bit lanes, zeros in the others: the sign
+ * spread over the lane (SSE2: each high word's, shifted across it and
+ * copied to the low word). */
+LANES_INLINE vi64 negative_mask64(vi64 v)
+{
+#if HALF == 2 && defined(__SSE2__) && !defined(__SSE4_2__)
+    return (vi64)_mm_shuffle_epi32(_mm_srai_epi32((__m128i)v, 31), 0xf5);
+#else
+    return v < 0;
+#endif
+}
+
 /* a * b for 64-bit lanes that hold signed 32-bit values, each product
  * exact in 64 bits (vpmuldq; smull). */
 LANES_INLINE vi64 multiply_wide(vi64 a, vi64 b)
@@ -281,6 +310,22 @@ LANES_INLINE void transpose8_avx2(__m256 row[8])
 }
 #endif
 
+#if LANES == 4
+/* A 4 x 4 transpose of floats in registers (SSE2's shufps and unpcks,
+ * NEON's zips): row[l][k] becomes row[k][l]. */
+LANES_INLINE void transpose4(vf32 row[4])
+{
+    const vf32 t0 = __builtin_shufflevector(row[0], row[1], 0, 4, 1, 5);
+    const vf32 t1 = __builtin_shufflevector(row[0], row[1], 2, 6, 3, 7);
+    const vf32 t2 = __builtin_shufflevector(row[2], row[3], 0, 4, 1, 5);
+    const vf32 t3 = __builtin_shufflevector(row[2], row[3], 2, 6, 3, 7);
+    row[0] = __builtin_shufflevector(t0, t2, 0, 1, 4, 5);
+    row[1] = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
+    row[2] = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
+    row[3] = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
+}
+#endif
+
 /* Lanes l of the 8 floats at from[l] (l < LANES): column[k][l] =
  * from[l][k], a transpose of LANES rows of 8 into 8 vectors. */
 LANES_INLINE void load_columns8(const float *const from[LANES], vf32 column[8])
@@ -299,6 +344,13 @@ LANES_INLINE void load_columns8(const float *const from[LANES], vf32 column[8])
         for (int k = 0; k < 8; k++) out[k].half[h] = rows[k];
     }
     for (int k = 0; k < 8; k++) column[k] = out[k].v;
+#elif LANES == 4
+    for (int q = 0; q < 2; q++) {   /* floats 0-3, then 4-7 */
+        vf32 rows[4];
+        for (int l = 0; l < 4; l++) memcpy(&rows[l], from[l] + 4 * q, sizeof rows[l]);
+        transpose4(rows);
+        for (int k = 0; k < 4; k++) column[4 * q + k] = rows[k];
+    }
 #else
     for (int k = 0; k < 8; k++)
         for (int l = 0; l < LANES; l++) column[k][l] = from[l][k];
@@ -322,6 +374,14 @@ LANES_INLINE void store_columns(float *const to[LANES], const vf32 *column, int 
     }
     for (int l = 0; l < 8; l++)
         for (int q = 0; q < count / 8; q++) _mm256_storeu_ps(to[l] + 8 * q, rows[q][l]);
+#elif LANES == 4
+    vf32 rows[count / 4][4];
+    for (int q = 0; q < count / 4; q++) {
+        for (int k = 0; k < 4; k++) rows[q][k] = column[4 * q + k];
+        transpose4(rows[q]);
+    }
+    for (int l = 0; l < 4; l++)
+        for (int q = 0; q < count / 4; q++) memcpy(to[l] + 4 * q, &rows[q][l], sizeof rows[q][l]);
 #else
     for (int l = 0; l < LANES; l++)
         for (int k = 0; k < count; k++) to[l][k] = column[k][l];

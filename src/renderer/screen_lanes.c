@@ -33,6 +33,9 @@ _Static_assert(LUZ_MESH_MAX_VERTICES <= (1u << 30), "vertex indices fit an int32
 #elif defined(LUZ_LANES_NEON)
 #define LANES 4
 #define SCREEN_LANES luz_screen_triangles_neon
+#elif defined(LUZ_LANES_SSE2)
+#define LANES 4
+#define SCREEN_LANES luz_screen_triangles_sse2
 #else
 #error "screen_lanes.c is compiled for one instruction set: -DLUZ_LANES_AVX2, ..."
 #endif
@@ -76,25 +79,33 @@ LANES_INLINE void corner_indices(vi32 first, vi32 second, vi32 third, vi32 *a, v
 #endif
 }
 
+/* make_edge's fill rule for the edge from (xi, yi) to (xj, yj), in 32-bit
+ * lanes (differences below 2^25): a top edge (dy = 0, dx < 0) or a left
+ * edge (dy > 0) keeps E = 0, the others need E >= 1; the bias, 0 or 1. */
+LANES_INLINE vi32 fill_bias(vi32 xi, vi32 yi, vi32 xj, vi32 yj)
+{
+    const vi32 dx = xj - xi, dy = yj - yi;
+    return ~(((dy == 0) & (dx < 0)) | (dy > 0)) & 1;
+}
+
 /* E >= 0 at the centres (X, Y), (X + 256, Y), (X, Y + 256), (X + 256,
  * Y + 256) for the edge from (xi, yi) to (xj, yj), in 64-bit lanes (half
- * a step); four masks. */
-LANES_INLINE void edge_at_centres(vi64 xi, vi64 yi, vi64 xj, vi64 yj, vi64 sample_x,
-                                  vi64 sample_y, vi64 inside[4])
+ * a step); four lane bits. dy (X - Xi) >= dx (Y - Yi) + bias is taken as
+ * the sign of the difference (each side below 2^51, so it cannot
+ * overflow): a sign bit is read without a 64-bit comparison, which SSE2
+ * lacks. */
+LANES_INLINE void edge_at_centres(vi64 xi, vi64 yi, vi64 xj, vi64 yj, vi64 bias, vi64 sample_x,
+                                  vi64 sample_y, unsigned inside[4])
 {
     const vi64 dx = xj - xi, dy = yj - yi;
-    /* make_edge's fill rule: a top edge (dy = 0, dx < 0) or a left edge
-     * (dy > 0) keeps E = 0, the others need E >= 1. */
-    const vi64 top_or_left = ((dy == 0) & (dx < 0)) | (dy > 0);
-    const vi64 bias = ~top_or_left & 1;
     const vi64 column0 = multiply_wide(dy, sample_x - xi);
     const vi64 column1 = column0 + (dy << LUZ_SUBPIXEL_BITS);
     const vi64 row0 = multiply_wide(dx, sample_y - yi) + bias;
     const vi64 row1 = row0 + (dx << LUZ_SUBPIXEL_BITS);
-    inside[0] &= column0 >= row0;
-    inside[1] &= column1 >= row0;
-    inside[2] &= column0 >= row1;
-    inside[3] &= column1 >= row1;
+    inside[0] &= ~negative_bits64(column0 - row0);
+    inside[1] &= ~negative_bits64(column1 - row0);
+    inside[2] &= ~negative_bits64(column0 - row1);
+    inside[3] &= ~negative_bits64(column1 - row1);
 }
 
 /* How many triangles ahead the loop asks for the vertices it will gather.
@@ -164,21 +175,31 @@ LANES_INLINE void screen_step(const uint32_t *triangle_indices, uint32_t t, int 
 
     /* In 64-bit lanes, half a step at a time: step 3, the doubled area,
      * as luz_setup_front_facing (differences below 2^25: each product
-     * exact in 64 bits), and the edges at the box's centres. */
+     * exact in 64 bits; area > 0 where -area is negative), and the edges
+     * at the box's centres. */
+    const vi32 bias[3] = {fill_bias(x1, y1, x2, y2), fill_bias(x2, y2, x0, y0),
+                          fill_bias(x0, y0, x1, y1)};
+    const unsigned second_column_bits = lane_bits(second_column);
+    const unsigned second_row_bits = lane_bits(second_row);
     unsigned front = 0, covers = 0;
     for (int h = 0; h < 2; h++) {
         const vi64 wx0 = widen_half(x0, h), wy0 = widen_half(y0, h);
         const vi64 wx1 = widen_half(x1, h), wy1 = widen_half(y1, h);
         const vi64 wx2 = widen_half(x2, h), wy2 = widen_half(y2, h);
         const vi64 area = multiply_wide(wy1 - wy0, wx2 - wx0) - multiply_wide(wx1 - wx0, wy2 - wy0);
-        front |= lane_bits64(area > 0) << (h * HALF);
+        front |= negative_bits64(-area) << (h * HALF);
         const vi64 wsample_x = widen_half(sample_x, h), wsample_y = widen_half(sample_y, h);
-        vi64 inside[4] = {splat64(-1), widen_half(second_column, h), widen_half(second_row, h),
-                          widen_half(second_column & second_row, h)};
-        edge_at_centres(wx1, wy1, wx2, wy2, wsample_x, wsample_y, inside);   /* edge 0: 1 -> 2 */
-        edge_at_centres(wx2, wy2, wx0, wy0, wsample_x, wsample_y, inside);   /* edge 1: 2 -> 0 */
-        edge_at_centres(wx0, wy0, wx1, wy1, wsample_x, wsample_y, inside);   /* edge 2: 0 -> 1 */
-        covers |= lane_bits64(inside[0] | inside[1] | inside[2] | inside[3]) << (h * HALF);
+        const unsigned column_bits = second_column_bits >> (h * HALF);
+        const unsigned row_bits = second_row_bits >> (h * HALF);
+        unsigned inside[4] = {~0u, column_bits, row_bits, column_bits & row_bits};
+        edge_at_centres(wx1, wy1, wx2, wy2, widen_half(bias[0], h), wsample_x, wsample_y,
+                        inside);   /* edge 0: 1 -> 2 */
+        edge_at_centres(wx2, wy2, wx0, wy0, widen_half(bias[1], h), wsample_x, wsample_y,
+                        inside);   /* edge 1: 2 -> 0 */
+        edge_at_centres(wx0, wy0, wx1, wy1, widen_half(bias[2], h), wsample_x, wsample_y,
+                        inside);   /* edge 2: 0 -> 1 */
+        covers |= ((inside[0] | inside[1] | inside[2] | inside[3]) & ((1u << HALF) - 1))
+                  << (h * HALF);
     }
 
     const unsigned valid_lanes = (unsigned)((1ull << valid) - 1);

@@ -28,6 +28,9 @@
 #elif defined(LUZ_LANES_NEON)
 #define LANES 4
 #define SETUP_LANES luz_setup_eight_neon
+#elif defined(LUZ_LANES_SSE2)
+#define LANES 4
+#define SETUP_LANES luz_setup_eight_sse2
 #else
 #error "setup_lanes.c is compiled for one instruction set: -DLUZ_LANES_AVX2, ..."
 #endif
@@ -108,14 +111,15 @@ LANES_INLINE unsigned covered_half(unsigned testing, vi64 min_x, vi64 min_y, vi6
         const vi64 sample_y = ((min_y + row) << LUZ_SUBPIXEL_BITS) + half;
         unsigned inside = left;
         for (int k = 0; k < 3; k++)
-            inside &= lane_bits64(multiply_wide(a[k], sample_x) + multiply_wide(b[k], sample_y) +
-                                      c[k] >=
-                                  0);
+            inside &= ~negative_bits64(multiply_wide(a[k], sample_x) +
+                                       multiply_wide(b[k], sample_y) + c[k]);
         covered |= inside;
         visited += 1;
-        left &= ~inside & lane_bits64(visited < centres);
+        left &= ~inside & negative_bits64(visited - centres);
         column += 1;
-        const vi64 wrap = column == box_width;
+        /* column == box_width, where column runs from 0 up to it (in the
+         * lanes tested; the others' are never read). */
+        const vi64 wrap = ~negative_mask64(column - box_width);
         column = select64(wrap, splat64(0), column);
         row -= wrap;   /* wrap is -1 where a row ends */
     }
@@ -231,9 +235,10 @@ LANES_INLINE void setup_group(const group_corners *corners, const luz_draw_trans
     for (int h = 0; h < 2; h++) {
         vi64 wx[3], wy[3];
         for (int k = 0; k < 3; k++) wx[k] = widen_half(fx[k], h), wy[k] = widen_half(fy[k], h);
-        back |= lane_bits64(multiply_wide(wy[1] - wy[0], wx[2] - wx[0]) -
-                                multiply_wide(wx[1] - wx[0], wy[2] - wy[0]) <=
-                            0)
+        /* area <= 0 where -area is not negative */
+        back |= (~negative_bits64(multiply_wide(wx[1] - wx[0], wy[2] - wy[0]) -
+                                  multiply_wide(wy[1] - wy[0], wx[2] - wx[0])) &
+                 ((1u << HALF) - 1))
                 << (h * HALF);
         vi64 a[3], b[3], c_half[3];
         for (int k = 0; k < 3; k++) {

@@ -32,6 +32,9 @@
 #elif defined(LUZ_LANES_NEON)
 #define LANES 4
 #define VERTEX_LANES luz_vertex_project_neon
+#elif defined(LUZ_LANES_SSE2)
+#define LANES 4
+#define VERTEX_LANES luz_vertex_project_sse2
 #else
 #error "vertex_lanes.c is compiled for one instruction set: -DLUZ_LANES_AVX2, ..."
 #endif
