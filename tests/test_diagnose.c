@@ -345,8 +345,15 @@ static void expect_scaled(const char *name, const char *term, double k, const ch
         assert_true(line_has(r.out, prefix, this ? words : "right"));
     }
     char verdict[64];
-    snprintf(verdict, sizeof verdict, "wrong: %s\n", term);
+    snprintf(verdict, sizeof verdict, "wrong: %s", term);
     assert_true(line_has(r.out, "verdict: ", verdict));
+    /* No classic mistake draws a scaled term. Diffuse at 0 is what
+     * diffuse-reversed draws here (its vector lights no face in view): the
+     * GL frame, within that GPU's rounding, is its image. */
+    if (k == 0.0 && strcmp(term, "diffuse") == 0)
+        assert_true(line_has(r.out, "mistake: ", "--bug diffuse-reversed's"));
+    else
+        assert_true(line_has(r.out, "mistake: ", "none of luz-render --bug's"));
     run_free(&r);
 }
 
@@ -484,7 +491,8 @@ static void test_bug_diffuse_reversed(void **state)
     assert_int_equal(r.status, 1);
     assert_near(weight_of(r.out, "diffuse"), 0.0, 0.02);
     assert_true(line_has(r.out, "diffuse: ", "missing"));
-    assert_true(line_has(r.out, "verdict: ", "wrong: diffuse\n"));
+    assert_true(line_has(r.out, "verdict: ", "wrong: diffuse; the likely mistake is "
+                                             "diffuse-reversed: "));
     run_free(&r);
 }
 
@@ -517,7 +525,8 @@ static void test_bug_no_backface_culling(void **state)
                             &missing, &extra, &inside, &along),
                      4);
     assert_true(extra > 192 * 108 / 2 && inside > 192 * 108 / 2);
-    assert_true(line_has(r.out, "verdict: ", "wrong: the silhouette"));
+    assert_true(line_has(r.out, "verdict: ", "wrong: culling; the likely mistake is "
+                                             "no-backface-culling: "));
     run_free(&r);
 }
 
@@ -543,6 +552,60 @@ static void test_bug_fill_rule(void **state)
     assert_true(missing > 50 && extra > 50);
     assert_true(line_has(r.out, "silhouette: ", "along the outlines only: the fill rule"));
     run_free(&r);
+}
+
+/* Each classic mistake, at a setting where it shows, diagnoses as
+ * itself: the mistake line names it and no other mistake's image
+ * explains the frame as well, and the verdict names what it makes wrong.
+ * Without the search for mistakes these came out as other terms:
+ * directional-unclamped as specular, spot-reach-twice "outside the cone",
+ * specular-half-vector, normal-matrix-is-model, lod-off-by-one and
+ * no-depth-test as several scaled terms, uv-affine as ambient 0.954. */
+static void expect_mistake(const char *bug, const char *const *setting, const char *subject)
+{
+    run r = diagnose_bug(bug, setting);
+    if (r.status != 1) fail_msg("%s: exit %d\n%s%s", bug, r.status, r.out, r.err);
+    char words[160];
+    snprintf(words, sizeof words, "the frame is luz-render --bug %s's (rms 0.00 bytes", bug);
+    if (!line_has(r.out, "mistake: ", words) || line_has(r.out, "mistake: ", "as well another"))
+        fail_msg("%s:\n%s", bug, r.out);
+    snprintf(words, sizeof words, "wrong: %s; the likely mistake is %s: ", subject, bug);
+    if (!line_has(r.out, "verdict: ", words)) fail_msg("%s:\n%s", bug, r.out);
+    run_free(&r);
+}
+
+static void test_every_mistake_named(void **state)
+{
+    (void)state;
+    expect_mistake("directional-unclamped", NULL, "directional");
+    expect_mistake("spot-reach-twice", (const char *const[]){"--spot-reach", "3", NULL},
+                   "spot");
+    expect_mistake("specular-half-vector", NULL, "specular");
+    expect_mistake("normal-matrix-is-model", NULL, "the normal, in every term");
+    /* the faces seen at an angle, where affine uv bends the bricks */
+    expect_mistake("uv-affine", (const char *const[]){"--camera-yaw", "-60", NULL},
+                   "the texture coordinates");
+    expect_mistake("lod-off-by-one", NULL, "the texture's level of detail");
+    expect_mistake("no-depth-test", NULL, "the depth test");
+    /* the two settings of the silhouette tests above */
+    expect_mistake("no-backface-culling", (const char *const[]){"--camera-pos", "0,0,0", NULL},
+                   "culling");
+    expect_mistake("fill-rule-bottom-right",
+                   (const char *const[]){"--cubes", "1", "--camera-pos", "0,0,2.5", "--fov",
+                                         "53.13010235415598", "--size", "198x110", NULL},
+                   "the outlines");
+    /* a coarse sphere (200 triangles), whose interpolated normals are
+     * visibly shorter between its vertices */
+    const char *gen_model = getenv("GEN_MODEL");
+    if (gen_model == NULL) fail_msg("GEN_MODEL is not set (tests/meson.build)");
+    char sphere[400], command[1200];
+    snprintf(sphere, sizeof sphere, "%s/sphere.obj", work);
+    snprintf(command, sizeof command, "'%s' --shape sphere --triangles 200 -o '%s' 2>/dev/null",
+             gen_model, sphere);
+    assert_int_equal(system(command), 0);
+    expect_mistake("normal-not-normalised",
+                   (const char *const[]){"--model", sphere, "--time", "1", NULL},
+                   "the normal, in every term");
 }
 
 /* ---- frames that cannot be compared ------------------------------------------------------ */
@@ -660,6 +723,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_bug_spot_reach_twice, make_work, remove_work),
         cmocka_unit_test_setup_teardown(test_bug_no_backface_culling, make_work, remove_work),
         cmocka_unit_test_setup_teardown(test_bug_fill_rule, make_work, remove_work),
+        cmocka_unit_test_setup_teardown(test_every_mistake_named, make_work, remove_work),
         cmocka_unit_test_setup_teardown(test_page_colour_generator, make_work, remove_work),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

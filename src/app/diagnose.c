@@ -42,6 +42,12 @@
  *     reverse, inside and along the outlines; and along luz's outlines,
  *     pixels whose colour the weights do not give (another surface won:
  *     culling, the depth test).
+ *  6. A frame found wrong is compared with luz's image of the setting
+ *     with each classic mistake of luz/bug.h put in (find_mistake): a
+ *     wrong-shaped term spreads over several weights, and a pipeline
+ *     mistake over none, but the mistake's own image is the frame, give
+ *     or take another GPU's rounding; named where luz's right image is
+ *     clearly not.
  */
 #include "app/diagnose.h"
 
@@ -216,7 +222,8 @@ static int render(diagnosis *d, const luz_scene *scene, luz_pixel_probe *probe, 
 /* Which draw each pixel shows: the setting's frame with every draw
  * unlit in a colour that is its index (r + 256 g + 65536 b, one more than
  * the index), the background told by the visibility buffer. */
-static int render_draws(diagnosis *d, const luz_scene *scene, luz_error *error)
+static int render_draws(diagnosis *d, const luz_scene *scene, int32_t *draw_at,
+                        uint32_t *triangle_at, luz_error *error)
 {
     if (build(d, scene, error) != 0) return -1;
     if (d->frame.draw_count >= (1 << 24) - 1)
@@ -234,11 +241,11 @@ static int render_draws(diagnosis *d, const luz_scene *scene, luz_error *error)
             .has_colour = true};
     }
     if (draw(d, scene, NULL, error) != 0) return -1;
-    memcpy(d->triangle_at, d->framebuffer->visibility, d->pixels * sizeof *d->triangle_at);
+    memcpy(triangle_at, d->framebuffer->visibility, d->pixels * sizeof *triangle_at);
     for (size_t i = 0; i < d->pixels; i++) {
         uint8_t rgb[3];
         framebuffer_rgb(d->framebuffer, i, rgb);
-        d->draw_at[i] = d->framebuffer->visibility[i] == 0
+        draw_at[i] = d->framebuffer->visibility[i] == 0
                             ? -1
                             : (int32_t)(rgb[0] + 256 * rgb[1] + 65536 * rgb[2]) - 1;
     }
@@ -304,7 +311,9 @@ static int render_terms(diagnosis *d, luz_error *error)
         d->light_on[t] = luz_lights_term(&scene.lights, (luz_term)t)->strength > 0.0f;
     }
     luz_scene scene = setting_scene(d);
-    if (render_draws(d, &scene, error) != 0 || render(d, &scene, NULL, error) != 0) return -1;
+    if (render_draws(d, &scene, d->draw_at, d->triangle_at, error) != 0 ||
+        render(d, &scene, NULL, error) != 0)
+        return -1;
     /* luz's own image of the setting, at its samples a pixel: what an
      * anti-aliased frame's outlines are compared with */
     scene.samples = d->setup->options->scene.samples;
@@ -767,6 +776,153 @@ static int write_worst(diagnosis *d, FILE *out, luz_error *error)
     return 0;
 }
 
+/* ---- the classic mistakes (luz/bug.h) ----------------------------------------------------- */
+
+/* How well luz's image of the setting with one classic mistake put in
+ * (luz-render --bug NAME) matches the frame: its silhouettes against the
+ * frame's, as the silhouette line counts them, and its bytes inside its
+ * own objects (8 neighbours the same draw in its frame, so that another
+ * GPU's rounding of an outline weighs nothing) against the frame's. */
+typedef struct bug_match {
+    luz_bug bug;
+    bool differs;        /* the bug changes luz's image of the setting (a
+                            pixel more than 8 off, or a silhouette) */
+    bool explains;       /* the frame is that image, give or take a GPU's
+                            rounding: residual_unexplained's bounds */
+    long pixels;         /* interior pixels compared */
+    double rms;          /* bytes */
+    long over8;          /* pixels with a channel more than 8 off */
+    long inside, along;  /* silhouette disagreements */
+} bug_match;
+
+static int match_bug(diagnosis *d, luz_bug bug, int32_t *draw_at, uint32_t *triangle_at,
+                     uint8_t *rgb, bug_match *m, luz_error *error)
+{
+    memset(m, 0, sizeof *m);
+    m->bug = bug;
+    luz_scene scene = setting_scene(d);
+    scene.bug = bug;
+    if (render_draws(d, &scene, draw_at, triangle_at, error) != 0) return -1;
+    scene.samples = d->setup->options->scene.samples;
+    if (render(d, &scene, NULL, error) != 0) return -1;
+    for (size_t i = 0; i < d->pixels; i++) framebuffer_rgb(d->framebuffer, i, rgb + 3 * i);
+
+    const bool four_samples = scene.samples > 1;
+    long objects = 0, outlines = 0;
+    double squares = 0.0;
+    long channels = 0;
+    for (int y = 0; y < d->height; y++)
+        for (int x = 0; x < d->width; x++) {
+            const size_t i = (size_t)y * d->width + x;
+            const uint8_t *mine = rgb + 3 * i, *frame = d->student->rgba + 4 * i;
+            for (int c = 0; c < 3; c++)
+                if (abs((int)mine[c] - (int)d->luz_rgb[3 * i + c]) > 8) m->differs = true;
+            const bool marker = d->marker_draw >= 0 && draw_at[i] == d->marker_draw;
+            const bool has = four_samples ? !looks_like_background(d, mine) : draw_at[i] >= 0;
+            if (has != luz_has_object(d, i)) m->differs = true;
+            bool interior = true, outline = false;
+            for (int dy = -1; dy <= 1; dy++)
+                for (int dx = -1; dx <= 1; dx++) {
+                    const int nx = x + dx, ny = y + dy;
+                    if (nx < 0 || ny < 0 || nx >= d->width || ny >= d->height) continue;
+                    const size_t n = (size_t)ny * d->width + nx;
+                    if (draw_at[n] != draw_at[i]) interior = false;
+                    if (four_samples && triangle_at[n] != triangle_at[i]) interior = false;
+                    const bool n_has =
+                        four_samples ? !looks_like_background(d, rgb + 3 * n) : draw_at[n] >= 0;
+                    if (n_has != has) outline = true;
+                }
+            if (marker) continue;
+            const bool frame_background = looks_like_background(d, frame);
+            objects += has;
+            outlines += outline;
+            if ((has && frame_background && !looks_like_background(d, mine)) ||
+                (!has && !frame_background)) {
+                if (outline)
+                    m->along++;
+                else
+                    m->inside++;
+                continue;
+            }
+            if (!has || !interior || frame_background) continue;
+            int largest = 0;
+            for (int c = 0; c < 3; c++) {
+                const int off = (int)frame[c] - (int)mine[c];
+                squares += (double)off * off;
+                channels++;
+                largest = abs(off) > largest ? abs(off) : largest;
+            }
+            m->pixels++;
+            m->over8 += largest > 8;
+        }
+    m->rms = channels > 0 ? sqrt(squares / (double)channels) : 0.0;
+    m->explains = (m->differs || bug == LUZ_BUG_NONE) && m->pixels > 0 && m->rms <= 2.0 &&
+                  (double)m->over8 <= 0.005 * (double)m->pixels &&
+                  m->inside <= 4 + objects / 500 && m->along <= 8 + outlines / 20;
+    return 0;
+}
+
+/* What a mistake makes wrong, in the verdict's words. */
+static const char *mistake_subject(luz_bug bug)
+{
+    switch (bug) {
+    case LUZ_BUG_DIFFUSE_REVERSED: return "diffuse";
+    case LUZ_BUG_DIRECTIONAL_UNCLAMPED: return "directional";
+    case LUZ_BUG_SPOT_REACH_TWICE: return "spot";
+    case LUZ_BUG_SPECULAR_HALF_VECTOR: return "specular";
+    case LUZ_BUG_NORMAL_NOT_NORMALISED:
+    case LUZ_BUG_NORMAL_MATRIX_IS_MODEL: return "the normal, in every term";
+    case LUZ_BUG_UV_AFFINE: return "the texture coordinates";
+    case LUZ_BUG_LOD_OFF_BY_ONE: return "the texture's level of detail";
+    case LUZ_BUG_FILL_RULE_BOTTOM_RIGHT: return "the outlines";
+    case LUZ_BUG_NO_DEPTH_TEST: return "the depth test";
+    case LUZ_BUG_NO_BACKFACE_CULLING: return "culling";
+    default: return "the frame";
+    }
+}
+
+/* Of the classic mistakes, the one whose image the frame is and luz's
+ * right image is not, if any (the closest, when several are), with
+ * *others the count of those that explain it as well (within 0.05 bytes
+ * rms: the frame cannot tell them apart). */
+static int find_mistake(diagnosis *d, bug_match *best, bug_match *right, int *others,
+                        luz_error *error)
+{
+    memset(best, 0, sizeof *best);
+    *others = 0;
+    int32_t *draw_at = malloc(d->pixels * sizeof *draw_at);
+    uint32_t *triangle_at = malloc(d->pixels * sizeof *triangle_at);
+    uint8_t *rgb = malloc(d->pixels * 3);
+    int status = 0;
+    if (draw_at == NULL || triangle_at == NULL || rgb == NULL) {
+        status = luz_error_set(error, "out of memory for the diagnosis");
+        goto done;
+    }
+    bug_match matches[LUZ_BUG_COUNT];
+    /* luz's right image, measured alike (*right): a mistake is named only
+     * where it explains the frame clearly better, so that a frame the
+     * right image explains as well is no evidence of it (the other
+     * GPU's rounding is some 0.7 bytes rms; a mistake whose change is
+     * about that small is not told from it) */
+    status = match_bug(d, LUZ_BUG_NONE, draw_at, triangle_at, rgb, right, error);
+    if (status != 0) goto done;
+    for (int bug = LUZ_BUG_NONE + 1; bug < LUZ_BUG_COUNT; bug++) {
+        status = match_bug(d, (luz_bug)bug, draw_at, triangle_at, rgb, &matches[bug], error);
+        if (status != 0) goto done;
+        bug_match *m = &matches[bug];
+        m->explains = m->explains && (!right->explains || right->rms > 2.0 * m->rms + 0.5);
+        if (m->explains && (!best->explains || m->rms < best->rms)) *best = *m;
+    }
+    for (int bug = LUZ_BUG_NONE + 1; bug < LUZ_BUG_COUNT && best->explains; bug++)
+        *others += bug != (int)best->bug && matches[bug].explains &&
+                   matches[bug].rms <= best->rms + 0.05;
+done:
+    free(draw_at);
+    free(triangle_at);
+    free(rgb);
+    return status;
+}
+
 static int diagnose_fitted(diagnosis *d, FILE *out, luz_error *error)
 {
     const luz_diagnose_setup *setup = d->setup;
@@ -936,10 +1092,34 @@ static int diagnose_fitted(diagnosis *d, FILE *out, luz_error *error)
             setup->residual_path);
     if (write_worst(d, out, error) != 0) return -1;
 
+    /* A frame that is not luz's: is it luz's with one classic mistake?
+     * The term weights above read it against the right images, where a
+     * wrong-shaped term spreads over several; the mistake's own image
+     * names it. */
+    bug_match mistake = {0}, right = {0};
+    int alike = 0;
+    if (any_wrong) {
+        if (find_mistake(d, &mistake, &right, &alike, error) != 0) return -1;
+        if (mistake.explains)
+            fprintf(out, "mistake: the frame is luz-render --bug %s's (rms %.2f bytes over %ld "
+                         "pixels inside objects, %ld off by more than 8, silhouettes agree; "
+                         "luz's right image: rms %.2f, %ld off)%s: %s\n",
+                    luz_bug_name(mistake.bug), mistake.rms, mistake.pixels, mistake.over8,
+                    right.rms, right.over8, alike > 0 ? ", or as well another's" : "",
+                    luz_bug_description(mistake.bug));
+        else
+            fprintf(out, "mistake: none of luz-render --bug's (--bug help) draws this frame\n");
+    }
+
     fprintf(out, "verdict: ");
     if (!any_wrong) {
         fprintf(out, "right: every term measured has weight 1 and the frame is luz's\n");
         return LUZ_DIAGNOSIS_RIGHT;
+    }
+    if (mistake.explains) {
+        fprintf(out, "wrong: %s; the likely mistake is %s: %s\n", mistake_subject(mistake.bug),
+                luz_bug_name(mistake.bug), luz_bug_description(mistake.bug));
+        return LUZ_DIAGNOSIS_WRONG;
     }
     if (silhouette_wrong) {
         /* the pixels compared are not the same surfaces: the weights of
