@@ -22,6 +22,8 @@
 luz_packet_rows_function luz_fragment_packet_rows_scalar, luz_fragment_packet_rows_baseline;
 luz_packet_list_function luz_fragment_packet_list_scalar, luz_fragment_packet_list_baseline;
 luz_screen_function luz_screen_every_triangle;
+luz_setup_eight_function luz_setup_eight_scalar;
+luz_vertex_project_function luz_vertex_project_scalar;
 #if defined(LUZ_HAVE_SSE2)
 luz_screen_function luz_screen_triangles_sse2;
 luz_setup_eight_function luz_setup_eight_sse2;
@@ -169,6 +171,7 @@ luz_kernels luz_kernels_of(luz_isa isa)
         .screen = luz_screen_every_triangle,
         .screen_checks_small_boxes = false,
         .setup_eight = NULL,
+        .setup_eight_screens = false,
         .vertex_project = NULL,
         .screen_four = NULL,
         .setup_eight_four = NULL,
@@ -177,6 +180,11 @@ luz_kernels luz_kernels_of(luz_isa isa)
     case LUZ_ISA_SCALAR:
         kernels.packet_rows = luz_fragment_packet_rows_scalar;
         kernels.packet_list = luz_fragment_packet_list_scalar;
+        /* The reference's functions one at a time (lanes_scalar.c), in
+         * the wider sets' data flow. */
+        kernels.setup_eight = luz_setup_eight_scalar;
+        kernels.setup_eight_screens = true;
+        kernels.vertex_project = luz_vertex_project_scalar;
         break;
     case LUZ_ISA_BASELINE:
 #if defined(LUZ_HAVE_NEON)

@@ -62,6 +62,9 @@ typedef struct luz_kernels {
                                                 none) */
     bool screen_checks_small_boxes;          /* luz_screen_function's promise */
     luz_setup_eight_function *setup_eight;   /* NULL: one triangle at a time */
+    bool setup_eight_screens;                /* setup_eight drops what screening
+                                                would, itself (the scalar set's):
+                                                it runs without screening */
     luz_vertex_project_function *vertex_project;   /* NULL: one vertex at a time */
     /* The same two for four samples a pixel (SCENE.md, "Anti-aliasing"):
      * the box and the small boxes' test are the samples'. NULL: every

@@ -187,8 +187,11 @@ void luz_geometry_set_kernels(luz_geometry *geometry, const luz_kernels *kernels
 {
     geometry->screen = kernels->screen;
     geometry->screen_checks_small_boxes = kernels->screen_checks_small_boxes;
-    /* Setup in lanes trusts screening's check of the small boxes. */
-    geometry->setup_eight = kernels->screen_checks_small_boxes ? kernels->setup_eight : NULL;
+    /* Setup in lanes trusts screening's check of the small boxes, unless
+     * it makes it itself. */
+    geometry->setup_eight = kernels->screen_checks_small_boxes || kernels->setup_eight_screens
+                                ? kernels->setup_eight
+                                : NULL;
     geometry->vertex_project = kernels->vertex_project;
     geometry->screen_four = kernels->screen_four;
     geometry->setup_eight_four = kernels->screen_four != NULL ? kernels->setup_eight_four : NULL;
