@@ -184,7 +184,8 @@ static tally check_one_at_a_time(const mesh *m, luz_interpolation interpolation,
 }
 
 /* The same against setup in lanes of every variant this build and CPU
- * have: eight triangles at a time whose corners are all inside the clip
+ * have, for one sample a pixel and for four (whose boxes and kept
+ * triangles differ, not their planes): eight triangles at a time whose corners are all inside the clip
  * volume and projected (as screening lets them through), each record a
  * variant writes VISIBLE has the planes planes.c solves. Returns the
  * records compared. */
@@ -205,9 +206,12 @@ static int check_lanes(const mesh *m, luz_interpolation interpolation)
         if (inside) chosen[chosen_count++] = t;
     }
     int compared = 0;
-    for (int isa = 0; isa < LUZ_ISA_COUNT; isa++) {
+    for (int variant = 0; variant < 2 * LUZ_ISA_COUNT; variant++) {
+        const int isa = variant / 2, samples = variant % 2 ? 4 : 1;
         if (!luz_isa_available((luz_isa)isa)) continue;
-        luz_setup_eight_function *setup_eight = luz_kernels_of((luz_isa)isa).setup_eight;
+        const luz_kernels kernels = luz_kernels_of((luz_isa)isa);
+        luz_setup_eight_function *setup_eight =
+            samples == 4 ? kernels.setup_eight_four : kernels.setup_eight;
         if (setup_eight == NULL) continue;
         int variant_compared = 0;
         for (uint32_t group = 0; group + 8 <= chosen_count; group += 8) {
@@ -224,13 +228,13 @@ static int check_lanes(const mesh *m, luz_interpolation interpolation)
                                                          interpolation, LUZ_BUG_NONE, &planes),
                                  LUZ_PLANES_SOLVED);
                 if (!same_planes(&out[lane], &planes))
-                    fail_msg("%s: triangle %u: its planes differ from its record's",
-                             luz_isa_name((luz_isa)isa), chosen[group + lane]);
+                    fail_msg("%s, %d samples: triangle %u: its planes differ from its record's",
+                             luz_isa_name((luz_isa)isa), samples, chosen[group + lane]);
                 variant_compared++;
             }
         }
-        print_message("%s: %d records of setup in lanes\n", luz_isa_name((luz_isa)isa),
-                      variant_compared);
+        print_message("%s, %d samples: %d records of setup in lanes\n",
+                      luz_isa_name((luz_isa)isa), samples, variant_compared);
         assert_true(variant_compared > 1000);
         compared += variant_compared;
     }
