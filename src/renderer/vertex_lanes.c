@@ -97,7 +97,7 @@ LANES_INLINE void positions(const luz_vertex *vertices, const float *model,
     const vi32 invalid = ~clipped & ~projectable;
 
     typedef int32_t half_ints __attribute__((vector_size(HALF * sizeof(int32_t))));
-    vi32 snapped_x, snapped_y;
+    half_ints snapped_x_half[2], snapped_y_half[2];
     for (int h = 0; h < 2; h++) {
         /* 1-2. Divide, viewport, the clamp to +-2^24 sub-pixel units, the
          * snap; lanes that are not projected compute on 1 instead (their
@@ -114,13 +114,15 @@ LANES_INLINE void positions(const luz_vertex *vertices, const float *model,
         window_x = selectd(window_x < -limit, splatd(-limit), window_x);
         window_y = selectd(window_y > limit, splatd(limit), window_y);
         window_y = selectd(window_y < -limit, splatd(-limit), window_y);
-        const half_ints fx =
+        snapped_x_half[h] =
             __builtin_convertvector(round_to_even(window_x * (double)LUZ_SUBPIXEL_ONE), half_ints);
-        const half_ints fy =
+        snapped_y_half[h] =
             __builtin_convertvector(round_to_even(window_y * (double)LUZ_SUBPIXEL_ONE), half_ints);
-        memcpy((int32_t *)&snapped_x + h * HALF, &fx, sizeof fx);
-        memcpy((int32_t *)&snapped_y + h * HALF, &fy, sizeof fy);
     }
+    /* The halves joined in registers (stored as halves and loaded whole,
+     * they would wait for the store buffer). */
+    const vi32 snapped_x = LANES_JOIN(snapped_x_half[0], snapped_x_half[1]);
+    const vi32 snapped_y = LANES_JOIN(snapped_y_half[0], snapped_y_half[1]);
     /* The markers: outside a clip plane, else not projectable; a marked
      * vertex's y is 0. */
     vi32 fixed_x = select32(clipped, splat32(LUZ_WINDOW_CLIPPED), snapped_x);
