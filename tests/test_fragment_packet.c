@@ -311,6 +311,55 @@ static void equal_cones_divide_by_nothing(void **state)
     }
 }
 
+/* The spot alone, no textures (so nothing but the spot's own arithmetic
+ * can differ), with its edges through the cubes: a narrow cone (inner 3,
+ * outer 9 degrees) and a reach of 3.5 from the start position (0, 0, 3),
+ * so the cone's rim and the fade-out at the reach both cross packets
+ * (cube 0's front face is 2.5 away, the cubes at z = -1.5 about 4.5).
+ * The packets leave the term out of a pass whose pixels are all outside
+ * the cone or beyond the reach, where it is exactly +0; the reference
+ * computes it everywhere. Both must give the same bytes, at one sample and
+ * at four (the list of edge fragments). The frame must show both sides:
+ * pixels the spot lights and shaded pixels it leaves black. */
+static void spot_edges_same_bytes_in_both_paths(void **state)
+{
+    (void)state;
+    const luz_texture_set none = {0};
+    luz_scene scene = luz_scene_defaults();
+    scene.time_seconds = 2.0;
+    for (int term = 0; term < LUZ_TERM_COUNT; term++)
+        if (term != LUZ_TERM_SPOT) luz_lights_term(&scene.lights, (luz_term)term)->strength = 0.0f;
+    scene.lights.spot_inner_degrees = 3.0f;
+    scene.lights.spot_outer_degrees = 9.0f;
+    scene.lights.spot_reach = 3.5f;
+    for (int samples = 1; samples <= 4; samples += 3) {
+        scene.samples = samples;
+        luz_framebuffer *expected =
+            render(&scene, &none, HALF_WIDTH, HALF_HEIGHT, 1, reference_stage);
+        size_t lit = 0, dark = 0;
+        /* Shaded pixels are those not of the clear colour (0.1: bytes
+         * 26); the spot alone leaves the unlit ones black. */
+        for (size_t p = 0; p < (size_t)HALF_WIDTH * HALF_HEIGHT; p++) {
+            const uint8_t *rgb = expected->colour + p * 4;
+            if (rgb[0] == 26 && rgb[1] == 26 && rgb[2] == 26) continue;
+            if (rgb[0] == 0 && rgb[1] == 0 && rgb[2] == 0) dark++;
+            else lit++;
+        }
+        print_message("spot edges, %d sample(s): %zu pixels lit, %zu shaded and dark\n",
+                      samples, lit, dark);
+        assert_true(lit > 1000 && dark > 1000);
+        for (size_t v = 0; v < VARIANT_COUNT; v++) {
+            if (!luz_isa_available(variants[v])) continue;
+            luz_framebuffer *got = render(&scene, &none, HALF_WIDTH, HALF_HEIGHT, 1,
+                                          (stage){false, variants[v]});
+            assert_memory_equal(got->colour, expected->colour,
+                                (size_t)HALF_WIDTH * HALF_HEIGHT * 4);
+            luz_framebuffer_destroy(got);
+        }
+        luz_framebuffer_destroy(expected);
+    }
+}
+
 /* ---- exact properties ----------------------------------------------------- */
 
 /* Each pixel is shaded from its own position alone, so neither the bands
@@ -770,6 +819,7 @@ int main(void)
         cmocka_unit_test(camera_far_from_tiny_cubes),
         cmocka_unit_test(lights_at_their_limits),
         cmocka_unit_test(equal_cones_divide_by_nothing),
+        cmocka_unit_test(spot_edges_same_bytes_in_both_paths),
         cmocka_unit_test(same_bytes_for_any_thread_count_and_variant),
         cmocka_unit_test(ambient_only_is_exact),
         cmocka_unit_test(every_byte_written_in_either_order),

@@ -324,8 +324,30 @@ INLINE vvec3 add_light(vvec3 sum, luz_vec3 colour, vfloat factor)
                    sum.z + colour.z * factor};
 }
 
-/* luz_shade_lighting: the six terms, summed in shade.h's order. */
-INLINE vvec3 shade_lighting(const packet_uniforms *u, vvec3 position, vvec3 normal)
+/* luz_shade_spot's factor f_dir * f_dist for the lanes, given the ray's
+ * cosine c and the distance over the reach. */
+INLINE vfloat spot_factor(const packet_uniforms *u, vfloat c, vfloat distance,
+                          vfloat window_base, unsigned mine_bits)
+{
+    /* Inside the inner cone f_dir is 1 whatever the smooth step gives, so
+     * a pass whose lanes are all inside leaves the step out. */
+    vfloat f_direction = splat(1.0f);
+    if ((lane_bits(c > u->cos_inner) & mine_bits) != mine_bits) {
+        const vfloat s = sqrt_lanes((c - u->cos_outer) / u->cone_width);
+        const vfloat smooth = s * s * (3.0f - 2.0f * s);
+        f_direction = select_float(c > u->cos_inner, splat(1.0f),
+                                   select_float(c > u->cos_outer, smooth, splat(0.0f)));
+    }
+    const vfloat distance2 = distance * distance;
+    const vfloat window = max_zero(window_base);
+    const vfloat f_distance = window * window * u->spot_strength_squared / (distance2 + 1.0f);
+    return f_direction * f_distance;
+}
+
+/* luz_shade_lighting: the six terms, summed in shade.h's order, for the
+ * lanes of mine_bits (the others are computed or not, and never used). */
+INLINE vvec3 shade_lighting(const packet_uniforms *u, vvec3 position, vvec3 normal,
+                            unsigned mine_bits)
 {
     vfloat unused_length;
     const vvec3 n = normalize3(normal, &unused_length);
@@ -361,16 +383,26 @@ INLINE vvec3 shade_lighting(const packet_uniforms *u, vvec3 position, vvec3 norm
     if (u->spot_on) {
         const vvec3 ray = {-to_eye.x, -to_eye.y, -to_eye.z};
         const vfloat c = dot3_uniform(ray, u->spot_axis);
-        const vfloat s = sqrt_lanes((c - u->cos_outer) / u->cone_width);
-        const vfloat smooth = s * s * (3.0f - 2.0f * s);
-        const vfloat f_direction =
-            select_float(c > u->cos_inner, splat(1.0f),
-                         select_float(c > u->cos_outer, smooth, splat(0.0f)));
         const vfloat distance = eye_distance / u->reach;
         const vfloat distance2 = distance * distance;
-        const vfloat window = max_zero(1.0f - distance2 * distance2);
-        const vfloat f_distance = window * window * u->spot_strength_squared / (distance2 + 1.0f);
-        light = add_light(light, u->spot.colour, f_direction * f_distance);
+        const vfloat window_base = 1.0f - distance2 * distance2;
+        /* The spot reaches a lane only inside its outer cone (c > cos
+         * outer) and nearer than its reach (1 - dn^4 > 0). A lane out of
+         * either, with c and dn not NaN, has f_dir = +0 or f_win = +0
+         * while the other factor is finite and not negative (f_dir in
+         * [0, 1]; f_dist's numerator at most Sp.a^2 over a denominator of
+         * at least 1), so its term is exactly +0 and adding it changes no
+         * sum (each is +0 or above, never -0, unless a light's colour is
+         * -0, and a -0 that stays gives the same byte as +0). A pass none
+         * of whose lanes the spot reaches skips the term, as a light of
+         * strength 0 does. Most of the frame is outside the cone (about a
+         * quarter of the screen is within it at the default 17.5 degrees)
+         * or, with many cubes, beyond the reach. NaN compares false, so a
+         * NaN lane keeps the term, and its NaN, as the reference. */
+        const vint unreached = (c <= u->cos_outer) | (window_base <= 0.0f);
+        if ((lane_bits(unreached) & mine_bits) != mine_bits)
+            light = add_light(light, u->spot.colour,
+                              spot_factor(u, c, distance, window_base, mine_bits));
     }
     if (u->directional_on)
         light = add_light(light, u->directional.colour,
@@ -847,7 +879,7 @@ INLINE vvec3 sample_texture(const luz_material *material, const lane_triangles *
  * lane of `mine` belongs to a triangle of that draw; the planes of
  * `triangles` are each lane's own). */
 INLINE vuint shade_lanes(const packet_uniforms *u, const luz_material *material,
-                         const lane_triangles *triangles, vint mine)
+                         const lane_triangles *triangles, vint mine, unsigned mine_bits)
 {
     const luz_vec3 object_colour = luz_material_colour(material);
     if (material->shading == LUZ_SHADING_UNLIT)
@@ -870,7 +902,7 @@ INLINE vuint shade_lanes(const packet_uniforms *u, const luz_material *material,
         plane_at(varying[LUZ_VARYING_NORMAL + 1], dx, dy) * w,
         plane_at(varying[LUZ_VARYING_NORMAL + 2], dx, dy) * w,
     };
-    const vvec3 light = shade_lighting(u, position, normal);
+    const vvec3 light = shade_lighting(u, position, normal, mine_bits);
     /* The texel; with no texture T = 1, and c * 1 = c, so it is skipped. */
     const bool textured = material->texture != NULL;
     vvec3 texel = {0};
@@ -916,7 +948,8 @@ INLINE vuint shade_packet(const packet_uniforms *u, const luz_draw *draws,
         }
         pending &= ~mine_bits;
         const vint mine = lanes_of_bits(mine_bits);
-        const vuint shade = shade_lanes(u, &draws[first->draw_index].material, &triangles, mine);
+        const vuint shade = shade_lanes(u, &draws[first->draw_index].material, &triangles,
+                                        mine, mine_bits);
         pixels = (vuint)select_int(mine, (vint)shade, (vint)pixels);
     }
     return pixels;
