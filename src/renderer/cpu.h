@@ -5,10 +5,11 @@
  *
  * The kernels are the stages written in lanes: the fragment packets
  * (fragment_packet.c), screening, setup in lanes and the vertex pass in
- * lanes (AVX-512's screen.c, setup_eight.c and vertex_sixteen.c; AVX2's
- * and NEON's screen_lanes.c, setup_lanes.c and vertex_lanes.c, one
- * source on lanes.h for both). Each is compiled once per instruction set
- * (src/renderer/meson.build); cpu.c
+ * lanes (AVX-512's screen.c, setup_eight.c and vertex_sixteen.c; AVX2's,
+ * SSE2's and NEON's screen_lanes.c, setup_lanes.c and vertex_lanes.c, one
+ * source on lanes.h for all three; the scalar set's lanes_scalar.c, the
+ * reference's functions one at a time). Each is compiled once per
+ * instruction set (src/renderer/meson.build); cpu.c
  * asks the CPU once which it runs, and luz_kernels_of hands out one
  * table, so that no stage asks again and no two stages can disagree.
  * LUZ_ISA names a narrower set than the widest (luz_isa_check), so that

@@ -38,12 +38,10 @@
  * setup, the loop luz had before) and once with AVX-512, whose masks,
  * compress and 64-bit lanes the kernel is written for; cpu.c puts one in
  * the renderer's table of kernels.
- * An AVX2 variant (coordinates in 32-bit lanes, products widened in even
- * and odd halves, eight triangles a step) passed the same tests but made
- * the 1M sphere's geometry slower on this project's machines (its nine
- * 32-bit gathers a step cost more than the branches they replace;
- * docs/performance.md, "Measured in the code"), so AVX2 CPUs keep the
- * one-by-one loop.
+ * AVX2, SSE2 and NEON screen with screen_lanes.c, the same decisions on
+ * lanes.h's portable vectors (an earlier AVX2 variant with 32-bit gathers
+ * was slower than the one-by-one loop: docs/performance.md, "Measured in
+ * the code"; screen_lanes.c loads each vertex whole instead).
  */
 #include <stddef.h>
 #include <stdint.h>

@@ -2,7 +2,7 @@
  * screen_lanes.c: screening (screen.c's job: the cheap decisions of
  * triangle setup, many triangles at once) written once on lanes.h's
  * portable vectors, for the instruction sets without AVX-512: 8 triangles
- * a step with AVX2, 4 with NEON.
+ * a step with AVX2, 4 with SSE2 and NEON.
  *
  * In, out and the arithmetic: screen.c's, decision for decision (the
  * doubled area and the edge functions at the box's centres in 64-bit

@@ -3,7 +3,8 @@
  * eight triangles' corners, their projection and setup.c's
  * luz_setup_projected, one triangle a lane) written once on lanes.h's
  * portable vectors, for the instruction sets without AVX-512: the eight
- * triangles in one step of 8 float lanes with AVX2, two of 4 with NEON.
+ * triangles in one step of 8 float lanes with AVX2, two of 4 with SSE2
+ * and NEON.
  *
  * In, out and the arithmetic: setup_eight.c's (see there, and setup.c),
  * operation for operation: the transforms in float, summed left to right;

@@ -2,7 +2,7 @@
  * vertex_lanes.c: the vertex pass in lanes (vertex_sixteen.c's job: the
  * vertex stage and the projection of a big mesh's vertices, many at a
  * time) written once on lanes.h's portable vectors, for the instruction
- * sets without AVX-512: 8 vertices a step with AVX2, 4 with NEON.
+ * sets without AVX-512: 8 vertices a step with AVX2, 4 with SSE2 and NEON.
  *
  * In, out: vertex_sixteen.c's (luz_vertex_project_function). Position-only
  * shading, the pass that setup in lanes (setup_lanes.c) makes possible,
