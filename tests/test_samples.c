@@ -288,6 +288,36 @@ static void test_top_left_rule_on_a_sample(void **state)
     scene_end(&s);
 }
 
+/* The same rule with small triangles, at most 8 pixels wide, which the
+ * raster walks pixel by pixel, each pixel's four samples together
+ * (raster.c), instead of finding each sample's span of a row: a blue one
+ * from x = 7 and a red one to x = 13.5 share the edge x = 10.375, with
+ * the red one's corners listed in each of their three rotations (so that
+ * the shared edge is each of its edges 0, 1 and 2 in turn). Column 10:
+ * sample 0 on the edge (red's left edge: red's), 2 at 10.125 blue's, 1
+ * and 3 red's at every row. */
+static void test_top_left_rule_on_a_sample_of_a_small_triangle(void **state)
+{
+    (void)state;
+    const double edge = 10.375;
+    const double red_corners[3][3] = {{edge, 38, 0}, {13.5, 38, 0}, {edge, -20, 0}};
+    for (int rotation = 0; rotation < 3; rotation++) {
+        scene s;
+        scene_begin(&s, 4);
+        add_triangle(&s, (double[]){7, 38, 0}, (double[]){edge, 38, 0},
+                     (double[]){edge, -20, 0}, blue);
+        add_triangle(&s, red_corners[rotation], red_corners[(rotation + 1) % 3],
+                     red_corners[(rotation + 2) % 3], red);
+        uint8_t *image = draw(&s, 1, 0, 0, NULL);
+        for (int y = 0; y < SIZE; y++) {
+            assert_int_equal(pixel(image, 10, y)[0], 191);
+            assert_int_equal(pixel(image, 10, y)[2], 64);
+        }
+        free(image);
+        scene_end(&s);
+    }
+}
+
 /* The lab's default scene, small: every pixel whose four samples one
  * triangle won has exactly the one-sample image's bytes (shading is once
  * per pixel at its centre, as with one sample), and the probe's resolve
@@ -430,6 +460,7 @@ int main(void)
         cmocka_unit_test(test_pixel_split_between_two_triangles),
         cmocka_unit_test(test_depth_per_sample_decides_the_winner),
         cmocka_unit_test(test_top_left_rule_on_a_sample),
+        cmocka_unit_test(test_top_left_rule_on_a_sample_of_a_small_triangle),
         cmocka_unit_test(test_covered_pixels_keep_their_one_sample_colour),
         cmocka_unit_test(test_four_samples_same_bytes_for_any_thread_count),
         cmocka_unit_test(test_bad_sample_counts_are_errors),

@@ -151,10 +151,8 @@ static uint64_t raster_band(const frame_job *job, int band_index, int first_row,
                     luz_sample_offset_of(samples ? samples->samples : 1, s), first_row, end_row,
                     overdraw ? overdraw + (size_t)s * pixels : NULL);
         } else if (samples) {
-            for (int s = 0; s < samples->samples; s++)
-                tested += luz_raster_triangle_sample(
-                    triangle, id, &samples->plane[s], luz_sample_offset_of(samples->samples, s),
-                    first_row, end_row, overdraw ? overdraw + (size_t)s * pixels : NULL);
+            tested += luz_raster_triangle_samples(triangle, id, samples, first_row, end_row,
+                                                  overdraw);
         } else if (overdraw) {
             tested += luz_raster_triangle_counting(triangle, id, framebuffer, first_row,
                                                    end_row, overdraw);

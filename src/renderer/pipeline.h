@@ -638,13 +638,15 @@ typedef struct luz_sample_buffers {
     luz_framebuffer plane[LUZ_MAX_SAMPLES];
 } luz_sample_buffers;
 
-/* Covers the samples at offset sample of rows [first_row, end_row) inside
- * the triangle into plane (one sample of every pixel, luz_sample_buffers):
- * depth interpolated at the sample, LESS, the winner's id; overdraw, if
- * not NULL, counts the plane's depth tests. Returns the tests made. */
-uint64_t luz_raster_triangle_sample(const luz_triangle *triangle, uint32_t triangle_id,
-                                    luz_framebuffer *plane, luz_sample_offset sample,
-                                    int first_row, int end_row, uint32_t *overdraw);
+/* Covers every sample of rows [first_row, end_row) inside the triangle,
+ * each into its plane of buffers (sample k at luz_sample_offset_of(
+ * buffers->samples, k)): depth interpolated at the sample, LESS, the
+ * winner's id; overdraw, if not NULL, counts each plane's depth tests
+ * (plane k's count of pixel i at overdraw[k * width * height + i]).
+ * Returns the tests made. */
+uint64_t luz_raster_triangle_samples(const luz_triangle *triangle, uint32_t triangle_id,
+                                     luz_sample_buffers *buffers, int first_row, int end_row,
+                                     uint32_t *overdraw);
 
 /* A fragment of a list: pixel (x, y) to be shaded as triangle id's, at
  * the pixel centre (the other winners of a pixel whose samples differ,

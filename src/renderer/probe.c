@@ -82,7 +82,7 @@ void luz_probe_capture(luz_pixel_probe *probe, const luz_framebuffer *framebuffe
 
 /* Does the triangle cover the pixel centre, and at what depth? With
  * samples > 1, sample `sample` of the pixel instead (raster.c's
- * luz_raster_triangle_sample). */
+ * luz_raster_triangle_samples). */
 static bool covers(const luz_triangle *triangle, int x, int y, int samples, int sample,
                    float *depth)
 {

@@ -8,10 +8,10 @@
  *      after every triangle has been tested, so hidden fragments cost only
  *      a depth test (a "visibility buffer", Burns and Hunt 2013).
  *      With four samples a pixel (SCENE.md, "Anti-aliasing"), the same for
- *      each sample point: luz_raster_triangle_sample covers sample k of
+ *      each sample point: luz_raster_triangle_samples covers sample k of
  *      every pixel, (x + sx, y + sy), with the depth interpolated there,
- *      into that sample's plane of depth and ids (luz_sample_buffers); the
- *      band calls it once per sample. Same arithmetic, another offset.
+ *      into that sample's plane of depth and ids (luz_sample_buffers).
+ *      Same arithmetic, another offset.
  *
  * Coverage: pixel (x, y) samples its centre (x + 0.5, y + 0.5), in fixed
  * point X = 256 x + 128. Along a row an edge function is linear in x,
@@ -112,34 +112,98 @@ static LUZ_CLONES void test_span(luz_plane depth, float reference_x, float row_d
     }
 }
 
-uint64_t luz_raster_triangle_sample(const luz_triangle *triangle, uint32_t triangle_id,
-                                    luz_framebuffer *plane, luz_sample_offset sample,
-                                    int first_row, int end_row, uint32_t *overdraw)
+/* The samples of a pixel are independent (each its own plane, its own
+ * depth test), so the order in which a triangle's are visited changes no
+ * bit. A small triangle (a box at most LUZ_RASTER_SMALL_SPAN pixels wide:
+ * a million-triangle mesh's, where nearly every pixel is an edge pixel)
+ * is walked pixel by pixel, each pixel's samples tested together: E at
+ * sample s of pixel (x, y) is a (256 x + sx) + b (256 y + sy) + c =
+ * (a sx + b sy + c) + 256 (a x + b y), the first term worked out once per
+ * triangle and the second stepped by 256 a a pixel, the same exact
+ * integers as the span's (luz_raster_row_span_at), so the same samples
+ * are covered. A larger triangle goes row by row, and in each row sample
+ * by sample, each span found as for one sample and tested by test_span's
+ * vectors. */
+uint64_t luz_raster_triangle_samples(const luz_triangle *triangle, uint32_t triangle_id,
+                                     luz_sample_buffers *buffers, int first_row, int end_row,
+                                     uint32_t *overdraw)
 {
     int y_begin = triangle->min_y > first_row ? triangle->min_y : first_row;
     int y_end = triangle->max_y + 1 < end_row ? triangle->max_y + 1 : end_row;
     const luz_plane depth = triangle->depth;
-    const int width = plane->width;
-    const bool small = luz_raster_is_small(triangle);
-    /* The sample's offset in pixels, exact in a float (k / 256). */
-    const float offset_x = (float)sample.x / LUZ_SUBPIXEL_ONE;
-    const float offset_y = (float)sample.y / LUZ_SUBPIXEL_ONE;
+    const int samples = buffers->samples;
+    const int width = buffers->plane[0].width;
+    const size_t pixels = (size_t)width * (size_t)buffers->plane[0].height;
     uint64_t tests = 0;
 
+    /* Each sample's offset in pixels, exact in a float (k / 256). */
+    float offset_x[LUZ_MAX_SAMPLES], offset_y[LUZ_MAX_SAMPLES];
+    for (int s = 0; s < samples; s++) {
+        const luz_sample_offset sample = luz_sample_offset_of(samples, s);
+        offset_x[s] = (float)sample.x / LUZ_SUBPIXEL_ONE;
+        offset_y[s] = (float)sample.y / LUZ_SUBPIXEL_ONE;
+    }
+
+    if (!luz_raster_is_small(triangle)) {
+        for (int y = y_begin; y < y_end; y++) {
+            for (int s = 0; s < samples; s++) {
+                int64_t first, last;
+                luz_raster_row_span_at(triangle, y, false, luz_sample_offset_of(samples, s),
+                                       &first, &last);
+                if (first > last) continue;
+                const float row_depth =
+                    luz_raster_sample_row_depth(depth, triangle->reference_y, y, offset_y[s]);
+                luz_framebuffer *plane = &buffers->plane[s];
+                test_span(depth, triangle->reference_x, row_depth, offset_x[s], (int)first,
+                          (int)last, plane->depth + (size_t)y * width,
+                          plane->visibility + (size_t)y * width, triangle_id);
+                tests += (uint64_t)(last - first + 1);
+                if (overdraw != NULL) {
+                    uint32_t *count_row = overdraw + (size_t)s * pixels + (size_t)y * width;
+                    for (int64_t x = first; x <= last; x++) count_row[x]++;
+                }
+            }
+        }
+        return tests;
+    }
+
+    /* a sx + b sy + c of each sample and edge, and 256 a, 256 b. */
+    int64_t at_sample[LUZ_MAX_SAMPLES][3], step_x[3], step_y[3];
+    for (int k = 0; k < 3; k++) {
+        const luz_edge *edge = &triangle->edges[k];
+        step_x[k] = (int64_t)edge->a * LUZ_SUBPIXEL_ONE;
+        step_y[k] = (int64_t)edge->b * LUZ_SUBPIXEL_ONE;
+        for (int s = 0; s < samples; s++) {
+            const luz_sample_offset sample = luz_sample_offset_of(samples, s);
+            at_sample[s][k] = (int64_t)edge->a * sample.x + (int64_t)edge->b * sample.y + edge->c;
+        }
+    }
+    const int min_x = triangle->min_x, max_x = triangle->max_x;
     for (int y = y_begin; y < y_end; y++) {
-        int64_t first, last;
-        luz_raster_row_span_at(triangle, y, small, sample, &first, &last);
-        if (first > last) continue;
-        const float row_depth =
-            luz_raster_sample_row_depth(depth, triangle->reference_y, y, offset_y);
-        float *depth_row = plane->depth + (size_t)y * width;
-        uint32_t *visibility_row = plane->visibility + (size_t)y * width;
-        test_span(depth, triangle->reference_x, row_depth, offset_x, (int)first, (int)last,
-                  depth_row, visibility_row, triangle_id);
-        tests += (uint64_t)(last - first + 1);
-        if (overdraw != NULL) {
-            uint32_t *count_row = overdraw + (size_t)y * width;
-            for (int x = (int)first; x <= (int)last; x++) count_row[x]++;
+        float row_depth[LUZ_MAX_SAMPLES];
+        for (int s = 0; s < samples; s++)
+            row_depth[s] = luz_raster_sample_row_depth(depth, triangle->reference_y, y,
+                                                       offset_y[s]);
+        /* 256 (a x + b y) at the box's first pixel of the row. */
+        int64_t e[3];
+        for (int k = 0; k < 3; k++) e[k] = step_x[k] * min_x + step_y[k] * y;
+        const size_t row = (size_t)y * width;
+        for (int x = min_x; x <= max_x; x++) {
+            for (int s = 0; s < samples; s++) {
+                if (e[0] + at_sample[s][0] < 0 || e[1] + at_sample[s][1] < 0 ||
+                    e[2] + at_sample[s][2] < 0)
+                    continue;
+                luz_framebuffer *plane = &buffers->plane[s];
+                const float z = luz_raster_sample_depth(depth, triangle->reference_x,
+                                                        row_depth[s], x, offset_x[s]);
+                if (z < plane->depth[row + (size_t)x]) {    /* GL_LESS, per sample */
+                    plane->depth[row + (size_t)x] = z;
+                    plane->visibility[row + (size_t)x] = triangle_id;
+                }
+                tests++;
+                if (overdraw != NULL) overdraw[(size_t)s * pixels + row + (size_t)x]++;
+            }
+            for (int k = 0; k < 3; k++) e[k] += step_x[k];
         }
     }
     return tests;

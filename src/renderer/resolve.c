@@ -3,7 +3,7 @@
  * (SCENE.md, "Anti-aliasing: four samples a pixel").
  *
  * In:  for a band of rows, each sample's winner and depth (the planes of
- *      luz_sample_buffers, written by raster.c's luz_raster_triangle_sample);
+ *      luz_sample_buffers, written by raster.c's luz_raster_triangle_samples);
  *      after the fragment stage, the colour of each (pixel, winning
  *      triangle).
  * Out: first (luz_samples_sort_winners), the fragment stage's work: the
