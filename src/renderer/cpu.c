@@ -25,20 +25,20 @@ luz_screen_function luz_screen_every_triangle;
 luz_setup_eight_function luz_setup_eight_scalar;
 luz_vertex_project_function luz_vertex_project_scalar;
 #if defined(LUZ_HAVE_SSE2)
-luz_screen_function luz_screen_triangles_sse2;
-luz_setup_eight_function luz_setup_eight_sse2;
+luz_screen_function luz_screen_triangles_sse2, luz_screen_triangles_four_sse2;
+luz_setup_eight_function luz_setup_eight_sse2, luz_setup_eight_four_sse2;
 luz_vertex_project_function luz_vertex_project_sse2;
 #endif
 #if defined(LUZ_HAVE_AVX2)
 luz_packet_rows_function luz_fragment_packet_rows_avx2;
 luz_packet_list_function luz_fragment_packet_list_avx2;
-luz_screen_function luz_screen_triangles_avx2;
-luz_setup_eight_function luz_setup_eight_avx2;
+luz_screen_function luz_screen_triangles_avx2, luz_screen_triangles_four_avx2;
+luz_setup_eight_function luz_setup_eight_avx2, luz_setup_eight_four_avx2;
 luz_vertex_project_function luz_vertex_project_avx2;
 #endif
 #if defined(LUZ_HAVE_NEON)
-luz_screen_function luz_screen_triangles_neon;
-luz_setup_eight_function luz_setup_eight_neon;
+luz_screen_function luz_screen_triangles_neon, luz_screen_triangles_four_neon;
+luz_setup_eight_function luz_setup_eight_neon, luz_setup_eight_four_neon;
 luz_vertex_project_function luz_vertex_project_neon;
 #endif
 #if defined(LUZ_HAVE_AVX512)
@@ -191,11 +191,15 @@ luz_kernels luz_kernels_of(luz_isa isa)
         kernels.screen = luz_screen_triangles_neon;
         kernels.screen_checks_small_boxes = true;
         kernels.setup_eight = luz_setup_eight_neon;
+        kernels.screen_four = luz_screen_triangles_four_neon;
+        kernels.setup_eight_four = luz_setup_eight_four_neon;
         kernels.vertex_project = luz_vertex_project_neon;
 #elif defined(LUZ_HAVE_SSE2)
         kernels.screen = luz_screen_triangles_sse2;
         kernels.screen_checks_small_boxes = true;
         kernels.setup_eight = luz_setup_eight_sse2;
+        kernels.screen_four = luz_screen_triangles_four_sse2;
+        kernels.setup_eight_four = luz_setup_eight_four_sse2;
         kernels.vertex_project = luz_vertex_project_sse2;
 #endif
         break;
@@ -206,6 +210,8 @@ luz_kernels luz_kernels_of(luz_isa isa)
         kernels.screen = luz_screen_triangles_avx2;
         kernels.screen_checks_small_boxes = true;
         kernels.setup_eight = luz_setup_eight_avx2;
+        kernels.screen_four = luz_screen_triangles_four_avx2;
+        kernels.setup_eight_four = luz_setup_eight_four_avx2;
         kernels.vertex_project = luz_vertex_project_avx2;
 #endif
         break;

@@ -27,15 +27,19 @@ _Static_assert(LUZ_MESH_MAX_VERTICES <= (1u << 30), "vertex indices fit an int32
 #if defined(LUZ_LANES_AVX512)
 #define LANES 16
 #define SCREEN_LANES luz_screen_triangles_lanes_avx512
+#define SCREEN_LANES_FOUR luz_screen_triangles_four_lanes_avx512
 #elif defined(LUZ_LANES_AVX2)
 #define LANES 8
 #define SCREEN_LANES luz_screen_triangles_avx2
+#define SCREEN_LANES_FOUR luz_screen_triangles_four_avx2
 #elif defined(LUZ_LANES_NEON)
 #define LANES 4
 #define SCREEN_LANES luz_screen_triangles_neon
+#define SCREEN_LANES_FOUR luz_screen_triangles_four_neon
 #elif defined(LUZ_LANES_SSE2)
 #define LANES 4
 #define SCREEN_LANES luz_screen_triangles_sse2
+#define SCREEN_LANES_FOUR luz_screen_triangles_four_sse2
 #else
 #error "screen_lanes.c is compiled for one instruction set: -DLUZ_LANES_AVX2, ..."
 #endif
@@ -128,7 +132,7 @@ LANES_INLINE void edge_at_centres(vi64 xi, vi64 yi, vi64 xj, vi64 yj, vi64 bias,
  * setup would cull, and which it would find offscreen. Their survivors
  * are appended at survivors + *count, the back faces counted. */
 LANES_INLINE void screen_step(const uint32_t *triangle_indices, uint32_t t, int valid,
-                              const luz_fixed_vertex *fixed, int width, int height,
+                              const luz_fixed_vertex *fixed, int width, int height, int samples,
                               uint32_t *survivors, size_t *count, uint32_t *culled_total)
 {
     vi32 loaded[3];
@@ -156,22 +160,26 @@ LANES_INLINE void screen_step(const uint32_t *triangle_indices, uint32_t t, int 
      * 128 lies within [min X, max X], from ceil((min X - 128) / 256) =
      * -((128 - min X) >> 8) to floor((max X - 128) / 256) = (max X - 128)
      * >> 8 (arithmetic shifts: floors), clamped to the viewport; likewise
-     * y. Empty where min > max. */
-    const vi32 half = splat32(LUZ_SUBPIXEL_ONE / 2), zero = splat32(0);
-    const vi32 min_x = max32(-((half - min32(x0, min32(x1, x2))) >> LUZ_SUBPIXEL_BITS), zero);
-    const vi32 min_y = max32(-((half - min32(y0, min32(y1, y2))) >> LUZ_SUBPIXEL_BITS), zero);
-    const vi32 max_x = min32((max32(x0, max32(x1, x2)) - half) >> LUZ_SUBPIXEL_BITS,
+     * y. Empty where min > max. With four samples a pixel, 128 is the
+     * farthest a sample lies from the pixel's corner (224) on the left
+     * and the nearest (32) on the right: the box of
+     * luz_setup_projected_samples. */
+    const vi32 low = splat32(luz_sample_reach_low(samples));
+    const vi32 high = splat32(luz_sample_reach_high(samples)), zero = splat32(0);
+    const vi32 min_x = max32(-((high - min32(x0, min32(x1, x2))) >> LUZ_SUBPIXEL_BITS), zero);
+    const vi32 min_y = max32(-((high - min32(y0, min32(y1, y2))) >> LUZ_SUBPIXEL_BITS), zero);
+    const vi32 max_x = min32((max32(x0, max32(x1, x2)) - low) >> LUZ_SUBPIXEL_BITS,
                              splat32(width - 1));
-    const vi32 max_y = min32((max32(y0, max32(y1, y2)) - half) >> LUZ_SUBPIXEL_BITS,
+    const vi32 max_y = min32((max32(y0, max32(y1, y2)) - low) >> LUZ_SUBPIXEL_BITS,
                              splat32(height - 1));
     const vi32 empty = (min_x > max_x) | (min_y > max_y);
     const vi32 second_column = max_x > min_x, second_row = max_y > min_y;
     const vi32 small = (max_x - min_x <= 1) & (max_y - min_y <= 1);
 
-    /* The box's first centre, X = 256 x + 128, and its (up to) three
-     * neighbours; a centre counts where it lies in the box. */
-    const vi32 sample_x = (min_x << LUZ_SUBPIXEL_BITS) + half;
-    const vi32 sample_y = (min_y << LUZ_SUBPIXEL_BITS) + half;
+    /* The box's first centre, X = 256 x + 128 (or each of its samples),
+     * and its (up to) three neighbours'; one counts where its pixel lies
+     * in the box. */
+    const vi32 corner_x = min_x << LUZ_SUBPIXEL_BITS, corner_y = min_y << LUZ_SUBPIXEL_BITS;
 
     /* In 64-bit lanes, half a step at a time: step 3, the doubled area,
      * as luz_setup_front_facing (differences below 2^25: each product
@@ -188,18 +196,22 @@ LANES_INLINE void screen_step(const uint32_t *triangle_indices, uint32_t t, int 
         const vi64 wx2 = widen_half(x2, h), wy2 = widen_half(y2, h);
         const vi64 area = multiply_wide(wy1 - wy0, wx2 - wx0) - multiply_wide(wx1 - wx0, wy2 - wy0);
         front |= negative_bits64(-area) << (h * HALF);
-        const vi64 wsample_x = widen_half(sample_x, h), wsample_y = widen_half(sample_y, h);
         const unsigned column_bits = second_column_bits >> (h * HALF);
         const unsigned row_bits = second_row_bits >> (h * HALF);
-        unsigned inside[4] = {~0u, column_bits, row_bits, column_bits & row_bits};
-        edge_at_centres(wx1, wy1, wx2, wy2, widen_half(bias[0], h), wsample_x, wsample_y,
-                        inside);   /* edge 0: 1 -> 2 */
-        edge_at_centres(wx2, wy2, wx0, wy0, widen_half(bias[1], h), wsample_x, wsample_y,
-                        inside);   /* edge 1: 2 -> 0 */
-        edge_at_centres(wx0, wy0, wx1, wy1, widen_half(bias[2], h), wsample_x, wsample_y,
-                        inside);   /* edge 2: 0 -> 1 */
-        covers |= ((inside[0] | inside[1] | inside[2] | inside[3]) & ((1u << HALF) - 1))
-                  << (h * HALF);
+        for (int s = 0; s < samples; s++) {
+            const luz_sample_offset offset = luz_sample_offset_of(samples, s);
+            const vi64 wsample_x = widen_half(corner_x + offset.x, h);
+            const vi64 wsample_y = widen_half(corner_y + offset.y, h);
+            unsigned inside[4] = {~0u, column_bits, row_bits, column_bits & row_bits};
+            edge_at_centres(wx1, wy1, wx2, wy2, widen_half(bias[0], h), wsample_x, wsample_y,
+                            inside);   /* edge 0: 1 -> 2 */
+            edge_at_centres(wx2, wy2, wx0, wy0, widen_half(bias[1], h), wsample_x, wsample_y,
+                            inside);   /* edge 1: 2 -> 0 */
+            edge_at_centres(wx0, wy0, wx1, wy1, widen_half(bias[2], h), wsample_x, wsample_y,
+                            inside);   /* edge 2: 0 -> 1 */
+            covers |= ((inside[0] | inside[1] | inside[2] | inside[3]) & ((1u << HALF) - 1))
+                      << (h * HALF);
+        }
     }
 
     const unsigned valid_lanes = (unsigned)((1ull << valid) - 1);
@@ -211,11 +223,11 @@ LANES_INLINE void screen_step(const uint32_t *triangle_indices, uint32_t t, int 
     *culled_total += (uint32_t)__builtin_popcount(culled);
 }
 
-luz_screen_function SCREEN_LANES;
-
-size_t SCREEN_LANES(const uint32_t *indices, uint32_t first, uint32_t end,
-                    const luz_fixed_vertex *fixed, int width, int height, uint32_t *survivors,
-                    uint32_t *culled_count)
+/* Screening for pixels of `samples` samples, 1 or 4 (a constant in each
+ * of the two functions below). */
+LANES_INLINE size_t screen_triangles(const uint32_t *indices, uint32_t first, uint32_t end,
+                                     const luz_fixed_vertex *fixed, int width, int height,
+                                     int samples, uint32_t *survivors, uint32_t *culled_count)
 {
     size_t count = 0;
     uint32_t culled_total = 0;
@@ -234,12 +246,32 @@ size_t SCREEN_LANES(const uint32_t *indices, uint32_t first, uint32_t end,
         if (end - t >= LANES + INDEX_AHEAD)
             for (int line = 0; line < 3 * LANES; line += 16)   /* 64 bytes a line */
                 __builtin_prefetch(triangle_indices + 3 * INDEX_AHEAD + line);
-        screen_step(triangle_indices, t, LANES, fixed, width, height, survivors, &count,
-                    &culled_total);
+        screen_step(triangle_indices, t, LANES, fixed, width, height, samples, survivors,
+                    &count, &culled_total);
     }
     if (t < end)   /* the last few */
-        screen_step(indices + 3 * (size_t)t, t, (int)(end - t), fixed, width, height, survivors,
-                    &count, &culled_total);
+        screen_step(indices + 3 * (size_t)t, t, (int)(end - t), fixed, width, height, samples,
+                    survivors, &count, &culled_total);
     *culled_count = culled_total;
     return count;
+}
+
+luz_screen_function SCREEN_LANES, SCREEN_LANES_FOUR;
+
+size_t SCREEN_LANES(const uint32_t *indices, uint32_t first, uint32_t end,
+                    const luz_fixed_vertex *fixed, int width, int height, uint32_t *survivors,
+                    uint32_t *culled_count)
+{
+    return screen_triangles(indices, first, end, fixed, width, height, 1, survivors,
+                            culled_count);
+}
+
+/* The same for four samples a pixel (screen.c's
+ * luz_screen_triangles_four_avx512). */
+size_t SCREEN_LANES_FOUR(const uint32_t *indices, uint32_t first, uint32_t end,
+                         const luz_fixed_vertex *fixed, int width, int height,
+                         uint32_t *survivors, uint32_t *culled_count)
+{
+    return screen_triangles(indices, first, end, fixed, width, height, 4, survivors,
+                            culled_count);
 }

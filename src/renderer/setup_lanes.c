@@ -26,12 +26,15 @@
 #if defined(LUZ_LANES_AVX2)
 #define LANES 8
 #define SETUP_LANES luz_setup_eight_avx2
+#define SETUP_LANES_FOUR luz_setup_eight_four_avx2
 #elif defined(LUZ_LANES_NEON)
 #define LANES 4
 #define SETUP_LANES luz_setup_eight_neon
+#define SETUP_LANES_FOUR luz_setup_eight_four_neon
 #elif defined(LUZ_LANES_SSE2)
 #define LANES 4
 #define SETUP_LANES luz_setup_eight_sse2
+#define SETUP_LANES_FOUR luz_setup_eight_four_sse2
 #else
 #error "setup_lanes.c is compiled for one instruction set: -DLUZ_LANES_AVX2, ..."
 #endif
@@ -95,25 +98,32 @@ LANES_INLINE void make_plane_half(vf64 x10, vf64 x20, vf64 y10, vf64 y20,
     out[2] = dy;
 }
 
-/* setup.c's covers_a_centre for the lanes of half h in testing: those
+/* setup.c's covers_a_centre (covers_a_sample for `samples` samples a
+ * pixel, luz_sample_offset_of) for the lanes of half h in testing: those
  * whose box, (min_x, min_y) and box_width x box_height pixels, has a
- * centre where the three edges' E = a X + b Y + c >= 0 (|a|, |b| < 2^26,
- * centres below 2^23: each product exact in 64 bits). */
+ * sample where the three edges' E = a X + b Y + c >= 0 (|a|, |b| < 2^26,
+ * samples below 2^23: each product exact in 64 bits). */
 LANES_INLINE unsigned covered_half(unsigned testing, vi64 min_x, vi64 min_y, vi64 box_width,
                                    vi64 box_height, const vi64 a[3], const vi64 b[3],
-                                   const vi64 c[3])
+                                   const vi64 c[3], int samples)
 {
-    const vi64 half = splat64(LUZ_SUBPIXEL_ONE / 2);
     const vi64 centres = multiply_wide(box_width, box_height);   /* at most 16 */
     vi64 column = splat64(0), row = splat64(0), visited = splat64(0);
     unsigned covered = 0, left = testing;
     while (left != 0) {
-        const vi64 sample_x = ((min_x + column) << LUZ_SUBPIXEL_BITS) + half;
-        const vi64 sample_y = ((min_y + row) << LUZ_SUBPIXEL_BITS) + half;
-        unsigned inside = left;
-        for (int k = 0; k < 3; k++)
-            inside &= ~negative_bits64(multiply_wide(a[k], sample_x) +
-                                       multiply_wide(b[k], sample_y) + c[k]);
+        const vi64 corner_x = (min_x + column) << LUZ_SUBPIXEL_BITS;
+        const vi64 corner_y = (min_y + row) << LUZ_SUBPIXEL_BITS;
+        unsigned inside_any = 0;
+        for (int s = 0; s < samples; s++) {
+            const luz_sample_offset offset = luz_sample_offset_of(samples, s);
+            const vi64 sample_x = corner_x + offset.x, sample_y = corner_y + offset.y;
+            unsigned inside = left;
+            for (int k = 0; k < 3; k++)
+                inside &= ~negative_bits64(multiply_wide(a[k], sample_x) +
+                                           multiply_wide(b[k], sample_y) + c[k]);
+            inside_any |= inside;
+        }
+        const unsigned inside = inside_any;
         covered |= inside;
         visited += 1;
         left &= ~inside & negative_bits64(visited - centres);
@@ -138,20 +148,22 @@ typedef struct group_corners {
  * and result. */
 LANES_INLINE void setup_group(const group_corners *corners, const luz_draw_transform *transform,
                               int width, int height, uint32_t draw_index,
-                              luz_interpolation interpolation, luz_triangle out[LANES],
-                              luz_setup_result result[LANES])
+                              luz_interpolation interpolation, int samples,
+                              luz_triangle out[LANES], luz_setup_result result[LANES])
 {
     const vi32 *fx = corners->x, *fy = corners->y;
 
-    /* The box of pixel centres, as setup's (screen_lanes.c). */
-    const vi32 half = splat32(LUZ_SUBPIXEL_ONE / 2), zero = splat32(0);
-    const vi32 min_x = max32(-((half - min32(fx[0], min32(fx[1], fx[2]))) >> LUZ_SUBPIXEL_BITS),
+    /* The box of the pixels whose samples (one: the centre) may be
+     * inside, as setup's (screen_lanes.c). */
+    const vi32 low = splat32(luz_sample_reach_low(samples));
+    const vi32 high = splat32(luz_sample_reach_high(samples)), zero = splat32(0);
+    const vi32 min_x = max32(-((high - min32(fx[0], min32(fx[1], fx[2]))) >> LUZ_SUBPIXEL_BITS),
                              zero);
-    const vi32 min_y = max32(-((half - min32(fy[0], min32(fy[1], fy[2]))) >> LUZ_SUBPIXEL_BITS),
+    const vi32 min_y = max32(-((high - min32(fy[0], min32(fy[1], fy[2]))) >> LUZ_SUBPIXEL_BITS),
                              zero);
-    const vi32 max_x = min32((max32(fx[0], max32(fx[1], fx[2])) - half) >> LUZ_SUBPIXEL_BITS,
+    const vi32 max_x = min32((max32(fx[0], max32(fx[1], fx[2])) - low) >> LUZ_SUBPIXEL_BITS,
                              splat32(width - 1));
-    const vi32 max_y = min32((max32(fy[0], max32(fy[1], fy[2])) - half) >> LUZ_SUBPIXEL_BITS,
+    const vi32 max_y = min32((max32(fy[0], max32(fy[1], fy[2])) - low) >> LUZ_SUBPIXEL_BITS,
                              splat32(height - 1));
     const unsigned empty = lane_bits((min_x > max_x) | (min_y > max_y));
     /* A box of up to LUZ_SETUP_SMALL_BOX_PIXELS but more than 2 x 2: its
@@ -254,7 +266,7 @@ LANES_INLINE void setup_group(const group_corners *corners, const luz_draw_trans
                                  ((1u << HALF) - 1);
         covered |= covered_half(to_test, widen_half(min_x, h), widen_half(min_y, h),
                                 widen_half(box_width, h), widen_half(box_height, h), a, b,
-                                c_half)
+                                c_half, samples)
                    << (h * HALF);
 
         x10[h] = x[1][h] - x[0][h], x20[h] = x[2][h] - x[0][h];
@@ -333,12 +345,13 @@ LANES_INLINE void setup_group(const group_corners *corners, const luz_draw_trans
     }
 }
 
-luz_setup_eight_function SETUP_LANES;
-
-bool SETUP_LANES(const uint32_t *indices, const uint32_t triangles[8],
-                 const luz_draw_transform *transform, const luz_fixed_vertex *fixed, int width,
-                 int height, uint32_t draw_index, luz_interpolation interpolation,
-                 luz_triangle out[8], luz_setup_result result[8])
+/* Setup in lanes for pixels of `samples` samples, 1 or 4 (a constant in
+ * each of the two functions below). */
+LANES_INLINE bool setup_eight(const uint32_t *indices, const uint32_t triangles[8],
+                              const luz_draw_transform *transform,
+                              const luz_fixed_vertex *fixed, int width, int height,
+                              uint32_t draw_index, luz_interpolation interpolation, int samples,
+                              luz_triangle out[8], luz_setup_result result[8])
 {
     /* The corners of every group first: a marked vertex (below -2^24)
      * leaves all eight to the caller before any record is written.
@@ -360,7 +373,30 @@ bool SETUP_LANES(const uint32_t *indices, const uint32_t triangles[8],
     }
     if (marked != 0) return true;
     for (int g = 0; g < GROUPS; g++)
-        setup_group(&corners[g], transform, width, height, draw_index, interpolation,
+        setup_group(&corners[g], transform, width, height, draw_index, interpolation, samples,
                     &out[g * LANES], &result[g * LANES]);
     return false;
+}
+
+luz_setup_eight_function SETUP_LANES, SETUP_LANES_FOUR;
+
+bool SETUP_LANES(const uint32_t *indices, const uint32_t triangles[8],
+                 const luz_draw_transform *transform, const luz_fixed_vertex *fixed, int width,
+                 int height, uint32_t draw_index, luz_interpolation interpolation,
+                 luz_triangle out[8], luz_setup_result result[8])
+{
+    return setup_eight(indices, triangles, transform, fixed, width, height, draw_index,
+                       interpolation, 1, out, result);
+}
+
+/* The same for four samples a pixel (setup_eight.c's
+ * luz_setup_eight_four_avx512). */
+bool SETUP_LANES_FOUR(const uint32_t *indices, const uint32_t triangles[8],
+                      const luz_draw_transform *transform, const luz_fixed_vertex *fixed,
+                      int width, int height, uint32_t draw_index,
+                      luz_interpolation interpolation, luz_triangle out[8],
+                      luz_setup_result result[8])
+{
+    return setup_eight(indices, triangles, transform, fixed, width, height, draw_index,
+                       interpolation, 4, out, result);
 }
