@@ -1070,18 +1070,26 @@ static int diagnose_fitted(diagnosis *d, FILE *out, luz_error *error)
                   "(then diagnose with --samples 4, or ask for antialias: false)"
                 : "wrong: the camera (position, yaw, pitch, field of view, aspect) or "
                   "culling differ");
-    /* With four samples the outline is compared with luz's image as it
+    /* The outline's colours are the weighted terms' only where the
+     * weights explain the inside: judged only then (a texture or normal
+     * read wrong leaves the edges as far off as the faces, which said
+     * "another surface wins" of lod-off-by-one and normal-matrix-is-model).
+     * With four samples the outline is compared with luz's image as it
      * is, which a wrong term changes too: judged only when the terms are
      * right. */
-    const bool outline_judged = d->setup->options->scene.samples == 1 || !any_wrong;
+    const bool inside_explained = !residual_unexplained(&summary);
+    const bool outline_judged =
+        inside_explained && (d->setup->options->scene.samples == 1 || !any_wrong);
     const bool outline_wrong =
         outline_judged && summary.outline_over16 > 8 + summary.outline_pixels / 20;
     fprintf(out, "outline: %ld of %ld pixels along luz's edges off by more than 16: %s\n",
             summary.outline_over16, summary.outline_pixels,
-            !outline_judged ? "not judged (four samples a pixel, and a term is wrong)"
-            : outline_wrong ? "wrong: another surface wins there (back faces drawn: culling; "
-                              "or the depth test)"
-                            : "right");
+            !inside_explained ? "not judged (the weights do not explain the inside, so they "
+                                "say nothing of the edges)"
+            : !outline_judged ? "not judged (four samples a pixel, and a term is wrong)"
+            : outline_wrong   ? "wrong: another surface wins there (back faces drawn: culling; "
+                                "or the depth test)"
+                              : "right");
     any_wrong = any_wrong || silhouette_wrong || outline_wrong;
 
     if (write_picture(d, error) != 0) return -1;
