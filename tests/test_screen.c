@@ -545,6 +545,51 @@ static void test_screening_stays_within_its_arrays(void **state)
     mesh_destroy(&vertices);
 }
 
+/* LONG THIN TRIANGLES AT THE VIEWPORT'S CORNER: one vertex within 3
+ * pixels of the top-left corner, the other two up to R sub-pixel units
+ * away, R from 2^13 to 2^16 for a run of 8 triangles (a step of AVX2),
+ * so that boxes clamped to the viewport are often 2 x 2 or less while
+ * the edges and the distances to the centres are long. Around 2^14 to
+ * 2^15 the doubled area and the edge functions stop fitting 32-bit lanes
+ * (a product of two 2^16 is 2^32): a variant that takes a 32-bit path too
+ * far drops or keeps the wrong ones. Checked against the brute force. */
+static void test_screening_long_triangles_at_a_corner(void **state)
+{
+    (void)state;
+    const uint32_t triangle_count = 4096;
+    mesh m = mesh_create(3 * triangle_count, triangle_count);
+    uint32_t random = 99;
+    for (uint32_t t = 0; t < triangle_count; t++) {
+        const int32_t reach = 1 << (13 + (int)(t / 8 % 4));
+        const int32_t base_x = (int32_t)(test_random(&random) % (256 * 3));
+        const int32_t base_y = (int32_t)(test_random(&random) % (256 * 3));
+        for (uint32_t k = 0; k < 3; k++) {
+            const uint32_t i = 3 * t + k;
+            m.indices[i] = i;
+            const uint32_t span = (uint32_t)(2 * reach + 1);
+            int32_t x = base_x, y = base_y;
+            if (k > 0) {
+                x += (int32_t)(test_random(&random) % span) - reach;
+                y += (int32_t)(test_random(&random) % span) - reach;
+            }
+            set_vertex(&m, i, x, y);
+        }
+    }
+    for (int v = 0; v < VARIANT_COUNT; v++) {
+        if (!luz_isa_available(variants[v])) continue;
+        for (int samples = 1; samples <= 4; samples += 3) {
+            const tally whole = screen_and_check(&m, v, samples, 0, triangle_count);
+            print_message("%s, %d sample%s: %d back faces and %d covering no sample dropped, "
+                          "%d kept\n", luz_isa_name(variants[v]), samples, samples > 1 ? "s" : "",
+                          whole.dropped_back, whole.dropped_uncovered, whole.kept);
+            bool screens;
+            screening(v, samples, &screens);
+            if (screens) assert_true(whole.dropped_back > 1000 && whole.dropped_uncovered > 50);
+        }
+    }
+    mesh_destroy(&m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -552,6 +597,7 @@ int main(void)
         cmocka_unit_test(test_screening_the_split_pixel),
         cmocka_unit_test(test_screening_four_samples),
         cmocka_unit_test(test_screening_stays_within_its_arrays),
+        cmocka_unit_test(test_screening_long_triangles_at_a_corner),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

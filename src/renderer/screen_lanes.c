@@ -112,6 +112,42 @@ LANES_INLINE void edge_at_centres(vi64 xi, vi64 yi, vi64 xj, vi64 yj, vi64 bias,
     inside[3] &= ~negative_bits64(column1 - row1);
 }
 
+/* Whether every lane's triangle is small and near its box's corner
+ * (corner_x, corner_y): each edge's dx and dy, and each vertex's distance
+ * to that corner on either axis, below 2^14 sub-pixel units (64 pixels;
+ * nearly every triangle of a big mesh). Then the doubled area and the
+ * edge functions at the box's four pixels' samples (each less than 512
+ * units from the corner) fit 32-bit lanes: each product below 2^14 (2^14
+ * + 512) < 2^29, each side of a comparison below 2^29 + 2^23 + 1. (|v| <
+ * 2^14 where v ^ (v >> 31), |v| or |v| - 1, is; the OR of such values is
+ * below 2^14 only if each is.) */
+LANES_INLINE bool small_near_box(vi32 x0, vi32 y0, vi32 x1, vi32 y1, vi32 x2, vi32 y2,
+                                 vi32 corner_x, vi32 corner_y)
+{
+    const vi32 value[12] = {x1 - x0,       y1 - y0,       x2 - x1,       y2 - y1,
+                            x0 - x2,       y0 - y2,       corner_x - x0, corner_y - y0,
+                            corner_x - x1, corner_y - y1, corner_x - x2, corner_y - y2};
+    vi32 magnitude = splat32(0);
+    for (int i = 0; i < 12; i++) magnitude |= value[i] ^ (value[i] >> 31);
+    return lane_bits(magnitude >= (1 << 14)) == 0;
+}
+
+/* edge_at_centres in 32-bit lanes, for a step that small_near_box allows:
+ * four masks. */
+LANES_INLINE void edge_at_centres32(vi32 xi, vi32 yi, vi32 xj, vi32 yj, vi32 bias, vi32 sample_x,
+                                    vi32 sample_y, vi32 inside[4])
+{
+    const vi32 dx = xj - xi, dy = yj - yi;
+    const vi32 column0 = dy * (sample_x - xi);
+    const vi32 column1 = column0 + (dy << LUZ_SUBPIXEL_BITS);
+    const vi32 row0 = dx * (sample_y - yi) + bias;
+    const vi32 row1 = row0 + (dx << LUZ_SUBPIXEL_BITS);
+    inside[0] &= column0 >= row0;
+    inside[1] &= column1 >= row0;
+    inside[2] &= column0 >= row1;
+    inside[3] &= column1 >= row1;
+}
+
 /* How many triangles ahead the loop asks for the vertices it will gather.
  * A mesh's triangles in file order walk its vertices mostly forward, so
  * the corners of the first and last triangles of a step four AVX-512
@@ -181,36 +217,55 @@ LANES_INLINE void screen_step(const uint32_t *triangle_indices, uint32_t t, int 
      * in the box. */
     const vi32 corner_x = min_x << LUZ_SUBPIXEL_BITS, corner_y = min_y << LUZ_SUBPIXEL_BITS;
 
-    /* In 64-bit lanes, half a step at a time: step 3, the doubled area,
-     * as luz_setup_front_facing (differences below 2^25: each product
-     * exact in 64 bits; area > 0 where -area is negative), and the edges
-     * at the box's centres. */
     const vi32 bias[3] = {fill_bias(x1, y1, x2, y2), fill_bias(x2, y2, x0, y0),
                           fill_bias(x0, y0, x1, y1)};
-    const unsigned second_column_bits = lane_bits(second_column);
-    const unsigned second_row_bits = lane_bits(second_row);
     unsigned front = 0, covers = 0;
-    for (int h = 0; h < 2; h++) {
-        const vi64 wx0 = widen_half(x0, h), wy0 = widen_half(y0, h);
-        const vi64 wx1 = widen_half(x1, h), wy1 = widen_half(y1, h);
-        const vi64 wx2 = widen_half(x2, h), wy2 = widen_half(y2, h);
-        const vi64 area = multiply_wide(wy1 - wy0, wx2 - wx0) - multiply_wide(wx1 - wx0, wy2 - wy0);
-        front |= negative_bits64(-area) << (h * HALF);
-        const unsigned column_bits = second_column_bits >> (h * HALF);
-        const unsigned row_bits = second_row_bits >> (h * HALF);
+    if (small_near_box(x0, y0, x1, y1, x2, y2, corner_x, corner_y)) {
+        /* In 32-bit lanes, the whole step at once: every product below
+         * 2^29 (small_near_box), so each is exact and the decisions are
+         * those of the 64-bit lanes below. */
+        front = lane_bits((y1 - y0) * (x2 - x0) - (x1 - x0) * (y2 - y0) > 0);
         for (int s = 0; s < samples; s++) {
             const luz_sample_offset offset = luz_sample_offset_of(samples, s);
-            const vi64 wsample_x = widen_half(corner_x + offset.x, h);
-            const vi64 wsample_y = widen_half(corner_y + offset.y, h);
-            unsigned inside[4] = {~0u, column_bits, row_bits, column_bits & row_bits};
-            edge_at_centres(wx1, wy1, wx2, wy2, widen_half(bias[0], h), wsample_x, wsample_y,
-                            inside);   /* edge 0: 1 -> 2 */
-            edge_at_centres(wx2, wy2, wx0, wy0, widen_half(bias[1], h), wsample_x, wsample_y,
-                            inside);   /* edge 1: 2 -> 0 */
-            edge_at_centres(wx0, wy0, wx1, wy1, widen_half(bias[2], h), wsample_x, wsample_y,
-                            inside);   /* edge 2: 0 -> 1 */
-            covers |= ((inside[0] | inside[1] | inside[2] | inside[3]) & ((1u << HALF) - 1))
-                      << (h * HALF);
+            const vi32 sample_x = corner_x + offset.x, sample_y = corner_y + offset.y;
+            vi32 inside[4] = {splat32(-1), second_column, second_row,
+                              second_column & second_row};
+            edge_at_centres32(x1, y1, x2, y2, bias[0], sample_x, sample_y, inside);   /* edge 0 */
+            edge_at_centres32(x2, y2, x0, y0, bias[1], sample_x, sample_y, inside);   /* edge 1 */
+            edge_at_centres32(x0, y0, x1, y1, bias[2], sample_x, sample_y, inside);   /* edge 2 */
+            covers |= lane_bits(inside[0] | inside[1] | inside[2] | inside[3]);
+        }
+    } else {
+        /* In 64-bit lanes, half a step at a time: step 3, the doubled
+         * area, as luz_setup_front_facing (differences below 2^25: each
+         * product exact in 64 bits; area > 0 where -area is negative), and
+         * the edges at the box's centres. */
+        const unsigned second_column_bits = lane_bits(second_column);
+        const unsigned second_row_bits = lane_bits(second_row);
+        for (int h = 0; h < 2; h++) {
+            const vi64 wx0 = widen_half(x0, h), wy0 = widen_half(y0, h);
+            const vi64 wx1 = widen_half(x1, h), wy1 = widen_half(y1, h);
+            const vi64 wx2 = widen_half(x2, h), wy2 = widen_half(y2, h);
+            const vi64 area =
+                multiply_wide(wy1 - wy0, wx2 - wx0) - multiply_wide(wx1 - wx0, wy2 - wy0);
+            front |= negative_bits64(-area) << (h * HALF);
+            const unsigned column_bits = second_column_bits >> (h * HALF);
+            const unsigned row_bits = second_row_bits >> (h * HALF);
+            for (int s = 0; s < samples; s++) {
+                const luz_sample_offset offset = luz_sample_offset_of(samples, s);
+                const vi64 wsample_x = widen_half(corner_x + offset.x, h);
+                const vi64 wsample_y = widen_half(corner_y + offset.y, h);
+                unsigned inside[4] = {~0u, column_bits, row_bits, column_bits & row_bits};
+                edge_at_centres(wx1, wy1, wx2, wy2, widen_half(bias[0], h), wsample_x,
+                                wsample_y, inside);   /* edge 0: 1 -> 2 */
+                edge_at_centres(wx2, wy2, wx0, wy0, widen_half(bias[1], h), wsample_x,
+                                wsample_y, inside);   /* edge 1: 2 -> 0 */
+                edge_at_centres(wx0, wy0, wx1, wy1, widen_half(bias[2], h), wsample_x,
+                                wsample_y, inside);   /* edge 2: 0 -> 1 */
+                covers |= ((inside[0] | inside[1] | inside[2] | inside[3]) &
+                           ((1u << HALF) - 1))
+                          << (h * HALF);
+            }
         }
     }
 
