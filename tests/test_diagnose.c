@@ -352,8 +352,11 @@ static void expect_scaled(const char *name, const char *term, double k, const ch
      * GL frame, within that GPU's rounding, is its image. */
     if (k == 0.0 && strcmp(term, "diffuse") == 0)
         assert_true(line_has(r.out, "mistake: ", "--bug diffuse-reversed's"));
-    else
+    else {
         assert_true(line_has(r.out, "mistake: ", "none of luz-render --bug's"));
+        /* no mistake named: the term lines are the whole story */
+        assert_null(strstr(r.out, "\nreading: "));
+    }
     run_free(&r);
 }
 
@@ -571,6 +574,9 @@ static void expect_mistake(const char *bug, const char *const *setting, const ch
         fail_msg("%s:\n%s", bug, r.out);
     snprintf(words, sizeof words, "wrong: %s; the likely mistake is %s: ", subject, bug);
     if (!line_has(r.out, "verdict: ", words)) fail_msg("%s:\n%s", bug, r.out);
+    /* the term lines above were read against the right image: say so */
+    if (!line_has(r.out, "reading: ", "this mistake's effect, not a second error"))
+        fail_msg("%s: no reading line\n%s", bug, r.out);
     run_free(&r);
 }
 

@@ -1117,6 +1117,14 @@ static int diagnose_fitted(diagnosis *d, FILE *out, luz_error *error)
                     luz_bug_description(mistake.bug));
         else
             fprintf(out, "mistake: none of luz-render --bug's (--bug help) draws this frame\n");
+        /* The weight and residual lines were printed before the search and
+         * may name a term (lod-off-by-one reads as "spot is wrong there"):
+         * say how to read them, so that a student does not chase two
+         * errors where there is one. */
+        if (mistake.explains)
+            fprintf(out, "reading: the term, residual and outline lines above compare the frame "
+                         "with luz's right image: what they call wrong is this mistake's effect, "
+                         "not a second error\n");
     }
 
     fprintf(out, "verdict: ");
