@@ -220,6 +220,80 @@ static void assert_png_is_pattern(const luz_framebuffer *framebuffer, const char
     assert_int_equal(unlink(path), 0);
 }
 
+
+/* ---- colour only ---------------------------------------------------------------- */
+
+/* The default scene at t = 2.5 (no textures) drawn by renderer into
+ * framebuffer with the options given. */
+static void draw_with(luz_renderer *renderer, luz_framebuffer *framebuffer,
+                      const luz_render_options *options)
+{
+    luz_error error = {{0}};
+    luz_scene scene = luz_scene_defaults();
+    scene.time_seconds = 2.5;
+    luz_frame frame = {0};
+    assert_int_equal(luz_scene_build_frame(test_lab(), &scene, NULL, 0,
+                                           (float)framebuffer->width / (float)framebuffer->height,
+                                           &frame, NULL),
+                     0);
+    assert_int_equal(luz_renderer_draw(renderer, &frame, framebuffer, options, &error), 0);
+    luz_frame_free(&frame);
+}
+
+/* luz_render_options.colour_only: the colour is the image a plain draw
+ * gives, byte for byte, and the framebuffer's depth and visibility keep
+ * what they held (0.25 and 7 here; a plain draw puts the cubes' ids and
+ * depths there, which the first loop checks, so the test sees a
+ * difference). Twice with one renderer of two threads: first at 160x90,
+ * then at 333x75 (a wider band, so its band buffers grow, and a last
+ * band of 11 rows), where a band buffer too small or a band written into
+ * another's rows would show in the image (or to AddressSanitizer). A
+ * probe reads depth and visibility after the frame, so with one the
+ * option is ignored and they hold the frame's. */
+static void test_colour_only_leaves_depth_and_visibility(void **state)
+{
+    (void)state;
+    static const int sizes[2][2] = {{SCENE_WIDTH, SCENE_HEIGHT}, {333, 75}};
+    luz_error error = {{0}};
+    luz_renderer *renderer = luz_renderer_create(&(luz_renderer_desc){.thread_count = 2}, &error);
+    assert_non_null(renderer);
+    for (int s = 0; s < 2; s++) {
+        const int width = sizes[s][0], height = sizes[s][1];
+        const size_t pixels = (size_t)width * height;
+        luz_framebuffer *expected = luz_framebuffer_create(width, height, &error);
+        luz_framebuffer *framebuffer = luz_framebuffer_create(width, height, &error);
+        assert_non_null(expected);
+        assert_non_null(framebuffer);
+        draw_with(renderer, expected, NULL);
+        size_t covered = 0;
+        for (size_t p = 0; p < pixels; p++)
+            if (expected->visibility[p] != 0 && expected->depth[p] < 1.0f) covered++;
+        assert_true(covered > pixels / 20);
+
+        for (size_t p = 0; p < pixels; p++) {
+            framebuffer->depth[p] = 0.25f;
+            framebuffer->visibility[p] = 7;
+        }
+        draw_with(renderer, framebuffer, &(luz_render_options){.colour_only = true});
+        assert_memory_equal(framebuffer->colour, expected->colour, pixels * 4);
+        for (size_t p = 0; p < pixels; p++) {
+            assert_true(framebuffer->depth[p] == 0.25f);
+            assert_int_equal(framebuffer->visibility[p], 7);
+        }
+
+        luz_pixel_probe probe = {.x = width / 2, .y = height / 2};
+        draw_with(renderer, framebuffer,
+                  &(luz_render_options){.colour_only = true, .probe = &probe});
+        assert_memory_equal(framebuffer->colour, expected->colour, pixels * 4);
+        assert_memory_equal(framebuffer->visibility, expected->visibility,
+                            pixels * sizeof *expected->visibility);
+        assert_memory_equal(framebuffer->depth, expected->depth, pixels * sizeof *expected->depth);
+        luz_framebuffer_destroy(framebuffer);
+        luz_framebuffer_destroy(expected);
+    }
+    luz_renderer_destroy(renderer);
+}
+
 /* The same pattern, stored RGBA in one framebuffer and BGRA (bytes 0 and 2
  * swapped) in another, gives the same PNG, the pattern in RGBA; writing
  * converts a copy, so the BGRA framebuffer is unchanged afterwards; and
@@ -335,6 +409,7 @@ int main(void)
         cmocka_unit_test(test_create_gives_own_cleared_memory),
         cmocka_unit_test(test_clear_rows_clears_depth_and_visibility_only),
         cmocka_unit_test(test_lent_colour_memory),
+        cmocka_unit_test(test_colour_only_leaves_depth_and_visibility),
         cmocka_unit_test(test_png_of_bgra_framebuffer_reads_back_as_rgba),
         cmocka_unit_test(test_new_png_never_replaces_a_file),
     };

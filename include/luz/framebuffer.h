@@ -16,7 +16,9 @@
  * A frame of four samples a pixel (luz_frame.samples) keeps each sample's
  * depth and winner in the renderer's own buffers and writes only colour
  * here, the resolved pixels: depth and visibility are then left as they
- * were.
+ * were. So does a frame drawn with luz_render_options.colour_only, which
+ * keeps each band's depth and visibility in the renderer's own small
+ * buffers (luz-render and the viewer draw so).
  */
 #ifndef LUZ_FRAMEBUFFER_H
 #define LUZ_FRAMEBUFFER_H

@@ -131,6 +131,15 @@ typedef struct luz_render_options {
     luz_bug bug;                       /* LUZ_BUG_NONE, or one classic mistake
                                           put in (luz/bug.h); the probe's
                                           numbers follow it */
+    bool colour_only;                  /* true: only the framebuffer's colour
+                                          is written; each band's depth and
+                                          visibility are kept in a small
+                                          buffer of the drawing thread's,
+                                          which stays in its cache, and the
+                                          framebuffer's are left as they were
+                                          (the same image, faster). Ignored
+                                          with a probe, which reads them
+                                          after the frame */
 } luz_render_options;
 
 /* Draws the frame into the framebuffer (cleared first: every pixel is

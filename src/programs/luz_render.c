@@ -158,6 +158,9 @@ static int render_at(render_context *context, luz_renderer *renderer, double tim
     if (context->has_layer && !after)
         render.hook = &fill_layer;
     render.probe = probe;
+    /* Only colour is written out: depth and visibility stay in the
+     * threads' band buffers. */
+    render.colour_only = true;
     if (luz_renderer_draw(renderer, &context->frame, context->framebuffer, &render, error) != 0)
         return -1;
     if (after) {

@@ -819,6 +819,7 @@ static int draw_frame(viewer *v, luz_error *error)
     render.triangle_limit = v->step_limit;
     render.hook = screenshot ? NULL : &fill_layer;
     render.stats = &v->stats;
+    render.colour_only = true;   /* the window shows colour alone */
     /* The marked pixel, followed as the scene moves; while paused, its
      * story stays as it was, unless a click asks again. A pixel that a
      * smaller window has left is forgotten. */
