@@ -33,8 +33,10 @@
  * fixed-point range is proven for sides up to LUZ_MAX_DIMENSION (see
  * src/renderer/setup.c), and LUZ_MAX_PIXELS bounds the memory: 12 bytes a
  * pixel here (colour, depth and visibility, 768 MiB at the limit), and in
- * the renderer 48 more for four samples (four such planes) and 4 a sample
- * for the overdraw view. */
+ * the renderer 36 more for four samples (each sample's depth and winner,
+ * a first winner), 48 more again for a teaching view at four samples (a
+ * colour, depth and winner a sample) and 4 a sample for the overdraw
+ * view. */
 #define LUZ_MAX_DIMENSION 16384
 #define LUZ_MAX_PIXELS (64 * 1024 * 1024)
 

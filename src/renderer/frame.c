@@ -81,9 +81,11 @@ struct luz_renderer {
                                        the overdraw view only; allocated when
                                        first asked */
     size_t overdraw_capacity;
-    luz_sample_buffers samples;     /* four samples' planes, allocated when a
-                                       frame first asks for them */
-    size_t sample_capacity;         /* pixels each plane holds */
+    luz_sample_buffers samples;     /* four samples' depth and winners,
+                                       allocated when a frame first asks
+                                       for them */
+    size_t sample_capacity;         /* pixels they hold */
+    size_t plane_capacity;          /* pixels the views' planes hold */
     luz_sample_band *sample_bands;  /* one per thread: a band's mixed pixels */
     size_t sample_band_capacity;    /* pixels each holds room for */
     int sample_band_count;          /* the threads' */
@@ -155,7 +157,8 @@ static uint64_t raster_band(const frame_job *job, luz_framebuffer *framebuffer, 
         if (job->uniforms.bug == LUZ_BUG_NO_DEPTH_TEST) {   /* luz/bug.h */
             for (int s = 0; s < (samples ? samples->samples : 1); s++)
                 tested += luz_raster_triangle_always(
-                    triangle, id, samples ? &samples->plane[s] : framebuffer,
+                    triangle, id, samples ? samples->visibility + s : framebuffer->visibility,
+                    framebuffer->width, samples ? LUZ_MAX_SAMPLES : 1,
                     luz_sample_offset_of(samples ? samples->samples : 1, s), first_row, end_row,
                     overdraw ? overdraw + (size_t)s * pixels : NULL);
         } else if (samples) {
@@ -208,9 +211,9 @@ static uint64_t shade_and_resolve_samples(const frame_job *job, int first_row, i
     if (uniforms->show == LUZ_VIEW_COLOR || uniforms->show == LUZ_VIEW_BANDS) {
         luz_sample_band *band = &job->renderer->sample_bands[worker_index];
         luz_samples_sort_winners(samples, first_row, end_row, band);
-        /* The first winners, in sample 0's plane now, into the image. */
+        /* The first winners into the image. */
         luz_framebuffer first_winners = *framebuffer;
-        first_winners.visibility = samples->plane[0].visibility;
+        first_winners.visibility = samples->first_winner;
         shaded += shade_band(job, &first_winners, first_row, end_row, NULL, worker_index);
         const bool reference = job->renderer->reference || uniforms->show == LUZ_VIEW_BANDS ||
                                uniforms->bug != LUZ_BUG_NONE;
@@ -224,6 +227,7 @@ static uint64_t shade_and_resolve_samples(const frame_job *job, int first_row, i
         return shaded;
     }
     const size_t pixels = (size_t)framebuffer->width * (size_t)framebuffer->height;
+    luz_samples_split_rows(samples, first_row, end_row);
     for (int k = 0; k < samples->samples; k++)
         shaded += shade_band(job, &samples->plane[k], first_row, end_row,
                              job->overdraw ? job->overdraw + (size_t)k * pixels : NULL,
@@ -274,8 +278,7 @@ static void band_job(void *context, int band_index, int worker_index)
      * the band, the clear colour where no triangle wins, so each colour
      * byte is written once. */
     if (samples)
-        for (int k = 0; k < sample_count; k++)
-            luz_framebuffer_clear_rows(&samples->plane[k], first_row, end_row);
+        luz_samples_clear_rows(samples, first_row, end_row);
     else
         luz_framebuffer_clear_rows(framebuffer, first_row, end_row);
 
@@ -378,6 +381,9 @@ void luz_renderer_destroy(luz_renderer *renderer)
     luz_geometry_destroy(renderer->geometry);
     free(renderer->bands);
     free(renderer->overdraw);
+    free(renderer->samples.depth);
+    free(renderer->samples.visibility);
+    free(renderer->samples.first_winner);
     for (int k = 0; k < LUZ_MAX_SAMPLES; k++) {
         free(renderer->samples.plane[k].colour);
         free(renderer->samples.plane[k].depth);
@@ -422,8 +428,9 @@ static int prepare_bands(luz_renderer *renderer, int band_count, luz_error *erro
     return 0;
 }
 
-/* The planes of a frame of more than one sample a pixel (luz_sample_buffers),
- * allocated when a frame first asks for them and kept (grown as needed). */
+/* The buffers of a frame of more than one sample a pixel
+ * (luz_sample_buffers), allocated when a frame first asks for them and
+ * kept (grown as needed); the views' planes only when a view asks. */
 static int prepare_samples(luz_renderer *renderer, frame_job *job, luz_error *error)
 {
     if (job->uniforms.samples <= 1) return 0;
@@ -432,6 +439,20 @@ static int prepare_samples(luz_renderer *renderer, frame_job *job, luz_error *er
     luz_sample_buffers *samples = &renderer->samples;
     if (pixels > renderer->sample_capacity) {
         renderer->sample_capacity = 0;
+        free(samples->depth);
+        free(samples->visibility);
+        free(samples->first_winner);
+        samples->depth = malloc(pixels * LUZ_MAX_SAMPLES * sizeof *samples->depth);
+        samples->visibility = malloc(pixels * LUZ_MAX_SAMPLES * sizeof *samples->visibility);
+        samples->first_winner = malloc(pixels * sizeof *samples->first_winner);
+        if (!samples->depth || !samples->visibility || !samples->first_winner)
+            return luz_error_set(error, "out of memory for %d samples a pixel at %dx%d",
+                                 job->uniforms.samples, framebuffer->width, framebuffer->height);
+        renderer->sample_capacity = pixels;
+    }
+    const bool view = job->uniforms.show != LUZ_VIEW_COLOR && job->uniforms.show != LUZ_VIEW_BANDS;
+    if (view && pixels > renderer->plane_capacity) {
+        renderer->plane_capacity = 0;
         for (int k = 0; k < LUZ_MAX_SAMPLES; k++) {
             luz_framebuffer *plane = &samples->plane[k];
             free(plane->colour);
@@ -445,7 +466,7 @@ static int prepare_samples(luz_renderer *renderer, frame_job *job, luz_error *er
                                      job->uniforms.samples, framebuffer->width,
                                      framebuffer->height);
         }
-        renderer->sample_capacity = pixels;
+        renderer->plane_capacity = pixels;
     }
     /* A band's mixed pixels: at most each of its pixels, with at most
      * three other winners each. */
@@ -473,6 +494,8 @@ static int prepare_samples(luz_renderer *renderer, frame_job *job, luz_error *er
         renderer->sample_band_capacity = band_pixels;
     }
     samples->samples = job->uniforms.samples;
+    samples->width = framebuffer->width;
+    samples->height = framebuffer->height;
     for (int k = 0; k < LUZ_MAX_SAMPLES; k++) {
         luz_framebuffer *plane = &samples->plane[k];
         plane->width = framebuffer->width;

@@ -620,27 +620,49 @@ uint64_t luz_raster_triangle_counting(const luz_triangle *triangle, uint32_t tri
 
 /* luz/bug.h's no-depth-test: every sample at offset `sample` (one
  * sample: the centre) of rows [first_row, end_row) inside the triangle
- * passes; visibility takes triangle_id, depth is not written; overdraw,
- * if not NULL, counts. Returns the tests made. */
+ * passes; its winner, visibility[(y * width + x) * stride] (stride 1 for
+ * a framebuffer's, the samples a pixel for luz_sample_buffers' from its
+ * sample's entry), takes triangle_id, depth is not written; overdraw,
+ * if not NULL, counts (overdraw[y * width + x]). Returns the tests made. */
 uint64_t luz_raster_triangle_always(const luz_triangle *triangle, uint32_t triangle_id,
-                                    luz_framebuffer *plane, luz_sample_offset sample,
-                                    int first_row, int end_row, uint32_t *overdraw);
+                                    uint32_t *visibility, int width, int stride,
+                                    luz_sample_offset sample, int first_row, int end_row,
+                                    uint32_t *overdraw);
 
 /* ---- four samples: the buffers (frame.c), raster, resolve (resolve.c) --- */
 
 /* What a frame of more than one sample a pixel keeps beside the
- * framebuffer. plane[k] is sample k of every pixel as a one-sample
- * framebuffer of the image's size: its depth and visibility are sample
- * k's depth and winner (raster); its colour is sample k's colour where
- * the teaching views and the reference path shade every plane. */
+ * framebuffer. A pixel's samples lie side by side: sample k of pixel
+ * i = y * width + x has its depth at depth[i * LUZ_MAX_SAMPLES + k] and
+ * its winner at visibility[i * LUZ_MAX_SAMPLES + k], so that one vector holds the
+ * samples of several neighbouring pixels (raster.c), and a pixel's four
+ * are one 16-byte load (resolve.c). first_winner is a one-sample
+ * visibility buffer of each pixel's first winner, which
+ * luz_samples_sort_winners writes and the fragment stage shades. The
+ * planes are for the teaching views alone, which shade every sample as a
+ * one-sample framebuffer of the image's size: plane[k]'s depth and
+ * visibility are sample k's (copied out of the side-by-side arrays by
+ * luz_samples_split_rows), its colour sample k's colour; they are
+ * allocated only when a view asks. */
 typedef struct luz_sample_buffers {
     int samples;                               /* 1 (none of this is used) or 4 */
-    luz_framebuffer plane[LUZ_MAX_SAMPLES];
+    int width, height;                         /* the framebuffer's */
+    float *depth;                              /* width * height * 4 */
+    uint32_t *visibility;                      /* width * height * 4 */
+    uint32_t *first_winner;                    /* width * height */
+    luz_framebuffer plane[LUZ_MAX_SAMPLES];    /* the views' */
 } luz_sample_buffers;
 
-/* Covers every sample of rows [first_row, end_row) inside the triangle,
- * each into its plane of buffers (sample k at luz_sample_offset_of(
- * buffers->samples, k)): depth interpolated at the sample, LESS, the
+/* Depth 1.0 and winner 0 for every sample of rows [first_row, end_row). */
+void luz_samples_clear_rows(luz_sample_buffers *buffers, int first_row, int end_row);
+
+/* The views' planes of rows [first_row, end_row): plane[k]'s depth and
+ * visibility become sample k's. */
+void luz_samples_split_rows(luz_sample_buffers *buffers, int first_row, int end_row);
+
+/* Covers every sample of rows [first_row, end_row) inside the triangle
+ * (sample k at luz_sample_offset_of(buffers->samples, k)) into buffers'
+ * depth and visibility: depth interpolated at the sample, LESS, the
  * winner's id; overdraw, if not NULL, counts each plane's depth tests
  * (plane k's count of pixel i at overdraw[k * width * height + i]).
  * Returns the tests made. */
@@ -684,12 +706,12 @@ typedef struct luz_sample_band {
 } luz_sample_band;
 
 /* The fragment stage's work for rows [first_row, end_row), from the
- * planes' winners: band gets the mixed pixels (whose four samples were
+ * samples' winners: band gets the mixed pixels (whose four samples were
  * not all won by one triangle, or all by none) and their other winners
  * than the first (each triangle once per pixel, in the order of the
- * samples it first won), and sample 0's plane becomes each pixel's first
- * winner (that of its first sample not background; 0 if all are): the
- * fragment stage shades that plane as a one-sample visibility buffer. */
+ * samples it first won), and first_winner each pixel's first winner
+ * (that of its first sample not background; 0 if all are): the fragment
+ * stage shades it as a one-sample visibility buffer. */
 void luz_samples_sort_winners(luz_sample_buffers *buffers, int first_row, int end_row,
                               luz_sample_band *band);
 

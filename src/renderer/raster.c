@@ -10,8 +10,8 @@
  *      With four samples a pixel (SCENE.md, "Anti-aliasing"), the same for
  *      each sample point: luz_raster_triangle_samples covers sample k of
  *      every pixel, (x + sx, y + sy), with the depth interpolated there,
- *      into that sample's plane of depth and ids (luz_sample_buffers).
- *      Same arithmetic, another offset.
+ *      into that sample's depth and id beside the pixel's other samples
+ *      (luz_sample_buffers). Same arithmetic, another offset.
  *
  * Coverage: pixel (x, y) samples its centre (x + 0.5, y + 0.5), in fixed
  * point X = 256 x + 128. Along a row an edge function is linear in x,
@@ -105,9 +105,9 @@ static LUZ_CLONES void test_span(luz_plane depth, float reference_x, float row_d
 {
     for (int x = first; x <= last; x++) {
         float z = luz_raster_sample_depth(depth, reference_x, row_depth, x, offset_x);
-        if (z < depth_row[x]) {    /* GL_LESS, per sample */
-            depth_row[x] = z;
-            visibility_row[x] = triangle_id;
+        if (z < depth_row[x * LUZ_MAX_SAMPLES]) {    /* GL_LESS, per sample */
+            depth_row[x * LUZ_MAX_SAMPLES] = z;
+            visibility_row[x * LUZ_MAX_SAMPLES] = triangle_id;
         }
     }
 }
@@ -132,8 +132,8 @@ uint64_t luz_raster_triangle_samples(const luz_triangle *triangle, uint32_t tria
     int y_end = triangle->max_y + 1 < end_row ? triangle->max_y + 1 : end_row;
     const luz_plane depth = triangle->depth;
     const int samples = buffers->samples;
-    const int width = buffers->plane[0].width;
-    const size_t pixels = (size_t)width * (size_t)buffers->plane[0].height;
+    const int width = buffers->width;
+    const size_t pixels = (size_t)width * (size_t)buffers->height;
     uint64_t tests = 0;
 
     /* Each sample's offset in pixels, exact in a float (k / 256). */
@@ -153,10 +153,10 @@ uint64_t luz_raster_triangle_samples(const luz_triangle *triangle, uint32_t tria
                 if (first > last) continue;
                 const float row_depth =
                     luz_raster_sample_row_depth(depth, triangle->reference_y, y, offset_y[s]);
-                luz_framebuffer *plane = &buffers->plane[s];
+                const size_t row = (size_t)y * width * LUZ_MAX_SAMPLES + (size_t)s;
                 test_span(depth, triangle->reference_x, row_depth, offset_x[s], (int)first,
-                          (int)last, plane->depth + (size_t)y * width,
-                          plane->visibility + (size_t)y * width, triangle_id);
+                          (int)last, buffers->depth + row, buffers->visibility + row,
+                          triangle_id);
                 tests += (uint64_t)(last - first + 1);
                 if (overdraw != NULL) {
                     uint32_t *count_row = overdraw + (size_t)s * pixels + (size_t)y * width;
@@ -193,12 +193,12 @@ uint64_t luz_raster_triangle_samples(const luz_triangle *triangle, uint32_t tria
                 if (e[0] + at_sample[s][0] < 0 || e[1] + at_sample[s][1] < 0 ||
                     e[2] + at_sample[s][2] < 0)
                     continue;
-                luz_framebuffer *plane = &buffers->plane[s];
+                const size_t at = (row + (size_t)x) * LUZ_MAX_SAMPLES + (size_t)s;
                 const float z = luz_raster_sample_depth(depth, triangle->reference_x,
                                                         row_depth[s], x, offset_x[s]);
-                if (z < plane->depth[row + (size_t)x]) {    /* GL_LESS, per sample */
-                    plane->depth[row + (size_t)x] = z;
-                    plane->visibility[row + (size_t)x] = triangle_id;
+                if (z < buffers->depth[at]) {    /* GL_LESS, per sample */
+                    buffers->depth[at] = z;
+                    buffers->visibility[at] = triangle_id;
                 }
                 tests++;
                 if (overdraw != NULL) overdraw[(size_t)s * pixels + row + (size_t)x]++;
@@ -214,8 +214,9 @@ uint64_t luz_raster_triangle_samples(const luz_triangle *triangle, uint32_t tria
  * off: the visibility buffer takes the triangle's id and the depth buffer
  * is left as it is (OpenGL writes no depth with the test off). */
 uint64_t luz_raster_triangle_always(const luz_triangle *triangle, uint32_t triangle_id,
-                                    luz_framebuffer *plane, luz_sample_offset sample,
-                                    int first_row, int end_row, uint32_t *overdraw)
+                                    uint32_t *visibility, int width, int stride,
+                                    luz_sample_offset sample, int first_row, int end_row,
+                                    uint32_t *overdraw)
 {
     int y_begin = triangle->min_y > first_row ? triangle->min_y : first_row;
     int y_end = triangle->max_y + 1 < end_row ? triangle->max_y + 1 : end_row;
@@ -224,10 +225,10 @@ uint64_t luz_raster_triangle_always(const luz_triangle *triangle, uint32_t trian
     for (int y = y_begin; y < y_end; y++) {
         int64_t first, last;
         luz_raster_row_span_at(triangle, y, small, sample, &first, &last);
-        uint32_t *visibility_row = plane->visibility + (size_t)y * plane->width;
         for (int64_t x = first; x <= last; x++) {
-            visibility_row[x] = triangle_id;
-            if (overdraw != NULL) overdraw[(size_t)y * plane->width + (size_t)x]++;
+            const size_t pixel = (size_t)y * (size_t)width + (size_t)x;
+            visibility[pixel * (size_t)stride] = triangle_id;
+            if (overdraw != NULL) overdraw[pixel]++;
         }
         if (first <= last) tests += (uint64_t)(last - first + 1);
     }

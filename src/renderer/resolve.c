@@ -2,12 +2,12 @@
  * resolve.c: four samples a pixel, from the samples' winners to one colour
  * (SCENE.md, "Anti-aliasing: four samples a pixel").
  *
- * In:  for a band of rows, each sample's winner and depth (the planes of
- *      luz_sample_buffers, written by raster.c's luz_raster_triangle_samples);
+ * In:  for a band of rows, each sample's winner (luz_sample_buffers' side
+ *      by side ids, written by raster.c's luz_raster_triangle_samples);
  *      after the fragment stage, the colour of each (pixel, winning
  *      triangle).
  * Out: first (luz_samples_sort_winners), the fragment stage's work: the
- *      framebuffer's visibility holds each pixel's first winner, and a
+ *      buffers' first_winner holds each pixel's first winner, and a
  *      list the mixed pixels (those whose samples differ) with their
  *      other winners, each (pixel, triangle) once; then
  *      (luz_samples_resolve_winners) the framebuffer's colour, each mixed
@@ -42,22 +42,28 @@
 #define CHUNK 16
 
 /* The x of row's pixels whose four samples differ, in order, into mixed_x;
- * returns how many. Most chunks of a row agree (inside a surface, or the
- * background) and are passed over at a few instructions each: compiled
- * for wider vectors too (LUZ_CLONES). */
-static LUZ_CLONES int mixed_pixels_of_row(const uint32_t *s0, const uint32_t *s1,
-                                          const uint32_t *s2, const uint32_t *s3, int width,
+ * returns how many. ids holds the row's winners, a pixel's four side by
+ * side; each pixel's first winner (sample 0's: corrected for the mixed
+ * pixels by the caller) goes into first. Most chunks of a row agree
+ * (inside a surface, or the background) and are passed over at a few
+ * instructions each: compiled for wider vectors too (LUZ_CLONES). */
+static LUZ_CLONES int mixed_pixels_of_row(const uint32_t *ids, int width, uint32_t *first,
                                           uint16_t *mixed_x)
 {
     int count = 0;
     for (int x0 = 0; x0 < width; x0 += CHUNK) {
         const int end = width - x0 < CHUNK ? width : x0 + CHUNK;
         uint32_t differ = 0;
-        for (int x = x0; x < end; x++)
-            differ |= (s0[x] ^ s1[x]) | (s0[x] ^ s2[x]) | (s0[x] ^ s3[x]);
+        for (int x = x0; x < end; x++) {
+            const uint32_t *id = ids + (size_t)x * LUZ_MAX_SAMPLES;
+            differ |= (id[0] ^ id[1]) | (id[0] ^ id[2]) | (id[0] ^ id[3]);
+            first[x] = id[0];
+        }
         if (differ == 0) continue;
-        for (int x = x0; x < end; x++)
-            if (s0[x] != s1[x] || s0[x] != s2[x] || s0[x] != s3[x]) mixed_x[count++] = (uint16_t)x;
+        for (int x = x0; x < end; x++) {
+            const uint32_t *id = ids + (size_t)x * LUZ_MAX_SAMPLES;
+            if (id[0] != id[1] || id[0] != id[2] || id[0] != id[3]) mixed_x[count++] = (uint16_t)x;
+        }
     }
     return count;
 }
@@ -65,17 +71,17 @@ static LUZ_CLONES int mixed_pixels_of_row(const uint32_t *s0, const uint32_t *s1
 void luz_samples_sort_winners(luz_sample_buffers *buffers, int first_row, int end_row,
                               luz_sample_band *band)
 {
-    const int width = buffers->plane[0].width;
+    const int width = buffers->width;
     band->mixed_count = 0;
     band->extra_count = 0;
     for (int y = first_row; y < end_row; y++) {
         const size_t row = (size_t)y * width;
-        uint32_t *s[4] = {buffers->plane[0].visibility + row, buffers->plane[1].visibility + row,
-                          buffers->plane[2].visibility + row, buffers->plane[3].visibility + row};
-        const int mixed = mixed_pixels_of_row(s[0], s[1], s[2], s[3], width, band->row_mixed);
+        const uint32_t *ids = buffers->visibility + row * LUZ_MAX_SAMPLES;
+        uint32_t *first = buffers->first_winner + row;
+        const int mixed = mixed_pixels_of_row(ids, width, first, band->row_mixed);
         for (int m = 0; m < mixed; m++) {
             const int x = band->row_mixed[m];
-            const uint32_t id[4] = {s[0][x], s[1][x], s[2][x], s[3][x]};
+            const uint32_t *id = ids + (size_t)x * LUZ_MAX_SAMPLES;
             /* The first sample a triangle won (0 if none did). */
             const uint32_t winner = id[0] ? id[0] : id[1] ? id[1] : id[2] ? id[2] : id[3];
             luz_mixed_pixel *pixel = &band->mixed[band->mixed_count++];
@@ -100,9 +106,7 @@ void luz_samples_sort_winners(luz_sample_buffers *buffers, int first_row, int en
                     }
                 }
             }
-            /* Sample 0's plane becomes the first winners (the fragment
-             * stage reads it as a one-sample visibility buffer). */
-            s[0][x] = winner;
+            first[x] = winner;
         }
     }
 }
@@ -139,4 +143,28 @@ void luz_samples_resolve_planes(const luz_sample_buffers *buffers, luz_framebuff
     const uint8_t *c2 = buffers->plane[2].colour, *c3 = buffers->plane[3].colour;
     for (size_t i = begin; i < end; i++)
         framebuffer->colour[i] = luz_samples_resolve_channel(c0[i], c1[i], c2[i], c3[i]);
+}
+
+void luz_samples_clear_rows(luz_sample_buffers *buffers, int first_row, int end_row)
+{
+    /* The side-by-side arrays are a framebuffer's depth and visibility
+     * LUZ_MAX_SAMPLES times as wide: cleared the same way. */
+    luz_framebuffer rows = {.width = buffers->width * LUZ_MAX_SAMPLES,
+                            .height = buffers->height,
+                            .depth = buffers->depth,
+                            .visibility = buffers->visibility};
+    luz_framebuffer_clear_rows(&rows, first_row, end_row);
+}
+
+void luz_samples_split_rows(luz_sample_buffers *buffers, int first_row, int end_row)
+{
+    const size_t begin = (size_t)first_row * (size_t)buffers->width;
+    const size_t end = (size_t)end_row * (size_t)buffers->width;
+    for (int k = 0; k < buffers->samples; k++) {
+        luz_framebuffer *plane = &buffers->plane[k];
+        for (size_t i = begin; i < end; i++) {
+            plane->depth[i] = buffers->depth[i * LUZ_MAX_SAMPLES + (size_t)k];
+            plane->visibility[i] = buffers->visibility[i * LUZ_MAX_SAMPLES + (size_t)k];
+        }
+    }
 }
