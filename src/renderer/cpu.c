@@ -24,6 +24,8 @@ luz_packet_list_function luz_fragment_packet_list_scalar, luz_fragment_packet_li
 luz_screen_function luz_screen_every_triangle;
 luz_setup_eight_function luz_setup_eight_scalar;
 luz_vertex_project_function luz_vertex_project_scalar;
+luz_span_test_function luz_span_test_baseline;
+luz_mixed_pixels_function luz_mixed_pixels_of_row_baseline;
 #if defined(LUZ_HAVE_SSE2)
 luz_screen_function luz_screen_triangles_sse2, luz_screen_triangles_four_sse2;
 luz_setup_eight_function luz_setup_eight_sse2, luz_setup_eight_four_sse2;
@@ -35,6 +37,8 @@ luz_packet_list_function luz_fragment_packet_list_avx2;
 luz_screen_function luz_screen_triangles_avx2, luz_screen_triangles_four_avx2;
 luz_setup_eight_function luz_setup_eight_avx2, luz_setup_eight_four_avx2;
 luz_vertex_project_function luz_vertex_project_avx2;
+luz_span_test_function luz_span_test_avx2;
+luz_mixed_pixels_function luz_mixed_pixels_of_row_avx2;
 #endif
 #if defined(LUZ_HAVE_NEON)
 luz_screen_function luz_screen_triangles_neon, luz_screen_triangles_four_neon;
@@ -47,6 +51,8 @@ luz_packet_list_function luz_fragment_packet_list_avx512;
 luz_screen_function luz_screen_triangles_avx512, luz_screen_triangles_four_avx512;
 luz_setup_eight_function luz_setup_eight_avx512, luz_setup_eight_four_avx512;
 luz_vertex_project_function luz_vertex_project_avx512;
+luz_span_test_function luz_span_test_avx512;
+luz_mixed_pixels_function luz_mixed_pixels_of_row_avx512;
 #endif
 
 const char *luz_isa_name(luz_isa isa)
@@ -175,6 +181,8 @@ luz_kernels luz_kernels_of(luz_isa isa)
         .vertex_project = NULL,
         .screen_four = NULL,
         .setup_eight_four = NULL,
+        .span_test = luz_span_test_baseline,
+        .mixed_pixels = luz_mixed_pixels_of_row_baseline,
     };
     switch (isa) {
     case LUZ_ISA_SCALAR:
@@ -213,6 +221,8 @@ luz_kernels luz_kernels_of(luz_isa isa)
         kernels.screen_four = luz_screen_triangles_four_avx2;
         kernels.setup_eight_four = luz_setup_eight_four_avx2;
         kernels.vertex_project = luz_vertex_project_avx2;
+        kernels.span_test = luz_span_test_avx2;
+        kernels.mixed_pixels = luz_mixed_pixels_of_row_avx2;
 #endif
         break;
     case LUZ_ISA_AVX512:
@@ -225,6 +235,8 @@ luz_kernels luz_kernels_of(luz_isa isa)
         kernels.vertex_project = luz_vertex_project_avx512;
         kernels.screen_four = luz_screen_triangles_four_avx512;
         kernels.setup_eight_four = luz_setup_eight_four_avx512;
+        kernels.span_test = luz_span_test_avx512;
+        kernels.mixed_pixels = luz_mixed_pixels_of_row_avx512;
 #endif
         break;
     }

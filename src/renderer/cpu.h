@@ -8,7 +8,9 @@
  * lanes (AVX-512's screen.c, setup_eight.c and vertex_sixteen.c; AVX2's,
  * SSE2's and NEON's screen_lanes.c, setup_lanes.c and vertex_lanes.c, one
  * source on lanes.h for all three; the scalar set's lanes_scalar.c, the
- * reference's functions one at a time). Each is compiled once per
+ * reference's functions one at a time), and four samples' two plain
+ * loops that the compiler vectorises (sample_loops.c: the scalar set
+ * shares the build's target's copy). Each is compiled once per
  * instruction set (src/renderer/meson.build); cpu.c
  * asks the CPU once which it runs, and luz_kernels_of hands out one
  * table, so that no stage asks again and no two stages can disagree.
@@ -72,6 +74,9 @@ typedef struct luz_kernels {
      * triangle through, and one at a time (luz_setup_projected_samples). */
     luz_screen_function *screen_four;        /* checks the small boxes */
     luz_setup_eight_function *setup_eight_four;
+    /* Four samples' plain loops (sample_loops.c), compiled per set. */
+    luz_span_test_function *span_test;       /* raster's depth tests of a span */
+    luz_mixed_pixels_function *mixed_pixels; /* the resolve's mixed pixels */
 } luz_kernels;
 
 /* The table of isa, which must be available. */

@@ -163,7 +163,7 @@ static uint64_t raster_band(const frame_job *job, luz_framebuffer *framebuffer, 
                     overdraw ? overdraw + (size_t)s * pixels : NULL);
         } else if (samples) {
             tested += luz_raster_triangle_samples(triangle, id, samples, first_row, end_row,
-                                                  overdraw);
+                                                  overdraw, job->renderer->kernels.span_test);
         } else if (overdraw) {
             tested += luz_raster_triangle_counting(triangle, id, framebuffer, first_row,
                                                    end_row, overdraw);
@@ -210,7 +210,8 @@ static uint64_t shade_and_resolve_samples(const frame_job *job, int first_row, i
     uint64_t shaded = 0;
     if (uniforms->show == LUZ_VIEW_COLOR || uniforms->show == LUZ_VIEW_BANDS) {
         luz_sample_band *band = &job->renderer->sample_bands[worker_index];
-        luz_samples_sort_winners(samples, first_row, end_row, band);
+        luz_samples_sort_winners(samples, first_row, end_row, band,
+                                 job->renderer->kernels.mixed_pixels);
         /* The first winners into the image. */
         luz_framebuffer first_winners = *framebuffer;
         first_winners.visibility = samples->first_winner;

@@ -51,46 +51,6 @@
 #include "luz/shade.h"
 #include "luz/vecmath.h"
 
-/* ---- functions compiled per instruction set ------------------------------ */
-
-/* A static function marked LUZ_CLONES is compiled three times where the
- * toolchain can: for x86-64 and for its AVX2 and AVX-512 levels
- * (x86-64-v3, -v4), and the loader picks the one this CPU runs (an ifunc).
- * For the per-vertex and per-triangle arithmetic of big meshes: wider
- * vectors doing the same IEEE operations lane by lane, so the same bits
- * (-ffp-contract=off holds for every clone: no fused multiply-add). GCC
- * vectorises such code only at -O3 (its -O2 cost model leaves it scalar).
- * Static only: GCC exports a cloned function whatever its visibility.
- * Where it is left empty, each function is compiled once, as before:
- * - GCC before 12 and clang before 18 do not dispatch on "arch=x86-64-v3"
- *   (clang 14-17 accept it and always pick the default);
- * - without glibc there may be no ifunc;
- * - a build whose baseline already has AVX2 (-march=native, say) gains
- *   nothing, and its always_inline helpers could not inline into a clone
- *   of another arch;
- * - under ThreadSanitizer the loader runs the instrumented resolver before
- *   TSan's runtime is set up, and every program crashes at start. */
-#if defined(__has_feature)
-#if __has_feature(thread_sanitizer)
-#define LUZ_THREAD_SANITIZER 1
-#endif
-#endif
-#if defined(__SANITIZE_THREAD__)
-#define LUZ_THREAD_SANITIZER 1
-#endif
-#if defined(LUZ_THREAD_SANITIZER) || !defined(__x86_64__) || !defined(__GLIBC__) || \
-    defined(__AVX2__)
-#define LUZ_CLONES
-#elif defined(__clang__) && __clang_major__ >= 18
-#define LUZ_CLONES __attribute__((target_clones("default", "arch=x86-64-v3", \
-                                                "arch=x86-64-v4")))
-#elif !defined(__clang__) && defined(__GNUC__) && __GNUC__ >= 12
-#define LUZ_CLONES __attribute__((target_clones("default", "arch=x86-64-v3", \
-                                                "arch=x86-64-v4"), optimize("O3")))
-#else
-#define LUZ_CLONES
-#endif
-
 /* ---- meshes (mesh.c) ----------------------------------------------------- */
 
 /* A mesh as luz_mesh_create made it: its own copies of the arrays, checked,
@@ -665,10 +625,17 @@ void luz_samples_split_rows(luz_sample_buffers *buffers, int first_row, int end_
  * depth and visibility: depth interpolated at the sample, LESS, the
  * winner's id; overdraw, if not NULL, counts each plane's depth tests
  * (plane k's count of pixel i at overdraw[k * width * height + i]).
- * Returns the tests made. */
+ * Returns the tests made. test_span is the depth tests of a row's span at
+ * one sample, x in [first, last] at x + offset_x: where
+ * luz_raster_sample_depth is LESS than depth_row[x * LUZ_MAX_SAMPLES],
+ * that and visibility_row[x * LUZ_MAX_SAMPLES] take it and triangle_id
+ * (cpu.h's table has each instruction set's copy, sample_loops.c). */
+typedef void luz_span_test_function(luz_plane depth, float reference_x, float row_depth,
+                                    float offset_x, int first, int last, float *depth_row,
+                                    uint32_t *visibility_row, uint32_t triangle_id);
 uint64_t luz_raster_triangle_samples(const luz_triangle *triangle, uint32_t triangle_id,
                                      luz_sample_buffers *buffers, int first_row, int end_row,
-                                     uint32_t *overdraw);
+                                     uint32_t *overdraw, luz_span_test_function *test_span);
 
 /* A fragment of a list: pixel (x, y) to be shaded as triangle id's, at
  * the pixel centre (the other winners of a pixel whose samples differ,
@@ -711,9 +678,15 @@ typedef struct luz_sample_band {
  * than the first (each triangle once per pixel, in the order of the
  * samples it first won), and first_winner each pixel's first winner
  * (that of its first sample not background; 0 if all are): the fragment
- * stage shades it as a one-sample visibility buffer. */
+ * stage shades it as a one-sample visibility buffer. mixed_pixels
+ * looks at a row: ids holds its winners, a pixel's four side by side; it
+ * writes each pixel's sample 0 into first, the x of the pixels whose four
+ * differ into mixed_x, in order, and returns how many (cpu.h's table has
+ * each instruction set's copy, sample_loops.c). */
+typedef int luz_mixed_pixels_function(const uint32_t *ids, int width, uint32_t *first,
+                                      uint16_t *mixed_x);
 void luz_samples_sort_winners(luz_sample_buffers *buffers, int first_row, int end_row,
-                              luz_sample_band *band);
+                              luz_sample_band *band, luz_mixed_pixels_function *mixed_pixels);
 
 /* The resolve of the band's mixed pixels, after the fragment stage shaded
  * the first winners (the framebuffer's colour) and the others

@@ -59,16 +59,12 @@ bool luz_plane_basis_of(const luz_window_vertex *p0, const luz_window_vertex *p1
     return true;
 }
 
-/* The nine planes: the same arithmetic for every triangle that covers a
- * pixel, most of a million-triangle mesh's setup done one at a time, so
- * compiled for wider vectors too (LUZ_CLONES; the clones perform the
- * same IEEE operations). Counted with callgrind on a 150k-triangle
- * sphere, the AVX2 clone took setup from 44 to 35 million instructions a
- * frame. */
-static LUZ_CLONES void solve_planes(const luz_plane_basis *basis, const double inverse_w[3],
-                                    const float *varyings0, const float *varyings1,
-                                    const float *varyings2, luz_interpolation interpolation,
-                                    luz_shading_planes *out)
+/* The nine planes of a triangle set up one at a time. Compiled once, for
+ * the build's target: a big mesh's triangles are set up in lanes (cpu.h's
+ * table), which solve their planes themselves. */
+static void solve_planes(const luz_plane_basis *basis, const double inverse_w[3],
+                         const float *varyings0, const float *varyings1, const float *varyings2,
+                         luz_interpolation interpolation, luz_shading_planes *out)
 {
     /* The weight each vertex's varyings are divided by: 1/w for
      * perspective-correct interpolation, 1 for affine. */

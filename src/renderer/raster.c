@@ -94,24 +94,6 @@ uint64_t luz_raster_triangle_counting(const luz_triangle *triangle, uint32_t tri
     return raster_triangle(triangle, triangle_id, framebuffer, first_row, end_row, overdraw);
 }
 
-/* The depth tests of a row's span at one sample, compiled for wider
- * vectors too (LUZ_CLONES): with four samples a pixel the spans are four
- * times the pixels, and each test is independent of its neighbours, so
- * AVX-512 does sixteen with masked stores. The same float operations per
- * sample, so the same bits. */
-static LUZ_CLONES void test_span(luz_plane depth, float reference_x, float row_depth,
-                                 float offset_x, int first, int last, float *depth_row,
-                                 uint32_t *visibility_row, uint32_t triangle_id)
-{
-    for (int x = first; x <= last; x++) {
-        float z = luz_raster_sample_depth(depth, reference_x, row_depth, x, offset_x);
-        if (z < depth_row[x * LUZ_MAX_SAMPLES]) {    /* GL_LESS, per sample */
-            depth_row[x * LUZ_MAX_SAMPLES] = z;
-            visibility_row[x * LUZ_MAX_SAMPLES] = triangle_id;
-        }
-    }
-}
-
 /* The samples of a pixel are independent (each its own plane, its own
  * depth test), so the order in which a triangle's are visited changes no
  * bit. A small triangle (a box at most LUZ_RASTER_SMALL_SPAN pixels wide:
@@ -122,11 +104,13 @@ static LUZ_CLONES void test_span(luz_plane depth, float reference_x, float row_d
  * triangle and the second stepped by 256 a a pixel, the same exact
  * integers as the span's (luz_raster_row_span_at), so the same samples
  * are covered. A larger triangle goes row by row, and in each row sample
- * by sample, each span found as for one sample and tested by test_span's
- * vectors. */
+ * by sample, each span found as for one sample and tested by test_span
+ * (the instruction set's copy of sample_loops.c's: with four samples a
+ * pixel the spans are four times the pixels, and each test is independent
+ * of its neighbours, so AVX-512 does sixteen with masked stores). */
 uint64_t luz_raster_triangle_samples(const luz_triangle *triangle, uint32_t triangle_id,
                                      luz_sample_buffers *buffers, int first_row, int end_row,
-                                     uint32_t *overdraw)
+                                     uint32_t *overdraw, luz_span_test_function *test_span)
 {
     int y_begin = triangle->min_y > first_row ? triangle->min_y : first_row;
     int y_end = triangle->max_y + 1 < end_row ? triangle->max_y + 1 : end_row;

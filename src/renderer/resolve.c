@@ -37,39 +37,11 @@
 
 #include "renderer/pipeline.h"
 
-/* Pixels looked at together for "do all four samples agree?": one AVX-512
- * vector of ids, or two AVX2 ones. */
-#define CHUNK 16
-
-/* The x of row's pixels whose four samples differ, in order, into mixed_x;
- * returns how many. ids holds the row's winners, a pixel's four side by
- * side; each pixel's first winner (sample 0's: corrected for the mixed
- * pixels by the caller) goes into first. Most chunks of a row agree
- * (inside a surface, or the background) and are passed over at a few
- * instructions each: compiled for wider vectors too (LUZ_CLONES). */
-static LUZ_CLONES int mixed_pixels_of_row(const uint32_t *ids, int width, uint32_t *first,
-                                          uint16_t *mixed_x)
-{
-    int count = 0;
-    for (int x0 = 0; x0 < width; x0 += CHUNK) {
-        const int end = width - x0 < CHUNK ? width : x0 + CHUNK;
-        uint32_t differ = 0;
-        for (int x = x0; x < end; x++) {
-            const uint32_t *id = ids + (size_t)x * LUZ_MAX_SAMPLES;
-            differ |= (id[0] ^ id[1]) | (id[0] ^ id[2]) | (id[0] ^ id[3]);
-            first[x] = id[0];
-        }
-        if (differ == 0) continue;
-        for (int x = x0; x < end; x++) {
-            const uint32_t *id = ids + (size_t)x * LUZ_MAX_SAMPLES;
-            if (id[0] != id[1] || id[0] != id[2] || id[0] != id[3]) mixed_x[count++] = (uint16_t)x;
-        }
-    }
-    return count;
-}
-
+/* A row's mixed pixels are found by mixed_pixels, the instruction set's
+ * copy of sample_loops.c's loop (most chunks of a row agree and are passed
+ * over at a few instructions each, sixteen ids at a time under AVX-512). */
 void luz_samples_sort_winners(luz_sample_buffers *buffers, int first_row, int end_row,
-                              luz_sample_band *band)
+                              luz_sample_band *band, luz_mixed_pixels_function *mixed_pixels)
 {
     const int width = buffers->width;
     band->mixed_count = 0;
@@ -78,7 +50,7 @@ void luz_samples_sort_winners(luz_sample_buffers *buffers, int first_row, int en
         const size_t row = (size_t)y * width;
         const uint32_t *ids = buffers->visibility + row * LUZ_MAX_SAMPLES;
         uint32_t *first = buffers->first_winner + row;
-        const int mixed = mixed_pixels_of_row(ids, width, first, band->row_mixed);
+        const int mixed = mixed_pixels(ids, width, first, band->row_mixed);
         for (int m = 0; m < mixed; m++) {
             const int x = band->row_mixed[m];
             const uint32_t *id = ids + (size_t)x * LUZ_MAX_SAMPLES;

@@ -96,23 +96,16 @@ void luz_vertex_stage_bug(const luz_draw *draw, luz_mat4 view_projection, luz_bu
                               true);
 }
 
-/* The loop of luz_vertex_stage_range: a 4x4, a 3x3 and a 4x4 transform
- * per vertex, compiled for wider vectors too (LUZ_CLONES). */
-static LUZ_CLONES void transform_vertices(const luz_mesh *mesh, const luz_mat4 *model,
-                                          const luz_mat3 *normal_matrix,
-                                          const luz_mat4 *view_projection, uint32_t first,
-                                          uint32_t end, luz_clip_vertex *out)
-{
-    for (uint32_t i = first; i < end; i++)
-        out[i] = shade_vertex(&mesh->vertices[i], model, normal_matrix, view_projection, false);
-}
-
+/* Compiled once, for the build's target: a big mesh's vertices go through
+ * the table's vertex pass in lanes (cpu.h), and what is left here (small
+ * draws, the clipper's corners) took no measurable time from a wider copy. */
 void luz_vertex_stage_range(const luz_draw *draw, luz_mat4 view_projection, uint32_t first,
                             uint32_t end, luz_clip_vertex *out)
 {
     const luz_mat3 normal_matrix = luz_mat3_normal_matrix(draw->model);
-    transform_vertices(draw->mesh, &draw->model, &normal_matrix, &view_projection, first, end,
-                       out);
+    for (uint32_t i = first; i < end; i++)
+        out[i] = shade_vertex(&draw->mesh->vertices[i], &draw->model, &normal_matrix,
+                              &view_projection, false);
 }
 
 luz_draw_transform luz_draw_transform_of(const luz_draw *draw, luz_mat4 view_projection)

@@ -1,0 +1,75 @@
+/*
+ * sample_loops.c: the two plain loops of four samples a pixel that wider
+ * vectors speed up, compiled once per instruction set (cpu.h's table).
+ *
+ * In, out: luz_span_test_function's and luz_mixed_pixels_function's
+ * (pipeline.h): the depth tests of a row's span at one sample (raster.c's
+ * luz_raster_triangle_samples), and the pixels of a row whose four
+ * samples' winners differ (resolve.c's luz_samples_sort_winners).
+ *
+ * Why a file of their own: these are plain C that the compiler
+ * vectorises, and the AVX-512 copy tests sixteen samples with masked
+ * stores where the build's target does four. Each instruction set gets
+ * its copy from this one source (src/renderer/meson.build: the build's
+ * target, AVX2 and AVX-512, each at -O3, where GCC vectorises such loops),
+ * and cpu.c puts the set's copy in the renderer's table with the other
+ * kernels: LUZ_ISA=sse2 runs no AVX code here either. (They used to be
+ * target_clones, which the loader chose by the CPU alone.) Each lane does
+ * the same float operations, and -ffp-contract=off holds for every file,
+ * so every copy gives the same bits.
+ */
+#include "renderer/pipeline.h"
+
+#if defined(LUZ_LOOPS_AVX512)
+#define LOOPS_NAME(name) name##_avx512
+#elif defined(LUZ_LOOPS_AVX2)
+#define LOOPS_NAME(name) name##_avx2
+#else
+#define LOOPS_NAME(name) name##_baseline
+#endif
+
+luz_span_test_function LOOPS_NAME(luz_span_test);
+luz_mixed_pixels_function LOOPS_NAME(luz_mixed_pixels_of_row);
+
+/* Each test independent of its neighbours: GL_LESS per sample. A pixel's
+ * samples lie side by side (luz_sample_buffers): the rows passed are
+ * sample s's, every LUZ_MAX_SAMPLES-th entry. */
+void LOOPS_NAME(luz_span_test)(luz_plane depth, float reference_x, float row_depth,
+                               float offset_x, int first, int last, float *depth_row,
+                               uint32_t *visibility_row, uint32_t triangle_id)
+{
+    for (int x = first; x <= last; x++) {
+        float z = luz_raster_sample_depth(depth, reference_x, row_depth, x, offset_x);
+        if (z < depth_row[x * LUZ_MAX_SAMPLES]) {
+            depth_row[x * LUZ_MAX_SAMPLES] = z;
+            visibility_row[x * LUZ_MAX_SAMPLES] = triangle_id;
+        }
+    }
+}
+
+/* Pixels looked at together for "do all four samples agree?": one AVX-512
+ * vector of ids, or two AVX2 ones. Most chunks of a row agree (inside a
+ * surface, or the background) and are passed over at a few instructions
+ * each. */
+#define CHUNK 16
+
+int LOOPS_NAME(luz_mixed_pixels_of_row)(const uint32_t *ids, int width, uint32_t *first,
+                                        uint16_t *mixed_x)
+{
+    int count = 0;
+    for (int x0 = 0; x0 < width; x0 += CHUNK) {
+        const int end = width - x0 < CHUNK ? width : x0 + CHUNK;
+        uint32_t differ = 0;
+        for (int x = x0; x < end; x++) {
+            const uint32_t *id = ids + (size_t)x * LUZ_MAX_SAMPLES;
+            differ |= (id[0] ^ id[1]) | (id[0] ^ id[2]) | (id[0] ^ id[3]);
+            first[x] = id[0];
+        }
+        if (differ == 0) continue;
+        for (int x = x0; x < end; x++) {
+            const uint32_t *id = ids + (size_t)x * LUZ_MAX_SAMPLES;
+            if (id[0] != id[1] || id[0] != id[2] || id[0] != id[3]) mixed_x[count++] = (uint16_t)x;
+        }
+    }
+    return count;
+}
