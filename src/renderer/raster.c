@@ -33,6 +33,12 @@
  * convex, so the pixels that pass are one span, the same span the
  * divisions give.
  *
+ * Long spans: a span of more than LONG_SPAN pixels (a cube's face in the
+ * lab) has its depth tests made by test_centre_span, in lanes (16 with
+ * AVX-512, masked stores), each pixel by luz_raster_depth's operations,
+ * so the same bits. Shorter ones stay a plain loop, which costs less than
+ * the call.
+ *
  * The per-pixel arithmetic (a row's span, either way, and the depth at a
  * pixel centre) is in pipeline.h, luz_raster_row_span and
  * luz_raster_depth, shared with the pixel probe (probe.c) so that its
@@ -40,6 +46,25 @@
  * compiles to the same loop.
  */
 #include "renderer/pipeline.h"
+
+/* The depth tests of a row's span of pixel centres, compiled for wider
+ * vectors too (LUZ_CLONES): each test is independent of its neighbours,
+ * so AVX-512 makes sixteen at a time with masked stores. */
+static LUZ_CLONES void test_centre_span(luz_plane depth, float reference_x, float row_depth,
+                                        int first, int last, float *depth_row,
+                                        uint32_t *visibility_row, uint32_t triangle_id)
+{
+    for (int x = first; x <= last; x++) {
+        float z = luz_raster_depth(depth, reference_x, row_depth, x);
+        if (z < depth_row[x]) {    /* GL_LESS */
+            depth_row[x] = z;
+            visibility_row[x] = triangle_id;
+        }
+    }
+}
+
+/* Spans longer than this go to test_centre_span (see the top of the file). */
+enum { LONG_SPAN = 16 };
 
 /* The rasteriser itself. overdraw, when not NULL, counts the depth tests of
  * every pixel (the overdraw view). The two public functions below call it
@@ -65,11 +90,16 @@ static inline __attribute__((always_inline)) uint64_t raster_triangle(const luz_
         const float row_depth = luz_raster_row_depth(depth, triangle->reference_y, y);
         float *depth_row = framebuffer->depth + (size_t)y * width;
         uint32_t *visibility_row = framebuffer->visibility + (size_t)y * width;
-        for (int x = (int)first; x <= (int)last; x++) {
-            float z = luz_raster_depth(depth, triangle->reference_x, row_depth, x);
-            if (z < depth_row[x]) {    /* GL_LESS */
-                depth_row[x] = z;
-                visibility_row[x] = triangle_id;
+        if (last - first >= LONG_SPAN) {
+            test_centre_span(depth, triangle->reference_x, row_depth, (int)first, (int)last,
+                             depth_row, visibility_row, triangle_id);
+        } else {
+            for (int x = (int)first; x <= (int)last; x++) {
+                float z = luz_raster_depth(depth, triangle->reference_x, row_depth, x);
+                if (z < depth_row[x]) {    /* GL_LESS */
+                    depth_row[x] = z;
+                    visibility_row[x] = triangle_id;
+                }
             }
         }
         tests += (uint64_t)(last - first + 1);
