@@ -50,7 +50,7 @@
 /* The depth tests of a row's span of pixel centres, compiled for wider
  * vectors too (LUZ_CLONES): each test is independent of its neighbours,
  * so AVX-512 makes sixteen at a time with masked stores. */
-static LUZ_CLONES void test_centre_span(luz_plane depth, float reference_x, float row_depth,
+static void test_centre_span(luz_plane depth, float reference_x, float row_depth,
                                         int first, int last, float *depth_row,
                                         uint32_t *visibility_row, uint32_t triangle_id)
 {
