@@ -68,6 +68,7 @@
 #endif
 
 #include "renderer/pipeline.h"
+#include "renderer/transpose8.h"
 #include "luz/shade.h"
 #include "luz/texture.h"
 
@@ -725,33 +726,6 @@ _Static_assert(offsetof(luz_triangle, reference_y) ==
                READ_VARYINGS + 3 * LUZ_VARYING_COUNT == READ_FLOATS,
                "luz_triangle's reference point and planes are the 32 floats read");
 
-#if (LANES == 8 && defined(__AVX2__)) || (LANES == 16 && defined(__AVX512DQ__))
-/* The 8 x 8 transpose of rows[]: afterwards rows[j][i] is what rows[i][j]
- * was. Three rounds: unpack pairs of rows, shuffle pairs of pairs, swap
- * 128-bit halves (24 shuffles for 64 floats). */
-INLINE void transpose8(__m256 rows[8])
-{
-    __m256 pair[8], quad[8];
-    UNROLLED
-    for (int i = 0; i < 8; i += 2) {
-        pair[i] = _mm256_unpacklo_ps(rows[i], rows[i + 1]);
-        pair[i + 1] = _mm256_unpackhi_ps(rows[i], rows[i + 1]);
-    }
-    UNROLLED
-    for (int i = 0; i < 8; i += 4) {
-        quad[i] = _mm256_shuffle_ps(pair[i], pair[i + 2], _MM_SHUFFLE(1, 0, 1, 0));
-        quad[i + 1] = _mm256_shuffle_ps(pair[i], pair[i + 2], _MM_SHUFFLE(3, 2, 3, 2));
-        quad[i + 2] = _mm256_shuffle_ps(pair[i + 1], pair[i + 3], _MM_SHUFFLE(1, 0, 1, 0));
-        quad[i + 3] = _mm256_shuffle_ps(pair[i + 1], pair[i + 3], _MM_SHUFFLE(3, 2, 3, 2));
-    }
-    UNROLLED
-    for (int j = 0; j < 4; j++) {
-        rows[j] = _mm256_permute2f128_ps(quad[j], quad[j + 4], 0x20);
-        rows[j + 4] = _mm256_permute2f128_ps(quad[j], quad[j + 4], 0x31);
-    }
-}
-#endif
-
 /* column[k][i] = float k of lane i's READ_FLOATS (from[i] points at
  * them): each lane's floats are a row, and a transpose makes them
  * columns, eight floats of eight lanes at a time, instead of one float
@@ -764,7 +738,7 @@ INLINE void read_columns(const float *const from[LANES], vfloat column[READ_FLOA
         __m256 rows[8];
         UNROLLED
         for (int i = 0; i < 8; i++) rows[i] = _mm256_loadu_ps(from[i] + block);
-        transpose8(rows);
+        luz_transpose8(rows);
         UNROLLED
         for (int j = 0; j < 8; j++) column[block + j] = (vfloat)rows[j];
     }
@@ -777,8 +751,8 @@ INLINE void read_columns(const float *const from[LANES], vfloat column[READ_FLOA
             low[i] = _mm256_loadu_ps(from[i] + block);
             high[i] = _mm256_loadu_ps(from[8 + i] + block);
         }
-        transpose8(low);
-        transpose8(high);
+        luz_transpose8(low);
+        luz_transpose8(high);
         UNROLLED
         for (int j = 0; j < 8; j++)
             column[block + j] =

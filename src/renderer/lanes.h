@@ -35,6 +35,7 @@
 #include <string.h>
 
 #include "renderer/pipeline.h"
+#include "renderer/transpose8.h"
 
 #if !defined(LANES)
 #error "define LANES (the lanes of a step) before including lanes.h"
@@ -283,33 +284,6 @@ LANES_INLINE void gather_fixed(vi32 index, const luz_fixed_vertex *fixed, vi32 *
 #endif
 }
 
-#if defined(__AVX2__)
-/* An 8 x 8 transpose of floats in registers: row[l][k] becomes row[k][l]. */
-LANES_INLINE void transpose8_avx2(__m256 row[8])
-{
-    const __m256 t0 = _mm256_unpacklo_ps(row[0], row[1]);
-    const __m256 t1 = _mm256_unpackhi_ps(row[0], row[1]);
-    const __m256 t2 = _mm256_unpacklo_ps(row[2], row[3]);
-    const __m256 t3 = _mm256_unpackhi_ps(row[2], row[3]);
-    const __m256 t4 = _mm256_unpacklo_ps(row[4], row[5]);
-    const __m256 t5 = _mm256_unpackhi_ps(row[4], row[5]);
-    const __m256 t6 = _mm256_unpacklo_ps(row[6], row[7]);
-    const __m256 t7 = _mm256_unpackhi_ps(row[6], row[7]);
-    const __m256 u0 = _mm256_shuffle_ps(t0, t2, 0x44), u1 = _mm256_shuffle_ps(t0, t2, 0xee);
-    const __m256 u2 = _mm256_shuffle_ps(t1, t3, 0x44), u3 = _mm256_shuffle_ps(t1, t3, 0xee);
-    const __m256 u4 = _mm256_shuffle_ps(t4, t6, 0x44), u5 = _mm256_shuffle_ps(t4, t6, 0xee);
-    const __m256 u6 = _mm256_shuffle_ps(t5, t7, 0x44), u7 = _mm256_shuffle_ps(t5, t7, 0xee);
-    row[0] = _mm256_permute2f128_ps(u0, u4, 0x20);
-    row[1] = _mm256_permute2f128_ps(u1, u5, 0x20);
-    row[2] = _mm256_permute2f128_ps(u2, u6, 0x20);
-    row[3] = _mm256_permute2f128_ps(u3, u7, 0x20);
-    row[4] = _mm256_permute2f128_ps(u0, u4, 0x31);
-    row[5] = _mm256_permute2f128_ps(u1, u5, 0x31);
-    row[6] = _mm256_permute2f128_ps(u2, u6, 0x31);
-    row[7] = _mm256_permute2f128_ps(u3, u7, 0x31);
-}
-#endif
-
 #if LANES == 4
 /* A 4 x 4 transpose of floats in registers (SSE2's shufps and unpcks,
  * NEON's zips): row[l][k] becomes row[k][l]. */
@@ -333,14 +307,14 @@ LANES_INLINE void load_columns8(const float *const from[LANES], vf32 column[8])
 #if LANES == 8 && defined(__AVX2__)
     __m256 rows[8];
     for (int l = 0; l < 8; l++) rows[l] = _mm256_loadu_ps(from[l]);
-    transpose8_avx2(rows);
+    luz_transpose8(rows);
     for (int k = 0; k < 8; k++) column[k] = (vf32)rows[k];
 #elif LANES == 16 && defined(__AVX512F__)
     union { vf32 v; __m256 half[2]; } out[8];
     for (int h = 0; h < 2; h++) {
         __m256 rows[8];
         for (int l = 0; l < 8; l++) rows[l] = _mm256_loadu_ps(from[8 * h + l]);
-        transpose8_avx2(rows);
+        luz_transpose8(rows);
         for (int k = 0; k < 8; k++) out[k].half[h] = rows[k];
     }
     for (int k = 0; k < 8; k++) column[k] = out[k].v;
@@ -370,7 +344,7 @@ LANES_INLINE void store_columns(float *const to[LANES], const vf32 *column, int 
     __m256 rows[count / 8][8];
     for (int q = 0; q < count / 8; q++) {
         for (int k = 0; k < 8; k++) rows[q][k] = (__m256)column[8 * q + k];
-        transpose8_avx2(rows[q]);   /* a transpose is its own inverse */
+        luz_transpose8(rows[q]);   /* a transpose is its own inverse */
     }
     for (int l = 0; l < 8; l++)
         for (int q = 0; q < count / 8; q++) _mm256_storeu_ps(to[l] + 8 * q, rows[q][l]);

@@ -13,6 +13,7 @@
 #include <immintrin.h>
 
 #include "renderer/pipeline.h"
+#include "renderer/transpose8.h"
 
 /* The snapped (X, Y) of eight vertices, one 64-bit load each (a gather),
  * sign-extended to 64-bit lanes. */
@@ -120,33 +121,8 @@ luz_project_lanes(__m512d x, __m512d y, __m512d z, __m512d w, double width, doub
     return window;
 }
 
-/* Element r of rows[0..7] as row r of the result: an 8 x 8 transpose of
- * 32-bit elements (rows[k][r] becomes rows[r][k]). */
-static inline __attribute__((always_inline)) void luz_transpose8(__m256 rows[8])
-{
-    const __m256 t0 = _mm256_unpacklo_ps(rows[0], rows[1]);
-    const __m256 t1 = _mm256_unpackhi_ps(rows[0], rows[1]);
-    const __m256 t2 = _mm256_unpacklo_ps(rows[2], rows[3]);
-    const __m256 t3 = _mm256_unpackhi_ps(rows[2], rows[3]);
-    const __m256 t4 = _mm256_unpacklo_ps(rows[4], rows[5]);
-    const __m256 t5 = _mm256_unpackhi_ps(rows[4], rows[5]);
-    const __m256 t6 = _mm256_unpacklo_ps(rows[6], rows[7]);
-    const __m256 t7 = _mm256_unpackhi_ps(rows[6], rows[7]);
-    const __m256 u0 = _mm256_shuffle_ps(t0, t2, 0x44), u1 = _mm256_shuffle_ps(t0, t2, 0xee);
-    const __m256 u2 = _mm256_shuffle_ps(t1, t3, 0x44), u3 = _mm256_shuffle_ps(t1, t3, 0xee);
-    const __m256 u4 = _mm256_shuffle_ps(t4, t6, 0x44), u5 = _mm256_shuffle_ps(t4, t6, 0xee);
-    const __m256 u6 = _mm256_shuffle_ps(t5, t7, 0x44), u7 = _mm256_shuffle_ps(t5, t7, 0xee);
-    rows[0] = _mm256_permute2f128_ps(u0, u4, 0x20);
-    rows[1] = _mm256_permute2f128_ps(u1, u5, 0x20);
-    rows[2] = _mm256_permute2f128_ps(u2, u6, 0x20);
-    rows[3] = _mm256_permute2f128_ps(u3, u7, 0x20);
-    rows[4] = _mm256_permute2f128_ps(u0, u4, 0x31);
-    rows[5] = _mm256_permute2f128_ps(u1, u5, 0x31);
-    rows[6] = _mm256_permute2f128_ps(u2, u6, 0x31);
-    rows[7] = _mm256_permute2f128_ps(u3, u7, 0x31);
-}
-
-/* The same for 64-bit elements: rows[0..7] of eight quadwords each. */
+/* luz_transpose8 (transpose8.h) for 64-bit elements: rows[0..7] of eight
+ * quadwords each; rows[k][r] becomes rows[r][k]. */
 static inline __attribute__((always_inline)) void luz_transpose8_quads(__m512i rows[8])
 {
     __m512i t[8], u[8];
