@@ -17,6 +17,11 @@
  * leave fewer than eight to set up. Then the same frame at four samples
  * a pixel (the tables' screen_four and setup_eight_four against
  * luz_setup_projected_samples one triangle at a time).
+ *
+ * And one geometry reused frame after frame, as a renderer does, whose
+ * records move into one block after the first frame (geometry.c's
+ * place_records) and out of it where a batch outgrows its slice: every
+ * frame of a turning grid the same as a new geometry's.
  */
 #include <math.h>
 #include <setjmp.h>
@@ -106,14 +111,9 @@ static void snapshot_free(snapshot *s)
     free(s->band_ids);
 }
 
-static void test_same_phase_one_in_every_set(void **state)
+/* The grid: z = 0.3 sin(9u) cos(7v) over [-2, 2] x [-1.2, 1.2]. */
+static luz_mesh *wavy_grid(void)
 {
-    (void)state;
-    if (luz_isa_widest() == LUZ_ISA_SCALAR) {
-        print_message("skipped: this build or CPU has scalar alone (nothing to compare)\n");
-        skip();
-    }
-    /* The grid: z = 0.3 sin(9u) cos(7v) over [-2, 2] x [-1.2, 1.2]. */
     luz_vertex *vertices = calloc((size_t)(COLUMNS + 1) * (ROWS + 1), sizeof *vertices);
     uint32_t *indices = calloc((size_t)COLUMNS * ROWS * 6, sizeof *indices);
     assert_true(vertices && indices);
@@ -142,6 +142,18 @@ static void test_same_phase_one_in_every_set(void **state)
     assert_non_null(mesh);
     free(vertices);
     free(indices);
+    return mesh;
+}
+
+static void test_same_phase_one_in_every_set(void **state)
+{
+    (void)state;
+    if (luz_isa_widest() == LUZ_ISA_SCALAR) {
+        print_message("skipped: this build or CPU has scalar alone (nothing to compare)\n");
+        skip();
+    }
+    luz_mesh *mesh = wavy_grid();
+    luz_error error = {{0}};
 
     luz_frame frame = {0};
     frame.eye = (luz_vec3){0, 0, 3};
@@ -210,10 +222,85 @@ static void test_same_phase_one_in_every_set(void **state)
     luz_mesh_destroy(mesh);
 }
 
+/* What luz_geometry_run handed on, against a snapshot. */
+static void assert_same_result(const luz_geometry_result *result, const snapshot *expected,
+                               const char *what)
+{
+    if (result->triangle_total != expected->total)
+        fail_msg("%s: %zu triangles, expected %zu", what, (size_t)result->triangle_total,
+                 expected->total);
+    for (size_t id = 1; id <= expected->total; id++)
+        if (memcmp(result->by_id[id], &expected->records[id], sizeof(luz_triangle)) != 0)
+            fail_msg("%s: triangle %zu differs", what, id);
+    assert_int_equal(result->band_count, expected->band_count);
+    assert_memory_equal(result->band_start, expected->band_start,
+                        ((size_t)expected->band_count + 1) * sizeof(size_t));
+    assert_memory_equal(result->band_ids, expected->band_ids,
+                        expected->band_start[expected->band_count] * sizeof(uint32_t));
+}
+
+static void test_records_reused_frame_after_frame(void **state)
+{
+    (void)state;
+    luz_mesh *mesh = wavy_grid();
+    luz_error error = {{0}};
+    const int thread_counts[] = {1, 3};
+    for (size_t t = 0; t < sizeof thread_counts / sizeof thread_counts[0]; t++) {
+        luz_framebuffer *framebuffer = luz_framebuffer_create(WIDTH, HEIGHT, &error);
+        luz_geometry *geometry = luz_geometry_create(thread_counts[t]);
+        luz_thread_pool *pool = luz_thread_pool_create(thread_counts[t]);
+        assert_true(framebuffer && geometry && pool);
+        size_t most = 0, fewest = SIZE_MAX;
+        for (int f = 0; f < 8; f++) {
+            /* Two grids turned about y, a little less each frame, so
+             * that more of each batch faces the view (batches outgrow
+             * their slices), then as in the first frame again. */
+            luz_frame frame = {0};
+            frame.eye = (luz_vec3){0, 0, 3};
+            frame.view = luz_mat4_look_at(frame.eye, (luz_vec3){0, 0, 0}, (luz_vec3){0, 1, 0});
+            frame.projection =
+                luz_mat4_perspective(luz_radians(45.0f), (float)WIDTH / HEIGHT, 0.1f, 100.0f);
+            const float angle = f == 7 ? 1.2f : 1.2f - 0.2f * (float)f;
+            for (int k = 0; k < 2; k++) {
+                luz_draw draw = {.mesh = mesh};
+                draw.model = luz_mat4_rotate(
+                    luz_mat4_translate(luz_mat4_identity(), (luz_vec3){0.4f * (float)k, 0, 0}),
+                    k == 0 ? angle : -angle, (luz_vec3){0, 1, 0});
+                draw.material.colour = (luz_vec3){1, 1, 1};
+                assert_int_equal(luz_frame_add_draw(&frame, &draw, &error), 0);
+            }
+            snapshot fresh = run(&frame, luz_isa_widest(), 1);
+            const luz_uniforms uniforms = luz_uniforms_of(&frame, NULL);
+            luz_geometry_result result;
+            assert_int_equal(luz_geometry_run(geometry, pool, &frame, &uniforms, framebuffer, 16,
+                                              0, &result, &error),
+                             0);
+            char label[64];
+            snprintf(label, sizeof label, "frame %d, %d thread%s", f, thread_counts[t],
+                     thread_counts[t] == 1 ? "" : "s");
+            assert_same_result(&result, &fresh, label);
+            if (fresh.total > most) most = fresh.total;
+            if (fresh.total < fewest) fewest = fresh.total;
+            snapshot_free(&fresh);
+            luz_frame_free(&frame);
+        }
+        /* Enough records for a block (4 MB: 20,971 of 200 bytes), and
+         * frames that need more than the first. */
+        print_message("%zu to %zu triangles a frame\n", fewest, most);
+        assert_true(fewest * sizeof(luz_triangle) > ((size_t)4 << 20));
+        assert_true(most > fewest + fewest / 10);
+        luz_thread_pool_destroy(pool);
+        luz_geometry_destroy(geometry);
+        luz_framebuffer_destroy(framebuffer);
+    }
+    luz_mesh_destroy(mesh);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_same_phase_one_in_every_set),
+        cmocka_unit_test(test_records_reused_frame_after_frame),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -35,10 +35,18 @@
  * The serial steps are O(draws + batches x bands), not O(triangles). Ids,
  * and each band's list, follow the submission order whatever the batches
  * and the threads, so the image does not depend on them (frame.c).
+ *
+ * The records of a frame with many of them lie in one block, each batch's
+ * in a slice the size it needed before, on 2 MB pages where the system
+ * has them (place_records): the bands read them scattered, a few tens of
+ * megabytes on a big mesh, which on 4 KB pages missed the TLB at nearly
+ * every triangle.
  */
+#define _DEFAULT_SOURCE   /* madvise's MADV_HUGEPAGE (Linux) */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 
 #include "renderer/cpu.h"
 #include "renderer/pipeline.h"
@@ -53,6 +61,12 @@
 #define SMALL_DRAWS_BATCH 512
 /* Vertices per job of the vertex pass. */
 #define VERTEX_BATCH 8192
+/* Records a frame must have (in the batches' capacities) to be placed in
+ * one block of huge pages: 4 MB of them, two huge pages. */
+#define RECORD_BLOCK_MIN (((size_t)4 << 20) / sizeof(luz_triangle))
+/* The size of a huge page, which the block is aligned to and a whole
+ * number of. */
+#define HUGE_PAGE_BYTES ((size_t)2 << 20)
 
 typedef struct geometry_batch {
     /* What the batch covers: whole draws [draw_first, draw_end), or
@@ -68,9 +82,11 @@ typedef struct geometry_batch {
     const luz_window_vertex *window;   /* the same vertices, projected (or
                                           NULL likewise) */
     const luz_fixed_vertex *fixed;     /* and their snapped positions alone */
-    /* What it made, reused from frame to frame. */
+    /* What it made, reused from frame to frame: its own array, or its
+     * slice of the frame's block of records (in_block, place_records). */
     luz_triangle *triangles;
     size_t count, capacity;
+    bool in_block;
     /* Per triangle, the bands its box touches, first | last << 16: what
      * binning reads, 4 bytes a triangle instead of the whole record. */
     uint32_t *band_ranges;
@@ -114,6 +130,9 @@ struct luz_geometry {
     uint64_t outside_draw_triangles, outside_draws;
     size_t *band_slots;            /* batch x band: counts, then offsets */
     size_t band_slot_capacity;
+    luz_triangle *record_block;    /* the batches' slices, huge pages
+                                      (place_records), or NULL */
+    size_t record_block_capacity;
     const luz_triangle **by_id;
     size_t by_id_capacity;
     size_t *band_start;
@@ -161,9 +180,10 @@ void luz_geometry_destroy(luz_geometry *geometry)
 {
     if (!geometry) return;
     for (int i = 0; i < geometry->batch_capacity; i++) {
-        free(geometry->batches[i].triangles);
+        if (!geometry->batches[i].in_block) free(geometry->batches[i].triangles);
         free(geometry->batches[i].band_ranges);
     }
+    free(geometry->record_block);
     for (int i = 0; i < geometry->thread_count; i++) {
         free(geometry->scratch[i].vertices);
         free(geometry->scratch[i].window);
@@ -202,8 +222,10 @@ size_t luz_geometry_memory(const luz_geometry *geometry)
     size_t bytes = sizeof *geometry;
     bytes += (size_t)geometry->batch_capacity * sizeof *geometry->batches;
     for (int i = 0; i < geometry->batch_capacity; i++)
-        bytes += geometry->batches[i].capacity * sizeof(luz_triangle) +
+        bytes += (geometry->batches[i].in_block ? 0 : geometry->batches[i].capacity) *
+                     sizeof(luz_triangle) +
                  geometry->batches[i].band_range_capacity * sizeof(uint32_t);
+    bytes += geometry->record_block_capacity * sizeof(luz_triangle);
     for (int i = 0; i < geometry->thread_count; i++)
         bytes += geometry->scratch[i].capacity *
                  (sizeof(luz_clip_vertex) + sizeof(luz_window_vertex) +
@@ -234,6 +256,84 @@ static bool reserve(void **array, size_t *capacity, size_t count, size_t size)
     *array = bigger;
     *capacity = grown;
     return true;
+}
+
+/* Room for count records in the batch: its slice of the block, or its own
+ * array, which a batch whose slice is too small moves to (place_records
+ * then gives it a larger slice in the next frame's block). */
+static bool reserve_records(geometry_batch *batch, size_t count)
+{
+    if (count <= batch->capacity) return true;
+    if (!batch->in_block)
+        return reserve((void **)&batch->triangles, &batch->capacity, count,
+                       sizeof *batch->triangles);
+    const luz_triangle *slice = batch->triangles;
+    luz_triangle *own = NULL;
+    size_t capacity = 0;
+    if (!reserve((void **)&own, &capacity, count > 2 * batch->capacity ? count
+                                                                       : 2 * batch->capacity,
+                 sizeof *own))
+        return false;
+    memcpy(own, slice, batch->count * sizeof *own);
+    batch->triangles = own;
+    batch->capacity = capacity;
+    batch->in_block = false;
+    return true;
+}
+
+/* Before the batches run: the frame's records in one block, on huge
+ * pages (madvise, where the system has them: Linux's transparent huge
+ * pages), each batch a slice of its capacity, in batch order, so that
+ * each thread's share of the batches writes one stretch of it. The bands
+ * read the records through by_id in band order, scattered over tens of
+ * megabytes on a big mesh (the 1M sphere: 48 MB, twelve thousand 4 KB
+ * pages, more than the TLB holds, so nearly every record cost a page
+ * walk; docs/performance.md, "Millions of triangles"). A batch keeps its
+ * slice from frame to frame; one that needs more (a mesh turning puts
+ * more of a batch's triangles in view) moves to an array of its own
+ * (reserve_records), and once an eighth of the capacity is outside the
+ * block, every batch gets a slice again, of its capacity now. The records
+ * are made anew each frame, so nothing is copied. Few records (below
+ * RECORD_BLOCK_MIN), or no memory for a block: each batch keeps its own
+ * array. */
+static void place_records(luz_geometry *geometry)
+{
+    size_t total = 0, outside = 0;
+    for (int k = 0; k < geometry->batch_count; k++) {
+        total += geometry->batches[k].capacity;
+        if (!geometry->batches[k].in_block) outside += geometry->batches[k].capacity;
+    }
+    if (total < RECORD_BLOCK_MIN || outside <= total / 8) return;
+    luz_triangle *block = geometry->record_block;
+    size_t block_capacity = geometry->record_block_capacity;
+    if (total > block_capacity) {
+        /* An eighth more, so that batches that grow rarely need a new one. */
+        const size_t bytes = (total * sizeof(luz_triangle) + HUGE_PAGE_BYTES - 1) /
+                             HUGE_PAGE_BYTES * HUGE_PAGE_BYTES;
+        block = aligned_alloc(HUGE_PAGE_BYTES, bytes);
+        if (!block) return;
+#ifdef MADV_HUGEPAGE
+        (void)madvise(block, bytes, MADV_HUGEPAGE);   /* advice: without it, 4 KB pages */
+#endif
+        block_capacity = bytes / sizeof(luz_triangle);
+    }
+    size_t at = 0;
+    for (int k = 0; k < geometry->batch_capacity; k++) {
+        geometry_batch *batch = &geometry->batches[k];
+        if (k < geometry->batch_count) {
+            if (!batch->in_block) free(batch->triangles);
+            batch->triangles = block + at;
+            batch->in_block = true;
+            at += batch->capacity;
+        } else if (batch->in_block) {   /* not in this frame: it starts again with none */
+            batch->triangles = NULL;
+            batch->capacity = 0;
+            batch->in_block = false;
+        }
+    }
+    if (block != geometry->record_block) free(geometry->record_block);
+    geometry->record_block = block;
+    geometry->record_block_capacity = block_capacity;
 }
 
 /* ---- plan ------------------------------------------------------------- */
@@ -531,8 +631,7 @@ static void one_triangle(geometry_batch *batch, const geometry_job *job, uint32_
         window_a = &projected[0], window_b = &projected[1], window_c = &projected[2];
     }
     /* A fan of a clipped triangle has at most this many triangles. */
-    if (!reserve((void **)&batch->triangles, &batch->capacity,
-                 batch->count + LUZ_CLIP_MAX_VERTICES - 2, sizeof *batch->triangles)) {
+    if (!reserve_records(batch, batch->count + LUZ_CLIP_MAX_VERTICES - 2)) {
         batch->out_of_memory = true;
         return;
     }
@@ -582,8 +681,7 @@ static void eight_triangles(geometry_batch *batch, const geometry_job *job, uint
                             const luz_window_vertex *window, const luz_fixed_vertex *fixed,
                             const luz_draw_transform *transform, const uint32_t survivors[8])
 {
-    if (!reserve((void **)&batch->triangles, &batch->capacity, batch->count + 8,
-                 sizeof *batch->triangles)) {
+    if (!reserve_records(batch, batch->count + 8)) {
         batch->out_of_memory = true;
         return;
     }
@@ -849,6 +947,7 @@ int luz_geometry_run(luz_geometry *geometry, luz_thread_pool *pool, const luz_fr
     }
 
     if (plan(geometry, pool, &job, error) != 0) return -1;
+    place_records(geometry);
     if (job.band_count > geometry->band_capacity) {
         size_t *start = realloc(geometry->band_start,
                                 ((size_t)job.band_count + 1) * sizeof *start);
