@@ -27,6 +27,7 @@
 #include <cmocka.h>
 
 #include "luz/luz.h"
+#include "test_support.h"
 #include "renderer/cpu.h"
 
 #if defined(__x86_64__) && defined(__linux__)
@@ -191,13 +192,6 @@ static void test_luz_render_refuses_an_unknown_set(void **state)
     assert_int_equal(strchr(text, '\n') - text, (ptrdiff_t)length - 1);   /* one line */
 }
 
-/* A few bits of a fixed sequence (a 64-bit LCG, Knuth's constants). */
-static uint32_t next_random(uint64_t *seed)
-{
-    *seed = *seed * 6364136223846793005u + 1442695040888963407u;
-    return (uint32_t)(*seed >> 33);
-}
-
 /* Every set's depth tests of a span (sample_loops.c, through the table)
  * do what luz_span_test_function says, sample for sample: where the
  * depth at x + offset_x (luz_raster_sample_depth) is LESS than the
@@ -209,28 +203,28 @@ static void test_every_set_tests_spans_as_defined(void **state)
 {
     (void)state;
     enum { ROW = 96, ENTRIES = ROW * LUZ_MAX_SAMPLES };
-    uint64_t seed = 28;
+    uint32_t seed = 28;
     for (int isa = 0; isa < LUZ_ISA_COUNT; isa++) {
         if (!luz_isa_available((luz_isa)isa)) continue;
         const luz_kernels kernels = luz_kernels_of((luz_isa)isa);
         int replaced = 0, kept = 0;
         for (int trial = 0; trial < 400; trial++) {
-            const luz_plane depth = {(float)(next_random(&seed) % 1000) / 1000.0f,
-                                     ((float)(next_random(&seed) % 200) - 100.0f) / 4096.0f,
-                                     ((float)(next_random(&seed) % 200) - 100.0f) / 4096.0f};
-            const float reference_x = (float)(next_random(&seed) % 64) + 0.5f;
+            const luz_plane depth = {(float)(test_random(&seed) % 1000) / 1000.0f,
+                                     ((float)(test_random(&seed) % 200) - 100.0f) / 4096.0f,
+                                     ((float)(test_random(&seed) % 200) - 100.0f) / 4096.0f};
+            const float reference_x = (float)(test_random(&seed) % 64) + 0.5f;
             const float row_depth = luz_raster_sample_row_depth(depth, 3.5f, 7, 0.375f);
-            const float offset_x = (float)(next_random(&seed) % 256) / 256.0f;
-            const int sample = (int)(next_random(&seed) % LUZ_MAX_SAMPLES);
-            const int first = (int)(next_random(&seed) % 20);
-            const int last = first - 1 + (int)(next_random(&seed) % 71);
+            const float offset_x = (float)(test_random(&seed) % 256) / 256.0f;
+            const int sample = (int)(test_random(&seed) % LUZ_MAX_SAMPLES);
+            const int first = (int)(test_random(&seed) % 20);
+            const int last = first - 1 + (int)(test_random(&seed) % 71);
             float depth_row[ENTRIES], expected_depth[ENTRIES];
             uint32_t visibility_row[ENTRIES], expected_visibility[ENTRIES];
             for (int i = 0; i < ENTRIES; i++) {
                 const int x = i / LUZ_MAX_SAMPLES;
                 const float z = luz_raster_sample_depth(depth, reference_x, row_depth, x, offset_x);
                 /* Nearer, farther, or the same depth (kept: LESS). */
-                const uint32_t pick = next_random(&seed) % 3;
+                const uint32_t pick = test_random(&seed) % 3;
                 depth_row[i] = pick == 0 ? z : pick == 1 ? z + 0.25f : z - 0.25f;
                 visibility_row[i] = 1000 + (uint32_t)i;
                 const bool inside = x >= first && x <= last && i % LUZ_MAX_SAMPLES == sample;
@@ -258,22 +252,22 @@ static void test_every_set_finds_mixed_pixels_as_defined(void **state)
 {
     (void)state;
     enum { ROW = 200 };
-    uint64_t seed = 27;
+    uint32_t seed = 27;
     for (int isa = 0; isa < LUZ_ISA_COUNT; isa++) {
         if (!luz_isa_available((luz_isa)isa)) continue;
         const luz_kernels kernels = luz_kernels_of((luz_isa)isa);
         int found = 0;
         for (int trial = 0; trial < 300; trial++) {
-            const int width = 1 + (int)(next_random(&seed) % ROW);
+            const int width = 1 + (int)(test_random(&seed) % ROW);
             uint32_t ids[ROW][LUZ_MAX_SAMPLES], first[ROW], expected_first[ROW];
             uint16_t expected[ROW], mixed[ROW];
             int count = 0;
             for (int x = 0; x < width; x++) {
-                const uint32_t id = next_random(&seed) % 4;   /* 0: the background */
+                const uint32_t id = test_random(&seed) % 4;   /* 0: the background */
                 for (int k = 0; k < 4; k++) ids[x][k] = id;
-                if (next_random(&seed) % 8 == 0)   /* an edge: one sample or more differs */
+                if (test_random(&seed) % 8 == 0)   /* an edge: one sample or more differs */
                     for (int k = 0; k < 4; k++)
-                        if (next_random(&seed) % 2) ids[x][k] = next_random(&seed) % 4;
+                        if (test_random(&seed) % 2) ids[x][k] = test_random(&seed) % 4;
                 if (ids[x][0] != ids[x][1] || ids[x][0] != ids[x][2] || ids[x][0] != ids[x][3])
                     expected[count++] = (uint16_t)x;
                 expected_first[x] = ids[x][0];

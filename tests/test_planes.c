@@ -31,25 +31,13 @@
 #include <cmocka.h>
 
 #include "test_support.h"
+#include "geometry_support.h"
 
 #include "renderer/cpu.h"
 #include "renderer/pipeline.h"
 
 #define WIDTH 40
 #define HEIGHT 24
-
-/* A projection * view that takes world (x, y, z) to clip (x, y, z - 0.1,
- * z) exactly: a vertex's world z is its clip w (test_setup_eight.c's). */
-static luz_mat4 w_from_z(void)
-{
-    luz_mat4 m = {{0}};
-    m.m[0] = 1.0f;
-    m.m[5] = 1.0f;
-    m.m[10] = 1.0f;
-    m.m[11] = 1.0f;
-    m.m[14] = -0.1f;
-    return m;
-}
 
 /* A draw's mesh, one triangle per three vertices, and its transforms. */
 typedef struct mesh {
@@ -58,20 +46,6 @@ typedef struct mesh {
     uint32_t *indices;
     luz_draw_transform transform;
 } mesh;
-
-/* Vertex i where, under w_from_z and the identity model, it projects to
- * about (X, Y) in 1/256 pixel at clip w, with a random normal and uv. */
-static void place(mesh *m, uint32_t i, int32_t fixed_x, int32_t fixed_y, float w,
-                  uint32_t *random)
-{
-    const double x_ndc = 2.0 * fixed_x / (LUZ_SUBPIXEL_ONE * (double)WIDTH) - 1.0;
-    const double y_ndc = 1.0 - 2.0 * fixed_y / (LUZ_SUBPIXEL_ONE * (double)HEIGHT);
-    m->vertices[i] = (luz_vertex){
-        {(float)(x_ndc * w), (float)(y_ndc * w), w},
-        {test_uniform(random, -1.0f, 1.0f), test_uniform(random, -1.0f, 1.0f),
-         test_uniform(random, -1.0f, 1.0f)},
-        {test_uniform(random, -4.0f, 4.0f), test_uniform(random, -4.0f, 4.0f)}};
-}
 
 /* triangle_count random triangles: 60% about a pixel, 30% a few, 8%
  * dozens of pixels, 2% with a corner behind the eye or far outside the
@@ -82,7 +56,8 @@ static mesh random_mesh(uint32_t triangle_count, uint32_t seed)
               calloc(3 * (size_t)triangle_count, sizeof(uint32_t)), {0}};
     assert_true(m.vertices && m.indices);
     m.transform = (luz_draw_transform){m.vertices, luz_mat4_identity(),
-                                       luz_mat3_normal_matrix(luz_mat4_identity()), w_from_z()};
+                                       luz_mat3_normal_matrix(luz_mat4_identity()),
+                                       test_w_from_z()};
     uint32_t random = seed;
     for (uint32_t t = 0; t < triangle_count; t++) {
         const uint32_t kind = test_random(&random) % 100;
@@ -93,9 +68,12 @@ static mesh random_mesh(uint32_t triangle_count, uint32_t seed)
             const uint32_t i = 3 * t + (uint32_t)k;
             m.indices[i] = i;
             const uint32_t span = (uint32_t)(2 * reach + 1);
-            place(&m, i, base_x + (int32_t)(test_random(&random) % span) - reach,
-                  base_y + (int32_t)(test_random(&random) % span) - reach,
-                  1.0f / test_uniform(&random, 0.05f, 10.0f), &random);
+            /* (Each argument its own statement: their order is the
+             * generator's.) */
+            const int32_t x = base_x + (int32_t)(test_random(&random) % span) - reach;
+            const int32_t y = base_y + (int32_t)(test_random(&random) % span) - reach;
+            const float w = 1.0f / test_uniform(&random, 0.05f, 10.0f);
+            m.vertices[i] = test_vertex_at(x, y, w, WIDTH, HEIGHT, &random);
         }
         if (kind == 98) m.vertices[3 * t + 1].position.z = -0.5f;            /* behind */
         if (kind == 99) m.vertices[3 * t + 2].position.x = 100.0f * m.vertices[3 * t].position.z;
@@ -107,18 +85,6 @@ static void mesh_destroy(mesh *m)
 {
     free(m->vertices);
     free(m->indices);
-}
-
-/* The turned model and camera of test_setup_eight.c: a term summed in
- * another order or taken from the wrong row shows. */
-static void turn(mesh *m)
-{
-    m->transform.model = luz_mat4_rotate(
-        luz_mat4_translate(luz_mat4_identity(), (luz_vec3){0.3f, -0.2f, 0.05f}), 0.3f,
-        (luz_vec3){0.1f, 0.2f, 0.97f});
-    m->transform.normal_matrix = luz_mat3_normal_matrix(m->transform.model);
-    m->transform.view_projection = luz_mat4_multiply(
-        w_from_z(), luz_mat4_rotate(luz_mat4_identity(), 0.05f, (luz_vec3){0.3f, 0.5f, 0.81f}));
 }
 
 /* Whether the record's 1/w and varying planes are planes' bytes. */
@@ -248,7 +214,7 @@ static void test_planes_of_primitive_are_setups(void **state)
     (void)state;
     mesh m = random_mesh(12000, 2929);
     for (int turned = 0; turned < 2; turned++) {
-        if (turned) turn(&m);
+        if (turned) test_turn(&m.transform);
         for (int mode = 0; mode < 2; mode++) {
             const luz_interpolation interpolation =
                 mode ? LUZ_INTERPOLATION_AFFINE : LUZ_INTERPOLATION_PERSPECTIVE;
@@ -284,7 +250,8 @@ static void test_planes_that_cancel(void **state)
               calloc(3 * (size_t)triangle_count, sizeof(uint32_t)), {0}};
     assert_true(m.vertices && m.indices);
     m.transform = (luz_draw_transform){m.vertices, luz_mat4_identity(),
-                                       luz_mat3_normal_matrix(luz_mat4_identity()), w_from_z()};
+                                       luz_mat3_normal_matrix(luz_mat4_identity()),
+                                       test_w_from_z()};
     uint32_t random = 4242;
     for (uint32_t t = 0; t < triangle_count; t++) {
         const int32_t x0 = 256 * 5 + (int32_t)(test_random(&random) % (256 * 30));
@@ -297,7 +264,8 @@ static void test_planes_that_cancel(void **state)
         for (uint32_t k = 0; k < 3; k++) {
             const uint32_t i = 3 * t + k;
             m.indices[i] = i;
-            place(&m, i, corner[k][0], corner[k][1], 1.0f, &random);
+            m.vertices[i] =
+                test_vertex_at(corner[k][0], corner[k][1], 1.0f, WIDTH, HEIGHT, &random);
             const luz_clip_vertex clip = luz_vertex_stage_one(&m.transform, i);
             window[k] = luz_setup_project_vertex(&clip, WIDTH, HEIGHT);
         }
@@ -348,7 +316,8 @@ static void test_planes_by_hand(void **state)
     mesh m = {1, calloc(3, sizeof(luz_vertex)), calloc(3, sizeof(uint32_t)), {0}};
     assert_true(m.vertices && m.indices);
     m.transform = (luz_draw_transform){m.vertices, luz_mat4_identity(),
-                                       luz_mat3_normal_matrix(luz_mat4_identity()), w_from_z()};
+                                       luz_mat3_normal_matrix(luz_mat4_identity()),
+                                       test_w_from_z()};
     const float corner[3][3] = {{4, 2, 1}, {4, 10, 2}, {12, 2, 4}};   /* x, y pixels; w */
     for (uint32_t k = 0; k < 3; k++) {
         const float w = corner[k][2];

@@ -39,6 +39,7 @@
 #include <cmocka.h>
 
 #include "test_support.h"
+#include "geometry_support.h"
 
 #include "renderer/cpu.h"
 #include "renderer/pipeline.h"
@@ -60,21 +61,6 @@ typedef struct mesh {
     uint32_t *indices;
 } mesh;
 
-/* A projection * view that takes world (x, y, z) to clip (x, y, z - 0.1,
- * z) exactly (ones and zeros: each sum is x, y or z): a vertex's world z
- * is its clip w, so a test places it on the screen, and its depth (1 -
- * 0.1 / w + 1) / 2 varies with w. */
-static luz_mat4 w_from_z(void)
-{
-    luz_mat4 m = {{0}};
-    m.m[0] = 1.0f;            /* column 0: x -> clip x */
-    m.m[5] = 1.0f;            /* column 1: y -> clip y */
-    m.m[10] = 1.0f;           /* column 2: z -> clip z and clip w */
-    m.m[11] = 1.0f;
-    m.m[14] = -0.1f;          /* column 3: the translation of clip z */
-    return m;
-}
-
 static mesh mesh_create(uint32_t vertex_count, uint32_t triangle_count)
 {
     mesh m = {vertex_count,
@@ -87,7 +73,8 @@ static mesh mesh_create(uint32_t vertex_count, uint32_t triangle_count)
               calloc(3 * (size_t)triangle_count, sizeof(uint32_t))};
     assert_true(m.vertices && m.clip && m.window && m.fixed && m.indices);
     m.transform = (luz_draw_transform){m.vertices, luz_mat4_identity(),
-                                       luz_mat3_normal_matrix(luz_mat4_identity()), w_from_z()};
+                                       luz_mat3_normal_matrix(luz_mat4_identity()),
+                                       test_w_from_z()};
     return m;
 }
 
@@ -116,21 +103,12 @@ static void project(mesh *m, uint32_t i)
     project_with(m, i, -1);
 }
 
-/* Vertex i at clip w (the window position divides by it), placed so that,
- * with the identity model, it projects to within a sub-pixel unit or so
- * of (X, Y) in fixed point (float clip coordinates round it), with a
- * random normal and uv. Inside the guard band or not, it is not marked
- * (as if the clipper had made it). */
+/* Vertex i at clip w, test_vertex_at's, projected. Inside the guard band
+ * or not, it is not marked (as if the clipper had made it). */
 static void set_vertex_at(mesh *m, uint32_t i, int32_t fixed_x, int32_t fixed_y, float w,
                           uint32_t *random)
 {
-    const double x_ndc = 2.0 * fixed_x / (LUZ_SUBPIXEL_ONE * (double)WIDTH) - 1.0;
-    const double y_ndc = 1.0 - 2.0 * fixed_y / (LUZ_SUBPIXEL_ONE * (double)HEIGHT);
-    m->vertices[i] = (luz_vertex){
-        {(float)(x_ndc * w), (float)(y_ndc * w), w},
-        {test_uniform(random, -1.0f, 1.0f), test_uniform(random, -1.0f, 1.0f),
-         test_uniform(random, -1.0f, 1.0f)},
-        {test_uniform(random, -4.0f, 4.0f), test_uniform(random, -4.0f, 4.0f)}};
+    m->vertices[i] = test_vertex_at(fixed_x, fixed_y, w, WIDTH, HEIGHT, random);
     project_with(m, i, 0);
 }
 
@@ -415,12 +393,7 @@ static void test_lanes_agree_with_setup(void **state)
      * a little (a projection * view with no zero to hide a term), the
      * outcodes now the vertex stage's own: a transform done differently
      * in lanes, a sum taken in another order, shows here. */
-    m.transform.model = luz_mat4_rotate(luz_mat4_translate(luz_mat4_identity(),
-                                                           (luz_vec3){0.3f, -0.2f, 0.05f}),
-                                        0.3f, (luz_vec3){0.1f, 0.2f, 0.97f});
-    m.transform.normal_matrix = luz_mat3_normal_matrix(m.transform.model);
-    m.transform.view_projection = luz_mat4_multiply(
-        w_from_z(), luz_mat4_rotate(luz_mat4_identity(), 0.05f, (luz_vec3){0.3f, 0.5f, 0.81f}));
+    test_turn(&m.transform);
     for (uint32_t i = 0; i < m.vertex_count; i++) project(&m, i);
     for (int mode = 0; mode < 2; mode++)
         for (int samples = 1; samples <= 4; samples += 3)

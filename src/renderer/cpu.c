@@ -165,6 +165,21 @@ int luz_isa_chosen(luz_isa *out, luz_error *error)
                          runs);
 }
 
+/* A set's geometry in lanes: screening that checks the small boxes, for
+ * one sample and four, setup in lanes for each, and the vertex pass. */
+static void set_geometry(luz_kernels *kernels, luz_screen_function *screen,
+                         luz_screen_function *screen_four, luz_setup_eight_function *setup_eight,
+                         luz_setup_eight_function *setup_eight_four,
+                         luz_vertex_project_function *vertex_project)
+{
+    kernels->screen = screen;
+    kernels->screen_checks_small_boxes = true;
+    kernels->setup_eight = setup_eight;
+    kernels->screen_four = screen_four;
+    kernels->setup_eight_four = setup_eight_four;
+    kernels->vertex_project = vertex_project;
+}
+
 luz_kernels luz_kernels_of(luz_isa isa)
 {
     /* Without a variant of its own, a stage runs its plain form:
@@ -196,31 +211,19 @@ luz_kernels luz_kernels_of(luz_isa isa)
         break;
     case LUZ_ISA_BASELINE:
 #if defined(LUZ_HAVE_NEON)
-        kernels.screen = luz_screen_triangles_neon;
-        kernels.screen_checks_small_boxes = true;
-        kernels.setup_eight = luz_setup_eight_neon;
-        kernels.screen_four = luz_screen_triangles_four_neon;
-        kernels.setup_eight_four = luz_setup_eight_four_neon;
-        kernels.vertex_project = luz_vertex_project_neon;
+        set_geometry(&kernels, luz_screen_triangles_neon, luz_screen_triangles_four_neon,
+                     luz_setup_eight_neon, luz_setup_eight_four_neon, luz_vertex_project_neon);
 #elif defined(LUZ_HAVE_SSE2)
-        kernels.screen = luz_screen_triangles_sse2;
-        kernels.screen_checks_small_boxes = true;
-        kernels.setup_eight = luz_setup_eight_sse2;
-        kernels.screen_four = luz_screen_triangles_four_sse2;
-        kernels.setup_eight_four = luz_setup_eight_four_sse2;
-        kernels.vertex_project = luz_vertex_project_sse2;
+        set_geometry(&kernels, luz_screen_triangles_sse2, luz_screen_triangles_four_sse2,
+                     luz_setup_eight_sse2, luz_setup_eight_four_sse2, luz_vertex_project_sse2);
 #endif
         break;
     case LUZ_ISA_AVX2:
 #if defined(LUZ_HAVE_AVX2)
         kernels.packet_rows = luz_fragment_packet_rows_avx2;
         kernels.packet_list = luz_fragment_packet_list_avx2;
-        kernels.screen = luz_screen_triangles_avx2;
-        kernels.screen_checks_small_boxes = true;
-        kernels.setup_eight = luz_setup_eight_avx2;
-        kernels.screen_four = luz_screen_triangles_four_avx2;
-        kernels.setup_eight_four = luz_setup_eight_four_avx2;
-        kernels.vertex_project = luz_vertex_project_avx2;
+        set_geometry(&kernels, luz_screen_triangles_avx2, luz_screen_triangles_four_avx2,
+                     luz_setup_eight_avx2, luz_setup_eight_four_avx2, luz_vertex_project_avx2);
         kernels.span_test = luz_span_test_avx2;
         kernels.mixed_pixels = luz_mixed_pixels_of_row_avx2;
 #endif
@@ -229,12 +232,9 @@ luz_kernels luz_kernels_of(luz_isa isa)
 #if defined(LUZ_HAVE_AVX512)
         kernels.packet_rows = luz_fragment_packet_rows_avx512;
         kernels.packet_list = luz_fragment_packet_list_avx512;
-        kernels.screen = luz_screen_triangles_avx512;
-        kernels.screen_checks_small_boxes = true;
-        kernels.setup_eight = luz_setup_eight_avx512;
-        kernels.vertex_project = luz_vertex_project_avx512;
-        kernels.screen_four = luz_screen_triangles_four_avx512;
-        kernels.setup_eight_four = luz_setup_eight_four_avx512;
+        set_geometry(&kernels, luz_screen_triangles_avx512, luz_screen_triangles_four_avx512,
+                     luz_setup_eight_avx512, luz_setup_eight_four_avx512,
+                     luz_vertex_project_avx512);
         kernels.span_test = luz_span_test_avx512;
         kernels.mixed_pixels = luz_mixed_pixels_of_row_avx512;
 #endif
