@@ -243,6 +243,52 @@ static void test_every_set_tests_spans_as_defined(void **state)
     }
 }
 
+/* Every set's depth tests of a span of pixel centres (sample_loops.c,
+ * through the table): where luz_raster_depth at x is LESS than the row's,
+ * both rows take it; elsewhere, equal depths included, and outside
+ * [first, last], nothing changes. Spans of 0 to 70 pixels at every start,
+ * so that every copy's vector remainders run. */
+static void test_every_set_tests_centre_spans_as_defined(void **state)
+{
+    (void)state;
+    enum { ROW = 96 };
+    uint32_t seed = 29;
+    for (int isa = 0; isa < LUZ_ISA_COUNT; isa++) {
+        if (!luz_isa_available((luz_isa)isa)) continue;
+        const luz_kernels kernels = luz_kernels_of((luz_isa)isa);
+        int replaced = 0, kept = 0;
+        for (int trial = 0; trial < 400; trial++) {
+            const luz_plane depth = {(float)(test_random(&seed) % 1000) / 1000.0f,
+                                     ((float)(test_random(&seed) % 200) - 100.0f) / 4096.0f,
+                                     ((float)(test_random(&seed) % 200) - 100.0f) / 4096.0f};
+            const float reference_x = (float)(test_random(&seed) % 64) + 0.5f;
+            const float row_depth = luz_raster_row_depth(depth, 3.5f, 7);
+            const int first = (int)(test_random(&seed) % 20);
+            const int last = first - 1 + (int)(test_random(&seed) % 71);
+            float depth_row[ROW], expected_depth[ROW];
+            uint32_t visibility_row[ROW], expected_visibility[ROW];
+            for (int x = 0; x < ROW; x++) {
+                const float z = luz_raster_depth(depth, reference_x, row_depth, x);
+                /* Nearer, farther, or the same depth (kept: LESS). */
+                const uint32_t pick = test_random(&seed) % 3;
+                depth_row[x] = pick == 0 ? z : pick == 1 ? z + 0.25f : z - 0.25f;
+                visibility_row[x] = 1000 + (uint32_t)x;
+                const bool inside = x >= first && x <= last;
+                const bool wins = inside && pick == 1;
+                expected_depth[x] = wins ? z : depth_row[x];
+                expected_visibility[x] = wins ? 7 : visibility_row[x];
+                replaced += wins;
+                kept += inside && !wins;
+            }
+            kernels.centre_span_test(depth, reference_x, row_depth, first, last, depth_row,
+                                     visibility_row, 7);
+            assert_memory_equal(depth_row, expected_depth, sizeof depth_row);
+            assert_memory_equal(visibility_row, expected_visibility, sizeof visibility_row);
+        }
+        assert_true(replaced > 1000 && kept > 1000);
+    }
+}
+
 /* Every set's mixed pixels of a row (sample_loops.c, through the table):
  * each pixel's sample 0 into first, and the x, in order, where the four
  * samples' ids are not all equal, found here one pixel at a time. Rows of
@@ -289,6 +335,7 @@ int main(void)
         cmocka_unit_test(test_unknown_names_are_refused),
         cmocka_unit_test(test_luz_render_refuses_an_unknown_set),
         cmocka_unit_test(test_every_set_tests_spans_as_defined),
+        cmocka_unit_test(test_every_set_tests_centre_spans_as_defined),
         cmocka_unit_test(test_every_set_finds_mixed_pixels_as_defined),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -26,6 +26,7 @@ luz_setup_eight_function luz_setup_eight_scalar;
 luz_vertex_project_function luz_vertex_project_scalar;
 luz_span_test_function luz_span_test_baseline;
 luz_mixed_pixels_function luz_mixed_pixels_of_row_baseline;
+luz_centre_span_function luz_centre_span_test_baseline;
 #if defined(LUZ_HAVE_SSE2)
 luz_screen_function luz_screen_triangles_sse2, luz_screen_triangles_four_sse2;
 luz_setup_eight_function luz_setup_eight_sse2, luz_setup_eight_four_sse2;
@@ -39,6 +40,7 @@ luz_setup_eight_function luz_setup_eight_avx2, luz_setup_eight_four_avx2;
 luz_vertex_project_function luz_vertex_project_avx2;
 luz_span_test_function luz_span_test_avx2;
 luz_mixed_pixels_function luz_mixed_pixels_of_row_avx2;
+luz_centre_span_function luz_centre_span_test_avx2;
 #endif
 #if defined(LUZ_HAVE_NEON)
 luz_screen_function luz_screen_triangles_neon, luz_screen_triangles_four_neon;
@@ -53,6 +55,7 @@ luz_setup_eight_function luz_setup_eight_avx512, luz_setup_eight_four_avx512;
 luz_vertex_project_function luz_vertex_project_avx512;
 luz_span_test_function luz_span_test_avx512;
 luz_mixed_pixels_function luz_mixed_pixels_of_row_avx512;
+luz_centre_span_function luz_centre_span_test_avx512;
 #endif
 
 const char *luz_isa_name(luz_isa isa)
@@ -198,6 +201,7 @@ luz_kernels luz_kernels_of(luz_isa isa)
         .setup_eight_four = NULL,
         .span_test = luz_span_test_baseline,
         .mixed_pixels = luz_mixed_pixels_of_row_baseline,
+        .centre_span_test = luz_centre_span_test_baseline,
     };
     switch (isa) {
     case LUZ_ISA_SCALAR:
@@ -226,6 +230,7 @@ luz_kernels luz_kernels_of(luz_isa isa)
                      luz_setup_eight_avx2, luz_setup_eight_four_avx2, luz_vertex_project_avx2);
         kernels.span_test = luz_span_test_avx2;
         kernels.mixed_pixels = luz_mixed_pixels_of_row_avx2;
+        kernels.centre_span_test = luz_centre_span_test_avx2;
 #endif
         break;
     case LUZ_ISA_AVX512:
@@ -237,6 +242,7 @@ luz_kernels luz_kernels_of(luz_isa isa)
                      luz_vertex_project_avx512);
         kernels.span_test = luz_span_test_avx512;
         kernels.mixed_pixels = luz_mixed_pixels_of_row_avx512;
+        kernels.centre_span_test = luz_centre_span_test_avx512;
 #endif
         break;
     }

@@ -77,6 +77,8 @@ typedef struct luz_kernels {
     /* Four samples' plain loops (sample_loops.c), compiled per set. */
     luz_span_test_function *span_test;       /* raster's depth tests of a span */
     luz_mixed_pixels_function *mixed_pixels; /* the resolve's mixed pixels */
+    /* One sample's long spans (sample_loops.c too). */
+    luz_centre_span_function *centre_span_test;
 } luz_kernels;
 
 /* The table of isa, which must be available. */

@@ -168,7 +168,8 @@ static uint64_t raster_band(const frame_job *job, luz_framebuffer *framebuffer, 
             tested += luz_raster_triangle_counting(triangle, id, framebuffer, first_row,
                                                    end_row, overdraw);
         } else {
-            tested += luz_raster_triangle(triangle, id, framebuffer, first_row, end_row);
+            tested += luz_raster_triangle_spans(triangle, id, framebuffer, first_row, end_row,
+                                                job->renderer->kernels.centre_span_test);
         }
     }
     return tested;

@@ -578,6 +578,20 @@ uint64_t luz_raster_triangle_counting(const luz_triangle *triangle, uint32_t tri
                                       luz_framebuffer *framebuffer, int first_row,
                                       int end_row, uint32_t *overdraw);
 
+/* The depth tests of a row's span of pixel centres, x in [first, last]:
+ * where luz_raster_depth is LESS than depth_row[x], that and
+ * visibility_row[x] take it and triangle_id (cpu.h's table has each
+ * instruction set's copy, sample_loops.c). */
+typedef void luz_centre_span_function(luz_plane depth, float reference_x, float row_depth,
+                                      int first, int last, float *depth_row,
+                                      uint32_t *visibility_row, uint32_t triangle_id);
+
+/* luz_raster_triangle, with the rows' long spans (more than 16 pixels)
+ * tested by test_span: the same pixels and the same bits. */
+uint64_t luz_raster_triangle_spans(const luz_triangle *triangle, uint32_t triangle_id,
+                                   luz_framebuffer *framebuffer, int first_row, int end_row,
+                                   luz_centre_span_function *test_span);
+
 /* luz/bug.h's no-depth-test: every sample at offset `sample` (one
  * sample: the centre) of rows [first_row, end_row) inside the triangle
  * passes; its winner, visibility[(y * width + x) * stride] (stride 1 for

@@ -33,11 +33,12 @@
  * convex, so the pixels that pass are one span, the same span the
  * divisions give.
  *
- * Long spans: a span of more than LONG_SPAN pixels (a cube's face in the
- * lab) has its depth tests made by test_centre_span, in lanes (16 with
- * AVX-512, masked stores), each pixel by luz_raster_depth's operations,
- * so the same bits. Shorter ones stay a plain loop, which costs less than
- * the call.
+ * Long spans: in luz_raster_triangle_spans, a span of more than LONG_SPAN
+ * pixels (a cube's face in the lab) has its depth tests made by the
+ * instruction set's luz_centre_span_function (sample_loops.c: 16 at a
+ * time with AVX-512, masked stores), each pixel by luz_raster_depth's
+ * operations, so the same bits. Shorter ones stay a plain loop, which
+ * costs less than the call.
  *
  * The per-pixel arithmetic (a row's span, either way, and the depth at a
  * pixel centre) is in pipeline.h, luz_raster_row_span and
@@ -47,32 +48,18 @@
  */
 #include "renderer/pipeline.h"
 
-/* The depth tests of a row's span of pixel centres, compiled for wider
- * vectors too (LUZ_CLONES): each test is independent of its neighbours,
- * so AVX-512 makes sixteen at a time with masked stores. */
-static void test_centre_span(luz_plane depth, float reference_x, float row_depth,
-                                        int first, int last, float *depth_row,
-                                        uint32_t *visibility_row, uint32_t triangle_id)
-{
-    for (int x = first; x <= last; x++) {
-        float z = luz_raster_depth(depth, reference_x, row_depth, x);
-        if (z < depth_row[x]) {    /* GL_LESS */
-            depth_row[x] = z;
-            visibility_row[x] = triangle_id;
-        }
-    }
-}
-
-/* Spans longer than this go to test_centre_span (see the top of the file). */
+/* Spans longer than this go to the table's test (see the top of the file). */
 enum { LONG_SPAN = 16 };
 
 /* The rasteriser itself. overdraw, when not NULL, counts the depth tests of
- * every pixel (the overdraw view). The two public functions below call it
- * with NULL or a buffer; inlined into each (always_inline, GCC and clang),
- * the plain one is compiled without the counting at all. */
+ * every pixel (the overdraw view); test_span, when not NULL, tests the long
+ * spans. The three public functions below call it with NULL or a buffer
+ * and NULL or the table's test; inlined into each (always_inline, GCC and
+ * clang), the plain one is compiled without either at all. */
 static inline __attribute__((always_inline)) uint64_t raster_triangle(const luz_triangle *triangle, uint32_t triangle_id,
                                        luz_framebuffer *framebuffer, int first_row,
-                                       int end_row, uint32_t *overdraw)
+                                       int end_row, uint32_t *overdraw,
+                                       luz_centre_span_function *test_span)
 {
     int y_begin = triangle->min_y > first_row ? triangle->min_y : first_row;
     int y_end = triangle->max_y + 1 < end_row ? triangle->max_y + 1 : end_row;
@@ -90,9 +77,9 @@ static inline __attribute__((always_inline)) uint64_t raster_triangle(const luz_
         const float row_depth = luz_raster_row_depth(depth, triangle->reference_y, y);
         float *depth_row = framebuffer->depth + (size_t)y * width;
         uint32_t *visibility_row = framebuffer->visibility + (size_t)y * width;
-        if (last - first >= LONG_SPAN) {
-            test_centre_span(depth, triangle->reference_x, row_depth, (int)first, (int)last,
-                             depth_row, visibility_row, triangle_id);
+        if (test_span != NULL && last - first >= LONG_SPAN) {
+            test_span(depth, triangle->reference_x, row_depth, (int)first, (int)last, depth_row,
+                      visibility_row, triangle_id);
         } else {
             for (int x = (int)first; x <= (int)last; x++) {
                 float z = luz_raster_depth(depth, triangle->reference_x, row_depth, x);
@@ -114,14 +101,23 @@ static inline __attribute__((always_inline)) uint64_t raster_triangle(const luz_
 uint64_t luz_raster_triangle(const luz_triangle *triangle, uint32_t triangle_id,
                              luz_framebuffer *framebuffer, int first_row, int end_row)
 {
-    return raster_triangle(triangle, triangle_id, framebuffer, first_row, end_row, NULL);
+    return raster_triangle(triangle, triangle_id, framebuffer, first_row, end_row, NULL, NULL);
+}
+
+uint64_t luz_raster_triangle_spans(const luz_triangle *triangle, uint32_t triangle_id,
+                                   luz_framebuffer *framebuffer, int first_row, int end_row,
+                                   luz_centre_span_function *test_span)
+{
+    return raster_triangle(triangle, triangle_id, framebuffer, first_row, end_row, NULL,
+                           test_span);
 }
 
 uint64_t luz_raster_triangle_counting(const luz_triangle *triangle, uint32_t triangle_id,
                                       luz_framebuffer *framebuffer, int first_row,
                                       int end_row, uint32_t *overdraw)
 {
-    return raster_triangle(triangle, triangle_id, framebuffer, first_row, end_row, overdraw);
+    return raster_triangle(triangle, triangle_id, framebuffer, first_row, end_row, overdraw,
+                           NULL);
 }
 
 /* The samples of a pixel are independent (each its own plane, its own

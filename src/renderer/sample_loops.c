@@ -5,7 +5,9 @@
  * In, out: luz_span_test_function's and luz_mixed_pixels_function's
  * (pipeline.h): the depth tests of a row's span at one sample (raster.c's
  * luz_raster_triangle_samples), and the pixels of a row whose four
- * samples' winners differ (resolve.c's luz_samples_sort_winners).
+ * samples' winners differ (resolve.c's luz_samples_sort_winners); and
+ * luz_centre_span_function's, one sample a pixel's long spans (raster.c's
+ * luz_raster_triangle_spans).
  *
  * Why a file of their own: these are plain C that the compiler
  * vectorises, and the AVX-512 copy tests sixteen samples with masked
@@ -30,6 +32,22 @@
 
 luz_span_test_function LOOPS_NAME(luz_span_test);
 luz_mixed_pixels_function LOOPS_NAME(luz_mixed_pixels_of_row);
+luz_centre_span_function LOOPS_NAME(luz_centre_span_test);
+
+/* The same for one sample a pixel, at each pixel centre, the rows
+ * contiguous (raster.c's long spans: a face of the lab's cubes). */
+void LOOPS_NAME(luz_centre_span_test)(luz_plane depth, float reference_x, float row_depth,
+                                      int first, int last, float *depth_row,
+                                      uint32_t *visibility_row, uint32_t triangle_id)
+{
+    for (int x = first; x <= last; x++) {
+        float z = luz_raster_depth(depth, reference_x, row_depth, x);
+        if (z < depth_row[x]) {
+            depth_row[x] = z;
+            visibility_row[x] = triangle_id;
+        }
+    }
+}
 
 /* Each test independent of its neighbours: GL_LESS per sample. A pixel's
  * samples lie side by side (luz_sample_buffers): the rows passed are
