@@ -30,6 +30,37 @@ static bool marked(luz_fixed_vertex vertex)
     return vertex.x < -(1 << 24);
 }
 
+/* The corners shaded for one call's eight triangles. Neighbours in an
+ * index buffer share vertices (two of three, in a strip-ordered mesh), so
+ * a vertex shaded for one triangle is kept for the next: each is shaded
+ * once a call, not once a triangle. A vertex's shading is a function of
+ * its index alone, so taking it from here changes no bit. */
+typedef struct corner_cache {
+    int count;
+    uint32_t index[24];
+    luz_clip_vertex clip[24];
+    luz_window_vertex window[24];
+} corner_cache;
+
+/* Where in cache vertex index is, shaded and projected: no corner of
+ * these triangles is marked, so each is inside every clip plane, as the
+ * vertex pass found, and projected as the lanes project it; its snapped
+ * position is the vertex pass's (the same, from the same vertex). */
+static int shade_corner(corner_cache *cache, const luz_draw_transform *transform,
+                        uint32_t index, const luz_fixed_vertex *fixed, int width, int height)
+{
+    for (int at = 0; at < cache->count; at++)
+        if (cache->index[at] == index) return at;
+    const int at = cache->count++;
+    cache->index[at] = index;
+    cache->clip[at] = luz_vertex_stage_one(transform, index);
+    cache->clip[at].outcode = 0;
+    cache->window[at] = luz_setup_project_vertex(&cache->clip[at], width, height);
+    cache->window[at].fixed_x = fixed[index].x;
+    cache->window[at].fixed_y = fixed[index].y;
+    return at;
+}
+
 bool luz_setup_eight_scalar(const uint32_t *indices, const uint32_t triangles[8],
                             const luz_draw_transform *transform, const luz_fixed_vertex *fixed,
                             int width, int height, uint32_t draw_index,
@@ -41,6 +72,8 @@ bool luz_setup_eight_scalar(const uint32_t *indices, const uint32_t triangles[8]
     for (int lane = 0; lane < 8; lane++)
         for (int k = 0; k < 3; k++)
             if (marked(fixed[indices[3 * (size_t)triangles[lane] + (size_t)k]])) return true;
+    corner_cache cache;
+    cache.count = 0;
     for (int lane = 0; lane < 8; lane++) {
         const uint32_t *corner = &indices[3 * (size_t)triangles[lane]];
         /* Setup's verdicts before the planes (a back face; no pixel centre
@@ -68,20 +101,16 @@ bool luz_setup_eight_scalar(const uint32_t *indices, const uint32_t triangles[8]
         luz_clip_vertex shaded[3];
         luz_window_vertex projected[3];
         for (int k = 0; k < 3; k++) {
-            /* No corner is marked (above): each is inside every clip
-             * plane, as the vertex pass found, and projected as the lanes
-             * project it; its snapped position is the vertex pass's (the
-             * same, from the same vertex). */
-            shaded[k] = luz_vertex_stage_one(transform, corner[k]);
-            shaded[k].outcode = 0;
-            projected[k] = luz_setup_project_vertex(&shaded[k], width, height);
-            projected[k].fixed_x = fixed[corner[k]].x;
-            projected[k].fixed_y = fixed[corner[k]].y;
+            const int at = shade_corner(&cache, transform, corner[k], fixed, width, height);
+            shaded[k] = cache.clip[at];
+            projected[k] = cache.window[at];
         }
-        /* small_box_checked false: nothing screened these. */
+        /* small_box_checked: the test above found a centre in its box
+         * (any box of up to LUZ_SETUP_SMALL_BOX_PIXELS), so that setup
+         * need not look again in a box of 2 x 2. */
         result[lane] = luz_setup_projected(&shaded[0], &shaded[1], &shaded[2], &projected[0],
                                            &projected[1], &projected[2], width, height,
-                                           draw_index, interpolation, false, &out[lane]);
+                                           draw_index, interpolation, true, &out[lane]);
     }
     return false;
 }
