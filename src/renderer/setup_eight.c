@@ -206,14 +206,18 @@ setup_eight(const uint32_t *indices, const uint32_t triangles[8],
             int height, uint32_t draw_index, luz_interpolation interpolation, int samples,
             luz_triangle out[8], luz_setup_result result[8])
 {
-    /* The corners' vertex indices, a lane per triangle. */
+    /* The corners' vertex indices, a lane per triangle: gathered
+     * (3 t + k < 3 * 2^28 fits an int32), where eight indices stored one
+     * by one and loaded as a vector waited for the stores to retire. */
+    const __m256i first_index = _mm256_mullo_epi32(
+        _mm256_loadu_si256((const void *)triangles), _mm256_set1_epi32(3));
+    const __m256i vertex0 = _mm256_i32gather_epi32((const int *)indices, first_index, 4);
+    const __m256i vertex1 = _mm256_i32gather_epi32((const int *)indices + 1, first_index, 4);
+    const __m256i vertex2 = _mm256_i32gather_epi32((const int *)indices + 2, first_index, 4);
     int32_t corner[3][8];
-    for (int lane = 0; lane < 8; lane++)
-        for (int k = 0; k < 3; k++)
-            corner[k][lane] = (int32_t)indices[3 * (size_t)triangles[lane] + (size_t)k];
-    const __m256i vertex0 = _mm256_loadu_si256((const void *)corner[0]);
-    const __m256i vertex1 = _mm256_loadu_si256((const void *)corner[1]);
-    const __m256i vertex2 = _mm256_loadu_si256((const void *)corner[2]);
+    _mm256_storeu_si256((void *)corner[0], vertex0);
+    _mm256_storeu_si256((void *)corner[1], vertex1);
+    _mm256_storeu_si256((void *)corner[2], vertex2);
 
     /* 3. The doubled area in fixed point, as luz_setup_front_facing; a
      * marked vertex (below -2^24) leaves the eight to the caller. */
