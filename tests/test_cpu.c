@@ -192,57 +192,6 @@ static void test_luz_render_refuses_an_unknown_set(void **state)
     assert_int_equal(strchr(text, '\n') - text, (ptrdiff_t)length - 1);   /* one line */
 }
 
-/* Every set's depth tests of a span (sample_loops.c, through the table)
- * do what luz_span_test_function says, sample for sample: where the
- * depth at x + offset_x (luz_raster_sample_depth) is LESS than the
- * buffer's, both rows take it; elsewhere, equal depths included, nothing
- * changes; outside [first, last], and the other samples of a pixel (the
- * entries between, LUZ_MAX_SAMPLES apart), nothing either. Spans of 0 to
- * 70 pixels at every start, so that every copy's vector remainders run. */
-static void test_every_set_tests_spans_as_defined(void **state)
-{
-    (void)state;
-    enum { ROW = 96, ENTRIES = ROW * LUZ_MAX_SAMPLES };
-    uint32_t seed = 28;
-    for (int isa = 0; isa < LUZ_ISA_COUNT; isa++) {
-        if (!luz_isa_available((luz_isa)isa)) continue;
-        const luz_kernels kernels = luz_kernels_of((luz_isa)isa);
-        int replaced = 0, kept = 0;
-        for (int trial = 0; trial < 400; trial++) {
-            const luz_plane depth = {(float)(test_random(&seed) % 1000) / 1000.0f,
-                                     ((float)(test_random(&seed) % 200) - 100.0f) / 4096.0f,
-                                     ((float)(test_random(&seed) % 200) - 100.0f) / 4096.0f};
-            const float reference_x = (float)(test_random(&seed) % 64) + 0.5f;
-            const float row_depth = luz_raster_sample_row_depth(depth, 3.5f, 7, 0.375f);
-            const float offset_x = (float)(test_random(&seed) % 256) / 256.0f;
-            const int sample = (int)(test_random(&seed) % LUZ_MAX_SAMPLES);
-            const int first = (int)(test_random(&seed) % 20);
-            const int last = first - 1 + (int)(test_random(&seed) % 71);
-            float depth_row[ENTRIES], expected_depth[ENTRIES];
-            uint32_t visibility_row[ENTRIES], expected_visibility[ENTRIES];
-            for (int i = 0; i < ENTRIES; i++) {
-                const int x = i / LUZ_MAX_SAMPLES;
-                const float z = luz_raster_sample_depth(depth, reference_x, row_depth, x, offset_x);
-                /* Nearer, farther, or the same depth (kept: LESS). */
-                const uint32_t pick = test_random(&seed) % 3;
-                depth_row[i] = pick == 0 ? z : pick == 1 ? z + 0.25f : z - 0.25f;
-                visibility_row[i] = 1000 + (uint32_t)i;
-                const bool inside = x >= first && x <= last && i % LUZ_MAX_SAMPLES == sample;
-                const bool wins = inside && pick == 1;
-                expected_depth[i] = wins ? z : depth_row[i];
-                expected_visibility[i] = wins ? 7 : visibility_row[i];
-                replaced += wins;
-                kept += inside && !wins;
-            }
-            kernels.span_test(depth, reference_x, row_depth, offset_x, first, last,
-                              depth_row + sample, visibility_row + sample, 7);
-            assert_memory_equal(depth_row, expected_depth, sizeof depth_row);
-            assert_memory_equal(visibility_row, expected_visibility, sizeof visibility_row);
-        }
-        assert_true(replaced > 1000 && kept > 1000);
-    }
-}
-
 /* Every set's depth tests of a span of pixel centres (sample_loops.c,
  * through the table): where luz_raster_depth at x is LESS than the row's,
  * both rows take it; elsewhere, equal depths included, and outside
@@ -334,7 +283,6 @@ int main(void)
         cmocka_unit_test(test_each_set_is_named),
         cmocka_unit_test(test_unknown_names_are_refused),
         cmocka_unit_test(test_luz_render_refuses_an_unknown_set),
-        cmocka_unit_test(test_every_set_tests_spans_as_defined),
         cmocka_unit_test(test_every_set_tests_centre_spans_as_defined),
         cmocka_unit_test(test_every_set_finds_mixed_pixels_as_defined),
     };

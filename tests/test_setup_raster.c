@@ -15,10 +15,12 @@
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include <cmocka.h>
 
+#include "renderer/cpu.h"
 #include "renderer/pipeline.h"
 
 #define SIZE 16
@@ -422,6 +424,125 @@ static void test_small_triangles_covering_no_centre_are_dropped(void **state)
     assert_true(kept > 500);
 }
 
+/* ---- four samples a pixel, in lanes (raster_lanes.c) -------------------- */
+
+/* The definition, sample by sample: SCENE.md's four positions, each
+ * sample inside when E = a X + b Y + c >= 0 for the three edges at its
+ * sub-pixel point (X = 256 x + sx, Y = 256 y + sy, exact integers), its
+ * depth the plane's value there in luz_raster_sample_depth's float
+ * operations, LESS. Returns the tests made. */
+static uint64_t four_samples_by_definition(const luz_triangle *t, uint32_t id, int width,
+                                           int height, float *depth, uint32_t *visibility)
+{
+    static const int sample_x[4] = {96, 224, 32, 160}, sample_y[4] = {32, 96, 160, 224};
+    uint64_t tests = 0;
+    for (int y = 0; y < height; y++)
+        for (int x = 0; x < width; x++)
+            for (int s = 0; s < 4; s++) {
+                const int64_t X = 256 * (int64_t)x + sample_x[s], Y = 256 * (int64_t)y + sample_y[s];
+                bool inside = true;
+                for (int k = 0; k < 3; k++)
+                    if ((int64_t)t->edges[k].a * X + (int64_t)t->edges[k].b * Y + t->edges[k].c < 0)
+                        inside = false;
+                if (!inside) continue;
+                const float row = t->depth.value +
+                                  t->depth.dy * ((float)y + sample_y[s] / 256.0f - t->reference_y);
+                const float z =
+                    row + t->depth.dx * ((float)x + sample_x[s] / 256.0f - t->reference_x);
+                const size_t at = ((size_t)y * width + (size_t)x) * 4 + (size_t)s;
+                tests++;
+                if (z < depth[at]) {
+                    depth[at] = z;
+                    visibility[at] = id;
+                }
+            }
+    return tests;
+}
+
+/* A window coordinate in [low, high), on the 1/256 grid. */
+static double random_coordinate(unsigned *seed, double low, double high)
+{
+    *seed = *seed * 1103515245u + 12345u;
+    const double unit = (double)((*seed >> 8) & 0xffff) / 65536.0;
+    return floor((low + unit * (high - low)) * 256.0) / 256.0;
+}
+
+/* Every instruction set's lanes give the definition's depths, winners and
+ * test counts, bit for bit, on overlapping triangles of every kind: pixel
+ * sized (the 32-bit edges), large (the spans), tall and thin (a small box
+ * whose edges pass 2^30: the spans again), vertices off the viewport,
+ * widths that are not a multiple of four (the group moved left at the
+ * row's end), drawn in bands of 16 rows as frame.c does. */
+static void test_four_samples_in_lanes_match_the_definition(void **state)
+{
+    (void)state;
+    const int sizes[][2] = {{4, 9}, {5, 40}, {13, 2100}, {37, 29}, {64, 64}};
+    for (int isa = LUZ_ISA_SCALAR; isa < LUZ_ISA_COUNT; isa++) {
+        if (!luz_isa_available((luz_isa)isa)) continue;
+        luz_raster_groups_function *groups = luz_kernels_of((luz_isa)isa).raster_groups;
+        for (size_t size = 0; size < sizeof sizes / sizeof sizes[0]; size++) {
+            const int width = sizes[size][0], height = sizes[size][1];
+            const size_t count = (size_t)width * height * 4;
+            float *depth = malloc(count * sizeof *depth), *expected_depth = malloc(count * sizeof *depth);
+            uint32_t *ids = calloc(count, sizeof *ids), *expected_ids = calloc(count, sizeof *ids);
+            assert_non_null(depth);
+            assert_non_null(expected_depth);
+            assert_non_null(ids);
+            assert_non_null(expected_ids);
+            for (size_t i = 0; i < count; i++) depth[i] = expected_depth[i] = 1.0f;
+            luz_sample_buffers buffers = {.samples = 4, .width = width, .height = height,
+                                          .depth = depth, .visibility = ids};
+            unsigned seed = 2026u + (unsigned)size;
+            int drawn = 0, small_tall = 0;
+            for (uint32_t id = 1; id <= 300; id++) {
+                /* A centre, and corners around it at the kind's reach. */
+                const int kind = (int)(id % 4);
+                const double cx = random_coordinate(&seed, -2.0, width + 2.0);
+                const double cy = random_coordinate(&seed, -2.0, height + 2.0);
+                const double reach_x = kind == 0 ? 1.5 : kind == 1 ? 0.6 : kind == 2 ? width : 3.0;
+                const double reach_y = kind == 0 ? 1.5 : kind == 1 ? 0.6 : kind == 2 ? height : height;
+                luz_clip_vertex v[3];
+                for (int j = 0; j < 3; j++) {
+                    const double x = cx + random_coordinate(&seed, -reach_x, reach_x);
+                    const double y = cy + random_coordinate(&seed, -reach_y, reach_y);
+                    memset(&v[j], 0, sizeof v[j]);
+                    v[j].position = (luz_vec4){(float)(2.0 * x / width - 1.0),
+                                               (float)(1.0 - 2.0 * y / height),
+                                               (float)random_coordinate(&seed, -0.9, 0.9), 1.0f};
+                }
+                luz_triangle triangle;
+                if (luz_setup_triangle_samples(&v[0], &v[1], &v[2], width, height, 0,
+                                               LUZ_INTERPOLATION_PERSPECTIVE, 4,
+                                               &triangle) != LUZ_SETUP_VISIBLE) {
+                    /* A back face: the same corners the other way round. */
+                    if (luz_setup_triangle_samples(&v[0], &v[2], &v[1], width, height, 0,
+                                                   LUZ_INTERPOLATION_PERSPECTIVE, 4,
+                                                   &triangle) != LUZ_SETUP_VISIBLE)
+                        continue;
+                }
+                drawn++;
+                small_tall += kind == 3 && luz_raster_is_small(&triangle) &&
+                              triangle.max_y - triangle.min_y > 1500;
+                uint64_t tests = 0;
+                for (int band = 0; band < height; band += 16)
+                    tests += luz_raster_triangle_samples(&triangle, id, &buffers, band,
+                                                         band + 16 < height ? band + 16 : height,
+                                                         NULL, groups);
+                assert_int_equal(tests, four_samples_by_definition(&triangle, id, width, height,
+                                                                   expected_depth, expected_ids));
+            }
+            assert_true(drawn > 100);
+            if (height > 2000) assert_true(small_tall > 0);
+            assert_memory_equal(depth, expected_depth, count * sizeof *depth);
+            assert_memory_equal(ids, expected_ids, count * sizeof *ids);
+            free(depth);
+            free(expected_depth);
+            free(ids);
+            free(expected_ids);
+        }
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -434,6 +555,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_left_edge_in_right_edge_out, setup_framebuffer,
                                         teardown_framebuffer),
         cmocka_unit_test(test_back_faces_and_degenerate_triangles_are_culled),
+        cmocka_unit_test(test_four_samples_in_lanes_match_the_definition),
         cmocka_unit_test_setup_teardown(test_depth_test_less, setup_framebuffer,
                                         teardown_framebuffer),
         cmocka_unit_test_setup_teardown(test_depth_is_interpolated_linearly, setup_framebuffer,

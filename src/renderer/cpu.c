@@ -24,36 +24,37 @@ luz_packet_list_function luz_fragment_packet_list_scalar, luz_fragment_packet_li
 luz_screen_function luz_screen_every_triangle;
 luz_setup_eight_function luz_setup_eight_scalar;
 luz_vertex_project_function luz_vertex_project_scalar;
-luz_span_test_function luz_span_test_baseline;
 luz_mixed_pixels_function luz_mixed_pixels_of_row_baseline;
 luz_centre_span_function luz_centre_span_test_baseline;
 #if defined(LUZ_HAVE_SSE2)
+luz_raster_groups_function luz_raster_groups_sse2;
 luz_screen_function luz_screen_triangles_sse2, luz_screen_triangles_four_sse2;
 luz_setup_eight_function luz_setup_eight_sse2, luz_setup_eight_four_sse2;
 luz_vertex_project_function luz_vertex_project_sse2;
 #endif
 #if defined(LUZ_HAVE_AVX2)
+luz_raster_groups_function luz_raster_groups_avx2;
 luz_packet_rows_function luz_fragment_packet_rows_avx2;
 luz_packet_list_function luz_fragment_packet_list_avx2;
 luz_screen_function luz_screen_triangles_avx2, luz_screen_triangles_four_avx2;
 luz_setup_eight_function luz_setup_eight_avx2, luz_setup_eight_four_avx2;
 luz_vertex_project_function luz_vertex_project_avx2;
-luz_span_test_function luz_span_test_avx2;
 luz_mixed_pixels_function luz_mixed_pixels_of_row_avx2;
 luz_centre_span_function luz_centre_span_test_avx2;
 #endif
 #if defined(LUZ_HAVE_NEON)
+luz_raster_groups_function luz_raster_groups_neon;
 luz_screen_function luz_screen_triangles_neon, luz_screen_triangles_four_neon;
 luz_setup_eight_function luz_setup_eight_neon, luz_setup_eight_four_neon;
 luz_vertex_project_function luz_vertex_project_neon;
 #endif
 #if defined(LUZ_HAVE_AVX512)
+luz_raster_groups_function luz_raster_groups_avx512;
 luz_packet_rows_function luz_fragment_packet_rows_avx512;
 luz_packet_list_function luz_fragment_packet_list_avx512;
 luz_screen_function luz_screen_triangles_avx512, luz_screen_triangles_four_avx512;
 luz_setup_eight_function luz_setup_eight_avx512, luz_setup_eight_four_avx512;
 luz_vertex_project_function luz_vertex_project_avx512;
-luz_span_test_function luz_span_test_avx512;
 luz_mixed_pixels_function luz_mixed_pixels_of_row_avx512;
 luz_centre_span_function luz_centre_span_test_avx512;
 #endif
@@ -199,9 +200,9 @@ luz_kernels luz_kernels_of(luz_isa isa)
         .vertex_project = NULL,
         .screen_four = NULL,
         .setup_eight_four = NULL,
-        .span_test = luz_span_test_baseline,
         .mixed_pixels = luz_mixed_pixels_of_row_baseline,
         .centre_span_test = luz_centre_span_test_baseline,
+        .raster_groups = NULL,
     };
     switch (isa) {
     case LUZ_ISA_SCALAR:
@@ -217,9 +218,11 @@ luz_kernels luz_kernels_of(luz_isa isa)
 #if defined(LUZ_HAVE_NEON)
         set_geometry(&kernels, luz_screen_triangles_neon, luz_screen_triangles_four_neon,
                      luz_setup_eight_neon, luz_setup_eight_four_neon, luz_vertex_project_neon);
+        kernels.raster_groups = luz_raster_groups_neon;
 #elif defined(LUZ_HAVE_SSE2)
         set_geometry(&kernels, luz_screen_triangles_sse2, luz_screen_triangles_four_sse2,
                      luz_setup_eight_sse2, luz_setup_eight_four_sse2, luz_vertex_project_sse2);
+        kernels.raster_groups = luz_raster_groups_sse2;
 #endif
         break;
     case LUZ_ISA_AVX2:
@@ -228,7 +231,7 @@ luz_kernels luz_kernels_of(luz_isa isa)
         kernels.packet_list = luz_fragment_packet_list_avx2;
         set_geometry(&kernels, luz_screen_triangles_avx2, luz_screen_triangles_four_avx2,
                      luz_setup_eight_avx2, luz_setup_eight_four_avx2, luz_vertex_project_avx2);
-        kernels.span_test = luz_span_test_avx2;
+        kernels.raster_groups = luz_raster_groups_avx2;
         kernels.mixed_pixels = luz_mixed_pixels_of_row_avx2;
         kernels.centre_span_test = luz_centre_span_test_avx2;
 #endif
@@ -240,9 +243,9 @@ luz_kernels luz_kernels_of(luz_isa isa)
         set_geometry(&kernels, luz_screen_triangles_avx512, luz_screen_triangles_four_avx512,
                      luz_setup_eight_avx512, luz_setup_eight_four_avx512,
                      luz_vertex_project_avx512);
-        kernels.span_test = luz_span_test_avx512;
         kernels.mixed_pixels = luz_mixed_pixels_of_row_avx512;
         kernels.centre_span_test = luz_centre_span_test_avx512;
+        kernels.raster_groups = luz_raster_groups_avx512;
 #endif
         break;
     }

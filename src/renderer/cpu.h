@@ -74,11 +74,13 @@ typedef struct luz_kernels {
      * triangle through, and one at a time (luz_setup_projected_samples). */
     luz_screen_function *screen_four;        /* checks the small boxes */
     luz_setup_eight_function *setup_eight_four;
-    /* Four samples' plain loops (sample_loops.c), compiled per set. */
-    luz_span_test_function *span_test;       /* raster's depth tests of a span */
+    /* Four samples' plain loop (sample_loops.c), compiled per set. */
     luz_mixed_pixels_function *mixed_pixels; /* the resolve's mixed pixels */
     /* One sample's long spans (sample_loops.c too). */
     luz_centre_span_function *centre_span_test;
+    /* The raster's depth tests at four samples in lanes (raster_lanes.c).
+     * NULL: one sample at a time. */
+    luz_raster_groups_function *raster_groups;
 } luz_kernels;
 
 /* The table of isa, which must be available. */

@@ -163,7 +163,7 @@ static uint64_t raster_band(const frame_job *job, luz_framebuffer *framebuffer, 
                     overdraw ? overdraw + (size_t)s * pixels : NULL);
         } else if (samples) {
             tested += luz_raster_triangle_samples(triangle, id, samples, first_row, end_row,
-                                                  overdraw, job->renderer->kernels.span_test);
+                                                  overdraw, job->renderer->kernels.raster_groups);
         } else if (overdraw) {
             tested += luz_raster_triangle_counting(triangle, id, framebuffer, first_row,
                                                    end_row, overdraw);

@@ -634,22 +634,29 @@ void luz_samples_clear_rows(luz_sample_buffers *buffers, int first_row, int end_
  * visibility become sample k's. */
 void luz_samples_split_rows(luz_sample_buffers *buffers, int first_row, int end_row);
 
+/* The pixels of a row that raster_lanes.c tests together, their four
+ * samples each. */
+#define LUZ_RASTER_GROUP_PIXELS 4
+
+/* raster_lanes.c's kernel, one per instruction set (cpu.h): the samples of
+ * rows [y_begin, y_end) (within the triangle's box) of a triangle, in
+ * buffers at least LUZ_RASTER_GROUP_PIXELS wide, small_edges when the
+ * triangle's box is small and its edge functions stay below 2^30 there
+ * (raster.c). Returns the tests made. */
+typedef uint64_t luz_raster_groups_function(const luz_triangle *triangle, uint32_t triangle_id,
+                                            luz_sample_buffers *buffers, int y_begin, int y_end,
+                                            bool small_edges);
+
 /* Covers every sample of rows [first_row, end_row) inside the triangle
  * (sample k at luz_sample_offset_of(buffers->samples, k)) into buffers'
  * depth and visibility: depth interpolated at the sample, LESS, the
- * winner's id; overdraw, if not NULL, counts each plane's depth tests
- * (plane k's count of pixel i at overdraw[k * width * height + i]).
- * Returns the tests made. test_span is the depth tests of a row's span at
- * one sample, x in [first, last] at x + offset_x: where
- * luz_raster_sample_depth is LESS than depth_row[x * LUZ_MAX_SAMPLES],
- * that and visibility_row[x * LUZ_MAX_SAMPLES] take it and triangle_id
- * (cpu.h's table has each instruction set's copy, sample_loops.c). */
-typedef void luz_span_test_function(luz_plane depth, float reference_x, float row_depth,
-                                    float offset_x, int first, int last, float *depth_row,
-                                    uint32_t *visibility_row, uint32_t triangle_id);
+ * winner's id; with groups (a luz_raster_groups_function; NULL: one
+ * sample at a time, the plain form); overdraw, if not NULL, counts each
+ * sample's depth tests (sample k's count of pixel i at
+ * overdraw[k * width * height + i]). Returns the tests made. */
 uint64_t luz_raster_triangle_samples(const luz_triangle *triangle, uint32_t triangle_id,
                                      luz_sample_buffers *buffers, int first_row, int end_row,
-                                     uint32_t *overdraw, luz_span_test_function *test_span);
+                                     uint32_t *overdraw, luz_raster_groups_function *groups);
 
 /* A fragment of a list: pixel (x, y) to be shaded as triangle id's, at
  * the pixel centre (the other winners of a pixel whose samples differ,

@@ -46,6 +46,8 @@
  * account of a pixel's depth tests is this file's arithmetic. Inlined, it
  * compiles to the same loop.
  */
+#include <string.h>
+
 #include "renderer/pipeline.h"
 
 /* Spans longer than this go to the table's test (see the top of the file). */
@@ -120,103 +122,121 @@ uint64_t luz_raster_triangle_counting(const luz_triangle *triangle, uint32_t tri
                            NULL);
 }
 
-/* The samples of a pixel are independent (each its own plane, its own
- * depth test), so the order in which a triangle's are visited changes no
- * bit. A small triangle (a box at most LUZ_RASTER_SMALL_SPAN pixels wide:
- * a million-triangle mesh's, where nearly every pixel is an edge pixel)
- * is walked pixel by pixel, each pixel's samples tested together: E at
- * sample s of pixel (x, y) is a (256 x + sx) + b (256 y + sy) + c =
- * (a sx + b sy + c) + 256 (a x + b y), the first term worked out once per
- * triangle and the second stepped by 256 a a pixel, the same exact
- * integers as the span's (luz_raster_row_span_at), so the same samples
- * are covered. A larger triangle goes row by row, and in each row sample
- * by sample, each span found as for one sample and tested by test_span
- * (the instruction set's copy of sample_loops.c's: with four samples a
- * pixel the spans are four times the pixels, and each test is independent
- * of its neighbours, so AVX-512 does sixteen with masked stores). */
-uint64_t luz_raster_triangle_samples(const luz_triangle *triangle, uint32_t triangle_id,
-                                     luz_sample_buffers *buffers, int first_row, int end_row,
-                                     uint32_t *overdraw, luz_span_test_function *test_span)
+/* ---- four samples a pixel ------------------------------------------------
+ *
+ * A pixel's four samples lie side by side (luz_sample_buffers), so sixteen
+ * lanes hold four neighbouring pixels of a row, lane l being sample l % 4
+ * of pixel x0 + l / 4: one AVX-512 register of depths (two AVX2, four
+ * SSE2 ones), one 64-byte line. Each group of four pixels is tested at
+ * once: coverage, the depth at each lane's sample, LESS, and the depths
+ * and ids that pass written back with the others unchanged.
+ *
+ * Coverage, two ways, each the exact integers of the one-sample raster:
+ *  - A small triangle (a box at most LUZ_RASTER_SMALL_SPAN pixels wide:
+ *    nearly every triangle of a big mesh) whose edge functions stay below
+ *    2^30 in magnitude over its box (widened by the three pixels a group
+ *    may reach to the left, and the samples' reach): E at lane l is
+ *        E(256 x0, 256 y) + a (256 (l / 4) + sx) + b sy,
+ *    the first term per group and row, the second a constant vector per
+ *    triangle and edge. E is linear, so its largest magnitude over the
+ *    box is at a corner: when the corners are below 2^30, every lane's E,
+ *    and every difference of two (each product above is one), fits an
+ *    int32, and the lanes compute exactly what int64 would.
+ *  - Any other triangle: each sample's span of the row by
+ *    luz_raster_row_span_at (exact divisions, as for one sample), and a
+ *    lane is covered where its pixel lies within its sample's span.
+ * The depth at a sample is luz_raster_sample_depth's float operations in
+ * the same order (no fused multiply-add: -ffp-contract=off), so every lane
+ * gives the scalar bits. The samples are independent (each its own depth
+ * test), so the order in which they are visited changes no bit.
+ *
+ * A group never reaches past its row: near the right edge it is moved
+ * left to end at the row's last pixel, and the lanes before the group's
+ * first pixel are masked out (they were tested by the group before).
+ * The lanes are raster_lanes.c's, compiled once per instruction set
+ * (cpu.c's table gives one). With fewer than four pixels a row, with the
+ * overdraw view's counts, or without lanes (the scalar set), the samples
+ * are tested one at a time instead (raster_samples_one_by_one). */
+
+#define GROUP_PIXELS LUZ_RASTER_GROUP_PIXELS
+
+/* Every sample of the box's pixels in rows [y_begin, y_end), one at a
+ * time: the definition that the lanes compute, and the overdraw
+ * view's counting (overdraw[k * pixels + i] for sample k of pixel i). */
+static uint64_t raster_samples_one_by_one(const luz_triangle *triangle, uint32_t triangle_id,
+                                          luz_sample_buffers *buffers, int y_begin, int y_end,
+                                          uint32_t *overdraw)
 {
-    int y_begin = triangle->min_y > first_row ? triangle->min_y : first_row;
-    int y_end = triangle->max_y + 1 < end_row ? triangle->max_y + 1 : end_row;
-    const luz_plane depth = triangle->depth;
     const int samples = buffers->samples;
-    const int width = buffers->width;
-    const size_t pixels = (size_t)width * (size_t)buffers->height;
+    const size_t pixels = (size_t)buffers->width * (size_t)buffers->height;
     uint64_t tests = 0;
-
-    /* Each sample's offset in pixels, exact in a float (k / 256). */
-    float offset_x[LUZ_MAX_SAMPLES], offset_y[LUZ_MAX_SAMPLES];
-    for (int s = 0; s < samples; s++) {
-        const luz_sample_offset sample = luz_sample_offset_of(samples, s);
-        offset_x[s] = (float)sample.x / LUZ_SUBPIXEL_ONE;
-        offset_y[s] = (float)sample.y / LUZ_SUBPIXEL_ONE;
-    }
-
-    if (!luz_raster_is_small(triangle)) {
-        for (int y = y_begin; y < y_end; y++) {
-            for (int s = 0; s < samples; s++) {
-                int64_t first, last;
-                luz_raster_row_span_at(triangle, y, false, luz_sample_offset_of(samples, s),
-                                       &first, &last);
-                if (first > last) continue;
-                const float row_depth =
-                    luz_raster_sample_row_depth(depth, triangle->reference_y, y, offset_y[s]);
-                const size_t row = (size_t)y * width * LUZ_MAX_SAMPLES + (size_t)s;
-                test_span(depth, triangle->reference_x, row_depth, offset_x[s], (int)first,
-                          (int)last, buffers->depth + row, buffers->visibility + row,
-                          triangle_id);
-                tests += (uint64_t)(last - first + 1);
-                if (overdraw != NULL) {
-                    uint32_t *count_row = overdraw + (size_t)s * pixels + (size_t)y * width;
-                    for (int64_t x = first; x <= last; x++) count_row[x]++;
-                }
-            }
-        }
-        return tests;
-    }
-
-    /* a sx + b sy + c of each sample and edge, and 256 a, 256 b. */
-    int64_t at_sample[LUZ_MAX_SAMPLES][3], step_x[3], step_y[3];
-    for (int k = 0; k < 3; k++) {
-        const luz_edge *edge = &triangle->edges[k];
-        step_x[k] = (int64_t)edge->a * LUZ_SUBPIXEL_ONE;
-        step_y[k] = (int64_t)edge->b * LUZ_SUBPIXEL_ONE;
-        for (int s = 0; s < samples; s++) {
-            const luz_sample_offset sample = luz_sample_offset_of(samples, s);
-            at_sample[s][k] = (int64_t)edge->a * sample.x + (int64_t)edge->b * sample.y + edge->c;
-        }
-    }
-    const int min_x = triangle->min_x, max_x = triangle->max_x;
     for (int y = y_begin; y < y_end; y++) {
-        float row_depth[LUZ_MAX_SAMPLES];
-        for (int s = 0; s < samples; s++)
-            row_depth[s] = luz_raster_sample_row_depth(depth, triangle->reference_y, y,
-                                                       offset_y[s]);
-        /* 256 (a x + b y) at the box's first pixel of the row. */
-        int64_t e[3];
-        for (int k = 0; k < 3; k++) e[k] = step_x[k] * min_x + step_y[k] * y;
-        const size_t row = (size_t)y * width;
-        for (int x = min_x; x <= max_x; x++) {
+        for (int x = triangle->min_x; x <= triangle->max_x; x++) {
+            const size_t pixel = (size_t)y * (size_t)buffers->width + (size_t)x;
             for (int s = 0; s < samples; s++) {
-                if (e[0] + at_sample[s][0] < 0 || e[1] + at_sample[s][1] < 0 ||
-                    e[2] + at_sample[s][2] < 0)
-                    continue;
-                const size_t at = (row + (size_t)x) * LUZ_MAX_SAMPLES + (size_t)s;
-                const float z = luz_raster_sample_depth(depth, triangle->reference_x,
-                                                        row_depth[s], x, offset_x[s]);
+                const luz_sample_offset sample = luz_sample_offset_of(samples, s);
+                const int64_t sample_x = (int64_t)x * LUZ_SUBPIXEL_ONE + sample.x;
+                const int64_t sample_y = (int64_t)y * LUZ_SUBPIXEL_ONE + sample.y;
+                bool inside = true;
+                for (int k = 0; k < 3; k++) {
+                    const luz_edge *edge = &triangle->edges[k];
+                    if ((int64_t)edge->a * sample_x + (int64_t)edge->b * sample_y + edge->c < 0)
+                        inside = false;
+                }
+                if (!inside) continue;
+                const float z = luz_raster_sample_depth(
+                    triangle->depth, triangle->reference_x,
+                    luz_raster_sample_row_depth(triangle->depth, triangle->reference_y, y,
+                                                (float)sample.y / LUZ_SUBPIXEL_ONE),
+                    x, (float)sample.x / LUZ_SUBPIXEL_ONE);
+                const size_t at = pixel * LUZ_MAX_SAMPLES + (size_t)s;
                 if (z < buffers->depth[at]) {    /* GL_LESS, per sample */
                     buffers->depth[at] = z;
                     buffers->visibility[at] = triangle_id;
                 }
                 tests++;
-                if (overdraw != NULL) overdraw[(size_t)s * pixels + row + (size_t)x]++;
+                if (overdraw != NULL) overdraw[(size_t)s * pixels + pixel]++;
             }
-            for (int k = 0; k < 3; k++) e[k] += step_x[k];
         }
     }
     return tests;
+}
+
+/* Whether |E| < 2^30 for each edge over the box of sample points that the
+ * groups of rows [min_y, max_y] may test (see above). */
+static bool edges_fit_32_bits(const luz_triangle *triangle)
+{
+    const int64_t left = ((int64_t)triangle->min_x - (GROUP_PIXELS - 1)) * LUZ_SUBPIXEL_ONE;
+    const int64_t right = ((int64_t)triangle->max_x + GROUP_PIXELS) * LUZ_SUBPIXEL_ONE;
+    const int64_t top = (int64_t)triangle->min_y * LUZ_SUBPIXEL_ONE;
+    const int64_t bottom = ((int64_t)triangle->max_y + 1) * LUZ_SUBPIXEL_ONE;
+    const int64_t limit = (int64_t)1 << 30;
+    for (int k = 0; k < 3; k++) {
+        const luz_edge *edge = &triangle->edges[k];
+        const int64_t corner[4] = {
+            edge->a * left + edge->b * top + edge->c, edge->a * right + edge->b * top + edge->c,
+            edge->a * left + edge->b * bottom + edge->c,
+            edge->a * right + edge->b * bottom + edge->c};
+        for (int j = 0; j < 4; j++)
+            if (corner[j] >= limit || corner[j] <= -limit) return false;
+    }
+    return true;
+}
+
+uint64_t luz_raster_triangle_samples(const luz_triangle *triangle, uint32_t triangle_id,
+                                     luz_sample_buffers *buffers, int first_row, int end_row,
+                                     uint32_t *overdraw, luz_raster_groups_function *groups)
+{
+    int y_begin = triangle->min_y > first_row ? triangle->min_y : first_row;
+    int y_end = triangle->max_y + 1 < end_row ? triangle->max_y + 1 : end_row;
+    if (y_begin >= y_end) return 0;
+    if (overdraw != NULL || buffers->width < GROUP_PIXELS || buffers->samples != LUZ_MAX_SAMPLES)
+        return raster_samples_one_by_one(triangle, triangle_id, buffers, y_begin, y_end,
+                                         overdraw);
+    if (groups == NULL)
+        return raster_samples_one_by_one(triangle, triangle_id, buffers, y_begin, y_end, NULL);
+    const bool small_edges = luz_raster_is_small(triangle) && edges_fit_32_bits(triangle);
+    return groups(triangle, triangle_id, buffers, y_begin, y_end, small_edges);
 }
 
 /* luz/bug.h's no-depth-test: the samples at offset `sample` of rows

@@ -1,24 +1,21 @@
 /*
- * sample_loops.c: the two plain loops of four samples a pixel that wider
+ * sample_loops.c: the plain loops of the raster and the resolve that wider
  * vectors speed up, compiled once per instruction set (cpu.h's table).
  *
- * In, out: luz_span_test_function's and luz_mixed_pixels_function's
- * (pipeline.h): the depth tests of a row's span at one sample (raster.c's
- * luz_raster_triangle_samples), and the pixels of a row whose four
- * samples' winners differ (resolve.c's luz_samples_sort_winners); and
- * luz_centre_span_function's, one sample a pixel's long spans (raster.c's
- * luz_raster_triangle_spans).
+ * In, out: luz_mixed_pixels_function's (pipeline.h): the pixels of a row
+ * whose four samples' winners differ (resolve.c's
+ * luz_samples_sort_winners); and luz_centre_span_function's, one sample a
+ * pixel's long spans (raster.c's luz_raster_triangle_spans). (Four
+ * samples' depth tests, once here too, are in lanes in raster_lanes.c.)
  *
  * Why a file of their own: these are plain C that the compiler
- * vectorises, and the AVX-512 copy tests sixteen samples with masked
- * stores where the build's target does four. Each instruction set gets
- * its copy from this one source (src/renderer/meson.build: the build's
- * target, AVX2 and AVX-512, each at -O3, where GCC vectorises such loops),
- * and cpu.c puts the set's copy in the renderer's table with the other
- * kernels: LUZ_ISA=sse2 runs no AVX code here either. (They used to be
- * target_clones, which the loader chose by the CPU alone.) Each lane does
- * the same float operations, and -ffp-contract=off holds for every file,
- * so every copy gives the same bits.
+ * vectorises, and the AVX-512 copy does sixteen lanes at once where the
+ * build's target does four. Each instruction set gets its copy from this one
+ * source (src/renderer/meson.build: the build's target, AVX2 and AVX-512,
+ * each at -O3, where GCC vectorises such loops), and cpu.c puts the set's
+ * copy in the renderer's table with the other kernels: LUZ_ISA=sse2 runs
+ * no AVX code here either. (They used to be target_clones, which the
+ * loader chose by the CPU alone.)
  */
 #include "renderer/pipeline.h"
 
@@ -30,12 +27,12 @@
 #define LOOPS_NAME(name) name##_baseline
 #endif
 
-luz_span_test_function LOOPS_NAME(luz_span_test);
 luz_mixed_pixels_function LOOPS_NAME(luz_mixed_pixels_of_row);
 luz_centre_span_function LOOPS_NAME(luz_centre_span_test);
 
-/* The same for one sample a pixel, at each pixel centre, the rows
- * contiguous (raster.c's long spans: a face of the lab's cubes). */
+/* The depth tests of a row's span for one sample a pixel, at each pixel
+ * centre (raster.c's long spans: a face of the lab's cubes), each
+ * independent of its neighbours: GL_LESS. */
 void LOOPS_NAME(luz_centre_span_test)(luz_plane depth, float reference_x, float row_depth,
                                       int first, int last, float *depth_row,
                                       uint32_t *visibility_row, uint32_t triangle_id)
@@ -45,22 +42,6 @@ void LOOPS_NAME(luz_centre_span_test)(luz_plane depth, float reference_x, float 
         if (z < depth_row[x]) {
             depth_row[x] = z;
             visibility_row[x] = triangle_id;
-        }
-    }
-}
-
-/* Each test independent of its neighbours: GL_LESS per sample. A pixel's
- * samples lie side by side (luz_sample_buffers): the rows passed are
- * sample s's, every LUZ_MAX_SAMPLES-th entry. */
-void LOOPS_NAME(luz_span_test)(luz_plane depth, float reference_x, float row_depth,
-                               float offset_x, int first, int last, float *depth_row,
-                               uint32_t *visibility_row, uint32_t triangle_id)
-{
-    for (int x = first; x <= last; x++) {
-        float z = luz_raster_sample_depth(depth, reference_x, row_depth, x, offset_x);
-        if (z < depth_row[x * LUZ_MAX_SAMPLES]) {
-            depth_row[x * LUZ_MAX_SAMPLES] = z;
-            visibility_row[x * LUZ_MAX_SAMPLES] = triangle_id;
         }
     }
 }
