@@ -307,7 +307,8 @@ static void place_records(luz_geometry *geometry)
     luz_triangle *block = geometry->record_block;
     size_t block_capacity = geometry->record_block_capacity;
     if (total > block_capacity) {
-        /* An eighth more, so that batches that grow rarely need a new one. */
+        /* Whole huge pages: the rounding is the only room to spare, so a
+         * turning mesh whose batches outgrow it lays out a new block. */
         const size_t bytes = (total * sizeof(luz_triangle) + HUGE_PAGE_BYTES - 1) /
                              HUGE_PAGE_BYTES * HUGE_PAGE_BYTES;
         block = aligned_alloc(HUGE_PAGE_BYTES, bytes);
