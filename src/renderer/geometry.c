@@ -288,7 +288,7 @@ static bool reserve_records(geometry_batch *batch, size_t count)
  * read the records through by_id in band order, scattered over tens of
  * megabytes on a big mesh (the 1M sphere: 48 MB, twelve thousand 4 KB
  * pages, more than the TLB holds, so nearly every record cost a page
- * walk; docs/performance.md, "Millions of triangles"). A batch keeps its
+ * walk; docs/performance.md, "The 1M sphere, 2026-11-28"). A batch keeps its
  * slice from frame to frame; one that needs more (a mesh turning puts
  * more of a batch's triangles in view) moves to an array of its own
  * (reserve_records), and once an eighth of the capacity is outside the
