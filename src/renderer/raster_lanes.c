@@ -9,10 +9,10 @@
  * Out: for every sample inside the triangle and nearer than the
  *      buffers' (LESS), its depth and the triangle's id; the tests made.
  *
- * Sixteen lanes, four pixels of a row with their four samples each, are
- * written once in GCC / clang vector extensions (`vector_size`) and
- * compiled once per instruction set (src/renderer/meson.build: AVX-512's
- * one register, AVX2's two, SSE2's and NEON's four), each lane the scalar
+ * Lanes of one register, the four samples of one, two or four pixels of a
+ * row (SSE2 and NEON, AVX2, AVX-512), are written once in GCC / clang
+ * vector extensions (`vector_size`) and compiled once per instruction set
+ * (src/renderer/meson.build), each lane the scalar
  * arithmetic of raster.c's raster_samples_one_by_one; cpu.c's table picks
  * one. Per-file flags, not LUZ_CLONES: GCC lowers a vector operation for
  * the file's own target before clones are made, and under SSE2 it split
@@ -35,8 +35,21 @@
 #error "define LUZ_LANES_AVX512, LUZ_LANES_AVX2, LUZ_LANES_NEON or LUZ_LANES_SSE2"
 #endif
 
-#define GROUP_LANES (LUZ_RASTER_GROUP_PIXELS * LUZ_MAX_SAMPLES)
-#define GROUP_PIXELS LUZ_RASTER_GROUP_PIXELS
+/* A step is the pixels whose four samples fill one register of the set
+ * (AVX-512 four, AVX2 two, SSE2 and NEON one): a vector wider than the
+ * target's registers GCC 12 lowers through the stack, and AVX2's raster
+ * then took seven times AVX-512's time (store-forwarding stalls on the
+ * halves). The group the buffers are sized for stays
+ * LUZ_RASTER_GROUP_PIXELS wide; a step is at most that. */
+#if defined(LUZ_LANES_AVX512)
+#define GROUP_LANES 16
+#elif defined(LUZ_LANES_AVX2)
+#define GROUP_LANES 8
+#else
+#define GROUP_LANES 4
+#endif
+#define GROUP_PIXELS (GROUP_LANES / LUZ_MAX_SAMPLES)
+_Static_assert(GROUP_PIXELS <= LUZ_RASTER_GROUP_PIXELS, "a step fits the buffers' group");
 
 typedef int32_t group_i32 __attribute__((vector_size(GROUP_LANES * sizeof(int32_t))));
 typedef float group_f32 __attribute__((vector_size(GROUP_LANES * sizeof(float))));
@@ -54,13 +67,18 @@ uint64_t RASTER_GROUPS(const luz_triangle *triangle, uint32_t triangle_id,
      * sample's offsets in pixels (k / 256: exact in a float). */
 #define GROUP_OFFSETS(pixel) \
     96 + 256 * (pixel), 224 + 256 * (pixel), 32 + 256 * (pixel), 160 + 256 * (pixel)
-    static const group_i32 lane_dx = {GROUP_OFFSETS(0), GROUP_OFFSETS(1), GROUP_OFFSETS(2),
-                                      GROUP_OFFSETS(3)};
+    static const int32_t all_dx[16] = {GROUP_OFFSETS(0), GROUP_OFFSETS(1), GROUP_OFFSETS(2),
+                                       GROUP_OFFSETS(3)};
 #undef GROUP_OFFSETS
 #define GROUP_OFFSETS 32, 96, 160, 224
-    static const group_i32 lane_dy = {GROUP_OFFSETS, GROUP_OFFSETS, GROUP_OFFSETS, GROUP_OFFSETS};
+    static const int32_t all_dy[16] = {GROUP_OFFSETS, GROUP_OFFSETS, GROUP_OFFSETS, GROUP_OFFSETS};
 #undef GROUP_OFFSETS
-    static const group_i32 lane_pixel = {0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3};
+    static const int32_t all_pixel[16] = {0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3};
+    /* The step's lanes are the first GROUP_LANES of the four pixels'. */
+    group_i32 lane_dx, lane_dy, lane_pixel;
+    memcpy(&lane_dx, all_dx, sizeof lane_dx);
+    memcpy(&lane_dy, all_dy, sizeof lane_dy);
+    memcpy(&lane_pixel, all_pixel, sizeof lane_pixel);
     const group_f32 lane_offset_x =
         __builtin_convertvector(lane_dx - lane_pixel * LUZ_SUBPIXEL_ONE, group_f32) /
         (float)LUZ_SUBPIXEL_ONE;
@@ -150,14 +168,8 @@ uint64_t RASTER_GROUPS(const luz_triangle *triangle, uint32_t triangle_id,
             counted += covered;
         }
     }
-    /* The lanes' counts added: halves, then quarters. */
-    typedef int32_t half_i32 __attribute__((vector_size(GROUP_LANES / 2 * sizeof(int32_t))));
-    typedef int32_t quarter_i32 __attribute__((vector_size(GROUP_LANES / 4 * sizeof(int32_t))));
-    half_i32 half[2];
-    memcpy(half, &counted, sizeof half);
-    quarter_i32 quarter[2];
-    const half_i32 halves = half[0] + half[1];
-    memcpy(quarter, &halves, sizeof quarter);
-    const quarter_i32 quarters = quarter[0] + quarter[1];
-    return (uint64_t)-(int64_t)(quarters[0] + quarters[1] + quarters[2] + quarters[3]);
+    /* The lanes' counts added. */
+    int64_t tests = 0;
+    for (int l = 0; l < GROUP_LANES; l++) tests -= counted[l];
+    return (uint64_t)tests;
 }
