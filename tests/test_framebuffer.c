@@ -98,12 +98,12 @@ static void test_clear_rows_clears_depth_and_visibility_only(void **state)
 
 enum { SCENE_WIDTH = 160, SCENE_HEIGHT = 90 };
 
-/* SCENE.md's default scene at t = 2.5 (no textures) into framebuffer. */
-static void draw_into(luz_framebuffer *framebuffer)
+/* The default scene at t = 2.5 (no textures) drawn by renderer into
+ * framebuffer with the options given. */
+static void draw_with(luz_renderer *renderer, luz_framebuffer *framebuffer,
+                      const luz_render_options *options)
 {
     luz_error error = {{0}};
-    luz_renderer *renderer = luz_renderer_create(&(luz_renderer_desc){.thread_count = 2}, &error);
-    assert_non_null(renderer);
     luz_scene scene = luz_scene_defaults();
     scene.time_seconds = 2.5;
     luz_frame frame = {0};
@@ -111,8 +111,17 @@ static void draw_into(luz_framebuffer *framebuffer)
                                            (float)framebuffer->width / (float)framebuffer->height,
                                            &frame, NULL),
                      0);
-    assert_int_equal(luz_renderer_draw(renderer, &frame, framebuffer, NULL, &error), 0);
+    assert_int_equal(luz_renderer_draw(renderer, &frame, framebuffer, options, &error), 0);
     luz_frame_free(&frame);
+}
+
+/* SCENE.md's default scene at t = 2.5 (no textures) into framebuffer. */
+static void draw_into(luz_framebuffer *framebuffer)
+{
+    luz_error error = {{0}};
+    luz_renderer *renderer = luz_renderer_create(&(luz_renderer_desc){.thread_count = 2}, &error);
+    assert_non_null(renderer);
+    draw_with(renderer, framebuffer, NULL);
     luz_renderer_destroy(renderer);
 }
 
@@ -222,23 +231,6 @@ static void assert_png_is_pattern(const luz_framebuffer *framebuffer, const char
 
 
 /* ---- colour only ---------------------------------------------------------------- */
-
-/* The default scene at t = 2.5 (no textures) drawn by renderer into
- * framebuffer with the options given. */
-static void draw_with(luz_renderer *renderer, luz_framebuffer *framebuffer,
-                      const luz_render_options *options)
-{
-    luz_error error = {{0}};
-    luz_scene scene = luz_scene_defaults();
-    scene.time_seconds = 2.5;
-    luz_frame frame = {0};
-    assert_int_equal(luz_scene_build_frame(test_lab(), &scene, NULL, 0,
-                                           (float)framebuffer->width / (float)framebuffer->height,
-                                           &frame, NULL),
-                     0);
-    assert_int_equal(luz_renderer_draw(renderer, &frame, framebuffer, options, &error), 0);
-    luz_frame_free(&frame);
-}
 
 /* luz_render_options.colour_only: the colour is the image a plain draw
  * gives, byte for byte, and the framebuffer's depth and visibility keep
