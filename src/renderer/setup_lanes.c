@@ -360,13 +360,24 @@ LANES_INLINE bool setup_eight(const uint32_t *indices, const uint32_t triangles[
     group_corners corners[GROUPS];
     unsigned marked = 0;
     for (int g = 0; g < GROUPS; g++) {
+#if LANES == 8 && defined(__AVX2__)
+        /* Gathered (3 t + k < 3 * 2^28 fits an int32), as setup_eight.c
+         * does: eight indices stored one by one and loaded as a vector
+         * wait for the stores to retire. */
+        const __m256i first_index = _mm256_mullo_epi32(
+            _mm256_loadu_si256((const void *)triangles), _mm256_set1_epi32(3));
+        for (int k = 0; k < 3; k++)
+            corners[g].vertex[k] =
+                (vi32)_mm256_i32gather_epi32((const int *)indices + k, first_index, 4);
+#else
         int32_t vertex[3][LANES];
         for (int lane = 0; lane < LANES; lane++)
             for (int k = 0; k < 3; k++)
                 vertex[k][lane] =
                     (int32_t)indices[3 * (size_t)triangles[g * LANES + lane] + (size_t)k];
+        for (int k = 0; k < 3; k++) memcpy(&corners[g].vertex[k], vertex[k], sizeof vertex[k]);
+#endif
         for (int k = 0; k < 3; k++) {
-            memcpy(&corners[g].vertex[k], vertex[k], sizeof vertex[k]);
             gather_fixed(corners[g].vertex[k], fixed, &corners[g].x[k], &corners[g].y[k]);
             marked |= lane_bits(corners[g].x[k] < -(1 << 24));
         }
