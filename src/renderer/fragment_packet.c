@@ -29,7 +29,9 @@
  *     and blue, ...) is worked out once per band, by the very operations
  *     shade.h applies per pixel.
  *   - Textures. Texel addresses, bilinear weights and blends are vectors;
- *     the texel fetches are one load per lane (a "gather").
+ *     the texel fetches are one load per lane (a "gather"), sent out for
+ *     both of trilinear's levels before the lighting, and filtered after
+ *     it, so that the texels arrive while the lighting is computed.
  *   - Instruction sets. src/renderer/meson.build compiles this file once
  *     for the build's target (baseline: SSE2 on x86-64, NEON on aarch64),
  *     once with one lane (the scalar variant), and once each with -mavx2
@@ -559,13 +561,21 @@ INLINE void bilinear_axis(vfloat coordinate, vint size, vfloat size_float, vint 
     *second = select_int(i + 1 < size, i + 1, splat_int(0));
 }
 
-INLINE vvec3 sample_bilinear(const luz_texture *texture, const lane_level *level,
-                                    vfloat u, vfloat v)
+/* A bilinear sample's four texels per lane, fetched, and the fractions
+ * that weigh them: fetching is apart from filtering so that trilinear
+ * filtering sends both levels' gathers out before it waits on either. */
+typedef struct bilinear_texels {
+    vuint a, b, c, d;   /* (x0, y0), (x1, y0), (x0, y1), (x1, y1) */
+    vfloat fx, fy;
+} bilinear_texels;
+
+INLINE bilinear_texels fetch_bilinear(const luz_texture *texture, const lane_level *level,
+                                      vfloat u, vfloat v)
 {
     vint x0, x1, y0, y1;
-    vfloat fx, fy;
-    bilinear_axis(u, level->width, level->width_float, &x0, &x1, &fx);
-    bilinear_axis(v, level->height, level->height_float, &y0, &y1, &fy);
+    bilinear_texels out;
+    bilinear_axis(u, level->width, level->width_float, &x0, &x1, &out.fx);
+    bilinear_axis(v, level->height, level->height_float, &y0, &y1, &out.fy);
 
     const uint8_t *texels = texture->levels[0].texels;
     const vint row0 = level->first_texel + y0 * level->width;
@@ -573,27 +583,42 @@ INLINE vvec3 sample_bilinear(const luz_texture *texture, const lane_level *level
     const int32_t level_end = level->first_texel[0] + level->width[0] * level->height[0];
     prefetch_ahead(texels, row0 + x0, level_end);
     prefetch_ahead(texels, row1 + x0, level_end);
-    const vuint a = gather(texels, row0 + x0), b = gather(texels, row0 + x1);
-    const vuint c = gather(texels, row1 + x0), d = gather(texels, row1 + x1);
+    out.a = gather(texels, row0 + x0);
+    out.b = gather(texels, row0 + x1);
+    out.c = gather(texels, row1 + x0);
+    out.d = gather(texels, row1 + x1);
+    return out;
+}
 
+INLINE vvec3 filter_bilinear(const bilinear_texels *t)
+{
+    const vfloat fx = t->fx, fy = t->fy;
     const float scale = 1.0f / 255.0f;
     const vfloat wa = (1.0f - fx) * (1.0f - fy) * scale, wb = fx * (1.0f - fy) * scale;
     const vfloat wc = (1.0f - fx) * fy * scale, wd = fx * fy * scale;
     return (vvec3){
-        wa * channel(a, 0) + wb * channel(b, 0) + wc * channel(c, 0) + wd * channel(d, 0),
-        wa * channel(a, 1) + wb * channel(b, 1) + wc * channel(c, 1) + wd * channel(d, 1),
-        wa * channel(a, 2) + wb * channel(b, 2) + wc * channel(c, 2) + wd * channel(d, 2),
+        wa * channel(t->a, 0) + wb * channel(t->b, 0) + wc * channel(t->c, 0) +
+            wd * channel(t->d, 0),
+        wa * channel(t->a, 1) + wb * channel(t->b, 1) + wc * channel(t->c, 1) +
+            wd * channel(t->d, 1),
+        wa * channel(t->a, 2) + wb * channel(t->b, 2) + wc * channel(t->c, 2) +
+            wd * channel(t->d, 2),
     };
 }
 
-INLINE vvec3 sample_nearest(const luz_texture *texture, vfloat u, vfloat v)
+/* The nearest texel of level 0, fetched. */
+INLINE vuint fetch_nearest(const luz_texture *texture, vfloat u, vfloat v)
 {
     const luz_texture_level *level = &texture->levels[0];
     vint x = to_int(repeat(u) * (float)level->width);
     vint y = to_int(repeat(v) * (float)level->height);
     x = select_int(x >= level->width, splat_int(level->width - 1), x);
     y = select_int(y >= level->height, splat_int(level->height - 1), y);
-    const vuint t = gather(texture->levels[0].texels, y * level->width + x);
+    return gather(texture->levels[0].texels, y * level->width + x);
+}
+
+INLINE vvec3 filter_nearest(vuint t)
+{
     const float scale = 1.0f / 255.0f;
     return (vvec3){channel(t, 0) * scale, channel(t, 1) * scale, channel(t, 2) * scale};
 }
@@ -634,10 +659,21 @@ INLINE vfloat level_of_detail(const luz_texture *texture, vfloat du_dx, vfloat d
     return select_float(minified, 0.5f * log2_above_one(rho_squared), splat(0.0f));
 }
 
-/* luz_texture_sample_trilinear, per lane; `mine` marks the lanes that
- * count (the others may hold anything). */
-INLINE vvec3 sample_trilinear(const luz_texture *texture, vfloat u, vfloat v,
-                                     vfloat lambda, vint mine)
+/* A texture lookup of the lanes with its texels fetched and not yet
+ * filtered: the lookup sends its gathers out before the lighting, and
+ * the filter takes their texels after it, so that the lighting's
+ * arithmetic runs while the texels are on their way. */
+typedef struct texture_fetch {
+    int levels;                      /* 0: nearest (its texel in fine.a), 1 or 2 bilinear */
+    bilinear_texels fine, coarse;    /* coarse: when two levels */
+    vfloat blend;                    /* lambda - floor(lambda), when two levels */
+    vint blended;                    /* the lanes that blend the two */
+} texture_fetch;
+
+/* luz_texture_sample_trilinear's fetches, per lane; `mine` marks the
+ * lanes that count (the others may hold anything). */
+INLINE void fetch_trilinear(texture_fetch *out, const luz_texture *texture, vfloat u, vfloat v,
+                            vfloat lambda, vint mine)
 {
     const int last = texture->level_count - 1;
     const vint positive = lambda > 0.0f;
@@ -652,13 +688,30 @@ INLINE vvec3 sample_trilinear(const luz_texture *texture, vfloat u, vfloat v,
     lower = select_int(mine, lower, splat_int(lower[first_mine]));
 
     const lane_level fine_level = level_of(texture, lower);
-    const vvec3 fine = sample_bilinear(texture, &fine_level, u, v);
-    if (lane_bits(blended) == 0) return fine;
-
+    if (lane_bits(blended) == 0) {
+        out->levels = 1;
+        out->fine = fetch_bilinear(texture, &fine_level, u, v);
+        return;
+    }
+    /* Both levels' gathers go out before either is filtered. */
     const lane_level coarse_level = level_of(texture, select_int(lower < last, lower + 1, lower));
-    const vvec3 coarse = sample_bilinear(texture, &coarse_level, u, v);
-    const vfloat blend = lambda - level_floor;
+    out->levels = 2;
+    out->fine = fetch_bilinear(texture, &fine_level, u, v);
+    out->coarse = fetch_bilinear(texture, &coarse_level, u, v);
+    out->blend = lambda - level_floor;
+    out->blended = blended;
+}
+
+/* The texel T of a fetch: luz_texture_sample's filter. */
+INLINE vvec3 filter_texture(const texture_fetch *fetched)
+{
+    if (fetched->levels == 0) return filter_nearest(fetched->fine.a);
+    const vvec3 fine = filter_bilinear(&fetched->fine);
+    if (fetched->levels == 1) return fine;
+    const vvec3 coarse = filter_bilinear(&fetched->coarse);
+    const vfloat blend = fetched->blend;
     const vfloat keep = 1.0f - blend;
+    const vint blended = fetched->blended;
     return (vvec3){
         select_float(blended, fine.x * keep + coarse.x * blend, fine.x),
         select_float(blended, fine.y * keep + coarse.y * blend, fine.y),
@@ -821,10 +874,10 @@ INLINE vuint pack_pixels(vvec3 colour, const packet_uniforms *u)
            to_byte(colour.z) << u->blue_shift | 255u << CHANNEL_SHIFT(3);
 }
 
-/* The texel T of the lanes, as luz_texture_sample with fragment.c's level
- * of detail. */
-INLINE vvec3 sample_texture(const luz_material *material, const lane_triangles *triangles,
-                            vfloat w, vint mine)
+/* The texels of the lanes' texture lookup, as luz_texture_sample with
+ * fragment.c's level of detail, fetched (filter_texture filters them). */
+INLINE void fetch_texture(texture_fetch *out, const luz_material *material,
+                          const lane_triangles *triangles, vfloat w, vint mine)
 {
     const luz_texture *texture = material->texture;
     const vfloat dx = triangles->dx, dy = triangles->dy;
@@ -832,11 +885,16 @@ INLINE vvec3 sample_texture(const luz_material *material, const lane_triangles *
     const vplane v_plane = triangles->varyings[LUZ_VARYING_UV + 1];
     const vfloat tu = plane_at(u_plane, dx, dy) * w;
     const vfloat tv = plane_at(v_plane, dx, dy) * w;
-    if (material->filter == LUZ_FILTER_NEAREST)
-        return sample_nearest(texture, tu, tv);
+    if (material->filter == LUZ_FILTER_NEAREST) {
+        out->levels = 0;
+        out->fine.a = fetch_nearest(texture, tu, tv);
+        return;
+    }
     if (material->filter != LUZ_FILTER_TRILINEAR) {   /* bilinear, as luz_texture_sample */
         const lane_level level = level_of(texture, splat_int(0));
-        return sample_bilinear(texture, &level, tu, tv);
+        out->levels = 1;
+        out->fine = fetch_bilinear(texture, &level, tu, tv);
+        return;
     }
     /* du/dx = (d(u/w)/dx - u d(1/w)/dx) / (1/w), and so on. */
     const vplane inverse_w = triangles->inverse_w;
@@ -845,7 +903,7 @@ INLINE vvec3 sample_texture(const luz_material *material, const lane_triangles *
     const vfloat du_dy = (u_plane.dy - tu * inverse_w.dy) * w;
     const vfloat dv_dy = (v_plane.dy - tv * inverse_w.dy) * w;
     const vfloat lambda = level_of_detail(texture, du_dx, dv_dx, du_dy, dv_dy);
-    return sample_trilinear(texture, tu, tv, lambda, mine);
+    fetch_trilinear(out, texture, tu, tv, lambda, mine);
 }
 
 /* The packet's pixels shaded as their triangles', as fragment.c shades one
@@ -876,11 +934,14 @@ INLINE vuint shade_lanes(const packet_uniforms *u, const luz_material *material,
         plane_at(varying[LUZ_VARYING_NORMAL + 1], dx, dy) * w,
         plane_at(varying[LUZ_VARYING_NORMAL + 2], dx, dy) * w,
     };
-    const vvec3 light = shade_lighting(u, position, normal, mine_bits);
-    /* The texel; with no texture T = 1, and c * 1 = c, so it is skipped. */
+    /* The texel; with no texture T = 1, and c * 1 = c, so it is skipped.
+     * Its gathers go out first, its filter waits for the lighting. */
     const bool textured = material->texture != NULL;
+    texture_fetch fetched = {0};
+    if (textured) fetch_texture(&fetched, material, triangles, w, mine);
+    const vvec3 light = shade_lighting(u, position, normal, mine_bits);
     vvec3 texel = {0};
-    if (textured) texel = sample_texture(material, triangles, w, mine);
+    if (textured) texel = filter_texture(&fetched);
 
     /* colour = light * C * T */
     vvec3 colour = {light.x * object_colour.x, light.y * object_colour.y,
