@@ -1,14 +1,16 @@
 #!/bin/sh
 # portable-build: libluz and luz-render ask nothing of Linux outside
 # src/io/platform_linux.c and src/io/model_confine.c (io/platform.h;
-# issue 28), so that they build on macOS and the BSDs, which CI does not
-# have. Checked here, on Linux:
+# issue 28) and src/renderer/huge_pages_linux.c (renderer/huge_pages.h),
+# so that they build on macOS and the BSDs, which CI does not have.
+# Checked here, on Linux:
 #   - no other file of src/ (the viewer's aside: SDL and X11) includes a
-#     Linux header or names /proc/self, pipe2, prctl, openat2, O_PATH or
-#     syscall();
+#     Linux header or names /proc/self, pipe2, prctl, openat2, O_PATH,
+#     syscall(), madvise() or MADV_HUGEPAGE;
 #   - every source file of libluz and luz-render, with
-#     io/platform_posix.c and io/model_confine_none.c (what the other
-#     systems build) in place of the Linux pair, compiles with -std=c11
+#     io/platform_posix.c, io/model_confine_none.c and
+#     renderer/huge_pages_posix.c (what the other systems build) in place
+#     of the Linux ones, compiles with -std=c11
 #     -D_POSIX_C_SOURCE=200809L and no _GNU_SOURCE (glibc then declares
 #     POSIX's names alone), with Linux's own headers replaced by ones that
 #     stop the compiler.
@@ -26,10 +28,10 @@ fail() {
     exit 1
 }
 
-linux_only='src/io/platform_linux.c|src/io/model_confine.c'
+linux_only='src/io/platform_linux.c|src/io/model_confine.c|src/renderer/huge_pages_linux.c'
 viewer='src/programs/luz_viewer.c|src/programs/x11_display_probe|src/programs/present_x11'
 cd "$root" || exit 1
-found=$(grep -nE '#include <(linux/|sys/prctl\.h|sys/syscall\.h|sys/epoll\.h|seccomp\.h)|/proc/self|\b(pipe2|prctl|openat2|syscall) *\(|\bO_PATH\b|_GNU_SOURCE' \
+found=$(grep -nE '#include <(linux/|sys/prctl\.h|sys/syscall\.h|sys/epoll\.h|seccomp\.h)|/proc/self|\b(pipe2|prctl|openat2|syscall|madvise) *\(|\b(O_PATH|MADV_HUGEPAGE)\b|_GNU_SOURCE' \
             src/*/*.c src/*/*.h | grep -vE "^($linux_only|$viewer)" |
             grep -vE '^[^:]*:[0-9]+: *(/?\*|//)')
 [ -z "$found" ] || fail "Linux's own calls outside io/platform_linux.c: $found"
@@ -56,6 +58,9 @@ io_command=$(grep ' -c [^ ]*src/io/input_file\.c$' "$work/commands") ||
 for pair in platform_posix.c model_confine_none.c; do
     echo "${io_command%input_file.c}$pair" >> "$work/commands"
 done
+renderer_command=$(grep ' -c [^ ]*src/renderer/geometry\.c$' "$work/commands") ||
+    fail "geometry.c is not in $commands"
+echo "${renderer_command%geometry.c}huge_pages_posix.c" >> "$work/commands"
 count=0
 while read -r command; do
     source=${command##* -c }

@@ -21,7 +21,10 @@
  * And one geometry reused frame after frame, as a renderer does, whose
  * records move into one block after the first frame (geometry.c's
  * place_records) and out of it where a batch outgrows its slice: every
- * frame of a turning grid the same as a new geometry's.
+ * frame of a turning grid the same as a new geometry's, and the block in
+ * use from the second frame on. Then frames that need far fewer records
+ * than the ones before: the block laid out again smaller, or freed, and
+ * back when the big frames come back.
  */
 #include <math.h>
 #include <setjmp.h>
@@ -279,6 +282,21 @@ static void test_records_reused_frame_after_frame(void **state)
             snprintf(label, sizeof label, "frame %d, %d thread%s", f, thread_counts[t],
                      thread_counts[t] == 1 ? "" : "s");
             assert_same_result(&result, &fresh, label);
+            /* From the second frame on, the records lie in the block,
+             * those of batches that outgrew their slices excepted: in the
+             * last frame, the first again, nearly all (the slices were
+             * laid out again for the larger frames). */
+            size_t in_block = 0;
+            const size_t block = luz_geometry_record_block(geometry, &in_block);
+            print_message("%s: %zu of %zu records in a block of %zu\n", label, in_block,
+                          fresh.total, block);
+            if (f >= 1) {
+                if (in_block == 0 || block < in_block || (f == 7 && in_block < fresh.total / 4 * 3))
+                    fail_msg("%s: %zu of %zu records in a block of %zu", label, in_block,
+                             fresh.total, block);
+            } else {
+                assert_int_equal(block, 0);
+            }
             if (fresh.total > most) most = fresh.total;
             if (fresh.total < fewest) fewest = fresh.total;
             snapshot_free(&fresh);
@@ -296,11 +314,104 @@ static void test_records_reused_frame_after_frame(void **state)
     luz_mesh_destroy(mesh);
 }
 
+/* A frame of `grids` wavy grids side by side, turned as the first frame
+ * of the test above, or of the two triangles of `quad` alone. */
+static luz_frame frame_of(const luz_mesh *grid, int grids, const luz_mesh *quad)
+{
+    luz_error error = {{0}};
+    luz_frame frame = {0};
+    frame.eye = (luz_vec3){0, 0, 3};
+    frame.view = luz_mat4_look_at(frame.eye, (luz_vec3){0, 0, 0}, (luz_vec3){0, 1, 0});
+    frame.projection =
+        luz_mat4_perspective(luz_radians(45.0f), (float)WIDTH / HEIGHT, 0.1f, 100.0f);
+    for (int k = 0; k < (quad ? 1 : grids); k++) {
+        luz_draw draw = {.mesh = quad ? quad : grid};
+        draw.model = luz_mat4_rotate(
+            luz_mat4_translate(luz_mat4_identity(), (luz_vec3){0.4f * (float)k - 0.4f, 0, 0}),
+            k % 2 == 0 ? 1.2f : -1.2f, (luz_vec3){0, 1, 0});
+        draw.material.colour = (luz_vec3){1, 1, 1};
+        assert_int_equal(luz_frame_add_draw(&frame, &draw, &error), 0);
+    }
+    return frame;
+}
+
+static void test_record_block_follows_the_frames(void **state)
+{
+    (void)state;
+    luz_mesh *grid = wavy_grid();
+    const luz_vertex corners[4] = {{{-1, -1, 0}, {0, 0, 1}, {0, 0}},
+                                   {{1, -1, 0}, {0, 0, 1}, {1, 0}},
+                                   {{1, 1, 0}, {0, 0, 1}, {1, 1}},
+                                   {{-1, 1, 0}, {0, 0, 1}, {0, 1}}};
+    const uint32_t quad_indices[6] = {0, 1, 2, 0, 2, 3};
+    luz_error error = {{0}};
+    luz_mesh *quad = luz_mesh_create(&(luz_mesh_desc){.vertices = corners, .vertex_count = 4,
+                                                      .indices = quad_indices,
+                                                      .index_count = 6},
+                                     &error);
+    luz_framebuffer *framebuffer = luz_framebuffer_create(WIDTH, HEIGHT, &error);
+    luz_geometry *geometry = luz_geometry_create(2);
+    luz_thread_pool *pool = luz_thread_pool_create(2);
+    assert_true(quad && framebuffer && geometry && pool);
+    /* Each case twice: the block is laid out (or freed) before a frame's
+     * batches run, from the capacities the frames before left. */
+    const struct {
+        int grids;
+        bool quad;
+    } frames[] = {{3, false}, {3, false}, {1, false}, {1, false},
+                  {0, true},  {0, true},  {3, false}, {3, false}};
+    size_t blocks[8], memory[8];
+    for (int f = 0; f < 8; f++) {
+        luz_frame frame = frame_of(grid, frames[f].grids, frames[f].quad ? quad : NULL);
+        snapshot fresh = run(&frame, luz_isa_widest(), 1);
+        const luz_uniforms uniforms = luz_uniforms_of(&frame, NULL);
+        luz_geometry_result result;
+        assert_int_equal(luz_geometry_run(geometry, pool, &frame, &uniforms, framebuffer, 16, 0,
+                                          &result, &error),
+                         0);
+        char label[64];
+        snprintf(label, sizeof label, "frame %d (%s)", f,
+                 frames[f].quad ? "a quad" : frames[f].grids == 1 ? "one grid" : "three grids");
+        assert_same_result(&result, &fresh, label);
+        size_t in_block = 0;
+        blocks[f] = luz_geometry_record_block(geometry, &in_block);
+        memory[f] = luz_geometry_memory(geometry);
+        print_message("%s: %zu records, %zu in a block of %zu, %zu bytes kept\n", label,
+                      fresh.total, in_block, blocks[f], memory[f]);
+        /* The grids' frames: every record in the block (nothing turns,
+         * so no batch outgrows its slice), but in the first frame and the
+         * first after the quad, whose batches had only the capacities of
+         * their first frame (or none): from the next frame on. */
+        const size_t expected = f == 0 || f == 6 ? 0 : fresh.total;
+        if (!frames[f].quad && in_block != expected)
+            fail_msg("%s: %zu of %zu records in the block", label, in_block, fresh.total);
+        if (frames[f].quad) {
+            assert_int_equal(blocks[f], 0);
+            assert_int_equal(in_block, 0);
+        }
+        snapshot_free(&fresh);
+        luz_frame_free(&frame);
+    }
+    /* One grid after three: a block laid out again, at most half the
+     * size; the quad: none, and the renderer keeps less by the block's
+     * bytes (the quad's records, a few, in an array of the batch's own). */
+    assert_true(blocks[1] > 0 && blocks[2] > 0 && blocks[2] <= blocks[1] / 2);
+    assert_int_equal(blocks[3], blocks[2]);
+    assert_true(memory[4] + blocks[3] * sizeof(luz_triangle) <= memory[3] + ((size_t)64 << 10));
+    assert_true(blocks[7] >= blocks[1] / 2);
+    luz_thread_pool_destroy(pool);
+    luz_geometry_destroy(geometry);
+    luz_framebuffer_destroy(framebuffer);
+    luz_mesh_destroy(quad);
+    luz_mesh_destroy(grid);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_same_phase_one_in_every_set),
         cmocka_unit_test(test_records_reused_frame_after_frame),
+        cmocka_unit_test(test_record_block_follows_the_frames),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -42,13 +42,12 @@
  * megabytes on a big mesh, which on 4 KB pages missed the TLB at nearly
  * every triangle.
  */
-#define _DEFAULT_SOURCE   /* madvise's MADV_HUGEPAGE (Linux) */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/mman.h>
 
 #include "renderer/cpu.h"
+#include "renderer/huge_pages.h"
 #include "renderer/pipeline.h"
 
 /* Triangles per batch of a big draw: enough work (about 0.2 ms) to be
@@ -64,9 +63,6 @@
 /* Records a frame must have (in the batches' capacities) to be placed in
  * one block of huge pages: 4 MB of them, two huge pages. */
 #define RECORD_BLOCK_MIN (((size_t)4 << 20) / sizeof(luz_triangle))
-/* The size of a huge page, which the block is aligned to and a whole
- * number of. */
-#define HUGE_PAGE_BYTES ((size_t)2 << 20)
 
 typedef struct geometry_batch {
     /* What the batch covers: whole draws [draw_first, draw_end), or
@@ -281,9 +277,26 @@ static bool reserve_records(geometry_batch *batch, size_t count)
     return true;
 }
 
+/* Every batch's slice given up, and the block freed: each batch makes an
+ * array of its own as it needs one (the records are made anew each
+ * frame: nothing to copy). */
+static void release_record_block(luz_geometry *geometry)
+{
+    for (int k = 0; k < geometry->batch_capacity; k++) {
+        geometry_batch *batch = &geometry->batches[k];
+        if (!batch->in_block) continue;
+        batch->triangles = NULL;
+        batch->capacity = 0;
+        batch->in_block = false;
+    }
+    free(geometry->record_block);
+    geometry->record_block = NULL;
+    geometry->record_block_capacity = 0;
+}
+
 /* Before the batches run: the frame's records in one block, on huge
- * pages (madvise, where the system has them: Linux's transparent huge
- * pages), each batch a slice of its capacity, in batch order, so that
+ * pages (renderer/huge_pages.h, where the system has them: Linux's
+ * transparent huge pages), each batch a slice of its capacity, in batch order, so that
  * each thread's share of the batches writes one stretch of it. The bands
  * read the records through by_id in band order, scattered over tens of
  * megabytes on a big mesh (the 1M sphere: 48 MB, twelve thousand 4 KB
@@ -295,7 +308,11 @@ static bool reserve_records(geometry_batch *batch, size_t count)
  * block, every batch gets a slice again, of its capacity now. The records
  * are made anew each frame, so nothing is copied. Few records (below
  * RECORD_BLOCK_MIN), or no memory for a block: each batch keeps its own
- * array. */
+ * array, and a block left from bigger frames (a 1M-triangle model, then
+ * the lab's cubes) is freed. A block more than twice the frame's
+ * capacity and a huge page (a smaller model after a big one) is laid out
+ * again at the frame's size: the memory a renderer keeps follows what
+ * its frames need, not the biggest it ever drew. */
 static void place_records(luz_geometry *geometry)
 {
     size_t total = 0, outside = 0;
@@ -303,19 +320,22 @@ static void place_records(luz_geometry *geometry)
         total += geometry->batches[k].capacity;
         if (!geometry->batches[k].in_block) outside += geometry->batches[k].capacity;
     }
-    if (total < RECORD_BLOCK_MIN || outside <= total / 8) return;
+    if (total < RECORD_BLOCK_MIN) {
+        if (geometry->record_block) release_record_block(geometry);
+        return;
+    }
+    const size_t page_records = LUZ_HUGE_PAGE_BYTES / sizeof(luz_triangle);
+    const bool oversized = geometry->record_block_capacity > 2 * total + page_records;
+    if (outside <= total / 8 && !oversized) return;
     luz_triangle *block = geometry->record_block;
     size_t block_capacity = geometry->record_block_capacity;
-    if (total > block_capacity) {
+    if (total > block_capacity || oversized) {
         /* Whole huge pages: the rounding is the only room to spare, so a
          * turning mesh whose batches outgrow it lays out a new block. */
-        const size_t bytes = (total * sizeof(luz_triangle) + HUGE_PAGE_BYTES - 1) /
-                             HUGE_PAGE_BYTES * HUGE_PAGE_BYTES;
-        block = aligned_alloc(HUGE_PAGE_BYTES, bytes);
+        const size_t bytes = (total * sizeof(luz_triangle) + LUZ_HUGE_PAGE_BYTES - 1) /
+                             LUZ_HUGE_PAGE_BYTES * LUZ_HUGE_PAGE_BYTES;
+        block = luz_huge_pages_alloc(bytes);
         if (!block) return;
-#ifdef MADV_HUGEPAGE
-        (void)madvise(block, bytes, MADV_HUGEPAGE);   /* advice: without it, 4 KB pages */
-#endif
         block_capacity = bytes / sizeof(luz_triangle);
     }
     size_t at = 0;
@@ -335,6 +355,15 @@ static void place_records(luz_geometry *geometry)
     if (block != geometry->record_block) free(geometry->record_block);
     geometry->record_block = block;
     geometry->record_block_capacity = block_capacity;
+}
+
+size_t luz_geometry_record_block(const luz_geometry *geometry, size_t *records_in_block)
+{
+    size_t records = 0;
+    for (int k = 0; k < geometry->batch_count; k++)
+        if (geometry->batches[k].in_block) records += geometry->batches[k].count;
+    *records_in_block = records;
+    return geometry->record_block_capacity;
 }
 
 /* ---- plan ------------------------------------------------------------- */

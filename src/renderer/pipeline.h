@@ -1001,6 +1001,10 @@ luz_geometry *luz_geometry_create(int thread_count);
 void luz_geometry_destroy(luz_geometry *geometry);
 /* The bytes its buffers hold. */
 size_t luz_geometry_memory(const luz_geometry *geometry);
+/* The block of records on huge pages (geometry.c's place_records) after
+ * the last run: its capacity in records (0: no block), and in
+ * *records_in_block how many of that run's records lie in it. */
+size_t luz_geometry_record_block(const luz_geometry *geometry, size_t *records_in_block);
 
 /* What phase 1 hands to phase 2; the arrays belong to the luz_geometry and
  * last until its next run. */
