@@ -100,8 +100,8 @@ enum { SCENE_WIDTH = 160, SCENE_HEIGHT = 90 };
 
 /* The default scene at t = 2.5 (no textures) drawn by renderer into
  * framebuffer with the options given. */
-static void draw_with(luz_renderer *renderer, luz_framebuffer *framebuffer,
-                      const luz_render_options *options)
+static void draw_samples_with(luz_renderer *renderer, luz_framebuffer *framebuffer,
+                              const luz_render_options *options, int samples)
 {
     luz_error error = {{0}};
     luz_scene scene = luz_scene_defaults();
@@ -111,8 +111,15 @@ static void draw_with(luz_renderer *renderer, luz_framebuffer *framebuffer,
                                            (float)framebuffer->width / (float)framebuffer->height,
                                            &frame, NULL),
                      0);
+    frame.samples = samples;
     assert_int_equal(luz_renderer_draw(renderer, &frame, framebuffer, options, &error), 0);
     luz_frame_free(&frame);
+}
+
+static void draw_with(luz_renderer *renderer, luz_framebuffer *framebuffer,
+                      const luz_render_options *options)
+{
+    draw_samples_with(renderer, framebuffer, options, 1);
 }
 
 /* SCENE.md's default scene at t = 2.5 (no textures) into framebuffer. */
@@ -241,7 +248,12 @@ static void assert_png_is_pattern(const luz_framebuffer *framebuffer, const char
  * band of 11 rows), where a band buffer too small or a band written into
  * another's rows would show in the image (or to AddressSanitizer). A
  * probe reads depth and visibility after the frame, so with one the
- * option is ignored and they hold the frame's. */
+ * option is ignored and they hold the frame's. Then at four samples a
+ * pixel, whose bands keep every sample's depth and winner and the first
+ * winners in band buffers four times as large (so they grow again at
+ * each size): the colour is a plain four-sample draw's (the whole
+ * frame's sample buffers), which is not the one-sample image, and depth
+ * and visibility still hold 0.25 and 7. */
 static void test_colour_only_leaves_depth_and_visibility(void **state)
 {
     (void)state;
@@ -280,6 +292,22 @@ static void test_colour_only_leaves_depth_and_visibility(void **state)
         assert_memory_equal(framebuffer->visibility, expected->visibility,
                             pixels * sizeof *expected->visibility);
         assert_memory_equal(framebuffer->depth, expected->depth, pixels * sizeof *expected->depth);
+
+        luz_framebuffer *four = luz_framebuffer_create(width, height, &error);
+        assert_non_null(four);
+        draw_samples_with(renderer, four, NULL, 4);
+        assert_memory_not_equal(four->colour, expected->colour, pixels * 4);
+        for (size_t p = 0; p < pixels; p++) {
+            framebuffer->depth[p] = 0.25f;
+            framebuffer->visibility[p] = 7;
+        }
+        draw_samples_with(renderer, framebuffer, &(luz_render_options){.colour_only = true}, 4);
+        assert_memory_equal(framebuffer->colour, four->colour, pixels * 4);
+        for (size_t p = 0; p < pixels; p++) {
+            assert_true(framebuffer->depth[p] == 0.25f);
+            assert_int_equal(framebuffer->visibility[p], 7);
+        }
+        luz_framebuffer_destroy(four);
         luz_framebuffer_destroy(framebuffer);
         luz_framebuffer_destroy(expected);
     }

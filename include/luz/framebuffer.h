@@ -17,8 +17,9 @@
  * depth and winner in the renderer's own buffers and writes only colour
  * here, the resolved pixels: depth and visibility are then left as they
  * were. So does a frame drawn with luz_render_options.colour_only, which
- * keeps each band's depth and visibility in the renderer's own small
- * buffers (luz-render and the viewer draw so).
+ * keeps each band's depth and visibility (at four samples, each
+ * sample's) in the renderer's own small buffers (luz-render and the
+ * viewer draw so).
  */
 #ifndef LUZ_FRAMEBUFFER_H
 #define LUZ_FRAMEBUFFER_H

@@ -82,17 +82,22 @@ struct luz_renderer {
                                        first asked */
     size_t overdraw_capacity;
     luz_sample_buffers samples;     /* four samples' depth and winners,
-                                       allocated when a frame first asks
-                                       for them */
+                                       the whole frame's allocated when a
+                                       frame first asks for them (not one
+                                       drawn in the band buffers) */
     size_t sample_capacity;         /* pixels they hold */
     size_t plane_capacity;          /* pixels the views' planes hold */
     luz_sample_band *sample_bands;  /* one per thread: a band's mixed pixels */
     size_t sample_band_capacity;    /* pixels each holds room for */
     int sample_band_count;          /* the threads' */
     float *band_depth;              /* one band of depth and visibility per
-                                       thread (luz_render_options.colour_only) */
+                                       thread (luz_render_options.colour_only),
+                                       each sample's with four samples */
     uint32_t *band_visibility;
-    size_t band_scratch_pixels;     /* pixels each thread's band holds */
+    size_t band_scratch_slots;      /* samples each thread's band holds */
+    uint32_t *band_first_winner;    /* four samples: one band of first
+                                       winners per thread */
+    size_t band_first_pixels;       /* pixels each thread's holds */
 };
 
 /* What the jobs of one frame share; read-only for the jobs except their
@@ -131,12 +136,12 @@ static double now_ms(void)
  * triangles ahead, and the triangle PREFETCH_AHEAD ahead, every line of it
  * (the raster reads its box and edges, the fragment stage, after the
  * band's raster, its planes). */
-static uint64_t raster_band(const frame_job *job, luz_framebuffer *framebuffer, int band_index,
-                            int first_row, int end_row)
+static uint64_t raster_band(const frame_job *job, luz_framebuffer *framebuffer,
+                            luz_sample_buffers *samples, int band_index, int first_row,
+                            int end_row)
 {
     const luz_triangle *const *by_id = job->geometry.by_id;
     uint32_t *overdraw = job->overdraw;
-    luz_sample_buffers *samples = job->samples;
     const size_t pixels = (size_t)framebuffer->width * (size_t)framebuffer->height;
     uint64_t tested = 0;
     const size_t *band_start = job->geometry.band_start;
@@ -202,11 +207,10 @@ static uint64_t shade_band(const frame_job *job, luz_framebuffer *target, int fi
  * the pixels an edge crosses, as a list; then those pixels are resolved
  * (resolve.c). The views shade every sample's plane and resolve every
  * pixel, the plain way. */
-static uint64_t shade_and_resolve_samples(const frame_job *job, int first_row, int end_row,
-                                          int worker_index)
+static uint64_t shade_and_resolve_samples(const frame_job *job, luz_sample_buffers *samples,
+                                          int first_row, int end_row, int worker_index)
 {
     luz_framebuffer *framebuffer = job->framebuffer;
-    luz_sample_buffers *samples = job->samples;
     const luz_uniforms *uniforms = &job->uniforms;
     uint64_t shaded = 0;
     if (uniforms->show == LUZ_VIEW_COLOR || uniforms->show == LUZ_VIEW_BANDS) {
@@ -238,23 +242,48 @@ static uint64_t shade_and_resolve_samples(const frame_job *job, int first_row, i
     return shaded;
 }
 
+/* A pointer to the thread's band buffer `own`, set back by `before`
+ * elements, so that the stages index it as a whole frame's array (at
+ * y * width for row y) although it holds the band's rows alone. Through
+ * uintptr_t: it points before the buffer, and only rows of the band are
+ * ever read or written through it. */
+static void *set_back(void *own, size_t before, size_t element_size)
+{
+    return (void *)((uintptr_t)own - before * element_size);
+}
+
 /* The framebuffer with depth and visibility moved to the thread's band
- * buffers, which hold rows [first_row, first_row + BAND_HEIGHT). The
- * stages index them as the framebuffer's, at y * width for row y, so the
- * pointers are set back by first_row rows (through uintptr_t: they point
- * before the buffer, and only rows of the band are ever read or written
- * through them). At 1920x1080 a band's 245 KB stay in L2, where the
- * framebuffer's 16 MB went to memory and back every frame. */
+ * buffers, which hold rows [first_row, first_row + BAND_HEIGHT). At
+ * 1920x1080 a band's 245 KB stay in L2, where the framebuffer's 16 MB went
+ * to memory and back every frame. */
 static luz_framebuffer band_buffers(const frame_job *job, int first_row, int worker_index)
 {
     luz_framebuffer band = *job->framebuffer;
     const luz_renderer *renderer = job->renderer;
-    const size_t own = (size_t)worker_index * renderer->band_scratch_pixels;
+    const size_t own = (size_t)worker_index * renderer->band_scratch_slots;
     const size_t before = (size_t)first_row * (size_t)band.width;
-    band.depth = (float *)((uintptr_t)(renderer->band_depth + own) - before * sizeof(float));
-    band.visibility = (uint32_t *)((uintptr_t)(renderer->band_visibility + own) -
-                                   before * sizeof(uint32_t));
+    band.depth = set_back(renderer->band_depth + own, before, sizeof(float));
+    band.visibility = set_back(renderer->band_visibility + own, before, sizeof(uint32_t));
     return band;
+}
+
+/* The same for four samples: the sample buffers' depth, winners and
+ * first winners of the band's rows in the thread's band buffers (36
+ * bytes a pixel: 1.1 MB a band at 1920x1080, in L2 and L3, where the
+ * whole frame's 75 MB went to memory and back). */
+static void band_sample_buffers(const frame_job *job, int first_row, int worker_index,
+                                luz_sample_buffers *band)
+{
+    const luz_renderer *renderer = job->renderer;
+    *band = *job->samples;
+    const size_t own = (size_t)worker_index * renderer->band_scratch_slots;
+    const size_t before = (size_t)first_row * (size_t)band->width;
+    band->depth = set_back(renderer->band_depth + own, before * LUZ_MAX_SAMPLES, sizeof(float));
+    band->visibility =
+        set_back(renderer->band_visibility + own, before * LUZ_MAX_SAMPLES, sizeof(uint32_t));
+    band->first_winner =
+        set_back(renderer->band_first_winner + (size_t)worker_index * renderer->band_first_pixels,
+                 before, sizeof(uint32_t));
 }
 
 static void band_job(void *context, int band_index, int worker_index)
@@ -264,11 +293,16 @@ static void band_job(void *context, int band_index, int worker_index)
     int first_row = band_index * BAND_HEIGHT;
     int end_row = first_row + BAND_HEIGHT;
     if (end_row > job->framebuffer->height) end_row = job->framebuffer->height;
-    /* Where this band's depth and visibility go: the framebuffer's, or
-     * the thread's band buffers (colour is the framebuffer's either way). */
+    /* Where this band's depth and visibility go (each sample's, with four
+     * samples): the framebuffer's (the sample buffers'), or the thread's
+     * band buffers (colour is the framebuffer's either way). */
     luz_framebuffer scratch;
+    luz_sample_buffers band_samples;
     luz_framebuffer *framebuffer = job->framebuffer;
-    if (job->band_scratch) {
+    if (job->band_scratch && samples) {
+        band_sample_buffers(job, first_row, worker_index, &band_samples);
+        samples = &band_samples;
+    } else if (job->band_scratch) {
         scratch = band_buffers(job, first_row, worker_index);
         framebuffer = &scratch;
     }
@@ -294,12 +328,12 @@ static void band_job(void *context, int band_index, int worker_index)
     }
 
     /* Raster and depth test. */
-    const uint64_t tested = raster_band(job, framebuffer, band_index, first_row, end_row);
+    const uint64_t tested = raster_band(job, framebuffer, samples, band_index, first_row, end_row);
 
     /* Fragment stage (and, with four samples, the resolve). */
     if (samples)
         counters->fragments_shaded =
-            shade_and_resolve_samples(job, first_row, end_row, worker_index);
+            shade_and_resolve_samples(job, samples, first_row, end_row, worker_index);
     else
         counters->fragments_shaded =
             shade_band(job, framebuffer, first_row, end_row, job->overdraw, worker_index);
@@ -394,6 +428,7 @@ void luz_renderer_destroy(luz_renderer *renderer)
     free_sample_bands(renderer);
     free(renderer->band_depth);
     free(renderer->band_visibility);
+    free(renderer->band_first_winner);
     free(renderer);
 }
 
@@ -430,16 +465,30 @@ static int prepare_bands(luz_renderer *renderer, int band_count, luz_error *erro
     return 0;
 }
 
+/* Whether the frame's bands keep depth and visibility (each sample's) in
+ * the threads' band buffers: asked for by luz_render_options.colour_only,
+ * and possible when nothing reads them after the bands, which a probe
+ * does, and with four samples a teaching view (it shades each sample's
+ * plane, split from the whole frame's samples). */
+static bool draws_in_band_buffers(const frame_job *job, const luz_render_options *options)
+{
+    const bool view = job->uniforms.show != LUZ_VIEW_COLOR && job->uniforms.show != LUZ_VIEW_BANDS;
+    return options->colour_only && !job->probe && (job->uniforms.samples == 1 || !view);
+}
+
 /* The buffers of a frame of more than one sample a pixel
  * (luz_sample_buffers), allocated when a frame first asks for them and
- * kept (grown as needed); the views' planes only when a view asks. */
-static int prepare_samples(luz_renderer *renderer, frame_job *job, luz_error *error)
+ * kept (grown as needed); the whole frame's depth and winners only when
+ * the bands do not keep them in their own buffers, the views' planes
+ * only when a view asks. */
+static int prepare_samples(luz_renderer *renderer, frame_job *job,
+                           const luz_render_options *options, luz_error *error)
 {
     if (job->uniforms.samples <= 1) return 0;
     const luz_framebuffer *framebuffer = job->framebuffer;
     const size_t pixels = (size_t)framebuffer->width * (size_t)framebuffer->height;
     luz_sample_buffers *samples = &renderer->samples;
-    if (pixels > renderer->sample_capacity) {
+    if (!draws_in_band_buffers(job, options) && pixels > renderer->sample_capacity) {
         renderer->sample_capacity = 0;
         free(samples->depth);
         free(samples->visibility);
@@ -509,30 +558,42 @@ static int prepare_samples(luz_renderer *renderer, frame_job *job, luz_error *er
     return 0;
 }
 
-/* Each thread's band of depth and visibility, for a frame drawn with
- * luz_render_options.colour_only (and one sample a pixel, and no probe),
- * allocated when first asked and kept (grown as needed). Each thread's
- * share starts on a cache line of its own: BAND_HEIGHT * width * 4 bytes
- * is a multiple of 64. */
+/* Each thread's band of depth and visibility (each sample's, and with
+ * four samples the first winners), for a frame drawn with
+ * luz_render_options.colour_only (draws_in_band_buffers), allocated when
+ * first asked and kept (grown as needed). Each thread's share starts on a
+ * cache line of its own: BAND_HEIGHT * width * 4 bytes is a multiple of
+ * 64. */
 static int prepare_band_scratch(luz_renderer *renderer, frame_job *job,
                                 const luz_render_options *options, luz_error *error)
 {
-    if (!options->colour_only || job->samples || job->probe) return 0;
+    if (!draws_in_band_buffers(job, options)) return 0;
     const size_t band_pixels = (size_t)BAND_HEIGHT * (size_t)job->framebuffer->width;
-    if (band_pixels > renderer->band_scratch_pixels) {
-        const size_t all = band_pixels * (size_t)luz_thread_pool_thread_count(renderer->pool);
+    const size_t band_slots = band_pixels * (size_t)job->uniforms.samples;
+    const size_t threads = (size_t)luz_thread_pool_thread_count(renderer->pool);
+    if (band_slots > renderer->band_scratch_slots) {
         free(renderer->band_depth);
         free(renderer->band_visibility);
-        renderer->band_depth = aligned_alloc(64, all * sizeof(float));
-        renderer->band_visibility = aligned_alloc(64, all * sizeof(uint32_t));
-        renderer->band_scratch_pixels = band_pixels;
+        renderer->band_depth = aligned_alloc(64, band_slots * threads * sizeof(float));
+        renderer->band_visibility = aligned_alloc(64, band_slots * threads * sizeof(uint32_t));
+        renderer->band_scratch_slots = band_slots;
         if (!renderer->band_depth || !renderer->band_visibility) {
             free(renderer->band_depth);
             free(renderer->band_visibility);
             renderer->band_depth = NULL;
             renderer->band_visibility = NULL;
-            renderer->band_scratch_pixels = 0;
+            renderer->band_scratch_slots = 0;
             return luz_error_set(error, "out of memory for the bands' depth at %dx%d",
+                                 job->framebuffer->width, job->framebuffer->height);
+        }
+    }
+    if (job->samples && band_pixels > renderer->band_first_pixels) {
+        free(renderer->band_first_winner);
+        renderer->band_first_winner = aligned_alloc(64, band_pixels * threads * sizeof(uint32_t));
+        renderer->band_first_pixels = band_pixels;
+        if (!renderer->band_first_winner) {
+            renderer->band_first_pixels = 0;
+            return luz_error_set(error, "out of memory for the bands' samples at %dx%d",
                                  job->framebuffer->width, job->framebuffer->height);
         }
     }
@@ -574,9 +635,9 @@ static void collect_stats(const luz_renderer *renderer, const frame_job *job,
                               (size_t)renderer->sample_band_count *
                               (sizeof(luz_mixed_pixel) +
                                3 * (sizeof(luz_fragment_ref) + sizeof(uint32_t))) +
-                          renderer->band_scratch_pixels *
-                              (size_t)luz_thread_pool_thread_count(renderer->pool) *
-                              (sizeof(float) + sizeof(uint32_t));
+                          (renderer->band_scratch_slots * (sizeof(float) + sizeof(uint32_t)) +
+                           renderer->band_first_pixels * sizeof(uint32_t)) *
+                              (size_t)luz_thread_pool_thread_count(renderer->pool);
     stats->triangles_rasterised = job->geometry.triangle_total;
     for (int b = 0; b < job->geometry.band_count; b++) {
         stats->fragments_tested += renderer->bands[b].fragments_tested;
@@ -699,7 +760,7 @@ int luz_renderer_draw(luz_renderer *renderer, const luz_frame *frame,
     /* Phase 2: bands of rows (clear, raster and depth test, fragments,
      * the caller's hook). */
     if (prepare_bands(renderer, job.geometry.band_count, error) != 0) return -1;
-    if (prepare_samples(renderer, &job, error) != 0) return -1;
+    if (prepare_samples(renderer, &job, options, error) != 0) return -1;
     if (prepare_overdraw(renderer, &job, error) != 0) return -1;
     if (prepare_band_scratch(renderer, &job, options, error) != 0) return -1;
     if (job.probe) luz_probe_begin(job.probe, framebuffer, options->view);
