@@ -640,12 +640,13 @@ void luz_samples_split_rows(luz_sample_buffers *buffers, int first_row, int end_
 
 /* raster_lanes.c's kernel, one per instruction set (cpu.h): the samples of
  * rows [y_begin, y_end) (within the triangle's box) of a triangle, in
- * buffers at least LUZ_RASTER_GROUP_PIXELS wide, small_edges when the
- * triangle's box is small and its edge functions stay below 2^30 there
- * (raster.c). Returns the tests made. */
+ * buffers at least LUZ_RASTER_GROUP_PIXELS wide, small when the
+ * triangle's box is (luz_raster_is_small; the kernel checks whether its
+ * edge functions stay below 2^30 there, raster.c). Returns the tests
+ * made. */
 typedef uint64_t luz_raster_groups_function(const luz_triangle *triangle, uint32_t triangle_id,
                                             luz_sample_buffers *buffers, int y_begin, int y_end,
-                                            bool small_edges);
+                                            bool small);
 
 /* Covers every sample of rows [first_row, end_row) inside the triangle
  * (sample k at luz_sample_offset_of(buffers->samples, k)) into buffers'

@@ -202,27 +202,6 @@ static uint64_t raster_samples_one_by_one(const luz_triangle *triangle, uint32_t
     return tests;
 }
 
-/* Whether |E| < 2^30 for each edge over the box of sample points that the
- * groups of rows [min_y, max_y] may test (see above). */
-static bool edges_fit_32_bits(const luz_triangle *triangle)
-{
-    const int64_t left = ((int64_t)triangle->min_x - (GROUP_PIXELS - 1)) * LUZ_SUBPIXEL_ONE;
-    const int64_t right = ((int64_t)triangle->max_x + GROUP_PIXELS) * LUZ_SUBPIXEL_ONE;
-    const int64_t top = (int64_t)triangle->min_y * LUZ_SUBPIXEL_ONE;
-    const int64_t bottom = ((int64_t)triangle->max_y + 1) * LUZ_SUBPIXEL_ONE;
-    const int64_t limit = (int64_t)1 << 30;
-    for (int k = 0; k < 3; k++) {
-        const luz_edge *edge = &triangle->edges[k];
-        const int64_t corner[4] = {
-            edge->a * left + edge->b * top + edge->c, edge->a * right + edge->b * top + edge->c,
-            edge->a * left + edge->b * bottom + edge->c,
-            edge->a * right + edge->b * bottom + edge->c};
-        for (int j = 0; j < 4; j++)
-            if (corner[j] >= limit || corner[j] <= -limit) return false;
-    }
-    return true;
-}
-
 uint64_t luz_raster_triangle_samples(const luz_triangle *triangle, uint32_t triangle_id,
                                      luz_sample_buffers *buffers, int first_row, int end_row,
                                      uint32_t *overdraw, luz_raster_groups_function *groups)
@@ -235,8 +214,7 @@ uint64_t luz_raster_triangle_samples(const luz_triangle *triangle, uint32_t tria
                                          overdraw);
     if (groups == NULL)
         return raster_samples_one_by_one(triangle, triangle_id, buffers, y_begin, y_end, NULL);
-    const bool small_edges = luz_raster_is_small(triangle) && edges_fit_32_bits(triangle);
-    return groups(triangle, triangle_id, buffers, y_begin, y_end, small_edges);
+    return groups(triangle, triangle_id, buffers, y_begin, y_end, luz_raster_is_small(triangle));
 }
 
 /* luz/bug.h's no-depth-test: the samples at offset `sample` of rows

@@ -5,7 +5,7 @@
  *
  * In:  a set-up luz_triangle, rows [y_begin, y_end) of its box, sample
  *      buffers at least LUZ_RASTER_GROUP_PIXELS pixels wide, and whether
- *      its edge functions fit 32 bits over the box (small_edges).
+ *      its box is small (luz_raster_is_small).
  * Out: for every sample inside the triangle and nearer than the
  *      buffers' (LESS), its depth and the triangle's id; the tests made.
  *
@@ -53,12 +53,43 @@ _Static_assert(GROUP_PIXELS <= LUZ_RASTER_GROUP_PIXELS, "a step fits the buffers
 
 typedef int32_t group_i32 __attribute__((vector_size(GROUP_LANES * sizeof(int32_t))));
 typedef float group_f32 __attribute__((vector_size(GROUP_LANES * sizeof(float))));
+typedef int64_t corner_i64 __attribute__((vector_size(4 * sizeof(int64_t))));
+
+/* Whether |E| < 2^30 for each edge over the box of sample points that the
+ * groups of rows [min_y, max_y] may test (raster.c's comment on four
+ * samples: E is linear, so its largest magnitude over the box is at a
+ * corner), the four corners of an edge in the lanes of one vector. The
+ * check only picks between two exact ways to the same coverage, but it
+ * must never say yes wrongly: the corners' E in 64 bits, as setup's
+ * (pipeline.h's luz_edge), compared without a branch (raster.c compared
+ * them one by one before the call, 4 ms a frame on the 1M sphere). */
+static bool edges_fit_32_bits(const luz_triangle *triangle)
+{
+    const int64_t left = ((int64_t)triangle->min_x - (LUZ_RASTER_GROUP_PIXELS - 1)) *
+                         LUZ_SUBPIXEL_ONE;
+    const int64_t right = ((int64_t)triangle->max_x + LUZ_RASTER_GROUP_PIXELS) * LUZ_SUBPIXEL_ONE;
+    const int64_t top = (int64_t)triangle->min_y * LUZ_SUBPIXEL_ONE;
+    const int64_t bottom = ((int64_t)triangle->max_y + 1) * LUZ_SUBPIXEL_ONE;
+    const corner_i64 corner_x = {left, right, left, right};
+    const corner_i64 corner_y = {top, top, bottom, bottom};
+    const int64_t limit = (int64_t)1 << 30;
+    corner_i64 outside = {0};
+    for (int k = 0; k < 3; k++) {
+        const luz_edge *edge = &triangle->edges[k];
+        const corner_i64 e = (int64_t)edge->a * corner_x + (int64_t)edge->b * corner_y + edge->c;
+        outside |= (e >= limit) | (e <= -limit);
+    }
+    return (outside[0] | outside[1] | outside[2] | outside[3]) == 0;
+}
 
 luz_raster_groups_function RASTER_GROUPS;
 
 uint64_t RASTER_GROUPS(const luz_triangle *triangle, uint32_t triangle_id,
-                      luz_sample_buffers *buffers, int y_begin, int y_end, bool small_edges)
+                      luz_sample_buffers *buffers, int y_begin, int y_end, bool small)
 {
+    /* Coverage from the edge functions in 32-bit lanes, or from each
+     * sample's span (raster.c). */
+    const bool small_edges = small && edges_fit_32_bits(triangle);
     const int width = buffers->width;
     const luz_plane depth = triangle->depth;
     /* Lane l: sample l % 4 of pixel l / 4 of the group, at lane_dx,
