@@ -543,6 +543,127 @@ static void test_four_samples_in_lanes_match_the_definition(void **state)
     }
 }
 
+/* A colour for (triangle id, pixel): the fragment stage's stand-in. */
+static uint32_t colour_of(uint32_t id, int x, int y)
+{
+    uint32_t h = id * 2654435761u ^ (uint32_t)x * 40503u ^ (uint32_t)y * 9973u;
+    h ^= h >> 13;
+    return h * 2246822519u;
+}
+
+/* The sort of four samples' winners and the resolve (resolve.c) against
+ * the definition written here, under every instruction set's mixed-pixel
+ * loop: rows of 37 pixels whose samples are won by few triangles (0, 1,
+ * 2, 3, 9: every way four winners can agree or differ comes up). The
+ * first winner of each pixel is its first non-zero sample's; the list of
+ * other winners holds, pixel by pixel in order, the other distinct
+ * winners in the order of the samples they first won; and with a colour
+ * for each (triangle, pixel) and the clear colour for 0, each byte of a
+ * pixel is floor((s0 + s1 + s2 + s3 + 2) / 4) of its samples' bytes. */
+static void test_four_samples_sort_and_resolve_match_the_definition(void **state)
+{
+    (void)state;
+    enum { WIDTH = 37, ROWS = 24, FIRST_ROW = 5, END_ROW = 21 };
+    const uint32_t choices[5] = {0, 1, 2, 3, 9};
+    const uint8_t background[4] = {10, 200, 33, 255};
+    uint32_t background_word;
+    memcpy(&background_word, background, 4);
+    luz_winner_pattern *patterns = malloc(LUZ_WINNER_PATTERNS * sizeof *patterns);
+    assert_non_null(patterns);
+    luz_samples_winner_patterns(patterns);
+    const size_t band_pixels = (size_t)(END_ROW - FIRST_ROW) * WIDTH;
+    for (int isa = LUZ_ISA_SCALAR; isa < LUZ_ISA_COUNT; isa++) {
+        if (!luz_isa_available((luz_isa)isa)) continue;
+        uint32_t *ids = malloc((size_t)WIDTH * ROWS * 4 * sizeof *ids);
+        uint32_t *first = calloc((size_t)WIDTH * ROWS, sizeof *first);
+        uint8_t *colour = malloc((size_t)WIDTH * ROWS * 4);
+        luz_sample_band band = {
+            .mixed = malloc(band_pixels * sizeof(luz_mixed_pixel)),
+            .extra = malloc(3 * band_pixels * sizeof(luz_fragment_ref)),
+            .extra_colour = calloc(3 * band_pixels, sizeof(uint32_t)),
+            .row_mixed = malloc(WIDTH * sizeof(uint16_t)),
+            .patterns = patterns};
+        assert_true(ids && first && colour && band.mixed && band.extra && band.extra_colour &&
+                    band.row_mixed);
+        unsigned seed = 27u + (unsigned)isa;
+        for (size_t i = 0; i < (size_t)WIDTH * ROWS * 4; i++) {
+            seed = seed * 1103515245u + 12345u;
+            ids[i] = choices[(seed >> 16) % 5];
+        }
+        /* A run of pixels whose samples agree, as inside a surface. */
+        for (int i = 8 * 4; i < 20 * 4; i++) ids[(size_t)FIRST_ROW * WIDTH * 4 + (size_t)i] = 3;
+        luz_sample_buffers buffers = {.samples = 4, .width = WIDTH, .height = ROWS,
+                                      .visibility = ids, .first_winner = first};
+        luz_samples_sort_winners(&buffers, FIRST_ROW, END_ROW, &band,
+                                 luz_kernels_of((luz_isa)isa).mixed_pixels);
+
+        size_t mixed = 0, extra = 0;
+        for (int y = FIRST_ROW; y < END_ROW; y++)
+            for (int x = 0; x < WIDTH; x++) {
+                const size_t pixel = (size_t)y * WIDTH + (size_t)x;
+                const uint32_t *id = ids + pixel * 4;
+                uint32_t winner = 0;
+                for (int k = 3; k >= 0; k--)
+                    if (id[k] != 0) winner = id[k];
+                assert_int_equal(first[pixel], winner);
+                if (id[0] == id[1] && id[0] == id[2] && id[0] == id[3]) continue;
+                assert_true(mixed < band.mixed_count);
+                assert_int_equal(band.mixed[mixed].index, pixel);
+                assert_int_equal(band.mixed[mixed].first_extra, extra);
+                mixed++;
+                for (int k = 0; k < 4; k++) {
+                    bool seen = id[k] == 0 || id[k] == winner;
+                    for (int j = 0; j < k; j++) seen = seen || id[j] == id[k];
+                    if (seen) continue;
+                    assert_true(extra < band.extra_count);
+                    assert_int_equal(band.extra[extra].id, id[k]);
+                    assert_int_equal(band.extra[extra].x, x);
+                    assert_int_equal(band.extra[extra].y, y);
+                    extra++;
+                }
+            }
+        assert_int_equal(band.mixed_count, mixed);
+        assert_int_equal(band.extra_count, extra);
+        assert_true(mixed > band_pixels / 2 && mixed < band_pixels);
+
+        /* The fragment stage's part: each pixel its first winner's colour
+         * (the clear colour for 0), each listed other winner its own. */
+        for (int y = FIRST_ROW; y < END_ROW; y++)
+            for (int x = 0; x < WIDTH; x++) {
+                const size_t pixel = (size_t)y * WIDTH + (size_t)x;
+                const uint32_t word =
+                    first[pixel] ? colour_of(first[pixel], x, y) : background_word;
+                memcpy(colour + pixel * 4, &word, 4);
+            }
+        for (size_t e = 0; e < band.extra_count; e++)
+            band.extra_colour[e] = colour_of(band.extra[e].id, band.extra[e].x, band.extra[e].y);
+        luz_framebuffer framebuffer = {.width = WIDTH, .height = ROWS, .colour = colour};
+        luz_samples_resolve_winners(&band, &framebuffer, background);
+        for (int y = FIRST_ROW; y < END_ROW; y++)
+            for (int x = 0; x < WIDTH; x++) {
+                const size_t pixel = (size_t)y * WIDTH + (size_t)x;
+                unsigned sum[4] = {2, 2, 2, 2};
+                for (int k = 0; k < 4; k++) {
+                    const uint32_t id = ids[pixel * 4 + (size_t)k];
+                    const uint32_t word = id ? colour_of(id, x, y) : background_word;
+                    uint8_t bytes[4];
+                    memcpy(bytes, &word, 4);
+                    for (int c = 0; c < 4; c++) sum[c] += bytes[c];
+                }
+                for (int c = 0; c < 4; c++)
+                    assert_int_equal(colour[pixel * 4 + (size_t)c], sum[c] / 4);
+            }
+        free(ids);
+        free(first);
+        free(colour);
+        free(band.mixed);
+        free(band.extra);
+        free(band.extra_colour);
+        free(band.row_mixed);
+    }
+    free(patterns);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -556,6 +677,7 @@ int main(void)
                                         teardown_framebuffer),
         cmocka_unit_test(test_back_faces_and_degenerate_triangles_are_culled),
         cmocka_unit_test(test_four_samples_in_lanes_match_the_definition),
+        cmocka_unit_test(test_four_samples_sort_and_resolve_match_the_definition),
         cmocka_unit_test_setup_teardown(test_depth_test_less, setup_framebuffer,
                                         teardown_framebuffer),
         cmocka_unit_test_setup_teardown(test_depth_is_interpolated_linearly, setup_framebuffer,

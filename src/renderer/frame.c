@@ -88,6 +88,8 @@ struct luz_renderer {
     size_t sample_capacity;         /* pixels they hold */
     size_t plane_capacity;          /* pixels the views' planes hold */
     luz_sample_band *sample_bands;  /* one per thread: a band's mixed pixels */
+    luz_winner_pattern winner_patterns[LUZ_WINNER_PATTERNS];   /* the sort's,
+                                       made once at creation */
     size_t sample_band_capacity;    /* pixels each holds room for */
     int sample_band_count;          /* the threads' */
     float *band_depth;              /* one band of depth and visibility per
@@ -383,6 +385,7 @@ luz_renderer *luz_renderer_create(const luz_renderer_desc *desc, luz_error *erro
         return NULL;
     }
     renderer->reference = desc->reference;
+    luz_samples_winner_patterns(renderer->winner_patterns);
     renderer->geometry = luz_geometry_create(threads);
     renderer->pool = luz_thread_pool_create(threads);
     if (!renderer->geometry || !renderer->pool) {
@@ -534,7 +537,8 @@ static int prepare_samples(luz_renderer *renderer, frame_job *job,
             luz_sample_band *band = &renderer->sample_bands[t];
             band->mixed = malloc(band_pixels * sizeof *band->mixed);
             band->extra = malloc(3 * band_pixels * sizeof *band->extra);
-            band->extra_colour = malloc(3 * band_pixels * sizeof *band->extra_colour);
+            band->extra_colour = calloc(3 * band_pixels, sizeof *band->extra_colour);
+            band->patterns = renderer->winner_patterns;
             band->row_mixed = malloc((size_t)framebuffer->width * sizeof *band->row_mixed);
             if (!band->mixed || !band->extra || !band->extra_colour || !band->row_mixed) {
                 free_sample_bands(renderer);

@@ -682,9 +682,41 @@ typedef struct luz_mixed_pixel {
     uint8_t source[LUZ_MAX_SAMPLES];
 } luz_mixed_pixel;
 
+/* What luz_samples_sort_winners makes of a pixel's four winners depends
+ * only on which samples no triangle won and which pairs one triangle won
+ * (not on the ids themselves): ten bits, the key of
+ * luz_samples_winner_key. For each key, what the sort writes: each
+ * sample's source (as luz_mixed_pixel's), the sample whose winner is the
+ * pixel's first, and the samples whose winners are its other winners, in
+ * order. */
+#define LUZ_WINNER_PATTERNS 1024
+typedef struct luz_winner_pattern {
+    uint8_t source[LUZ_MAX_SAMPLES];
+    uint8_t first;              /* the first sample a triangle won (0 if none) */
+    uint8_t extra_count;        /* other winners: 0 to 3 */
+    uint8_t extra_sample[3];    /* their samples; 0 past extra_count */
+} luz_winner_pattern;
+
+/* Bit k (0 to 3): sample k's winner is 0; bits 4 to 9: the winners of
+ * samples (0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3) are equal. */
+static inline unsigned luz_samples_winner_key(const uint32_t id[LUZ_MAX_SAMPLES])
+{
+    return (unsigned)(id[0] == 0) | (unsigned)(id[1] == 0) << 1 | (unsigned)(id[2] == 0) << 2 |
+           (unsigned)(id[3] == 0) << 3 | (unsigned)(id[0] == id[1]) << 4 |
+           (unsigned)(id[0] == id[2]) << 5 | (unsigned)(id[0] == id[3]) << 6 |
+           (unsigned)(id[1] == id[2]) << 7 | (unsigned)(id[1] == id[3]) << 8 |
+           (unsigned)(id[2] == id[3]) << 9;
+}
+
+/* Every key's pattern, worked out by the sort's definition (one pixel at
+ * a time, resolve.c) on winners that have the key. */
+void luz_samples_winner_patterns(luz_winner_pattern patterns[LUZ_WINNER_PATTERNS]);
+
 /* The work of a band of four samples a pixel beyond one sample's: its mixed
  * pixels and, in the same order, their other winners to shade. Room for
- * every pixel of a band (BAND_HEIGHT x width), one per thread. */
+ * every pixel of a band (BAND_HEIGHT x width), one per thread;
+ * extra_colour is zeroed when allocated (the resolve reads a pixel's
+ * three entries whether it has them or not, then uses its own). */
 typedef struct luz_sample_band {
     luz_mixed_pixel *mixed;
     size_t mixed_count;
@@ -692,6 +724,7 @@ typedef struct luz_sample_band {
     uint32_t *extra_colour;      /* their bytes, by the fragment stage */
     size_t extra_count;
     uint16_t *row_mixed;         /* scratch: a row's mixed pixels' x */
+    const luz_winner_pattern *patterns;   /* luz_samples_winner_patterns' */
 } luz_sample_band;
 
 /* The fragment stage's work for rows [first_row, end_row), from the

@@ -37,13 +37,75 @@
 
 #include "renderer/pipeline.h"
 
+/* The definition of the sort of one pixel's winners: sample k's source
+ * is the clear colour (no triangle won it), the pixel's first winner
+ * (that of its first sample a triangle won), or, for any other triangle,
+ * the entry of the first sample it won, a new one numbered in sample
+ * order. */
+static void sort_pixel(const uint32_t id[LUZ_MAX_SAMPLES], luz_winner_pattern *pattern)
+{
+    memset(pattern, 0, sizeof *pattern);
+    while (pattern->first < 3 && id[pattern->first] == 0) pattern->first++;
+    const uint32_t winner = id[pattern->first];
+    for (int k = 0; k < 4; k++) {
+        if (id[k] == 0) {
+            pattern->source[k] = LUZ_SAMPLE_FROM_CLEAR;
+        } else if (id[k] == winner) {
+            pattern->source[k] = LUZ_SAMPLE_FROM_FIRST;
+        } else {
+            /* A triangle an earlier sample won has its entry. */
+            int j = 0;
+            while (j < k && id[j] != id[k]) j++;
+            if (j < k) {
+                pattern->source[k] = pattern->source[j];
+            } else {
+                pattern->source[k] = (uint8_t)(2 + pattern->extra_count);
+                pattern->extra_sample[pattern->extra_count++] = (uint8_t)k;
+            }
+        }
+    }
+}
+
+/* For each key, winners that have it: sample k's is 0 if the key says
+ * so, else that of the first earlier sample the key pairs it with, else
+ * a new id. (A key no four winners have, such as 0 = 1 and 1 = 2 but
+ * 0 != 2, gets some pattern; the sort never looks it up.) */
+void luz_samples_winner_patterns(luz_winner_pattern patterns[LUZ_WINNER_PATTERNS])
+{
+    static const int pair_bit[4][4] = {
+        {-1, 4, 5, 6}, {4, -1, 7, 8}, {5, 7, -1, 9}, {6, 8, 9, -1}};
+    for (unsigned key = 0; key < LUZ_WINNER_PATTERNS; key++) {
+        uint32_t id[LUZ_MAX_SAMPLES];
+        for (int k = 0; k < 4; k++) {
+            id[k] = (uint32_t)(k + 1);
+            if (key >> k & 1) {
+                id[k] = 0;
+                continue;
+            }
+            for (int j = 0; j < k; j++)
+                if (key >> pair_bit[j][k] & 1) {
+                    id[k] = id[j];
+                    break;
+                }
+        }
+        sort_pixel(id, &patterns[key]);
+    }
+}
+
 /* A row's mixed pixels are found by mixed_pixels, the instruction set's
  * copy of sample_loops.c's loop (most chunks of a row agree and are passed
- * over at a few instructions each, sixteen ids at a time under AVX-512). */
+ * over at a few instructions each, sixteen ids at a time under AVX-512).
+ * Each mixed pixel is then sorted by its key's pattern, without a branch:
+ * sort_pixel's branches follow the pattern of each pixel, and on the 1M
+ * sphere (nearly every covered pixel mixed) most of them were
+ * mispredicted. A pattern's three other winners are written whether it
+ * has them or not (room: a pixel's entries start below three times the
+ * pixels before it), and the count moves by those it has. */
 void luz_samples_sort_winners(luz_sample_buffers *buffers, int first_row, int end_row,
                               luz_sample_band *band, luz_mixed_pixels_function *mixed_pixels)
 {
     const int width = buffers->width;
+    const luz_winner_pattern *patterns = band->patterns;
     band->mixed_count = 0;
     band->extra_count = 0;
     for (int y = first_row; y < end_row; y++) {
@@ -54,55 +116,45 @@ void luz_samples_sort_winners(luz_sample_buffers *buffers, int first_row, int en
         for (int m = 0; m < mixed; m++) {
             const int x = band->row_mixed[m];
             const uint32_t *id = ids + (size_t)x * LUZ_MAX_SAMPLES;
-            /* The first sample a triangle won (0 if none did). */
-            const uint32_t winner = id[0] ? id[0] : id[1] ? id[1] : id[2] ? id[2] : id[3];
+            const luz_winner_pattern *pattern = &patterns[luz_samples_winner_key(id)];
             luz_mixed_pixel *pixel = &band->mixed[band->mixed_count++];
             pixel->index = (uint32_t)(row + (size_t)x);
             pixel->first_extra = (uint32_t)band->extra_count;
-            int others = 0;
-            for (int k = 0; k < 4; k++) {
-                if (id[k] == 0) {
-                    pixel->source[k] = LUZ_SAMPLE_FROM_CLEAR;
-                } else if (id[k] == winner) {
-                    pixel->source[k] = LUZ_SAMPLE_FROM_FIRST;
-                } else {
-                    /* A triangle an earlier sample won has its entry. */
-                    int j = 0;
-                    while (j < k && id[j] != id[k]) j++;
-                    if (j < k) {
-                        pixel->source[k] = pixel->source[j];
-                    } else {
-                        pixel->source[k] = (uint8_t)(2 + others++);
-                        band->extra[band->extra_count++] =
-                            (luz_fragment_ref){id[k], (uint16_t)x, (uint16_t)y};
-                    }
-                }
-            }
-            first[x] = winner;
+            memcpy(pixel->source, pattern->source, sizeof pixel->source);
+            luz_fragment_ref *extra = band->extra + band->extra_count;
+            for (int j = 0; j < 3; j++)
+                extra[j] = (luz_fragment_ref){id[pattern->extra_sample[j]], (uint16_t)x,
+                                              (uint16_t)y};
+            band->extra_count += pattern->extra_count;
+            first[x] = id[pattern->first];
         }
     }
 }
 
+/* Each mixed pixel's four colours picked from its five candidates (the
+ * clear colour, the first winner's, three others') by the sources, and
+ * averaged per byte in two 32-bit words (bytes 0 and 2, then 1 and 3, in
+ * 16-bit halves: four bytes and the 2 sum to at most 1022), which is
+ * luz_samples_resolve_channel's floor((s0 + s1 + s2 + s3 + 2) / 4) for
+ * each channel, whatever the byte order. */
 void luz_samples_resolve_winners(const luz_sample_band *band, luz_framebuffer *framebuffer,
                                  const uint8_t background[4])
 {
+    uint32_t candidate[5];
+    memcpy(&candidate[LUZ_SAMPLE_FROM_CLEAR], background, 4);
     for (size_t m = 0; m < band->mixed_count; m++) {
         const luz_mixed_pixel *pixel = &band->mixed[m];
         uint8_t *out = framebuffer->colour + (size_t)pixel->index * 4;
-        const uint8_t *colour[4];
+        memcpy(&candidate[LUZ_SAMPLE_FROM_FIRST], out, 4);
+        memcpy(&candidate[2], &band->extra_colour[pixel->first_extra], 3 * sizeof(uint32_t));
+        uint32_t even = 0x00020002u, odd = 0x00020002u;
         for (int k = 0; k < 4; k++) {
-            const uint8_t source = pixel->source[k];
-            colour[k] = source == LUZ_SAMPLE_FROM_CLEAR ? background
-                        : source == LUZ_SAMPLE_FROM_FIRST
-                            ? out
-                            : (const uint8_t *)&band->extra_colour[pixel->first_extra +
-                                                                   (uint32_t)(source - 2)];
+            const uint32_t colour = candidate[pixel->source[k]];
+            even += colour & 0x00ff00ffu;
+            odd += colour >> 8 & 0x00ff00ffu;
         }
-        uint8_t resolved[4];
-        for (int channel = 0; channel < 4; channel++)
-            resolved[channel] = luz_samples_resolve_channel(colour[0][channel], colour[1][channel],
-                                                            colour[2][channel], colour[3][channel]);
-        memcpy(out, resolved, sizeof resolved);
+        const uint32_t resolved = (even >> 2 & 0x00ff00ffu) | (odd >> 2 & 0x00ff00ffu) << 8;
+        memcpy(out, &resolved, sizeof resolved);
     }
 }
 
