@@ -30,9 +30,11 @@
  *     and blue, ...) is worked out once per band, by the very operations
  *     shade.h applies per pixel.
  *   - Textures. Texel addresses, bilinear weights and blends are vectors;
- *     the texel fetches are one load per lane (a "gather"), sent out for
- *     both of trilinear's levels before the lighting, and filtered after
- *     it, so that the texels arrive while the lighting is computed.
+ *     the texel fetches are one load per lane (a "gather"; with AVX-512
+ *     and AVX2 one 64-bit load per lane for a row's two texels), sent
+ *     out for both of trilinear's levels before the lighting, and
+ *     filtered after it, so that the texels arrive while the lighting is
+ *     computed.
  *   - Instruction sets. src/renderer/meson.build compiles this file once
  *     for the build's target (baseline: SSE2 on x86-64, NEON on aarch64),
  *     once with one lane (the scalar variant), and once each with -mavx2
@@ -494,6 +496,40 @@ INLINE void prefetch_ahead(const uint8_t *texels, vint index, int32_t end)
     if (ahead >= 0 && ahead < end) __builtin_prefetch(texels + (size_t)ahead * 4);
 }
 
+/* Texels index and index + 1 of each lane, as first and second: one
+ * 64-bit load a lane, half the lanes a gather, then the pairs' halves
+ * sorted into two registers. */
+#if LANES == 16 && defined(__AVX512F__)
+INLINE void gather_pairs(const uint8_t *texels, vint index, vuint *first, vuint *second)
+{
+    const __m512i low = _mm512_i32gather_epi64(_mm512_castsi512_si256((__m512i)index),
+                                               (const void *)texels, 4);
+    const __m512i high = _mm512_i32gather_epi64(_mm512_extracti32x8_epi32((__m512i)index, 1),
+                                                (const void *)texels, 4);
+    const __m512i even =
+        _mm512_set_epi32(30, 28, 26, 24, 22, 20, 18, 16, 14, 12, 10, 8, 6, 4, 2, 0);
+    const __m512i odd =
+        _mm512_set_epi32(31, 29, 27, 25, 23, 21, 19, 17, 15, 13, 11, 9, 7, 5, 3, 1);
+    *first = (vuint)_mm512_permutex2var_epi32(low, even, high);
+    *second = (vuint)_mm512_permutex2var_epi32(low, odd, high);
+}
+#elif LANES == 8 && defined(__AVX2__)
+INLINE void gather_pairs(const uint8_t *texels, vint index, vuint *first, vuint *second)
+{
+    const __m256i low = _mm256_i32gather_epi64((const long long *)(const void *)texels,
+                                               _mm256_castsi256_si128((__m256i)index), 4);
+    const __m256i high = _mm256_i32gather_epi64((const long long *)(const void *)texels,
+                                                _mm256_extracti128_si256((__m256i)index, 1), 4);
+    /* low holds a0 b0 a1 b1 | a2 b2 a3 b3, high a4 b4 ... b7: the shuffle
+     * gives a0 a1 a4 a5 | a2 a3 a6 a7, and the permute swaps its middle
+     * 64-bit quarters. */
+    const __m256 a = _mm256_shuffle_ps((__m256)low, (__m256)high, _MM_SHUFFLE(2, 0, 2, 0));
+    const __m256 b = _mm256_shuffle_ps((__m256)low, (__m256)high, _MM_SHUFFLE(3, 1, 3, 1));
+    *first = (vuint)_mm256_permute4x64_epi64((__m256i)a, _MM_SHUFFLE(3, 1, 2, 0));
+    *second = (vuint)_mm256_permute4x64_epi64((__m256i)b, _MM_SHUFFLE(3, 1, 2, 0));
+}
+#endif
+
 INLINE vfloat channel(vuint texels, int c)
 {
     return to_float((vint)((texels >> CHANNEL_SHIFT(c)) & 0xffu));
@@ -584,6 +620,20 @@ INLINE bilinear_texels fetch_bilinear(const luz_texture *texture, const lane_lev
     const int32_t level_end = level->first_texel[0] + level->width[0] * level->height[0];
     prefetch_ahead(texels, row0 + x0, level_end);
     prefetch_ahead(texels, row1 + x0, level_end);
+#if (LANES == 16 && defined(__AVX512F__)) || (LANES == 8 && defined(__AVX2__))
+    /* Unless a lane's footprint wraps around the row (x0 the last column,
+     * x1 the first) or the level is one texel wide, x1 = x0 + 1 in every
+     * lane: each lane's two texels of a row are next to each other, and
+     * one 64-bit load a lane fetches both, half as many loads, in 64-bit
+     * gathers of half the lanes each (docs/performance.md, "The lab's
+     * shading, second round"). Every lane's x0 and x0 + 1 are then in its
+     * level's row, whether the lane is the pass's or not. */
+    if (lane_bits(x1 == x0 + 1) == ALL_LANES) {
+        gather_pairs(texels, row0 + x0, &out.a, &out.b);
+        gather_pairs(texels, row1 + x0, &out.c, &out.d);
+        return out;
+    }
+#endif
     out.a = gather(texels, row0 + x0);
     out.b = gather(texels, row0 + x1);
     out.c = gather(texels, row1 + x0);
