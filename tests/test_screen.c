@@ -10,7 +10,7 @@
  * edge (dy > 0). The tests count the centres by trying every pixel of the
  * viewport, and hold every variant to it: nothing dropped that covers a
  * centre, every back face dropped counted, and each screening variant
- * (AVX-512's screen.c, AVX2's and NEON's screen_lanes.c) dropping every
+ * (screen_lanes.c for AVX-512, AVX2, SSE2 and NEON) dropping every
  * triangle it is meant to (a back face, a box with no
  * centre of the viewport, a box of up to 2 x 2 pixels with none covered).
  * luz_setup_projected, the other implementation, must agree on each

@@ -5,9 +5,9 @@
  *
  * The kernels are the stages written in lanes: the fragment packets
  * (fragment_packet.c), screening, setup in lanes and the vertex pass in
- * lanes (AVX-512's screen.c, setup_eight.c and vertex_sixteen.c; AVX2's,
- * SSE2's and NEON's screen_lanes.c, setup_lanes.c and vertex_lanes.c, one
- * source on lanes.h for all three; the scalar set's lanes_scalar.c, the
+ * lanes (screen_lanes.c for every set with lanes; AVX-512's setup_eight.c
+ * and vertex_sixteen.c; AVX2's, SSE2's and NEON's setup_lanes.c and
+ * vertex_lanes.c, one source on lanes.h for all three; the scalar set's lanes_scalar.c, the
  * reference's functions one at a time), and four samples' two plain
  * loops that the compiler vectorises (sample_loops.c: the scalar set
  * shares the build's target's copy). Each is compiled once per

@@ -12,10 +12,9 @@
  *   LUZ_LANES_AVX2     x86-64 AVX2 and FMA (FMA unused: -ffp-contract=off)
  *   LUZ_LANES_NEON     aarch64 Advanced SIMD (the build's target)
  *   LUZ_LANES_SSE2     x86-64's baseline, SSE2 (the build's target)
- *   LUZ_LANES_AVX512   x86-64 AVX-512 F, VL, BW, DQ: screen_lanes.c only,
- *                      not built (AVX-512 keeps its intrinsic kernels,
- *                      faster; the AVX-512 forms below are for measuring
- *                      this source against them)
+ *   LUZ_LANES_AVX512   x86-64 AVX-512 F, VL, BW, DQ: screen_lanes.c (the
+ *                      other kernels keep AVX-512 intrinsics of their
+ *                      own, faster: setup_eight.c, vertex_sixteen.c)
  *
  * and the file picks its LANES for each (the triangles or vertices of a
  * step). A handful of operations that the extensions cannot say, or say

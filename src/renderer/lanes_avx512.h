@@ -1,10 +1,10 @@
 /*
- * lanes_avx512.h: what the AVX-512 variants (screen.c, setup_eight.c,
+ * lanes_avx512.h: what the AVX-512 variants in intrinsics (setup_eight.c,
  * vertex_sixteen.c) share to turn arrays of structures, one vertex or
  * triangle each, into vectors of one field each (lanes), and back: the
- * gather of snapped positions and the 8 x 8 transposes; and what two of
- * them compute alike in lanes: a triangle's doubled area and box of
- * pixel centres, the projection of a vertex. Included only
+ * gather of snapped positions and the 8 x 8 transposes; and what they
+ * compute in lanes: a triangle's doubled area and box of pixel centres,
+ * the projection of a vertex. Included only
  * where the file is compiled with -mavx512f and the rest.
  */
 #ifndef LUZ_LANES_AVX512_H

@@ -1,8 +1,8 @@
 /*
  * screen_lanes.c: screening (screen.c's job: the cheap decisions of
  * triangle setup, many triangles at once) written once on lanes.h's
- * portable vectors, for the instruction sets without AVX-512: 8 triangles
- * a step with AVX2, 4 with SSE2 and NEON.
+ * portable vectors, for every instruction set with lanes: 16 triangles a
+ * step with AVX-512, 8 with AVX2, 4 with SSE2 and NEON.
  *
  * In, out and the arithmetic: screen.c's, decision for decision (the
  * doubled area and the edge functions at the box's centres in 64-bit
@@ -10,10 +10,12 @@
  * every coordinate fits), so tests/test_screen.c holds every variant to
  * luz_setup_projected alike.
  *
- * The AVX-512 variant stays screen.c's, written in intrinsics: this
- * kernel compiled for AVX-512 gave the same survivors but took 6% more
- * CPU time on the 1M sphere (32.4 against 30.4 ms a frame; its masks are
- * vectors, where the intrinsics keep them in mask registers).
+ * AVX-512 once had a kernel of its own in intrinsics (screen.c), in 64-bit
+ * lanes throughout: this kernel then took 6% more CPU time on the 1M
+ * sphere (32.4 against 30.4 ms a frame); since it takes a step's edge
+ * functions in 32-bit lanes where every product fits (small_near_box) it
+ * takes less (28.26 against 28.77, docs/performance.md, "The 1M sphere
+ * and its setup"), and the intrinsics went.
  */
 #include <stddef.h>
 #include <stdint.h>
@@ -26,8 +28,8 @@ _Static_assert(LUZ_MESH_MAX_VERTICES <= (1u << 30), "vertex indices fit an int32
 
 #if defined(LUZ_LANES_AVX512)
 #define LANES 16
-#define SCREEN_LANES luz_screen_triangles_lanes_avx512
-#define SCREEN_LANES_FOUR luz_screen_triangles_four_lanes_avx512
+#define SCREEN_LANES luz_screen_triangles_avx512
+#define SCREEN_LANES_FOUR luz_screen_triangles_four_avx512
 #elif defined(LUZ_LANES_AVX2)
 #define LANES 8
 #define SCREEN_LANES luz_screen_triangles_avx2
@@ -321,8 +323,8 @@ size_t SCREEN_LANES(const uint32_t *indices, uint32_t first, uint32_t end,
                             culled_count);
 }
 
-/* The same for four samples a pixel (screen.c's
- * luz_screen_triangles_four_avx512). */
+/* The same for four samples a pixel (SCENE.md, "Anti-aliasing"): what
+ * luz_setup_projected_samples(..., 4, ...) drops without a record. */
 size_t SCREEN_LANES_FOUR(const uint32_t *indices, uint32_t first, uint32_t end,
                          const luz_fixed_vertex *fixed, int width, int height,
                          uint32_t *survivors, uint32_t *culled_count)
