@@ -1048,19 +1048,21 @@ uint64_t VARIANT_ROWS(const luz_uniforms *uniforms, const luz_draw *draws,
                       int first_row, int end_row);
 
 /* Pixels waiting for a pass of their own draw. A packet whose pixels
- * are all one triangle's is shaded where it lies; any other (an edge
- * between two triangles, or two cubes) would take a pass per draw, or
- * per triangle, each with most of its lanes idle: its pixels go instead
- * to their draw's queue, which is shaded in one pass when it holds LANES
- * pixels (from anywhere in the band: the rows below continue the same
- * edges), with each lane's own triangle's planes. With 1000 cubes at
- * 1280x720 that is 35 thousand passes a frame instead of 50, for 32
- * thousand packets' worth of pixels. A draw's queue is the one at
- * draw_index % QUEUE_SLOTS; another draw's pixels there are shaded
- * first (a band's edges meet a few dozen draws). Each pixel is shaded
+ * are all one draw's, more than half of it, is shaded where it lies, in
+ * one pass (each lane with its own triangle's planes, as on a big mesh,
+ * whose triangles are about a pixel); any other (an edge between two
+ * cubes, or a corner of a triangle) would take a pass per draw, each
+ * with most of its lanes idle: its pixels go instead to their draw's queue,
+ * which is shaded in one pass when it holds LANES pixels (from anywhere
+ * in the band: the rows below continue the same edges), with each lane's
+ * own triangle's planes. With 1000 cubes at 1280x720 that is 32 thousand
+ * passes a frame instead of 50, for 31.5 thousand registers' worth of
+ * pixels. A draw's queue is the one at draw_index % QUEUE_SLOTS; another
+ * draw's pixels there are shaded first (with 64 queues, 11% of the
+ * queues' passes at 1000 cubes; with 256, few). Each pixel is shaded
  * with its own triangle's planes at its own centre whatever else shares
  * its pass, so the bytes are those of a pass per triangle. */
-enum { QUEUE_SLOTS = 64 };
+enum { QUEUE_SLOTS = 256 };
 
 typedef struct pixel_queue {
     uint32_t draw_index;
@@ -1139,12 +1141,22 @@ uint64_t VARIANT_ROWS(const luz_uniforms *uniforms, const luz_draw *draws,
             if (covered != 0) {
                 shaded += (uint64_t)__builtin_popcount(covered);
                 const uint32_t first_id = ids[__builtin_ctz(covered)];
-                if ((lane_bits((vint)(ids == first_id)) & covered) == covered) {
+                const luz_triangle *triangle = by_id[first_id];
+                const unsigned first_triangle = lane_bits((vint)(ids == first_id)) & covered;
+                bool one_draw = __builtin_popcount(covered) > LANES / 2;
+                for (unsigned rest = covered & ~first_triangle; one_draw && rest != 0;
+                     rest &= rest - 1)
+                    one_draw = by_id[ids[__builtin_ctz(rest)]]->draw_index ==
+                               triangle->draw_index;
+                if (one_draw) {
                     /* Pixel centres as fragment.c computes them: (float)x + 0.5. */
                     const vfloat centre_x = (lane_x + (float)x) + 0.5f;
                     lane_triangles triangles;
-                    const luz_triangle *triangle = by_id[first_id];
-                    one_triangle(&triangles, triangle, centre_x, splat(centre_y));
+                    if (first_triangle == covered)
+                        one_triangle(&triangles, triangle, centre_x, splat(centre_y));
+                    else
+                        gather_triangles(&triangles, by_id, ids, covered, triangle, centre_x,
+                                         splat(centre_y));
                     const vint mine = (vint)(ids != 0u);
                     const vuint shade = shade_lanes(&u, &draws[triangle->draw_index].material,
                                                     &triangles, mine, covered);
