@@ -1070,6 +1070,7 @@ typedef struct pixel_queue {
     uint32_t id[LANES];
     uint16_t x[LANES], y[LANES];   /* LUZ_MAX_DIMENSION is 2^14 */
 } pixel_queue;
+_Static_assert(LUZ_MAX_DIMENSION <= 65536, "a queued pixel's x and y are 16 bits");
 
 /* The queue's pixels shaded in one pass and written to the colour
  * buffer; the queue left empty. */

@@ -666,6 +666,7 @@ typedef struct luz_fragment_ref {
     uint32_t id;
     uint16_t x, y;   /* LUZ_MAX_DIMENSION is 2^14 */
 } luz_fragment_ref;
+_Static_assert(LUZ_MAX_DIMENSION <= 65536, "a fragment's x and y are 16 bits");
 
 /* A pixel whose samples were not all won by one triangle (or all by
  * none): where each sample's colour comes from. */

@@ -365,7 +365,8 @@ LANES_INLINE bool setup_eight(const uint32_t *indices, const uint32_t triangles[
          * does: eight indices stored one by one and loaded as a vector
          * wait for the stores to retire. */
         const __m256i first_index = _mm256_mullo_epi32(
-            _mm256_loadu_si256((const void *)triangles), _mm256_set1_epi32(3));
+            _mm256_loadu_si256((const void *)(triangles + g * LANES)),
+            _mm256_set1_epi32(3));
         for (int k = 0; k < 3; k++)
             corners[g].vertex[k] =
                 (vi32)_mm256_i32gather_epi32((const int *)indices + k, first_index, 4);
