@@ -148,6 +148,18 @@ static luz_mesh *wavy_grid(void)
     return mesh;
 }
 
+/* The frame every case looks through: from z = 3 at the origin, 45
+ * degrees, no draws yet. */
+static luz_frame camera_frame(void)
+{
+    luz_frame frame = {0};
+    frame.eye = (luz_vec3){0, 0, 3};
+    frame.view = luz_mat4_look_at(frame.eye, (luz_vec3){0, 0, 0}, (luz_vec3){0, 1, 0});
+    frame.projection =
+        luz_mat4_perspective(luz_radians(45.0f), (float)WIDTH / HEIGHT, 0.1f, 100.0f);
+    return frame;
+}
+
 static void test_same_phase_one_in_every_set(void **state)
 {
     (void)state;
@@ -158,11 +170,7 @@ static void test_same_phase_one_in_every_set(void **state)
     luz_mesh *mesh = wavy_grid();
     luz_error error = {{0}};
 
-    luz_frame frame = {0};
-    frame.eye = (luz_vec3){0, 0, 3};
-    frame.view = luz_mat4_look_at(frame.eye, (luz_vec3){0, 0, 0}, (luz_vec3){0, 1, 0});
-    frame.projection =
-        luz_mat4_perspective(luz_radians(45.0f), (float)WIDTH / HEIGHT, 0.1f, 100.0f);
+    luz_frame frame = camera_frame();
     const luz_mat4 models[4] = {
         luz_mat4_identity(),
         /* tilted through the near plane and out past the guard band */
@@ -258,11 +266,7 @@ static void test_records_reused_frame_after_frame(void **state)
             /* Two grids turned about y, a little less each frame, so
              * that more of each batch faces the view (batches outgrow
              * their slices), then as in the first frame again. */
-            luz_frame frame = {0};
-            frame.eye = (luz_vec3){0, 0, 3};
-            frame.view = luz_mat4_look_at(frame.eye, (luz_vec3){0, 0, 0}, (luz_vec3){0, 1, 0});
-            frame.projection =
-                luz_mat4_perspective(luz_radians(45.0f), (float)WIDTH / HEIGHT, 0.1f, 100.0f);
+            luz_frame frame = camera_frame();
             const float angle = f == 7 ? 1.2f : 1.2f - 0.2f * (float)f;
             for (int k = 0; k < 2; k++) {
                 luz_draw draw = {.mesh = mesh};
@@ -319,11 +323,7 @@ static void test_records_reused_frame_after_frame(void **state)
 static luz_frame frame_of(const luz_mesh *grid, int grids, const luz_mesh *quad)
 {
     luz_error error = {{0}};
-    luz_frame frame = {0};
-    frame.eye = (luz_vec3){0, 0, 3};
-    frame.view = luz_mat4_look_at(frame.eye, (luz_vec3){0, 0, 0}, (luz_vec3){0, 1, 0});
-    frame.projection =
-        luz_mat4_perspective(luz_radians(45.0f), (float)WIDTH / HEIGHT, 0.1f, 100.0f);
+    luz_frame frame = camera_frame();
     for (int k = 0; k < (quad ? 1 : grids); k++) {
         luz_draw draw = {.mesh = quad ? quad : grid};
         draw.model = luz_mat4_rotate(
