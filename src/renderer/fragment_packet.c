@@ -1002,45 +1002,6 @@ INLINE vuint shade_lanes(const packet_uniforms *u, const luz_material *material,
     return pack_pixels(colour, u);
 }
 
-/* The lanes of `covered` shaded as their triangles' (ids), at centres
- * (centre_x, centre_y), over `pixels`: one pass per draw in the packet,
- * its lanes shaded with their own triangles' planes. A lone triangle (or
- * two, as on a quad's diagonal) takes each its own pass with its planes
- * broadcast, cheaper than gathering them. */
-INLINE vuint shade_packet(const packet_uniforms *u, const luz_draw *draws,
-                          const luz_triangle *const *by_id, vuint ids, unsigned covered,
-                          vfloat centre_x, vfloat centre_y, vuint pixels)
-{
-    for (unsigned pending = covered; pending != 0;) {
-        const luz_triangle *first = by_id[ids[__builtin_ctz(pending)]];
-        unsigned mine_bits = lane_bits((vint)(ids == ids[__builtin_ctz(pending)]));
-        unsigned others = pending & ~mine_bits;   /* not yet the draw's */
-        unsigned same_draw = mine_bits;
-        for (unsigned rest = others; rest != 0; rest &= rest - 1) {
-            const int i = __builtin_ctz(rest);
-            if (by_id[ids[i]]->draw_index == first->draw_index)
-                same_draw |= 1u << i;
-        }
-        const unsigned second = same_draw & ~mine_bits;
-        const bool two_or_fewer =
-            second == 0 ||
-            (second & ~lane_bits((vint)(ids == ids[__builtin_ctz(second)]))) == 0;
-        lane_triangles triangles;
-        if (two_or_fewer) {
-            one_triangle(&triangles, first, centre_x, centre_y);
-        } else {
-            gather_triangles(&triangles, by_id, ids, same_draw, first, centre_x, centre_y);
-            mine_bits = same_draw;
-        }
-        pending &= ~mine_bits;
-        const vint mine = lanes_of_bits(mine_bits);
-        const vuint shade = shade_lanes(u, &draws[first->draw_index].material, &triangles,
-                                        mine, mine_bits);
-        pixels = (vuint)select_int(mine, (vint)shade, (vint)pixels);
-    }
-    return pixels;
-}
-
 /* ---- the band ------------------------------------------------------------ */
 
 uint64_t VARIANT_ROWS(const luz_uniforms *uniforms, const luz_draw *draws,
@@ -1069,14 +1030,15 @@ typedef struct pixel_queue {
     int count;
     uint32_t id[LANES];
     uint16_t x[LANES], y[LANES];   /* LUZ_MAX_DIMENSION is 2^14 */
+    uint32_t slot[LANES];          /* where its four bytes go, in pixels */
 } pixel_queue;
 _Static_assert(LUZ_MAX_DIMENSION <= 65536, "a queued pixel's x and y are 16 bits");
 
-/* The queue's pixels shaded in one pass and written to the colour
- * buffer; the queue left empty. */
+/* The queue's pixels shaded in one pass, each written to its slot of
+ * `out` (four bytes a slot: the colour buffer's pixels, or a list's
+ * colours); the queue left empty. */
 static void shade_queue(const packet_uniforms *u, const luz_draw *draws,
-                        const luz_triangle *const *by_id, luz_framebuffer *framebuffer,
-                        pixel_queue *queue)
+                        const luz_triangle *const *by_id, uint8_t *out, pixel_queue *queue)
 {
     vuint ids = {0};
     vfloat centre_x = splat(0.5f), centre_y = splat(0.5f);
@@ -1094,13 +1056,50 @@ static void shade_queue(const packet_uniforms *u, const luz_draw *draws,
         gather_triangles(&triangles, by_id, ids, lanes, first, centre_x, centre_y);
     const vuint pixels = shade_lanes(u, &draws[queue->draw_index].material, &triangles,
                                      lanes_of_bits(lanes), lanes);
-    uint8_t *colour = framebuffer->colour;
-    const size_t width = (size_t)framebuffer->width;
     for (int i = 0; i < queue->count; i++) {
         const uint32_t pixel = pixels[i];
-        memcpy(colour + ((size_t)queue->y[i] * width + queue->x[i]) * 4, &pixel, 4);
+        memcpy(out + (size_t)queue->slot[i] * 4, &pixel, 4);
     }
     queue->count = 0;
+}
+
+/* The lanes of `queued` (their triangles' ids) put in their draws'
+ * queues, lane i as slot first_slot + i of `out`; lane i's pixel is
+ * fragments[i]'s, or with no fragments (x + i, y). A full queue is
+ * shaded into `out`, as is one that holds another draw's. */
+INLINE void queue_lanes(const packet_uniforms *u, const luz_draw *draws,
+                        const luz_triangle *const *by_id, uint8_t *out,
+                        pixel_queue queues[QUEUE_SLOTS], unsigned queued, vuint ids,
+                        const luz_fragment_ref *fragments, int x, int y, uint32_t first_slot)
+{
+    for (uint32_t id = 0, draw_index = 0; queued != 0; queued &= queued - 1) {
+        const int i = __builtin_ctz(queued);
+        if (ids[i] != id) {
+            id = ids[i];
+            draw_index = by_id[id]->draw_index;
+        }
+        pixel_queue *queue = &queues[draw_index % QUEUE_SLOTS];
+        if (queue->count != 0 && queue->draw_index != draw_index)
+            shade_queue(u, draws, by_id, out, queue);
+        queue->draw_index = draw_index;
+        queue->id[queue->count] = id;
+        queue->x[queue->count] = fragments ? fragments[i].x : (uint16_t)(x + i);
+        queue->y[queue->count] = fragments ? fragments[i].y : (uint16_t)y;
+        queue->slot[queue->count] = first_slot + (uint32_t)i;
+        if (++queue->count == LANES) shade_queue(u, draws, by_id, out, queue);
+    }
+}
+
+/* Whether the lanes of `covered` (not none) are more than half the
+ * packet and all one draw's, that of by_id[ids[first lane]]: then they
+ * are shaded where they lie, in one pass. */
+INLINE bool one_draw_packet(const luz_triangle *const *by_id, vuint ids, unsigned covered,
+                            unsigned first_triangle, uint32_t draw_index)
+{
+    bool one_draw = __builtin_popcount(covered) > LANES / 2;
+    for (unsigned rest = covered & ~first_triangle; one_draw && rest != 0; rest &= rest - 1)
+        one_draw = by_id[ids[__builtin_ctz(rest)]]->draw_index == draw_index;
+    return one_draw;
 }
 
 /* The packet loop of this variant. */
@@ -1144,11 +1143,8 @@ uint64_t VARIANT_ROWS(const luz_uniforms *uniforms, const luz_draw *draws,
                 const uint32_t first_id = ids[__builtin_ctz(covered)];
                 const luz_triangle *triangle = by_id[first_id];
                 const unsigned first_triangle = lane_bits((vint)(ids == first_id)) & covered;
-                bool one_draw = __builtin_popcount(covered) > LANES / 2;
-                for (unsigned rest = covered & ~first_triangle; one_draw && rest != 0;
-                     rest &= rest - 1)
-                    one_draw = by_id[ids[__builtin_ctz(rest)]]->draw_index ==
-                               triangle->draw_index;
+                const bool one_draw =
+                    one_draw_packet(by_id, ids, covered, first_triangle, triangle->draw_index);
                 if (one_draw) {
                     /* Pixel centres as fragment.c computes them: (float)x + 0.5. */
                     const vfloat centre_x = (lane_x + (float)x) + 0.5f;
@@ -1173,25 +1169,13 @@ uint64_t VARIANT_ROWS(const luz_uniforms *uniforms, const luz_draw *draws,
                 memcpy(out, &pixels, sizeof pixels);
             else
                 memcpy(out, &pixels, (size_t)count * 4);
-            for (uint32_t id = 0, draw_index = 0; queued != 0; queued &= queued - 1) {
-                const int i = __builtin_ctz(queued);
-                if (ids[i] != id) {
-                    id = ids[i];
-                    draw_index = by_id[id]->draw_index;
-                }
-                pixel_queue *queue = &queues[draw_index % QUEUE_SLOTS];
-                if (queue->count != 0 && queue->draw_index != draw_index)
-                    shade_queue(&u, draws, by_id, framebuffer, queue);
-                queue->draw_index = draw_index;
-                queue->id[queue->count] = id;
-                queue->x[queue->count] = (uint16_t)(x + i);
-                queue->y[queue->count] = (uint16_t)y;
-                if (++queue->count == LANES) shade_queue(&u, draws, by_id, framebuffer, queue);
-            }
+            if (queued != 0)
+                queue_lanes(&u, draws, by_id, framebuffer->colour, queues, queued, ids, NULL, x,
+                            y, (uint32_t)((size_t)y * width + (size_t)x));
         }
     }
     for (int q = 0; q < QUEUE_SLOTS; q++)
-        if (queues[q].count != 0) shade_queue(&u, draws, by_id, framebuffer, &queues[q]);
+        if (queues[q].count != 0) shade_queue(&u, draws, by_id, framebuffer->colour, &queues[q]);
     return shaded;
 }
 
@@ -1201,28 +1185,63 @@ uint64_t VARIANT_LIST(const luz_uniforms *uniforms, const luz_draw *draws,
 
 /* The list loop of this variant: LANES fragments of the list at a time,
  * each lane at its own pixel, shaded as the rows shade it (the same
- * centre, (float)x + 0.5, and planes: the same bits). */
+ * centre, (float)x + 0.5, and planes: the same bits). As in the rows, a
+ * packet more than half one draw's is shaded where it lies, and any
+ * other's fragments go to their draws' queues: the list holds the
+ * pixels an edge crosses, row by row, so a packet of it spans several
+ * edges, often of as many draws (100 cubes), where a pass per draw
+ * would leave most lanes idle. */
 uint64_t VARIANT_LIST(const luz_uniforms *uniforms, const luz_draw *draws,
                       const luz_triangle *const *by_id, luz_channel_order order,
                       const luz_fragment_ref *fragments, size_t count, uint32_t *colours)
 {
     const packet_uniforms u = packet_uniforms_of(uniforms, order);
     const vuint background = (vuint){0} + u.background;
+    uint8_t *out = (uint8_t *)colours;
+    pixel_queue queues[QUEUE_SLOTS];
+    for (int q = 0; q < QUEUE_SLOTS; q++)
+        queues[q].count = 0;
     for (size_t begin = 0; begin < count; begin += LANES) {
         const int lanes = count - begin < LANES ? (int)(count - begin) : LANES;
+        const luz_fragment_ref *packet = fragments + begin;
         vuint ids = {0};
         vfloat centre_x = splat(0.5f), centre_y = splat(0.5f);
         for (int i = 0; i < lanes; i++) {
-            const luz_fragment_ref *fragment = &fragments[begin + (size_t)i];
-            ids[i] = fragment->id;
-            centre_x[i] = (float)fragment->x + 0.5f;
-            centre_y[i] = (float)fragment->y + 0.5f;
+            ids[i] = packet[i].id;
+            centre_x[i] = (float)packet[i].x + 0.5f;
+            centre_y[i] = (float)packet[i].y + 0.5f;
         }
+        /* A fragment of no triangle (id 0) is the background. */
         const unsigned covered = lane_bits((vint)(ids != 0u));
-        const vuint pixels = shade_packet(&u, draws, by_id, ids, covered, centre_x, centre_y,
-                                          background);
+        vuint pixels = background;
+        unsigned queued = 0;
+        if (covered != 0) {
+            const uint32_t first_id = ids[__builtin_ctz(covered)];
+            const luz_triangle *triangle = by_id[first_id];
+            const unsigned first_triangle = lane_bits((vint)(ids == first_id)) & covered;
+            if (one_draw_packet(by_id, ids, covered, first_triangle, triangle->draw_index)) {
+                lane_triangles triangles;
+                if (first_triangle == covered)
+                    one_triangle(&triangles, triangle, centre_x, centre_y);
+                else
+                    gather_triangles(&triangles, by_id, ids, covered, triangle, centre_x,
+                                     centre_y);
+                const vint mine = (vint)(ids != 0u);
+                const vuint shade = shade_lanes(&u, &draws[triangle->draw_index].material,
+                                                &triangles, mine, covered);
+                pixels = (vuint)select_int(mine, (vint)shade, (vint)pixels);
+            } else {
+                queued = covered;
+            }
+        }
+        /* Queued lanes are written again when their queue is shaded. */
         memcpy(colours + begin, &pixels, (size_t)lanes * sizeof *colours);
+        if (queued != 0)
+            queue_lanes(&u, draws, by_id, out, queues, queued, ids, packet, 0, 0,
+                        (uint32_t)begin);
     }
+    for (int q = 0; q < QUEUE_SLOTS; q++)
+        if (queues[q].count != 0) shade_queue(&u, draws, by_id, out, &queues[q]);
     return count;
 }
 
