@@ -314,6 +314,56 @@ static void test_colour_only_leaves_depth_and_visibility(void **state)
     luz_renderer_destroy(renderer);
 }
 
+/* The teaching views at four samples with colour_only: each band splits
+ * its samples into the views' planes from the thread's band buffers, and
+ * the image is, byte for byte, the one a plain draw makes from the whole
+ * frame's sample buffers, for every view, at 333x75 (a last band of 11
+ * rows) on two threads; it is not the one-sample view (so four samples
+ * were drawn). Each path has a renderer of its own, and the colour_only
+ * one never holds the whole frame's depth, winners and first winners (36
+ * bytes a pixel), only a band's 16 rows of them for each of its two
+ * threads: its memory is at least 75 - 32 rows' worth below the plain
+ * one's (both hold the views' planes; it was above when the views kept
+ * the whole frame's buffers). */
+static void test_colour_only_four_sample_views(void **state)
+{
+    (void)state;
+    enum { WIDTH = 333, HEIGHT = 75 };
+    static const luz_view views[] = {LUZ_VIEW_DEPTH, LUZ_VIEW_NORMALS, LUZ_VIEW_UV,
+                                     LUZ_VIEW_MIP, LUZ_VIEW_OVERDRAW, LUZ_VIEW_TRIANGLES};
+    const size_t pixels = (size_t)WIDTH * HEIGHT;
+    luz_error error = {{0}};
+    luz_renderer *plain = luz_renderer_create(&(luz_renderer_desc){.thread_count = 2}, &error);
+    luz_renderer *banded = luz_renderer_create(&(luz_renderer_desc){.thread_count = 2}, &error);
+    luz_framebuffer *one = luz_framebuffer_create(WIDTH, HEIGHT, &error);
+    luz_framebuffer *expected = luz_framebuffer_create(WIDTH, HEIGHT, &error);
+    luz_framebuffer *framebuffer = luz_framebuffer_create(WIDTH, HEIGHT, &error);
+    assert_non_null(plain);
+    assert_non_null(banded);
+    assert_non_null(one);
+    assert_non_null(expected);
+    assert_non_null(framebuffer);
+    for (size_t v = 0; v < sizeof views / sizeof views[0]; v++) {
+        luz_frame_stats plain_stats = {0}, banded_stats = {0};
+        draw_samples_with(plain, one, &(luz_render_options){.view = views[v]}, 1);
+        draw_samples_with(plain, expected,
+                          &(luz_render_options){.view = views[v], .stats = &plain_stats}, 4);
+        draw_samples_with(banded, framebuffer,
+                          &(luz_render_options){.view = views[v], .colour_only = true,
+                                                .stats = &banded_stats},
+                          4);
+        assert_memory_not_equal(expected->colour, one->colour, pixels * 4);
+        assert_memory_equal(framebuffer->colour, expected->colour, pixels * 4);
+        assert_true(banded_stats.memory_bytes + (size_t)(HEIGHT - 2 * 16) * WIDTH * (4 * 8 + 4) <=
+                    plain_stats.memory_bytes);
+    }
+    luz_framebuffer_destroy(framebuffer);
+    luz_framebuffer_destroy(expected);
+    luz_framebuffer_destroy(one);
+    luz_renderer_destroy(banded);
+    luz_renderer_destroy(plain);
+}
+
 /* The same pattern, stored RGBA in one framebuffer and BGRA (bytes 0 and 2
  * swapped) in another, gives the same PNG, the pattern in RGBA; writing
  * converts a copy, so the BGRA framebuffer is unchanged afterwards; and
@@ -430,6 +480,7 @@ int main(void)
         cmocka_unit_test(test_clear_rows_clears_depth_and_visibility_only),
         cmocka_unit_test(test_lent_colour_memory),
         cmocka_unit_test(test_colour_only_leaves_depth_and_visibility),
+        cmocka_unit_test(test_colour_only_four_sample_views),
         cmocka_unit_test(test_png_of_bgra_framebuffer_reads_back_as_rgba),
         cmocka_unit_test(test_new_png_never_replaces_a_file),
     };

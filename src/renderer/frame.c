@@ -471,12 +471,13 @@ static int prepare_bands(luz_renderer *renderer, int band_count, luz_error *erro
 /* Whether the frame's bands keep depth and visibility (each sample's) in
  * the threads' band buffers: asked for by luz_render_options.colour_only,
  * and possible when nothing reads them after the bands, which a probe
- * does, and with four samples a teaching view (it shades each sample's
- * plane, split from the whole frame's samples). */
+ * does. A teaching view at four samples splits each sample's plane from
+ * the band's rows alone (luz_samples_split_rows), and a view reads no
+ * other row of its plane (view.c), so it draws from the band buffers
+ * too: only its planes are the whole frame's. */
 static bool draws_in_band_buffers(const frame_job *job, const luz_render_options *options)
 {
-    const bool view = job->uniforms.show != LUZ_VIEW_COLOR && job->uniforms.show != LUZ_VIEW_BANDS;
-    return options->colour_only && !job->probe && (job->uniforms.samples == 1 || !view);
+    return options->colour_only && !job->probe;
 }
 
 /* The buffers of a frame of more than one sample a pixel
@@ -633,7 +634,10 @@ static void collect_stats(const luz_renderer *renderer, const frame_job *job,
     stats->memory_bytes = luz_geometry_memory(renderer->geometry) +
                           (size_t)renderer->band_capacity * sizeof *renderer->bands +
                           renderer->overdraw_capacity * sizeof *renderer->overdraw +
-                          renderer->sample_capacity * LUZ_MAX_SAMPLES *
+                          renderer->sample_capacity *
+                              (LUZ_MAX_SAMPLES * (sizeof(float) + sizeof(uint32_t)) +
+                               sizeof(uint32_t)) +
+                          renderer->plane_capacity * LUZ_MAX_SAMPLES *
                               (4 + sizeof(float) + sizeof(uint32_t)) +
                           renderer->sample_band_capacity *
                               (size_t)renderer->sample_band_count *
