@@ -371,6 +371,10 @@ static int centres_covered(const double x[3], const double y[3], int pixels[SIZE
     return count;
 }
 
+/* Small triangles: those that cover no pixel centre are dropped; the
+ * others rasterise to exactly the centres they cover, and their box is
+ * the pixels whose centres lie within the corners' ranges, or the one
+ * pixel whose centre a triangle of a box of up to 2 x 2 covers alone. */
 static void test_small_triangles_covering_no_centre_are_dropped(void **state)
 {
     luz_framebuffer *framebuffer = *state;
@@ -386,7 +390,7 @@ static void test_small_triangles_covering_no_centre_are_dropped(void **state)
                      LUZ_SETUP_OFFSCREEN);
 
     uint32_t random = 12345;
-    int dropped = 0, kept = 0;
+    int dropped = 0, kept = 0, points = 0, wider = 0;
     for (int n = 0; n < 4000; n++) {
         double x[3], y[3];
         const unsigned span = (unsigned)(n % 3 + 1);   /* pixels across, at most */
@@ -414,6 +418,28 @@ static void test_small_triangles_covering_no_centre_are_dropped(void **state)
         }
         assert_int_equal(result, LUZ_SETUP_VISIBLE);
         kept++;
+        /* The box: the pixels whose centres lie within the corners' x
+         * and y ranges, or, when that holds up to 2 x 2 pixels and the
+         * triangle covers one centre alone, that pixel (setup's points,
+         * which the raster tests at one centre). */
+        double low_x = x[0], high_x = x[0], low_y = y[0], high_y = y[0];
+        for (int k = 1; k < 3; k++) {
+            low_x = fmin(low_x, x[k]), high_x = fmax(high_x, x[k]);
+            low_y = fmin(low_y, y[k]), high_y = fmax(high_y, y[k]);
+        }
+        int box[4] = {(int)ceil(low_x - 0.5), (int)ceil(low_y - 0.5), (int)floor(high_x - 0.5),
+                      (int)floor(high_y - 0.5)};
+        if (count == 1 && box[2] - box[0] <= 1 && box[3] - box[1] <= 1) {
+            for (int i = 0; i < SIZE * SIZE; i++)
+                if (expected[i]) box[0] = box[2] = i % SIZE, box[1] = box[3] = i / SIZE;
+            points++;
+        } else if (box[2] - box[0] <= 1 && box[3] - box[1] <= 1 && box[2] > box[0]) {
+            wider++;   /* two or more centres of a small box: kept whole */
+        }
+        assert_int_equal(triangle.min_x, box[0]);
+        assert_int_equal(triangle.min_y, box[1]);
+        assert_int_equal(triangle.max_x, box[2]);
+        assert_int_equal(triangle.max_y, box[3]);
         clear(framebuffer);
         assert_int_equal(luz_raster_triangle(&triangle, 1, framebuffer, 0, SIZE), count);
         for (int i = 0; i < SIZE * SIZE; i++)
@@ -422,6 +448,8 @@ static void test_small_triangles_covering_no_centre_are_dropped(void **state)
     /* Both outcomes are exercised many times. */
     assert_true(dropped > 500);
     assert_true(kept > 500);
+    assert_true(points > 200);
+    assert_true(wider > 50);
 }
 
 /* ---- four samples a pixel, in lanes (raster_lanes.c) -------------------- */

@@ -251,7 +251,10 @@ typedef struct luz_plane {
 } luz_plane;
 
 typedef struct luz_triangle {
-    int min_x, min_y, max_x, max_y;  /* pixels that may be covered, inclusive */
+    int min_x, min_y, max_x, max_y;  /* pixels that may be covered, inclusive;
+                                        one sample a pixel: a box of up to
+                                        2 x 2 with one centre covered is that
+                                        pixel (setup.c's narrow_to_one_centre) */
     luz_edge edges[3];
     float reference_x, reference_y;  /* vertex 0 in window coordinates */
     luz_plane depth;                 /* window depth, linear on the screen */

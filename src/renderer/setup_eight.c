@@ -197,6 +197,50 @@ covered_lanes(__mmask8 testing, __m512i min_x, __m512i min_y, __m512i box_width,
     return covered;
 }
 
+/* setup.c's narrow_to_one_centre for the lanes of `lanes` (boxes of up to
+ * 2 x 2 pixels, one sample a pixel): where the three edges pass at one of
+ * the box's centres alone, the box becomes that pixel. E at the box's
+ * first centre, then 256 a and 256 b on (exact: each |E| below 2^52, as
+ * setup.c's proof has it). */
+static inline __attribute__((always_inline)) void
+narrow_lanes(__mmask8 lanes, __m512i box_width, __m512i box_height, const __m512i a[3],
+             const __m512i b[3], const __m512i c[3], __m512i *min_x, __m512i *min_y,
+             __m512i *max_x, __m512i *max_y)
+{
+    const __m512i zero = _mm512_setzero_si512(), one = _mm512_set1_epi64(1);
+    const __m512i two = _mm512_set1_epi64(2), half = _mm512_set1_epi64(LUZ_SUBPIXEL_ONE / 2);
+    const __m512i centre_x = _mm512_add_epi64(_mm512_slli_epi64(*min_x, LUZ_SUBPIXEL_BITS), half);
+    const __m512i centre_y = _mm512_add_epi64(_mm512_slli_epi64(*min_y, LUZ_SUBPIXEL_BITS), half);
+    const __mmask8 wide = _mm512_cmpeq_epi64_mask(box_width, two);
+    const __mmask8 tall = _mm512_cmpeq_epi64_mask(box_height, two);
+    /* Whether each of the four centres is in the box and inside. */
+    /* The three edges' E or-ed at each centre: negative where one is. */
+    __m512i any[4] = {zero, zero, zero, zero};
+    for (int k = 0; k < 3; k++) {
+        const __m512i e00 = _mm512_add_epi64(_mm512_add_epi64(_mm512_mul_epi32(a[k], centre_x),
+                                                              _mm512_mul_epi32(b[k], centre_y)),
+                                             c[k]);
+        const __m512i step_x = _mm512_slli_epi64(a[k], LUZ_SUBPIXEL_BITS);
+        const __m512i step_y = _mm512_slli_epi64(b[k], LUZ_SUBPIXEL_BITS);
+        const __m512i e10 = _mm512_add_epi64(e00, step_x);
+        any[0] = _mm512_or_si512(any[0], e00);
+        any[1] = _mm512_or_si512(any[1], e10);
+        any[2] = _mm512_or_si512(any[2], _mm512_add_epi64(e00, step_y));
+        any[3] = _mm512_or_si512(any[3], _mm512_add_epi64(e10, step_y));
+    }
+    const __mmask8 at00 = lanes & _mm512_cmpge_epi64_mask(any[0], zero);
+    const __mmask8 at10 = lanes & wide & _mm512_cmpge_epi64_mask(any[1], zero);
+    const __mmask8 at01 = lanes & tall & _mm512_cmpge_epi64_mask(any[2], zero);
+    const __mmask8 at11 = lanes & wide & tall & _mm512_cmpge_epi64_mask(any[3], zero);
+    const __mmask8 two_or_more = (at00 & (at10 | at01 | at11)) | (at10 & (at01 | at11)) |
+                                 (at01 & at11);
+    const __mmask8 only = (at00 | at10 | at01 | at11) & (__mmask8)~two_or_more;
+    *min_x = _mm512_mask_add_epi64(*min_x, only & (at10 | at11), *min_x, one);
+    *min_y = _mm512_mask_add_epi64(*min_y, only & (at01 | at11), *min_y, one);
+    *max_x = _mm512_mask_mov_epi64(*max_x, only, *min_x);
+    *max_y = _mm512_mask_mov_epi64(*max_y, only, *min_y);
+}
+
 /* Setup in lanes for pixels of `samples` samples, 1 or 4 (a constant in
  * each of the two functions below): the box and the small boxes' test are
  * the samples' (luz_setup_projected_samples). */
@@ -340,6 +384,13 @@ setup_eight(const uint32_t *indices, const uint32_t triangles[8],
         column[9 + 3 * i] = plane.dx;
         column[10 + 3 * i] = plane.dy;
     }
+
+    /* A small box with one centre covered becomes that pixel (setup.c's
+     * narrow_to_one_centre); after the verdicts' box sizes, which are
+     * the box's before. */
+    if (samples == 1)
+        narrow_lanes((__mmask8)(~back & ~empty & up_to_2x2), box_width, box_height, a, b, c,
+                     &min_x, &min_y, &max_x, &max_y);
 
     /* The box and edges as sixteen 32-bit words a lane: min x, min y,
      * max x, max y, then a, b and c (low, high) of each edge. */

@@ -137,6 +137,29 @@ LANES_INLINE unsigned covered_half(unsigned testing, vi64 min_x, vi64 min_y, vi6
     return covered;
 }
 
+/* For setup.c's narrow_to_one_centre, half h's lanes' four centres of a
+ * box of up to 2 x 2 pixels from (min_x, min_y): bits where the three
+ * edges pass at the first centre, the one to its right, the one below,
+ * and the one below and right (inside[0..3]). E at the first centre,
+ * then 256 a and 256 b on (exact: each |E| below 2^52, setup.c). */
+LANES_INLINE void centres_inside_half(vi64 min_x, vi64 min_y, const vi64 a[3], const vi64 b[3],
+                                      const vi64 c[3], unsigned inside[4])
+{
+    const vi64 centre_x = (min_x << LUZ_SUBPIXEL_BITS) + LUZ_SUBPIXEL_ONE / 2;
+    const vi64 centre_y = (min_y << LUZ_SUBPIXEL_BITS) + LUZ_SUBPIXEL_ONE / 2;
+    /* The three edges' E or-ed: negative where one of them is. */
+    vi64 any[4] = {splat64(0), splat64(0), splat64(0), splat64(0)};
+    for (int k = 0; k < 3; k++) {
+        const vi64 e00 = multiply_wide(a[k], centre_x) + multiply_wide(b[k], centre_y) + c[k];
+        const vi64 step_x = a[k] << LUZ_SUBPIXEL_BITS, step_y = b[k] << LUZ_SUBPIXEL_BITS;
+        any[0] |= e00;
+        any[1] |= e00 + step_x;
+        any[2] |= e00 + step_y;
+        any[3] |= e00 + step_x + step_y;
+    }
+    for (int i = 0; i < 4; i++) inside[i] = ~negative_bits64(any[i]) & ((1u << HALF) - 1);
+}
+
 /* The corners' vertex indices (corner[k]) and snapped positions of a
  * group of LANES triangles. */
 typedef struct group_corners {
@@ -242,6 +265,7 @@ LANES_INLINE void setup_group(const group_corners *corners, const luz_draw_trans
      * constants, the planes from the exact window positions relative to
      * the snapped vertex 0. */
     unsigned back = 0, solvable = 0, covered = 0;
+    unsigned centre_inside[4] = {0, 0, 0, 0};   /* narrow_to_one_centre's */
     vi64 c[3][2];
     vf64 x10[2], x20[2], y10[2], y20[2], inverse_determinant[2], rx[2], ry[2], rx0[2], ry0[2];
 #pragma GCC unroll 2
@@ -268,6 +292,12 @@ LANES_INLINE void setup_group(const group_corners *corners, const luz_draw_trans
                                 widen_half(box_width, h), widen_half(box_height, h), a, b,
                                 c_half, samples)
                    << (h * HALF);
+        if (samples == 1) {
+            unsigned inside[4];
+            centres_inside_half(widen_half(min_x, h), widen_half(min_y, h), a, b, c_half,
+                                inside);
+            for (int i = 0; i < 4; i++) centre_inside[i] |= inside[i] << (h * HALF);
+        }
 
         x10[h] = x[1][h] - x[0][h], x20[h] = x[2][h] - x[0][h];
         y10[h] = y[1][h] - y[0][h], y20[h] = y[2][h] - y[0][h];
@@ -314,9 +344,29 @@ LANES_INLINE void setup_group(const group_corners *corners, const luz_draw_trans
             column[8 + 3 * i + j] = narrow_join(plane[0][j], plane[1][j]);
     }
 
+    /* A box of up to 2 x 2 pixels with one centre covered becomes that
+     * pixel (setup.c's narrow_to_one_centre); the verdicts below read
+     * the sizes of the box before. */
+    vi32 box[4] = {min_x, min_y, max_x, max_y};
+    if (samples == 1) {
+        const unsigned wide = lane_bits(box_width == 2), tall = lane_bits(box_height == 2);
+        const unsigned lanes = ~back & ~empty & up_to_2x2;
+        const unsigned at00 = lanes & centre_inside[0], at10 = lanes & wide & centre_inside[1];
+        const unsigned at01 = lanes & tall & centre_inside[2];
+        const unsigned at11 = lanes & wide & tall & centre_inside[3];
+        const unsigned two_or_more =
+            (at00 & (at10 | at01 | at11)) | (at10 & (at01 | at11)) | (at01 & at11);
+        const unsigned only = (at00 | at10 | at01 | at11) & ~two_or_more;
+        /* A mask's lanes are -1: subtracting one adds 1 there. */
+        box[0] -= lanes_of_bits(only & (at10 | at11));
+        box[1] -= lanes_of_bits(only & (at01 | at11));
+        box[2] = select32(lanes_of_bits(only), box[0], box[2]);
+        box[3] = select32(lanes_of_bits(only), box[1], box[3]);
+    }
+
     /* The box and edges as sixteen 32-bit words a lane: min x, min y,
      * max x, max y, then a, b and c (low word, high word) of each edge. */
-    vi32 word[16] = {min_x, min_y, max_x, max_y};
+    vi32 word[16] = {box[0], box[1], box[2], box[3]};
     for (int k = 0; k < 3; k++) {
         word[4 + 4 * k] = edge_a[k];
         word[5 + 4 * k] = edge_b[k];
