@@ -571,6 +571,122 @@ static void test_four_samples_in_lanes_match_the_definition(void **state)
     }
 }
 
+/* Which corners of the box raster_lanes.c checks (edges_fit_32_bits:
+ * the sample points the kernel's groups of rows may test, from 3 pixels
+ * left of min_x to the right of max_x + 3, rows min_y to max_y) have an
+ * edge with |E| >= limit there: bit 0 top left, 1 top right, 2 bottom
+ * left, 3 bottom right. */
+static unsigned corners_past(const luz_triangle *t, int64_t limit)
+{
+    const int64_t x[2] = {((int64_t)t->min_x - 3) * 256, ((int64_t)t->max_x + 4) * 256};
+    const int64_t y[2] = {(int64_t)t->min_y * 256, ((int64_t)t->max_y + 1) * 256};
+    unsigned corners = 0;
+    for (int corner = 0; corner < 4; corner++)
+        for (int k = 0; k < 3; k++) {
+            const int64_t e = (int64_t)t->edges[k].a * x[corner & 1] +
+                              (int64_t)t->edges[k].b * y[corner >> 1] + t->edges[k].c;
+            if (e >= limit || e <= -limit) corners |= 1u << corner;
+        }
+    return corners;
+}
+
+/* Whether a sample of a pixel in the triangle's box is inside by E in 64
+ * bits and not by E wrapped to 32 bits, or the other way round: where
+ * 32-bit edges would go wrong. */
+static bool wraps_in_box(const luz_triangle *t)
+{
+    static const int sample_x[4] = {96, 224, 32, 160}, sample_y[4] = {32, 96, 160, 224};
+    for (int y = t->min_y; y <= t->max_y; y++)
+        for (int x = t->min_x; x <= t->max_x; x++)
+            for (int s = 0; s < 4; s++) {
+                const int64_t X = 256 * (int64_t)x + sample_x[s];
+                const int64_t Y = 256 * (int64_t)y + sample_y[s];
+                bool inside = true, inside_wrapped = true;
+                for (int k = 0; k < 3; k++) {
+                    const int64_t e =
+                        (int64_t)t->edges[k].a * X + (int64_t)t->edges[k].b * Y + t->edges[k].c;
+                    inside &= e >= 0;
+                    inside_wrapped &= (int32_t)(uint32_t)(uint64_t)e >= 0;
+                }
+                if (inside != inside_wrapped) return true;
+            }
+    return false;
+}
+
+/* The kernel's 32-bit edges are exact only while |E| < 2^31 wherever it
+ * tests a sample, which its 2^30 check on the four corners of a box 3
+ * pixels wider on each side makes sure of. Tall thin triangles (vertices
+ * at random on the 1/256 grid around a frame of 16 x 4400 pixels) whose
+ * edges pass 2^30 at one corner of that box alone and whose 32-bit edges
+ * would go wrong somewhere in it, one for each corner (they lie against
+ * a side of the frame, where the wider box's corner is outside it),
+ * drawn under every instruction set against the definition. With any one
+ * corner left out of the check the lanes take the 32-bit edges for that
+ * corner's triangle, and the test fails. */
+static void test_four_samples_edges_past_2_30_at_one_corner(void **state)
+{
+    (void)state;
+    enum { WIDTH = 16, HEIGHT = 4400 };
+    const size_t count = (size_t)WIDTH * HEIGHT * 4;
+    luz_triangle found[4];
+    unsigned corners_found = 0;
+    unsigned seed = 230u;
+    for (int attempt = 0; attempt < 2000000 && corners_found != 15u; attempt++) {
+        luz_clip_vertex v[3];
+        for (int j = 0; j < 3; j++) {
+            const double x = random_coordinate(&seed, -24.0, WIDTH + 24.0);
+            const double y = random_coordinate(&seed, -400.0, HEIGHT + 400.0);
+            memset(&v[j], 0, sizeof v[j]);
+            v[j].position = (luz_vec4){(float)(2.0 * x / WIDTH - 1.0),
+                                       (float)(1.0 - 2.0 * y / HEIGHT),
+                                       (float)random_coordinate(&seed, -0.9, 0.9), 1.0f};
+        }
+        luz_triangle triangle;
+        if (luz_setup_triangle_samples(&v[0], &v[1], &v[2], WIDTH, HEIGHT, 0,
+                                       LUZ_INTERPOLATION_PERSPECTIVE, 4,
+                                       &triangle) != LUZ_SETUP_VISIBLE &&
+            luz_setup_triangle_samples(&v[0], &v[2], &v[1], WIDTH, HEIGHT, 0,
+                                       LUZ_INTERPOLATION_PERSPECTIVE, 4,
+                                       &triangle) != LUZ_SETUP_VISIBLE)
+            continue;
+        if (!luz_raster_is_small(&triangle)) continue;
+        const unsigned past = corners_past(&triangle, (int64_t)1 << 30);
+        if (past == 0 || (past & (past - 1)) != 0 || (corners_found & past) != 0) continue;
+        if (!wraps_in_box(&triangle)) continue;
+        found[__builtin_ctz(past)] = triangle;
+        corners_found |= past;
+    }
+    assert_int_equal(corners_found, 15u);
+
+    float *depth = malloc(count * sizeof *depth), *expected_depth = malloc(count * sizeof *depth);
+    uint32_t *ids = malloc(count * sizeof *ids), *expected_ids = malloc(count * sizeof *ids);
+    assert_true(depth && expected_depth && ids && expected_ids);
+    for (int isa = LUZ_ISA_SCALAR; isa < LUZ_ISA_COUNT; isa++) {
+        if (!luz_isa_available((luz_isa)isa)) continue;
+        luz_raster_groups_function *groups = luz_kernels_of((luz_isa)isa).raster_groups;
+        for (int t = 0; t < 4; t++) {
+            for (size_t i = 0; i < count; i++) {
+                depth[i] = expected_depth[i] = 1.0f;
+                ids[i] = expected_ids[i] = 0;
+            }
+            luz_sample_buffers buffers = {.samples = 4, .width = WIDTH, .height = HEIGHT,
+                                          .depth = depth, .visibility = ids};
+            uint64_t tests = 0;
+            for (int band = 0; band < HEIGHT; band += 16)
+                tests += luz_raster_triangle_samples(&found[t], 1, &buffers, band, band + 16,
+                                                     NULL, groups);
+            assert_int_equal(tests, four_samples_by_definition(&found[t], 1, WIDTH, HEIGHT,
+                                                               expected_depth, expected_ids));
+            assert_memory_equal(ids, expected_ids, count * sizeof *ids);
+            assert_memory_equal(depth, expected_depth, count * sizeof *depth);
+        }
+    }
+    free(depth);
+    free(expected_depth);
+    free(ids);
+    free(expected_ids);
+}
+
 /* A colour for (triangle id, pixel): the fragment stage's stand-in. */
 static uint32_t colour_of(uint32_t id, int x, int y)
 {
@@ -705,6 +821,7 @@ int main(void)
                                         teardown_framebuffer),
         cmocka_unit_test(test_back_faces_and_degenerate_triangles_are_culled),
         cmocka_unit_test(test_four_samples_in_lanes_match_the_definition),
+        cmocka_unit_test(test_four_samples_edges_past_2_30_at_one_corner),
         cmocka_unit_test(test_four_samples_sort_and_resolve_match_the_definition),
         cmocka_unit_test_setup_teardown(test_depth_test_less, setup_framebuffer,
                                         teardown_framebuffer),
