@@ -114,38 +114,44 @@ static void snapshot_free(snapshot *s)
     free(s->band_ids);
 }
 
-/* The grid: z = 0.3 sin(9u) cos(7v) over [-2, 2] x [-1.2, 1.2]. */
-static luz_mesh *wavy_grid(void)
+/* The grid: z = 0.3 sin(9u) cos(7v) over [-2, 2] x [-1.2, 1.2], in
+ * columns x rows quads of two triangles. */
+static luz_mesh *wavy_grid_of(int columns, int rows)
 {
-    luz_vertex *vertices = calloc((size_t)(COLUMNS + 1) * (ROWS + 1), sizeof *vertices);
-    uint32_t *indices = calloc((size_t)COLUMNS * ROWS * 6, sizeof *indices);
+    luz_vertex *vertices = calloc((size_t)(columns + 1) * (rows + 1), sizeof *vertices);
+    uint32_t *indices = calloc((size_t)columns * rows * 6, sizeof *indices);
     assert_true(vertices && indices);
-    for (int row = 0; row <= ROWS; row++)
-        for (int column = 0; column <= COLUMNS; column++) {
-            const float u = (float)column / COLUMNS, v = (float)row / ROWS;
-            vertices[row * (COLUMNS + 1) + column] = (luz_vertex){
+    for (int row = 0; row <= rows; row++)
+        for (int column = 0; column <= columns; column++) {
+            const float u = (float)column / (float)columns, v = (float)row / (float)rows;
+            vertices[row * (columns + 1) + column] = (luz_vertex){
                 {4.0f * u - 2.0f, 1.2f - 2.4f * v, 0.3f * sinf(9.0f * u) * cosf(7.0f * v)},
                 {sinf(9.0f * u), cosf(7.0f * v), 1.0f},
                 {4.0f * u, 3.0f * v}};
         }
     size_t count = 0;
-    for (int row = 0; row < ROWS; row++)
-        for (int column = 0; column < COLUMNS; column++) {
-            const uint32_t a = (uint32_t)(row * (COLUMNS + 1) + column), b = a + 1,
-                           c = a + COLUMNS + 1, d = c + 1;
+    for (int row = 0; row < rows; row++)
+        for (int column = 0; column < columns; column++) {
+            const uint32_t a = (uint32_t)(row * (columns + 1) + column), b = a + 1,
+                           c = a + columns + 1, d = c + 1;
             const uint32_t quad[6] = {a, c, d, a, d, b};
             memcpy(&indices[count], quad, sizeof quad);
             count += 6;
         }
     luz_error error = {{0}};
     luz_mesh *mesh = luz_mesh_create(
-        &(luz_mesh_desc){.vertices = vertices, .vertex_count = (COLUMNS + 1) * (ROWS + 1),
+        &(luz_mesh_desc){.vertices = vertices, .vertex_count = (columns + 1) * (rows + 1),
                          .indices = indices, .index_count = (uint32_t)count},
         &error);
     assert_non_null(mesh);
     free(vertices);
     free(indices);
     return mesh;
+}
+
+static luz_mesh *wavy_grid(void)
+{
+    return wavy_grid_of(COLUMNS, ROWS);
 }
 
 /* The frame every case looks through: from z = 3 at the origin, 45
@@ -406,12 +412,65 @@ static void test_record_block_follows_the_frames(void **state)
     luz_mesh_destroy(grid);
 }
 
+/* The review's example of 8afef06 (a flat 1M-triangle grid at 640x360
+ * after one of 250k kept a 78 MB block for 44 MB of records) at the
+ * test's size: the grid facing the camera, then one of four times its triangles,
+ * each small enough that a batch of 2048 makes a few hundred records
+ * where the coarse grid's made a thousand or more. After the fine frames
+ * the block holds their records and not what the coarse frames' batches
+ * once needed: at most a quarter more than the frame's records, and a
+ * huge page for the rounding (sized from the capacities the batches
+ * reached, which double and never shrink, it was 2.25 times the
+ * records). */
+static void test_record_block_follows_the_records(void **state)
+{
+    (void)state;
+    luz_mesh *coarse = wavy_grid(), *fine = wavy_grid_of(2 * COLUMNS, 2 * ROWS);
+    luz_error error = {{0}};
+    luz_framebuffer *framebuffer = luz_framebuffer_create(WIDTH, HEIGHT, &error);
+    luz_geometry *geometry = luz_geometry_create(2);
+    luz_thread_pool *pool = luz_thread_pool_create(2);
+    assert_true(coarse && fine && framebuffer && geometry && pool);
+    const size_t huge_page = (size_t)2 << 20;
+    for (int f = 0; f < 5; f++) {
+        luz_frame frame = camera_frame();
+        luz_draw draw = {.mesh = f < 2 ? coarse : fine, .model = luz_mat4_identity()};
+        draw.material.colour = (luz_vec3){1, 1, 1};
+        assert_int_equal(luz_frame_add_draw(&frame, &draw, &error), 0);
+        const luz_uniforms uniforms = luz_uniforms_of(&frame, NULL);
+        luz_geometry_result result;
+        assert_int_equal(luz_geometry_run(geometry, pool, &frame, &uniforms, framebuffer, 16, 0,
+                                          &result, &error),
+                         0);
+        size_t in_block = 0;
+        const size_t block = luz_geometry_record_block(geometry, &in_block);
+        const size_t records = result.triangle_total;
+        print_message("frame %d (%s grid): %zu records, %zu in a block of %zu\n", f,
+                      f < 2 ? "coarse" : "fine", records, in_block, block);
+        /* Enough records for a block (4 MB), all of them in it, and the
+         * fine grid's fewer a batch: what makes the coarse grid's slices
+         * the wrong size for it. */
+        assert_true(records * sizeof(luz_triangle) > ((size_t)4 << 20));
+        if (f == 1 || f == 4) assert_int_equal(in_block, records);
+        if (f == 4 && block * sizeof(luz_triangle) >
+                          records * sizeof(luz_triangle) / 4 * 5 + huge_page)
+            fail_msg("a block of %zu records for a frame of %zu", block, records);
+        luz_frame_free(&frame);
+    }
+    luz_thread_pool_destroy(pool);
+    luz_geometry_destroy(geometry);
+    luz_framebuffer_destroy(framebuffer);
+    luz_mesh_destroy(fine);
+    luz_mesh_destroy(coarse);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_same_phase_one_in_every_set),
         cmocka_unit_test(test_records_reused_frame_after_frame),
         cmocka_unit_test(test_record_block_follows_the_frames),
+        cmocka_unit_test(test_record_block_follows_the_records),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -60,8 +60,9 @@
 #define SMALL_DRAWS_BATCH 512
 /* Vertices per job of the vertex pass. */
 #define VERTEX_BATCH 8192
-/* Records a frame must have (in the batches' capacities) to be placed in
- * one block of huge pages: 4 MB of them, two huge pages. */
+/* Records a frame must need (in the slices of the last frame's records,
+ * slice_records) to be placed in one block of huge pages: 4 MB of them,
+ * two huge pages. */
 #define RECORD_BLOCK_MIN (((size_t)4 << 20) / sizeof(luz_triangle))
 
 typedef struct geometry_batch {
@@ -263,14 +264,13 @@ static bool reserve_records(geometry_batch *batch, size_t count)
     if (!batch->in_block)
         return reserve((void **)&batch->triangles, &batch->capacity, count,
                        sizeof *batch->triangles);
-    const luz_triangle *slice = batch->triangles;
-    luz_triangle *own = NULL;
-    size_t capacity = 0;
-    if (!reserve((void **)&own, &capacity, count > 2 * batch->capacity ? count
-                                                                       : 2 * batch->capacity,
-                 sizeof *own))
-        return false;
-    memcpy(own, slice, batch->count * sizeof *own);
+    /* Twice the slice, not reserve's next power of two from 64, which
+     * could hold four times the records the batch made before. */
+    const size_t capacity = count > 2 * batch->capacity ? count : 2 * batch->capacity;
+    if (capacity > SIZE_MAX / sizeof(luz_triangle)) return false;
+    luz_triangle *own = malloc(capacity * sizeof *own);
+    if (!own) return false;
+    memcpy(own, batch->triangles, batch->count * sizeof *own);
     batch->triangles = own;
     batch->capacity = capacity;
     batch->in_block = false;
@@ -294,31 +294,53 @@ static void release_record_block(luz_geometry *geometry)
     geometry->record_block_capacity = 0;
 }
 
+/* A batch's slice: the records it made in the last frame, an eighth more
+ * for a mesh that turns (more of a batch's triangles face the view from
+ * frame to frame), and room for one group of setup's eight, which
+ * reserve_records asks for before it sets the group up (or for a clipped
+ * triangle's fan): a batch that makes as many records as before stays in
+ * its slice. */
+#define SLICE_SPARE 16
+_Static_assert(SLICE_SPARE >= 8 && SLICE_SPARE >= LUZ_CLIP_MAX_VERTICES - 2,
+               "a slice holds the records made before and one reserve_records more");
+static size_t slice_records(size_t records_before)
+{
+    return records_before + records_before / 8 + SLICE_SPARE;
+}
+
 /* Before the batches run: the frame's records in one block, on huge
  * pages (renderer/huge_pages.h, where the system has them: Linux's
- * transparent huge pages), each batch a slice of its capacity, in batch order, so that
+ * transparent huge pages), each batch a slice in batch order, so that
  * each thread's share of the batches writes one stretch of it. The bands
  * read the records through by_id in band order, scattered over tens of
  * megabytes on a big mesh (the 1M sphere: 48 MB, twelve thousand 4 KB
  * pages, more than the TLB holds, so nearly every record cost a page
- * walk; docs/performance.md, "The 1M sphere, 2026-11-28"). A batch keeps its
- * slice from frame to frame; one that needs more (a mesh turning puts
- * more of a batch's triangles in view) moves to an array of its own
- * (reserve_records), and once an eighth of the capacity is outside the
- * block, every batch gets a slice again, of its capacity now. The records
- * are made anew each frame, so nothing is copied. Few records (below
- * RECORD_BLOCK_MIN), or no memory for a block: each batch keeps its own
- * array, and a block left from bigger frames (a 1M-triangle model, then
- * the lab's cubes) is freed. A block more than twice the frame's
- * capacity and a huge page (a smaller model after a big one) is laid out
- * again at the frame's size: the memory a renderer keeps follows what
- * its frames need, not the biggest it ever drew. */
+ * walk; docs/performance.md, "The 1M sphere, 2026-11-28"). The slices are
+ * sized from what each batch made in the last frame (slice_records; a
+ * batch the last frame did not run has made nothing), not from the
+ * capacities the batches reached, which double and never shrink: the
+ * memory follows the records the frames make, not the biggest frames
+ * drawn before. A batch keeps its slice from frame to frame; one that
+ * needs more (a mesh turning puts more of a batch's triangles in view)
+ * moves to an array of its own (reserve_records), and once an eighth of
+ * the last frame's records were made outside the block, every batch gets
+ * a slice again. The records are made anew each frame, so nothing is
+ * copied. Few records (below RECORD_BLOCK_MIN), or no memory for a block:
+ * each batch keeps its own array, and a block left from bigger frames (a
+ * 1M-triangle model, then the lab's cubes) is freed. A block more than
+ * twice the slices the frame needs and a huge page (a smaller model
+ * after a big one) is laid out again at the frame's size. */
 static void place_records(luz_geometry *geometry)
 {
+    /* Batches past this frame's: what they made is no guide to the
+     * frames that run them again (a batch is whatever the plan makes it). */
+    for (int k = geometry->batch_count; k < geometry->batch_capacity; k++)
+        geometry->batches[k].count = 0;
     size_t total = 0, outside = 0;
     for (int k = 0; k < geometry->batch_count; k++) {
-        total += geometry->batches[k].capacity;
-        if (!geometry->batches[k].in_block) outside += geometry->batches[k].capacity;
+        const geometry_batch *batch = &geometry->batches[k];
+        total += slice_records(batch->count);
+        if (!batch->in_block) outside += batch->count;
     }
     if (total < RECORD_BLOCK_MIN) {
         if (geometry->record_block) release_record_block(geometry);
@@ -344,6 +366,7 @@ static void place_records(luz_geometry *geometry)
         if (k < geometry->batch_count) {
             if (!batch->in_block) free(batch->triangles);
             batch->triangles = block + at;
+            batch->capacity = slice_records(batch->count);
             batch->in_block = true;
             at += batch->capacity;
         } else if (batch->in_block) {   /* not in this frame: it starts again with none */
