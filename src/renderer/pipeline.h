@@ -244,6 +244,19 @@ typedef struct luz_edge {
     int64_t c;
 } luz_edge;
 
+/* Whether the point (X, Y) in fixed-point units (a pixel centre or a
+ * sample point) is covered: E >= 0 for all three edges, each product in
+ * 64 bits. The test of setup's coverage checks, the raster's samples one
+ * by one and the views' (the raster's rows compute the same values a row
+ * at a time, and its lanes in 32 bits where they fit). */
+static inline bool luz_edges_cover(const luz_edge edges[3], int64_t x, int64_t y)
+{
+    bool inside = true;
+    for (int k = 0; k < 3; k++)
+        inside &= (int64_t)edges[k].a * x + (int64_t)edges[k].b * y + edges[k].c >= 0;
+    return inside;
+}
+
 /* A quantity that varies linearly across the screen: its value at the
  * triangle's reference point (vertex 0) and its screen-space gradient. */
 typedef struct luz_plane {

@@ -177,13 +177,7 @@ static uint64_t raster_samples_one_by_one(const luz_triangle *triangle, uint32_t
                 const luz_sample_offset sample = luz_sample_offset_of(samples, s);
                 const int64_t sample_x = (int64_t)x * LUZ_SUBPIXEL_ONE + sample.x;
                 const int64_t sample_y = (int64_t)y * LUZ_SUBPIXEL_ONE + sample.y;
-                bool inside = true;
-                for (int k = 0; k < 3; k++) {
-                    const luz_edge *edge = &triangle->edges[k];
-                    if ((int64_t)edge->a * sample_x + (int64_t)edge->b * sample_y + edge->c < 0)
-                        inside = false;
-                }
-                if (!inside) continue;
+                if (!luz_edges_cover(triangle->edges, sample_x, sample_y)) continue;
                 const float z = luz_raster_sample_depth(
                     triangle->depth, triangle->reference_x,
                     luz_raster_sample_row_depth(triangle->depth, triangle->reference_y, y,

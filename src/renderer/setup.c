@@ -114,12 +114,7 @@ static bool covers_a_centre(const luz_triangle *triangle)
         const int64_t sample_y = (int64_t)y * LUZ_SUBPIXEL_ONE + half;
         for (int x = triangle->min_x; x <= triangle->max_x; x++) {
             const int64_t sample_x = (int64_t)x * LUZ_SUBPIXEL_ONE + half;
-            bool inside = true;
-            for (int k = 0; k < 3; k++) {
-                const luz_edge *edge = &triangle->edges[k];
-                inside &= edge->a * sample_x + edge->b * sample_y + edge->c >= 0;
-            }
-            if (inside) return true;
+            if (luz_edges_cover(triangle->edges, sample_x, sample_y)) return true;
         }
     }
     return false;
@@ -135,12 +130,7 @@ static bool covers_a_sample(const luz_triangle *triangle, int samples)
                 const luz_sample_offset offset = luz_sample_offset_of(samples, s);
                 const int64_t sample_x = (int64_t)x * LUZ_SUBPIXEL_ONE + offset.x;
                 const int64_t sample_y = (int64_t)y * LUZ_SUBPIXEL_ONE + offset.y;
-                bool inside = true;
-                for (int k = 0; k < 3; k++) {
-                    const luz_edge *edge = &triangle->edges[k];
-                    inside &= edge->a * sample_x + edge->b * sample_y + edge->c >= 0;
-                }
-                if (inside) return true;
+                if (luz_edges_cover(triangle->edges, sample_x, sample_y)) return true;
             }
         }
     }
@@ -164,12 +154,8 @@ static void narrow_to_one_centre(luz_triangle *triangle)
         const int64_t sample_y = (int64_t)y * LUZ_SUBPIXEL_ONE + half;
         for (int x = triangle->min_x; x <= triangle->max_x; x++) {
             const int64_t sample_x = (int64_t)x * LUZ_SUBPIXEL_ONE + half;
-            bool inside = true;
-            for (int k = 0; k < 3; k++) {
-                const luz_edge *edge = &triangle->edges[k];
-                inside &= edge->a * sample_x + edge->b * sample_y + edge->c >= 0;
-            }
-            if (inside) covered++, covered_x = x, covered_y = y;
+            if (luz_edges_cover(triangle->edges, sample_x, sample_y))
+                covered++, covered_x = x, covered_y = y;
         }
     }
     if (covered != 1) return;

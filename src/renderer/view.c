@@ -204,11 +204,7 @@ static bool covers(const luz_triangle *triangle, int x, int y)
 {
     const int64_t sample_x = (int64_t)x * LUZ_SUBPIXEL_ONE + LUZ_SUBPIXEL_ONE / 2;
     const int64_t sample_y = (int64_t)y * LUZ_SUBPIXEL_ONE + LUZ_SUBPIXEL_ONE / 2;
-    for (int k = 0; k < 3; k++) {
-        const luz_edge *edge = &triangle->edges[k];
-        if (edge->a * sample_x + edge->b * sample_y + edge->c < 0) return false;
-    }
-    return true;
+    return luz_edges_cover(triangle->edges, sample_x, sample_y);
 }
 
 /* A pixel of the triangle is on its edge when one of its four neighbours
