@@ -202,6 +202,20 @@ static int remove_work(void **state)
     return 0;
 }
 
+/* gen-model's UV sphere of about `triangles` triangles, written to
+ * work/sphere.obj, whose path goes to path. */
+static void make_sphere(int triangles, char *path, size_t size)
+{
+    const char *gen_model = getenv("GEN_MODEL");
+    if (gen_model == NULL) fail_msg("GEN_MODEL is not set (tests/meson.build)");
+    snprintf(path, size, "%s/sphere.obj", work);
+    char command[1200];
+    snprintf(command, sizeof command,
+             "'%s' --shape sphere --triangles %d -o '%s' 2>/dev/null", gen_model, triangles,
+             path);
+    assert_int_equal(system(command), 0);
+}
+
 static const char *frames_directory(void)
 {
     const char *directory = getenv("LUZ_DIAGNOSE_FRAMES");
@@ -393,13 +407,8 @@ static void test_term_of_another_colour(void **state)
 static void test_model_under_the_tone_map(void **state)
 {
     (void)state;
-    const char *gen_model = getenv("GEN_MODEL");
-    if (gen_model == NULL) fail_msg("GEN_MODEL is not set (tests/meson.build)");
-    char sphere[400], command[1200];
-    snprintf(sphere, sizeof sphere, "%s/sphere.obj", work);
-    snprintf(command, sizeof command, "'%s' --shape sphere --triangles 2000 -o '%s' 2>/dev/null",
-             gen_model, sphere);
-    assert_int_equal(system(command), 0);
+    char sphere[400];
+    make_sphere(2000, sphere, sizeof sphere);
     run r = diagnose("sphere-no-sun.png",
                      (const char *const[]){"--model", sphere, "--time", "1", NULL});
     assert_int_equal(r.status, 1);
@@ -608,13 +617,8 @@ static void test_every_mistake_named(void **state)
                    "the outlines");
     /* a coarse sphere (200 triangles), whose interpolated normals are
      * visibly shorter between its vertices */
-    const char *gen_model = getenv("GEN_MODEL");
-    if (gen_model == NULL) fail_msg("GEN_MODEL is not set (tests/meson.build)");
-    char sphere[400], command[1200];
-    snprintf(sphere, sizeof sphere, "%s/sphere.obj", work);
-    snprintf(command, sizeof command, "'%s' --shape sphere --triangles 200 -o '%s' 2>/dev/null",
-             gen_model, sphere);
-    assert_int_equal(system(command), 0);
+    char sphere[400];
+    make_sphere(200, sphere, sizeof sphere);
     expect_mistake("normal-not-normalised",
                    (const char *const[]){"--model", sphere, "--time", "1", NULL},
                    "the normal, in every term");

@@ -187,6 +187,16 @@ static void run_result_free(run_result *result)
     free(result->err);
 }
 
+/* The whole of the file name in box->work, NUL-terminated (free it). */
+static char *read_work_file(const sandbox *box, const char *name)
+{
+    char path[400];
+    snprintf(path, sizeof path, "%s/%s", box->work, name);
+    char *data = read_file(path, NULL);
+    if (data == NULL) fail_msg("%s: %s", path, strerror(errno));
+    return data;
+}
+
 #define ARGS(...) ((const char *const[]){__VA_ARGS__, NULL})
 
 /* Exit status 0, nothing on stdout, and exactly the one line
@@ -780,10 +790,7 @@ static mesh generate(const char *shape_name, const char *triangles, bool normals
     list_work(&box, listing, sizeof listing);
     assert_string_equal(listing, "m.obj\n");   /* no temporary file left */
 
-    char path[400];
-    snprintf(path, sizeof path, "%s/m.obj", box.work);
-    char *data = read_file(path, NULL);
-    assert_non_null(data);
+    char *data = read_work_file(&box, "m.obj");
     mesh m = parse_obj(data);
     free(data);
     run_result_free(&result);
@@ -1016,10 +1023,7 @@ static void test_cube_by_hand(void **state)
     sandbox_create(&box);
     run_result result = run_in(&box, ARGS("--shape", "cube", "--no-uvs", "-o", "cube.obj"));
     assert_int_equal(assert_written(&result, "cube.obj"), 12);
-    char path[400];
-    snprintf(path, sizeof path, "%s/cube.obj", box.work);
-    char *data = read_file(path, NULL);
-    assert_non_null(data);
+    char *data = read_work_file(&box, "cube.obj");
     assert_string_equal(data, expected);
     free(data);
     run_result_free(&result);
@@ -1054,10 +1058,7 @@ static void test_octahedron_by_hand(void **state)
     run_result result = run_in(&box, ARGS("--shape", "sphere", "--triangles", "10",
                                           "--no-normals", "--no-uvs", "-o", "o.obj"));
     assert_int_equal(assert_written(&result, "o.obj"), 8);
-    char path[400];
-    snprintf(path, sizeof path, "%s/o.obj", box.work);
-    char *data = read_file(path, NULL);
-    assert_non_null(data);
+    char *data = read_work_file(&box, "o.obj");
     assert_string_equal(data, expected);
     free(data);
     run_result_free(&result);
