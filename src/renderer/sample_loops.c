@@ -65,9 +65,14 @@ int LOOPS_NAME(luz_mixed_pixels_of_row)(const uint32_t *ids, int width, uint32_t
             first[x] = id[0];
         }
         if (differ == 0) continue;
+        /* Without a branch per pixel (a chunk an edge crosses mixes
+         * pixels that differ with pixels that agree, and the branches
+         * were mispredicted): each x is written, and kept when its pixel
+         * differs. There is room: count <= x < width. */
         for (int x = x0; x < end; x++) {
             const uint32_t *id = ids + (size_t)x * LUZ_MAX_SAMPLES;
-            if (id[0] != id[1] || id[0] != id[2] || id[0] != id[3]) mixed_x[count++] = (uint16_t)x;
+            mixed_x[count] = (uint16_t)x;
+            count += (id[0] != id[1]) | (id[0] != id[2]) | (id[0] != id[3]);
         }
     }
     return count;
