@@ -13,8 +13,10 @@
  * thread count. A frame of big draws: a wavy grid of 64,800 triangles
  * filling the view, the same grid crossing the near plane and the guard
  * band (clipped triangles among the screened ones), one wholly behind
- * the camera, and one so far away that each thousand of its triangles
- * leave fewer than eight to set up. Then the same frame at four samples
+ * the camera, one so far away that each thousand of its triangles
+ * leave fewer than eight to set up, and one across the frame's right and
+ * bottom edges (boxes cut by the frame, one-pixel ones among them, where
+ * the lanes narrow a box as setup.c does). Then the same frame at four samples
  * a pixel (the tables' screen_four and setup_eight_four against
  * luz_setup_projected_samples one triangle at a time).
  *
@@ -177,7 +179,7 @@ static void test_same_phase_one_in_every_set(void **state)
     luz_error error = {{0}};
 
     luz_frame frame = camera_frame();
-    const luz_mat4 models[4] = {
+    const luz_mat4 models[5] = {
         luz_mat4_identity(),
         /* tilted through the near plane and out past the guard band */
         luz_mat4_rotate(luz_mat4_translate(luz_mat4_identity(), (luz_vec3){0.3f, 0, 2.6f}),
@@ -187,8 +189,11 @@ static void test_same_phase_one_in_every_set(void **state)
         /* far away, some 24 x 14 pixels: a few of each thousand triangles
          * cover a centre, fewer than eight, so they are set up alone */
         luz_mat4_translate(luz_mat4_identity(), (luz_vec3){0, 0, -60}),
+        /* across the frame's right and bottom edges: boxes cut by the
+         * frame, some narrowed to the one centre they cover there */
+        luz_mat4_translate(luz_mat4_identity(), (luz_vec3){1.0f, -0.7f, 0.3f}),
     };
-    for (int k = 0; k < 4; k++) {
+    for (int k = 0; k < 5; k++) {
         luz_draw draw = {.mesh = mesh, .model = models[k]};
         draw.material.colour = (luz_vec3){1, 1, 1};
         assert_int_equal(luz_frame_add_draw(&frame, &draw, &error), 0);
@@ -212,6 +217,19 @@ static void test_same_phase_one_in_every_set(void **state)
     for (size_t id = 1; id <= baseline.total; id++) far += baseline.records[id].draw_index == 3;
     print_message("%zu triangles of the far grid set up\n", far);
     assert_true(far > 0 && far < 64 * 4);
+    /* The fifth grid reaches the last column and the last row, with boxes
+     * of one pixel there: what the lanes' narrowing and the frame's clamp
+     * do together is compared below. */
+    size_t edge_points = 0, edge_boxes = 0;
+    for (size_t id = 1; id <= baseline.total; id++) {
+        const luz_triangle *t = &baseline.records[id];
+        if (t->draw_index != 4 || (t->max_x != WIDTH - 1 && t->max_y != HEIGHT - 1)) continue;
+        edge_boxes++;
+        edge_points += t->min_x == t->max_x && t->min_y == t->max_y;
+    }
+    print_message("%zu boxes at the right or bottom edge, %zu of one pixel\n", edge_boxes,
+                  edge_points);
+    assert_true(edge_boxes > 100 && edge_points > 10);
     /* At four samples a pixel more triangles cover a sample than a
      * centre: more are set up, of the same submitted. */
     frame.samples = 4;

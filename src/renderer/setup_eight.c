@@ -213,7 +213,6 @@ narrow_lanes(__mmask8 lanes, __m512i box_width, __m512i box_height, const __m512
     const __m512i centre_y = _mm512_add_epi64(_mm512_slli_epi64(*min_y, LUZ_SUBPIXEL_BITS), half);
     const __mmask8 wide = _mm512_cmpeq_epi64_mask(box_width, two);
     const __mmask8 tall = _mm512_cmpeq_epi64_mask(box_height, two);
-    /* Whether each of the four centres is in the box and inside. */
     /* The three edges' E or-ed at each centre: negative where one is. */
     __m512i any[4] = {zero, zero, zero, zero};
     for (int k = 0; k < 3; k++) {
@@ -228,6 +227,7 @@ narrow_lanes(__mmask8 lanes, __m512i box_width, __m512i box_height, const __m512
         any[2] = _mm512_or_si512(any[2], _mm512_add_epi64(e00, step_y));
         any[3] = _mm512_or_si512(any[3], _mm512_add_epi64(e10, step_y));
     }
+    /* Whether each of the four centres is in the box and inside. */
     const __mmask8 at00 = lanes & _mm512_cmpge_epi64_mask(any[0], zero);
     const __mmask8 at10 = lanes & wide & _mm512_cmpge_epi64_mask(any[1], zero);
     const __mmask8 at01 = lanes & tall & _mm512_cmpge_epi64_mask(any[2], zero);
