@@ -500,7 +500,9 @@ static double random_coordinate(unsigned *seed, double low, double high)
  * sized (the 32-bit edges), large (the spans), tall and thin (a small box
  * whose edges pass 2^30: the spans again), vertices off the viewport,
  * widths that are not a multiple of four (the group moved left at the
- * row's end), drawn in bands of 16 rows as frame.c does. */
+ * row's end), drawn in bands of 16 rows as frame.c does: a triangle at a
+ * time (luz_raster_triangle_samples), and each band's list of them in one
+ * call (the set's list kernel) into buffers of their own. */
 static void test_four_samples_in_lanes_match_the_definition(void **state)
 {
     (void)state;
@@ -508,6 +510,7 @@ static void test_four_samples_in_lanes_match_the_definition(void **state)
     for (int isa = LUZ_ISA_SCALAR; isa < LUZ_ISA_COUNT; isa++) {
         if (!luz_isa_available((luz_isa)isa)) continue;
         luz_raster_groups_function *groups = luz_kernels_of((luz_isa)isa).raster_groups;
+        luz_raster_list_function *list = luz_kernels_of((luz_isa)isa).raster_list;
         for (size_t size = 0; size < sizeof sizes / sizeof sizes[0]; size++) {
             const int width = sizes[size][0], height = sizes[size][1];
             const size_t count = (size_t)width * height * 4;
@@ -520,6 +523,12 @@ static void test_four_samples_in_lanes_match_the_definition(void **state)
             for (size_t i = 0; i < count; i++) depth[i] = expected_depth[i] = 1.0f;
             luz_sample_buffers buffers = {.samples = 4, .width = width, .height = height,
                                           .depth = depth, .visibility = ids};
+            /* The drawn triangles by id, and their ids in order: the list. */
+            luz_triangle *stored = calloc(301, sizeof *stored);
+            const luz_triangle **by_id = calloc(301, sizeof *by_id);
+            uint32_t drawn_ids[300];
+            uint64_t expected_tests = 0;
+            assert_true(stored && by_id);
             unsigned seed = 2026u + (unsigned)size;
             int drawn = 0, small_tall = 0;
             for (uint32_t id = 1; id <= 300; id++) {
@@ -556,10 +565,35 @@ static void test_four_samples_in_lanes_match_the_definition(void **state)
                     tests += luz_raster_triangle_samples(&triangle, id, &buffers, band,
                                                          band + 16 < height ? band + 16 : height,
                                                          NULL, groups);
-                assert_int_equal(tests, four_samples_by_definition(&triangle, id, width, height,
-                                                                   expected_depth, expected_ids));
+                const uint64_t defined = four_samples_by_definition(&triangle, id, width, height,
+                                                                    expected_depth, expected_ids);
+                assert_int_equal(tests, defined);
+                expected_tests += defined;
+                stored[id] = triangle;
+                by_id[id] = &stored[id];
+                drawn_ids[drawn - 1] = id;
             }
             assert_true(drawn > 100);
+            if (list != NULL && width >= LUZ_RASTER_GROUP_PIXELS) {
+                float *list_depth = malloc(count * sizeof *list_depth);
+                uint32_t *list_ids = calloc(count, sizeof *list_ids);
+                assert_true(list_depth && list_ids);
+                for (size_t i = 0; i < count; i++) list_depth[i] = 1.0f;
+                luz_sample_buffers list_buffers = {.samples = 4, .width = width,
+                                                   .height = height, .depth = list_depth,
+                                                   .visibility = list_ids};
+                uint64_t list_tests = 0;
+                for (int band = 0; band < height; band += 16)
+                    list_tests += list(by_id, drawn_ids, 0, (size_t)drawn, &list_buffers, band,
+                                       band + 16 < height ? band + 16 : height);
+                assert_int_equal(list_tests, expected_tests);
+                assert_memory_equal(list_depth, expected_depth, count * sizeof *list_depth);
+                assert_memory_equal(list_ids, expected_ids, count * sizeof *list_ids);
+                free(list_depth);
+                free(list_ids);
+            }
+            free(stored);
+            free(by_id);
             if (height > 2000) assert_true(small_tall > 0);
             assert_memory_equal(depth, expected_depth, count * sizeof *depth);
             assert_memory_equal(ids, expected_ids, count * sizeof *ids);
@@ -685,6 +719,58 @@ static void test_four_samples_edges_past_2_30_at_one_corner(void **state)
     free(expected_depth);
     free(ids);
     free(expected_ids);
+}
+
+/* raster_lanes.c's shortcut before its corner check: a triangle whose
+ * edges all have |a|, |b| below 2^14 has |E| below 2^29 + 2^25 over the
+ * box the corners bound (its proof: the box lies within the samples'
+ * reach of the corners' box). Triangles up to 64 pixels across, many
+ * with corners off a 40 x 40 viewport (clamped boxes), under four
+ * samples' setup: every one that passes the shortcut stays below the
+ * bound at all four corners, and the largest |E| comes within a factor
+ * of four of it (the bound is not loose enough to hide a wrong proof). */
+static void test_four_samples_short_edges_fit_32_bits(void **state)
+{
+    (void)state;
+    enum { WIDTH = 40, HEIGHT = 40 };
+    const int64_t bound = ((int64_t)1 << 29) + ((int64_t)1 << 25);
+    unsigned seed = 1414u;
+    int checked = 0;
+    int64_t largest = 0;
+    for (int attempt = 0; attempt < 200000; attempt++) {
+        luz_clip_vertex v[3];
+        const double cx = random_coordinate(&seed, -40.0, WIDTH + 40.0);
+        const double cy = random_coordinate(&seed, -40.0, HEIGHT + 40.0);
+        for (int j = 0; j < 3; j++) {
+            const double x = cx + random_coordinate(&seed, -32.0, 32.0);
+            const double y = cy + random_coordinate(&seed, -32.0, 32.0);
+            memset(&v[j], 0, sizeof v[j]);
+            v[j].position = (luz_vec4){(float)(2.0 * x / WIDTH - 1.0),
+                                       (float)(1.0 - 2.0 * y / HEIGHT), 0.5f, 1.0f};
+        }
+        luz_triangle t;
+        if (luz_setup_triangle_samples(&v[0], &v[1], &v[2], WIDTH, HEIGHT, 0,
+                                       LUZ_INTERPOLATION_PERSPECTIVE, 4, &t) != LUZ_SETUP_VISIBLE &&
+            luz_setup_triangle_samples(&v[0], &v[2], &v[1], WIDTH, HEIGHT, 0,
+                                       LUZ_INTERPOLATION_PERSPECTIVE, 4, &t) != LUZ_SETUP_VISIBLE)
+            continue;
+        bool short_edges = true;
+        for (int k = 0; k < 3; k++)
+            short_edges &= llabs(t.edges[k].a) < (1 << 14) && llabs(t.edges[k].b) < (1 << 14);
+        if (!short_edges) continue;
+        checked++;
+        assert_int_equal(corners_past(&t, bound), 0u);
+        const int64_t x[2] = {((int64_t)t.min_x - 3) * 256, ((int64_t)t.max_x + 4) * 256};
+        const int64_t y[2] = {(int64_t)t.min_y * 256, ((int64_t)t.max_y + 1) * 256};
+        for (int corner = 0; corner < 4; corner++)
+            for (int k = 0; k < 3; k++) {
+                const int64_t e = llabs((int64_t)t.edges[k].a * x[corner & 1] +
+                                        (int64_t)t.edges[k].b * y[corner >> 1] + t.edges[k].c);
+                if (e > largest) largest = e;
+            }
+    }
+    assert_true(checked > 10000);
+    assert_true(largest > bound / 4);
 }
 
 /* A colour for (triangle id, pixel): the fragment stage's stand-in. */
@@ -822,6 +908,7 @@ int main(void)
         cmocka_unit_test(test_back_faces_and_degenerate_triangles_are_culled),
         cmocka_unit_test(test_four_samples_in_lanes_match_the_definition),
         cmocka_unit_test(test_four_samples_edges_past_2_30_at_one_corner),
+        cmocka_unit_test(test_four_samples_short_edges_fit_32_bits),
         cmocka_unit_test(test_four_samples_sort_and_resolve_match_the_definition),
         cmocka_unit_test_setup_teardown(test_depth_test_less, setup_framebuffer,
                                         teardown_framebuffer),

@@ -28,12 +28,14 @@ luz_mixed_pixels_function luz_mixed_pixels_of_row_baseline;
 luz_centre_span_function luz_centre_span_test_baseline;
 #if defined(LUZ_HAVE_SSE2)
 luz_raster_groups_function luz_raster_groups_sse2;
+luz_raster_list_function luz_raster_list_sse2;
 luz_screen_function luz_screen_triangles_sse2, luz_screen_triangles_four_sse2;
 luz_setup_eight_function luz_setup_eight_sse2, luz_setup_eight_four_sse2;
 luz_vertex_project_function luz_vertex_project_sse2;
 #endif
 #if defined(LUZ_HAVE_AVX2)
 luz_raster_groups_function luz_raster_groups_avx2;
+luz_raster_list_function luz_raster_list_avx2;
 luz_packet_rows_function luz_fragment_packet_rows_avx2;
 luz_packet_list_function luz_fragment_packet_list_avx2;
 luz_screen_function luz_screen_triangles_avx2, luz_screen_triangles_four_avx2;
@@ -44,12 +46,14 @@ luz_centre_span_function luz_centre_span_test_avx2;
 #endif
 #if defined(LUZ_HAVE_NEON)
 luz_raster_groups_function luz_raster_groups_neon;
+luz_raster_list_function luz_raster_list_neon;
 luz_screen_function luz_screen_triangles_neon, luz_screen_triangles_four_neon;
 luz_setup_eight_function luz_setup_eight_neon, luz_setup_eight_four_neon;
 luz_vertex_project_function luz_vertex_project_neon;
 #endif
 #if defined(LUZ_HAVE_AVX512)
 luz_raster_groups_function luz_raster_groups_avx512;
+luz_raster_list_function luz_raster_list_avx512;
 luz_packet_rows_function luz_fragment_packet_rows_avx512;
 luz_packet_list_function luz_fragment_packet_list_avx512;
 luz_screen_function luz_screen_triangles_avx512, luz_screen_triangles_four_avx512;
@@ -203,6 +207,7 @@ luz_kernels luz_kernels_of(luz_isa isa)
         .mixed_pixels = luz_mixed_pixels_of_row_baseline,
         .centre_span_test = luz_centre_span_test_baseline,
         .raster_groups = NULL,
+        .raster_list = NULL,
     };
     switch (isa) {
     case LUZ_ISA_SCALAR:
@@ -219,10 +224,12 @@ luz_kernels luz_kernels_of(luz_isa isa)
         set_geometry(&kernels, luz_screen_triangles_neon, luz_screen_triangles_four_neon,
                      luz_setup_eight_neon, luz_setup_eight_four_neon, luz_vertex_project_neon);
         kernels.raster_groups = luz_raster_groups_neon;
+        kernels.raster_list = luz_raster_list_neon;
 #elif defined(LUZ_HAVE_SSE2)
         set_geometry(&kernels, luz_screen_triangles_sse2, luz_screen_triangles_four_sse2,
                      luz_setup_eight_sse2, luz_setup_eight_four_sse2, luz_vertex_project_sse2);
         kernels.raster_groups = luz_raster_groups_sse2;
+        kernels.raster_list = luz_raster_list_sse2;
 #endif
         break;
     case LUZ_ISA_AVX2:
@@ -232,6 +239,7 @@ luz_kernels luz_kernels_of(luz_isa isa)
         set_geometry(&kernels, luz_screen_triangles_avx2, luz_screen_triangles_four_avx2,
                      luz_setup_eight_avx2, luz_setup_eight_four_avx2, luz_vertex_project_avx2);
         kernels.raster_groups = luz_raster_groups_avx2;
+        kernels.raster_list = luz_raster_list_avx2;
         kernels.mixed_pixels = luz_mixed_pixels_of_row_avx2;
         kernels.centre_span_test = luz_centre_span_test_avx2;
 #endif
@@ -246,6 +254,7 @@ luz_kernels luz_kernels_of(luz_isa isa)
         kernels.mixed_pixels = luz_mixed_pixels_of_row_avx512;
         kernels.centre_span_test = luz_centre_span_test_avx512;
         kernels.raster_groups = luz_raster_groups_avx512;
+        kernels.raster_list = luz_raster_list_avx512;
 #endif
         break;
     }

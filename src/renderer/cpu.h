@@ -81,6 +81,7 @@ typedef struct luz_kernels {
     /* The raster's depth tests at four samples in lanes (raster_lanes.c).
      * NULL: one sample at a time. */
     luz_raster_groups_function *raster_groups;
+    luz_raster_list_function *raster_list;   /* the same, a band's list a call */
 } luz_kernels;
 
 /* The table of isa, which must be available. */

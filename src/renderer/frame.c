@@ -59,11 +59,6 @@
 #define BAND_HEIGHT 16
 _Static_assert((BAND_HEIGHT & (BAND_HEIGHT - 1)) == 0, "luz_geometry_run bins by a shift");
 
-/* Triangles of a band's list ahead of its raster whose records are
- * prefetched: about the time a line takes to come from memory, at a few
- * tens of nanoseconds a small triangle. */
-#define PREFETCH_AHEAD 16
-
 typedef struct band_counters {
     uint64_t fragments_tested;
     uint64_t fragments_shaded;
@@ -130,14 +125,9 @@ static double now_ms(void)
 
 /* Raster and depth test, the band's triangles in submission order, at
  * each pixel centre, or with four samples at each sample point into its
- * plane. Each is read through by_id at an address phase 1 wrote long
- * before, scattered (ids rise, but a band's are far apart): the hardware
- * prefetcher cannot guess them, and on a mesh of a million triangles
- * waiting for them was half the raster's time. The list says which come
- * next, so they are asked for ahead: by_id's entry 2 * PREFETCH_AHEAD
- * triangles ahead, and the triangle PREFETCH_AHEAD ahead, every line of it
- * (the raster reads its box and edges, the fragment stage, after the
- * band's raster, its planes). */
+ * plane. Each triangle's record is asked for ahead
+ * (luz_prefetch_triangle_ahead). At four samples the set's list kernel
+ * takes the whole list in one call. */
 static uint64_t raster_band(const frame_job *job, luz_framebuffer *framebuffer,
                             luz_sample_buffers *samples, int band_index, int first_row,
                             int end_row)
@@ -149,16 +139,13 @@ static uint64_t raster_band(const frame_job *job, luz_framebuffer *framebuffer,
     const size_t *band_start = job->geometry.band_start;
     const uint32_t *ids = job->geometry.band_ids;
     const size_t list_end = band_start[band_index + 1];
+    luz_raster_list_function *raster_list = job->renderer->kernels.raster_list;
+    if (samples && raster_list && overdraw == NULL && job->uniforms.bug != LUZ_BUG_NO_DEPTH_TEST &&
+        samples->samples == LUZ_MAX_SAMPLES && samples->width >= LUZ_RASTER_GROUP_PIXELS)
+        return raster_list(by_id, ids, band_start[band_index], list_end, samples, first_row,
+                           end_row);
     for (size_t k = band_start[band_index]; k < list_end; k++) {
-        if (k + 2 * PREFETCH_AHEAD < list_end)
-            __builtin_prefetch(&by_id[ids[k + 2 * PREFETCH_AHEAD]]);
-        if (k + PREFETCH_AHEAD < list_end) {
-            const char *ahead = (const char *)by_id[ids[k + PREFETCH_AHEAD]];
-            /* Every line the record touches (200 bytes: at most four). */
-            for (size_t offset = 0; offset < sizeof(luz_triangle); offset += 64)
-                __builtin_prefetch(ahead + offset);
-            __builtin_prefetch(ahead + sizeof(luz_triangle) - 1);
-        }
+        luz_prefetch_triangle_ahead(by_id, ids, k, list_end);
         const uint32_t id = ids[k];
         const luz_triangle *triangle = by_id[id];
         if (job->uniforms.bug == LUZ_BUG_NO_DEPTH_TEST) {   /* luz/bug.h */

@@ -664,6 +664,45 @@ typedef uint64_t luz_raster_groups_function(const luz_triangle *triangle, uint32
                                             luz_sample_buffers *buffers, int y_begin, int y_end,
                                             bool small);
 
+/* The same kernel for a band's list of triangles in one call: by_id[ids[k]]
+ * for k in [begin, end), each with id ids[k], the rows [first_row,
+ * end_row) of its box, in list order; buffers at four samples and at
+ * least LUZ_RASTER_GROUP_PIXELS wide. The same depths, winners and test
+ * count as luz_raster_triangle_samples on each in turn: on pixel-sized
+ * triangles a call's fixed cost (the lanes' constants, the count summed
+ * across the lanes) was a fifth of the raster's time. It asks for the
+ * records ahead as luz_prefetch_triangle_ahead says. */
+typedef uint64_t luz_raster_list_function(const luz_triangle *const *by_id, const uint32_t *ids,
+                                          size_t begin, size_t end, luz_sample_buffers *buffers,
+                                          int first_row, int end_row);
+
+/* Triangles of a band's list ahead of its raster whose records are
+ * prefetched: about the time a line takes to come from memory, at a few
+ * tens of nanoseconds a small triangle. */
+#define LUZ_PREFETCH_AHEAD 16
+
+/* Before the raster of list entry k of [k, end): each is read through
+ * by_id at an address phase 1 wrote long before, scattered (ids rise, but
+ * a band's are far apart), which the hardware prefetcher cannot guess, and
+ * on a mesh of a million triangles waiting for them was half the raster's
+ * time. The list says which come next, so they are asked for ahead:
+ * by_id's entry 2 * LUZ_PREFETCH_AHEAD triangles ahead, and the triangle
+ * LUZ_PREFETCH_AHEAD ahead, every line of it (the raster reads its box and
+ * edges, the fragment stage, after the band's raster, its planes). */
+static inline __attribute__((always_inline)) void
+luz_prefetch_triangle_ahead(const luz_triangle *const *by_id, const uint32_t *ids, size_t k,
+                            size_t end)
+{
+    if (k + 2 * LUZ_PREFETCH_AHEAD < end) __builtin_prefetch(&by_id[ids[k + 2 * LUZ_PREFETCH_AHEAD]]);
+    if (k + LUZ_PREFETCH_AHEAD < end) {
+        const char *ahead = (const char *)by_id[ids[k + LUZ_PREFETCH_AHEAD]];
+        /* Every line the record touches (200 bytes: at most four). */
+        for (size_t offset = 0; offset < sizeof(luz_triangle); offset += 64)
+            __builtin_prefetch(ahead + offset);
+        __builtin_prefetch(ahead + sizeof(luz_triangle) - 1);
+    }
+}
+
 /* Covers every sample of rows [first_row, end_row) inside the triangle
  * (sample k at luz_sample_offset_of(buffers->samples, k)) into buffers'
  * depth and visibility: depth interpolated at the sample, LESS, the

@@ -8,6 +8,8 @@
  *      its box is small (luz_raster_is_small).
  * Out: for every sample inside the triangle and nearer than the
  *      buffers' (LESS), its depth and the triangle's id; the tests made.
+ *      Or the same for each triangle of a band's list in turn (the list
+ *      kernel, luz_raster_list_function), in one call.
  *
  * Lanes of one register, the four samples of one, two or four pixels of a
  * row (SSE2 and NEON, AVX2, AVX-512), are written once in GCC / clang
@@ -25,12 +27,16 @@
 
 #if defined(LUZ_LANES_AVX512)
 #define RASTER_GROUPS luz_raster_groups_avx512
+#define RASTER_LIST luz_raster_list_avx512
 #elif defined(LUZ_LANES_AVX2)
 #define RASTER_GROUPS luz_raster_groups_avx2
+#define RASTER_LIST luz_raster_list_avx2
 #elif defined(LUZ_LANES_NEON)
 #define RASTER_GROUPS luz_raster_groups_neon
+#define RASTER_LIST luz_raster_list_neon
 #elif defined(LUZ_LANES_SSE2)
 #define RASTER_GROUPS luz_raster_groups_sse2
+#define RASTER_LIST luz_raster_list_sse2
 #else
 #error "define LUZ_LANES_AVX512, LUZ_LANES_AVX2, LUZ_LANES_NEON or LUZ_LANES_SSE2"
 #endif
@@ -62,9 +68,30 @@ typedef int64_t corner_i64 __attribute__((vector_size(4 * sizeof(int64_t))));
  * check only picks between two exact ways to the same coverage, but it
  * must never say yes wrongly: the corners' E in 64 bits, as setup's
  * (pipeline.h's luz_edge), compared without a branch (raster.c compared
- * them one by one before the call, 4 ms a frame on the 1M sphere). */
+ * them one by one before the call, 4 ms a frame on the 1M sphere).
+ *
+ * First a bound that needs no products, which every triangle of a big
+ * mesh meets. Edge k from corner (Xi, Yi) has c = -(a Xi + b Yi), less
+ * 0 or 1 (setup.c's make_edge), so at any point
+ *     |E| <= |a| |X - Xi| + |b| |Y - Yi| + 1.
+ * Setup's box is its corners' box (min X .. max X, min Y .. max Y) moved
+ * in by the samples' reach, 32 to 224 (256 min_x >= min X - 224, 256 max_x
+ * <= max X - 32; clamped to the viewport or narrowed, only smaller), so
+ * the points checked below, x from min_x - 3 to max_x + 4 pixels and y
+ * from min_y to max_y + 1, have |X - Xi| <= W + 992 and |Y - Yi| <= H +
+ * 224, W and H the corners' box in 1/256 pixel. Its width W is the
+ * largest |b| of the three edges (the leftmost and rightmost corners
+ * share an edge) and H the largest |a|. With every |a|, |b| below 2^14:
+ *     |E| <= 2^14 (2^14 + 992) + 2^14 (2^14 + 224) + 1 < 2^29 + 2^25,
+ * below 2^30. */
 static bool edges_fit_32_bits(const luz_triangle *triangle)
 {
+    uint32_t widest = 0;
+    for (int k = 0; k < 3; k++) {
+        const int32_t a = triangle->edges[k].a, b = triangle->edges[k].b;
+        widest |= (uint32_t)(a < 0 ? -(int64_t)a : a) | (uint32_t)(b < 0 ? -(int64_t)b : b);
+    }
+    if (widest < (1u << 14)) return true;
     const int64_t left = ((int64_t)triangle->min_x - (LUZ_RASTER_GROUP_PIXELS - 1)) *
                          LUZ_SUBPIXEL_ONE;
     const int64_t right = ((int64_t)triangle->max_x + LUZ_RASTER_GROUP_PIXELS) * LUZ_SUBPIXEL_ONE;
@@ -82,20 +109,18 @@ static bool edges_fit_32_bits(const luz_triangle *triangle)
     return (outside[0] | outside[1] | outside[2] | outside[3]) == 0;
 }
 
-luz_raster_groups_function RASTER_GROUPS;
+/* The lanes' constants, the same for every triangle. Lane l: sample l % 4
+ * of pixel l / 4 of the group, at dx, dy from the group's first pixel's
+ * corner in 1/256 pixel (the offsets of luz_sample_offset_of, checked by
+ * test_samples), and its sample's offsets in pixels (k / 256: exact in a
+ * float). */
+typedef struct lane_constants {
+    group_i32 dx, dy, pixel;
+    group_f32 offset_x, offset_y;
+} lane_constants;
 
-uint64_t RASTER_GROUPS(const luz_triangle *triangle, uint32_t triangle_id,
-                      luz_sample_buffers *buffers, int y_begin, int y_end, bool small)
+static inline __attribute__((always_inline)) lane_constants make_lane_constants(void)
 {
-    /* Coverage from the edge functions in 32-bit lanes, or from each
-     * sample's span (raster.c). */
-    const bool small_edges = small && edges_fit_32_bits(triangle);
-    const int width = buffers->width;
-    const luz_plane depth = triangle->depth;
-    /* Lane l: sample l % 4 of pixel l / 4 of the group, at lane_dx,
-     * lane_dy from the group's first pixel's corner in 1/256 pixel (the
-     * offsets of luz_sample_offset_of, checked by test_samples), and its
-     * sample's offsets in pixels (k / 256: exact in a float). */
 #define GROUP_OFFSETS(pixel) \
     96 + 256 * (pixel), 224 + 256 * (pixel), 32 + 256 * (pixel), 160 + 256 * (pixel)
     static const int32_t all_dx[16] = {GROUP_OFFSETS(0), GROUP_OFFSETS(1), GROUP_OFFSETS(2),
@@ -106,27 +131,42 @@ uint64_t RASTER_GROUPS(const luz_triangle *triangle, uint32_t triangle_id,
 #undef GROUP_OFFSETS
     static const int32_t all_pixel[16] = {0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3};
     /* The step's lanes are the first GROUP_LANES of the four pixels'. */
-    group_i32 lane_dx, lane_dy, lane_pixel;
-    memcpy(&lane_dx, all_dx, sizeof lane_dx);
-    memcpy(&lane_dy, all_dy, sizeof lane_dy);
-    memcpy(&lane_pixel, all_pixel, sizeof lane_pixel);
-    const group_f32 lane_offset_x =
-        __builtin_convertvector(lane_dx - lane_pixel * LUZ_SUBPIXEL_ONE, group_f32) /
+    lane_constants lanes;
+    memcpy(&lanes.dx, all_dx, sizeof lanes.dx);
+    memcpy(&lanes.dy, all_dy, sizeof lanes.dy);
+    memcpy(&lanes.pixel, all_pixel, sizeof lanes.pixel);
+    lanes.offset_x =
+        __builtin_convertvector(lanes.dx - lanes.pixel * LUZ_SUBPIXEL_ONE, group_f32) /
         (float)LUZ_SUBPIXEL_ONE;
-    const group_f32 lane_offset_y =
-        __builtin_convertvector(lane_dy, group_f32) / (float)LUZ_SUBPIXEL_ONE;
+    lanes.offset_y = __builtin_convertvector(lanes.dy, group_f32) / (float)LUZ_SUBPIXEL_ONE;
+    return lanes;
+}
+
+/* A triangle's rows [y_begin, y_end): its samples' depth tests, each
+ * lane's count of them taken from `counted` (minus one a test), which is
+ * returned. */
+static inline __attribute__((always_inline)) group_i32
+raster_groups_of(const lane_constants *lanes, const luz_triangle *triangle, uint32_t triangle_id,
+                 luz_sample_buffers *buffers, int y_begin, int y_end, bool small,
+                 group_i32 counted)
+{
+    /* Coverage from the edge functions in 32-bit lanes, or from each
+     * sample's span (raster.c). */
+    const bool small_edges = small && edges_fit_32_bits(triangle);
+    const int width = buffers->width;
+    const luz_plane depth = triangle->depth;
+    const group_i32 lane_pixel = lanes->pixel;
+    const group_f32 lane_offset_x = lanes->offset_x, lane_offset_y = lanes->offset_y;
     /* a (256 (l / 4) + sx) + b sy of each edge (exact: small_edges). */
     group_i32 edge_at_lane[3];
     for (int k = 0; k < 3; k++)
-        edge_at_lane[k] = triangle->edges[k].a * lane_dx + triangle->edges[k].b * lane_dy;
+        edge_at_lane[k] = triangle->edges[k].a * lanes->dx + triangle->edges[k].b * lanes->dy;
     const group_f32 reference_x = (group_f32){0} + triangle->reference_x;
     const group_f32 reference_y = (group_f32){0} + triangle->reference_y;
     const group_f32 depth_dx = (group_f32){0} + depth.dx;
     const group_f32 depth_dy = (group_f32){0} + depth.dy;
     const group_f32 depth_value = (group_f32){0} + depth.value;
     const group_i32 id = (group_i32){0} + (int32_t)triangle_id;
-    group_i32 counted = {0};   /* minus the tests made, per lane */
-
     for (int y = y_begin; y < y_end; y++) {
         /* The row's pixels to visit, and each lane's sample's span. */
         int first_x = triangle->min_x, last_x = triangle->max_x;
@@ -199,8 +239,59 @@ uint64_t RASTER_GROUPS(const luz_triangle *triangle, uint32_t triangle_id,
             counted += covered;
         }
     }
-    /* The lanes' counts added. */
+    return counted;
+}
+
+/* The lanes' counts, negated and added. */
+static inline __attribute__((always_inline)) uint64_t lanes_total(group_i32 counted)
+{
     int64_t tests = 0;
     for (int l = 0; l < GROUP_LANES; l++) tests -= counted[l];
     return (uint64_t)tests;
+}
+
+luz_raster_groups_function RASTER_GROUPS;
+luz_raster_list_function RASTER_LIST;
+
+uint64_t RASTER_GROUPS(const luz_triangle *triangle, uint32_t triangle_id,
+                      luz_sample_buffers *buffers, int y_begin, int y_end, bool small)
+{
+    const lane_constants lanes = make_lane_constants();
+    return lanes_total(raster_groups_of(&lanes, triangle, triangle_id, buffers, y_begin, y_end,
+                                        small, (group_i32){0}));
+}
+
+/* The list: the lanes' constants once, and their counts added across the
+ * lanes every SUM_EVERY small triangles and after a large one. A lane
+ * counts at most one test a group, a small box (luz_raster_is_small) at
+ * most 8 groups a row and 2^14 rows (LUZ_MAX_DIMENSION): 2^12 of them stay
+ * below 2^29 in an int32 lane. */
+enum { SUM_EVERY = 1 << 12 };
+_Static_assert(LUZ_RASTER_SMALL_SPAN <= 8 && LUZ_MAX_DIMENSION <= (1 << 14),
+               "a lane's count of SUM_EVERY small triangles fits an int32");
+
+uint64_t RASTER_LIST(const luz_triangle *const *by_id, const uint32_t *ids, size_t begin,
+                     size_t end, luz_sample_buffers *buffers, int first_row, int end_row)
+{
+    const lane_constants lanes = make_lane_constants();
+    uint64_t tests = 0;
+    group_i32 counted = {0};
+    unsigned small_since_sum = 0;
+    for (size_t k = begin; k < end; k++) {
+        luz_prefetch_triangle_ahead(by_id, ids, k, end);
+        const uint32_t id = ids[k];
+        const luz_triangle *triangle = by_id[id];
+        /* raster.c's luz_raster_triangle_samples: the band's rows of the box. */
+        const int y_begin = triangle->min_y > first_row ? triangle->min_y : first_row;
+        const int y_end = triangle->max_y + 1 < end_row ? triangle->max_y + 1 : end_row;
+        if (y_begin >= y_end) continue;
+        const bool small = luz_raster_is_small(triangle);
+        counted = raster_groups_of(&lanes, triangle, id, buffers, y_begin, y_end, small, counted);
+        if (!small || ++small_since_sum == SUM_EVERY) {
+            tests += lanes_total(counted);
+            counted = (group_i32){0};
+            small_since_sum = 0;
+        }
+    }
+    return tests + lanes_total(counted);
 }
