@@ -122,9 +122,18 @@ LANES_INLINE vi32 max32(vi32 a, vi32 b)
 }
 
 /* Half h (0: lanes 0 .. HALF - 1, 1: the rest) of 32-bit lanes,
- * sign-extended to 64 bits (a mask stays a mask). */
+ * sign-extended to 64 bits (a mask stays a mask). With AVX2 and AVX-512
+ * one vpmovsxdq of the half: GCC 12 made __builtin_convertvector's
+ * widening two conversions of a quarter each and an insert. */
 LANES_INLINE vi64 widen_half(vi32 v, int h)
 {
+#if LANES == 16 && defined(__AVX512F__)
+    return (vi64)_mm512_cvtepi32_epi64(h == 0 ? _mm512_castsi512_si256((__m512i)v)
+                                              : _mm512_extracti64x4_epi64((__m512i)v, 1));
+#elif LANES == 8 && defined(__AVX2__)
+    return (vi64)_mm256_cvtepi32_epi64(h == 0 ? _mm256_castsi256_si128((__m256i)v)
+                                              : _mm256_extracti128_si256((__m256i)v, 1));
+#else
 #if LANES == 16
     typedef int32_t half_vector __attribute__((vector_size(8 * sizeof(int32_t))));
     const half_vector part = h == 0 ? __builtin_shufflevector(v, v, 0, 1, 2, 3, 4, 5, 6, 7)
@@ -141,6 +150,7 @@ LANES_INLINE vi64 widen_half(vi32 v, int h)
 #error "lanes.h: 4, 8 or 16 lanes"
 #endif
     return __builtin_convertvector(part, vi64);
+#endif
 }
 
 /* Bit i set where lane i of the mask is. */
@@ -167,9 +177,18 @@ LANES_INLINE vi32 lanes_of_bits(unsigned bits)
     return (splat32((int32_t)bits) & bit) != 0;
 }
 
-/* Half h of float lanes, widened to double (exact). */
+/* Half h of float lanes, widened to double (exact); one vcvtps2pd of the
+ * half with AVX2 and AVX-512, as widen_half. */
 LANES_INLINE vf64 widen_half_float(vf32 v, int h)
 {
+#if LANES == 16 && defined(__AVX512F__)
+    return (vf64)_mm512_cvtps_pd(
+        h == 0 ? _mm512_castps512_ps256((__m512)v)
+               : _mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd((__m512)v), 1)));
+#elif LANES == 8 && defined(__AVX2__)
+    return (vf64)_mm256_cvtps_pd(h == 0 ? _mm256_castps256_ps128((__m256)v)
+                                        : _mm256_extractf128_ps((__m256)v, 1));
+#else
 #if LANES == 16
     typedef float half_vector __attribute__((vector_size(8 * sizeof(float))));
     const half_vector part = h == 0 ? __builtin_shufflevector(v, v, 0, 1, 2, 3, 4, 5, 6, 7)
@@ -184,6 +203,7 @@ LANES_INLINE vf64 widen_half_float(vf32 v, int h)
                                     : __builtin_shufflevector(v, v, 2, 3);
 #endif
     return __builtin_convertvector(part, vf64);
+#endif
 }
 
 /* Bit i set where lane i of a 64-bit mask is. */
@@ -402,6 +422,11 @@ LANES_INLINE void store_columns(float *const to[LANES], const vf32 *column, int 
 
 LANES_INLINE vf32 narrow_join(vf64 low, vf64 high)
 {
+#if LANES == 8 && defined(__AVX2__)
+    /* (GCC 12 put a vmovaps between each vcvtpd2ps and the insert.) */
+    return (vf32)_mm256_insertf128_ps(_mm256_castps128_ps256(_mm256_cvtpd_ps((__m256d)low)),
+                                      _mm256_cvtpd_ps((__m256d)high), 1);
+#endif
     typedef float half_floats __attribute__((vector_size(HALF * sizeof(float))));
     return LANES_JOIN(__builtin_convertvector(low, half_floats),
                       __builtin_convertvector(high, half_floats));

@@ -64,10 +64,16 @@ _Static_assert(offsetof(luz_triangle, reference_x) == 64 &&
  * every instruction set converts in lanes). */
 LANES_INLINE vf64 double_half(vi32 v, int h)
 {
+#if LANES == 8 && defined(__AVX2__)
+    /* One vcvtdq2pd of the half (lanes.h's widen_half says why). */
+    return (vf64)_mm256_cvtepi32_pd(h == 0 ? _mm256_castsi256_si128((__m256i)v)
+                                           : _mm256_extracti128_si256((__m256i)v, 1));
+#else
     typedef int32_t half_ints __attribute__((vector_size(HALF * sizeof(int32_t))));
     half_ints part;
     memcpy(&part, (const int32_t *)&v + h * HALF, sizeof part);
     return __builtin_convertvector(part, vf64);
+#endif
 }
 
 /* vertex.c's transform4 with w = 1, row r of a column-major 4 x 4: a[r] x
