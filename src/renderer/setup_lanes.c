@@ -11,7 +11,9 @@
  * the projection, the determinant, its reciprocal and each plane in
  * double, each rounded to float as a C cast does; the box in 32-bit
  * lanes, the doubled area, the edges' constants and the small boxes'
- * centres in 64-bit lanes, every 32 x 32-bit product exact. No fused
+ * centres in 64-bit lanes, every 32 x 32-bit product exact (the area and
+ * the centres in 32-bit lanes where a group's corners are near each
+ * other and every value fits: NEAR_EXTENT). No fused
  * multiply-add (-ffp-contract=off). tests/test_setup_eight.c holds every
  * variant's lanes to luz_setup_projected, field by field, bit for bit.
  * The AVX-512 variant stays setup_eight.c's, in intrinsics.
@@ -166,6 +168,80 @@ LANES_INLINE void centres_inside_half(vi64 min_x, vi64 min_y, const vi64 a[3], c
     for (int i = 0; i < 4; i++) inside[i] = ~negative_bits64(any[i]) & ((1u << HALF) - 1);
 }
 
+/* Where every lane's corners lie within NEAR_EXTENT subpixels (16
+ * pixels) of each other in x and in y, the edge functions at the
+ * centres of a box that is not empty fit 32 bits, taken from an edge's
+ * first vertex: E = a X + b Y + c = a (X - xi) + b (Y - yi) - bias
+ * (c = -(a xi + b yi) - bias, step 4). |a|, |b| < 2^12, and the box's
+ * centres lie between the corners' least and greatest X (and Y): it is
+ * the box of the pixels whose centre may be inside. So |X - xi| and
+ * |Y - yi| < 2^12 + 2^8 even at the centre one pixel on, each product is
+ * below 2^25 and E below 2^26; the doubled area's products are below
+ * 2^24. In such groups (every group of the 1M sphere but a few) the
+ * centres' tests take all LANES lanes in one step of 32-bit lanes
+ * instead of two halves of 64-bit ones. Lanes whose box is empty can
+ * hold anything: their values wrap (unsigned) and are never read. */
+#define NEAR_EXTENT (1 << 12)
+
+/* E of edge k at (x, y), 32-bit (see NEAR_EXTENT): not_top_left is -1
+ * where the edge is neither top nor left (bias 1), 0 where it is. */
+LANES_INLINE vi32 edge_near(vi32 a, vi32 b, vi32 not_top_left, vi32 from_x, vi32 from_y, vi32 x,
+                            vi32 y)
+{
+    return (vi32)((vu32)a * (vu32)(x - from_x) + (vu32)b * (vu32)(y - from_y) +
+                  (vu32)not_top_left);
+}
+
+/* covered_half's test in one step of 32-bit lanes, one sample a pixel
+ * (its centre), for the lanes of testing. */
+LANES_INLINE unsigned covered_near(unsigned testing, vi32 min_x, vi32 min_y, vi32 box_width,
+                                   vi32 box_pixels, const vi32 a[3], const vi32 b[3],
+                                   const vi32 not_top_left[3], const vi32 from_x[3],
+                                   const vi32 from_y[3])
+{
+    vi32 column = splat32(0), row = splat32(0), visited = splat32(0);
+    unsigned covered = 0, left = testing;
+    while (left != 0) {
+        const vi32 centre_x = ((min_x + column) << LUZ_SUBPIXEL_BITS) + LUZ_SUBPIXEL_ONE / 2;
+        const vi32 centre_y = ((min_y + row) << LUZ_SUBPIXEL_BITS) + LUZ_SUBPIXEL_ONE / 2;
+        vi32 any = splat32(0);
+        for (int k = 0; k < 3; k++)
+            any |= edge_near(a[k], b[k], not_top_left[k], from_x[k], from_y[k], centre_x,
+                             centre_y);
+        const unsigned inside = left & ~lane_bits(any < 0);
+        covered |= inside;
+        visited += 1;
+        left &= ~inside & lane_bits(visited < box_pixels);   /* at most 16 where tested */
+        column += 1;
+        const vi32 wrap = column == box_width;
+        column = select32(wrap, splat32(0), column);
+        row -= wrap;   /* wrap is -1 where a row ends */
+    }
+    return covered;
+}
+
+/* centres_inside_half's four centres in one step of 32-bit lanes. */
+LANES_INLINE void centres_inside_near(vi32 min_x, vi32 min_y, const vi32 a[3], const vi32 b[3],
+                                      const vi32 not_top_left[3], const vi32 from_x[3],
+                                      const vi32 from_y[3], unsigned inside[4])
+{
+    const vi32 centre_x = (min_x << LUZ_SUBPIXEL_BITS) + LUZ_SUBPIXEL_ONE / 2;
+    const vi32 centre_y = (min_y << LUZ_SUBPIXEL_BITS) + LUZ_SUBPIXEL_ONE / 2;
+    vi32 any[4] = {splat32(0), splat32(0), splat32(0), splat32(0)};
+    for (int k = 0; k < 3; k++) {
+        const vi32 e00 =
+            edge_near(a[k], b[k], not_top_left[k], from_x[k], from_y[k], centre_x, centre_y);
+        const vi32 step_x = (vi32)((vu32)a[k] << LUZ_SUBPIXEL_BITS);
+        const vi32 step_y = (vi32)((vu32)b[k] << LUZ_SUBPIXEL_BITS);
+        const vi32 e10 = (vi32)((vu32)e00 + (vu32)step_x);
+        any[0] |= e00;
+        any[1] |= e10;
+        any[2] |= (vi32)((vu32)e00 + (vu32)step_y);
+        any[3] |= (vi32)((vu32)e10 + (vu32)step_y);
+    }
+    for (int i = 0; i < 4; i++) inside[i] = ~lane_bits(any[i] < 0) & ((1u << LANES) - 1);
+}
+
 /* The corners' vertex indices (corner[k]) and snapped positions of a
  * group of LANES triangles. */
 typedef struct group_corners {
@@ -186,14 +262,14 @@ LANES_INLINE void setup_group(const group_corners *corners, const luz_draw_trans
      * inside, as setup's (screen_lanes.c). */
     const vi32 low = splat32(luz_sample_reach_low(samples));
     const vi32 high = splat32(luz_sample_reach_high(samples)), zero = splat32(0);
-    const vi32 min_x = max32(-((high - min32(fx[0], min32(fx[1], fx[2]))) >> LUZ_SUBPIXEL_BITS),
-                             zero);
-    const vi32 min_y = max32(-((high - min32(fy[0], min32(fy[1], fy[2]))) >> LUZ_SUBPIXEL_BITS),
-                             zero);
-    const vi32 max_x = min32((max32(fx[0], max32(fx[1], fx[2])) - low) >> LUZ_SUBPIXEL_BITS,
-                             splat32(width - 1));
-    const vi32 max_y = min32((max32(fy[0], max32(fy[1], fy[2])) - low) >> LUZ_SUBPIXEL_BITS,
-                             splat32(height - 1));
+    const vi32 lowest_x = min32(fx[0], min32(fx[1], fx[2]));
+    const vi32 lowest_y = min32(fy[0], min32(fy[1], fy[2]));
+    const vi32 highest_x = max32(fx[0], max32(fx[1], fx[2]));
+    const vi32 highest_y = max32(fy[0], max32(fy[1], fy[2]));
+    const vi32 min_x = max32(-((high - lowest_x) >> LUZ_SUBPIXEL_BITS), zero);
+    const vi32 min_y = max32(-((high - lowest_y) >> LUZ_SUBPIXEL_BITS), zero);
+    const vi32 max_x = min32((highest_x - low) >> LUZ_SUBPIXEL_BITS, splat32(width - 1));
+    const vi32 max_y = min32((highest_y - low) >> LUZ_SUBPIXEL_BITS, splat32(height - 1));
     const unsigned empty = lane_bits((min_x > max_x) | (min_y > max_y));
     /* A box of up to LUZ_SETUP_SMALL_BOX_PIXELS but more than 2 x 2: its
      * centres are tested (covered_half). (An empty box's sizes may be 0
@@ -217,6 +293,12 @@ LANES_INLINE void setup_group(const group_corners *corners, const luz_draw_trans
         edge_b[k] = -dx;
         top_or_left[k] = ((dy == 0) & (dx < 0)) | (dy > 0);
     }
+    /* One sample a pixel, every lane's corners near each other: the
+     * area and the centres' tests in 32-bit lanes (NEAR_EXTENT). (Four
+     * samples keep the 64-bit tests.) */
+    const bool near = samples == 1 &&
+                      lane_bits((highest_x - lowest_x < NEAR_EXTENT) &
+                                (highest_y - lowest_y < NEAR_EXTENT)) == (1u << LANES) - 1;
 
     /* The vertex stage and steps 1-2 again, per corner, from the mesh. */
     vf32 varying[3][8];
@@ -256,10 +338,8 @@ LANES_INLINE void setup_group(const group_corners *corners, const luz_draw_trans
             vf64 window_x = (x_ndc + 1.0) * 0.5 * (double)width;
             vf64 window_y = (1.0 - y_ndc) * 0.5 * (double)height;
             const double limit = LUZ_COORDINATE_LIMIT / LUZ_SUBPIXEL_ONE;
-            window_x = selectd(window_x > limit, splatd(limit), window_x);
-            window_x = selectd(window_x < -limit, splatd(-limit), window_x);
-            window_y = selectd(window_y > limit, splatd(limit), window_y);
-            window_y = selectd(window_y < -limit, splatd(-limit), window_y);
+            window_x = clamp_to_limit(window_x, limit);
+            window_y = clamp_to_limit(window_y, limit);
             x[k][h] = window_x;
             y[k][h] = window_y;
             depth[k][h] = (widen_half_float(clip[2], h) * inverse_w + 1.0) * 0.5;
@@ -272,6 +352,18 @@ LANES_INLINE void setup_group(const group_corners *corners, const luz_draw_trans
      * the snapped vertex 0. */
     unsigned back = 0, solvable = 0, covered = 0;
     unsigned centre_inside[4] = {0, 0, 0, 0};   /* narrow_to_one_centre's */
+    if (near) {
+        /* area <= 0 where -area is not negative (as below) */
+        back = lane_bits((fx[1] - fx[0]) * (fy[2] - fy[0]) - (fy[1] - fy[0]) * (fx[2] - fx[0]) >=
+                         0);
+        const vi32 from_x[3] = {fx[1], fx[2], fx[0]}, from_y[3] = {fy[1], fy[2], fy[0]};
+        const vi32 not_top_left[3] = {~top_or_left[0], ~top_or_left[1], ~top_or_left[2]};
+        covered = covered_near(~back & ~empty & small & ~up_to_2x2 & ((1u << LANES) - 1), min_x,
+                               min_y, box_width, box_pixels, edge_a, edge_b, not_top_left,
+                               from_x, from_y);
+        centres_inside_near(min_x, min_y, edge_a, edge_b, not_top_left, from_x, from_y,
+                            centre_inside);
+    }
     vi64 c[3][2];
     vf64 x10[2], x20[2], y10[2], y20[2], inverse_determinant[2], rx[2], ry[2], rx0[2], ry0[2];
 #pragma GCC unroll 2
@@ -279,10 +371,11 @@ LANES_INLINE void setup_group(const group_corners *corners, const luz_draw_trans
         vi64 wx[3], wy[3];
         for (int k = 0; k < 3; k++) wx[k] = widen_half(fx[k], h), wy[k] = widen_half(fy[k], h);
         /* area <= 0 where -area is not negative */
-        back |= (~negative_bits64(multiply_wide(wx[1] - wx[0], wy[2] - wy[0]) -
-                                  multiply_wide(wy[1] - wy[0], wx[2] - wx[0])) &
-                 ((1u << HALF) - 1))
-                << (h * HALF);
+        if (!near)
+            back |= (~negative_bits64(multiply_wide(wx[1] - wx[0], wy[2] - wy[0]) -
+                                      multiply_wide(wy[1] - wy[0], wx[2] - wx[0])) &
+                     ((1u << HALF) - 1))
+                    << (h * HALF);
         vi64 a[3], b[3], c_half[3];
         for (int k = 0; k < 3; k++) {
             const vi64 dx = wx[to[k]] - wx[from[k]], dy = wy[to[k]] - wy[from[k]];
@@ -292,17 +385,19 @@ LANES_INLINE void setup_group(const group_corners *corners, const luz_draw_trans
                         (~widen_half(top_or_left[k], h) & 1);
             c[k][h] = c_half[k];
         }
-        const unsigned to_test = (~back & ~empty & small & ~up_to_2x2) >> (h * HALF) &
-                                 ((1u << HALF) - 1);
-        covered |= covered_half(to_test, widen_half(min_x, h), widen_half(min_y, h),
-                                widen_half(box_width, h), widen_half(box_height, h), a, b,
-                                c_half, samples)
-                   << (h * HALF);
-        if (samples == 1) {
-            unsigned inside[4];
-            centres_inside_half(widen_half(min_x, h), widen_half(min_y, h), a, b, c_half,
-                                inside);
-            for (int i = 0; i < 4; i++) centre_inside[i] |= inside[i] << (h * HALF);
+        if (!near) {
+            const unsigned to_test = (~back & ~empty & small & ~up_to_2x2) >> (h * HALF) &
+                                     ((1u << HALF) - 1);
+            covered |= covered_half(to_test, widen_half(min_x, h), widen_half(min_y, h),
+                                    widen_half(box_width, h), widen_half(box_height, h), a, b,
+                                    c_half, samples)
+                       << (h * HALF);
+            if (samples == 1) {
+                unsigned inside[4];
+                centres_inside_half(widen_half(min_x, h), widen_half(min_y, h), a, b, c_half,
+                                    inside);
+                for (int i = 0; i < 4; i++) centre_inside[i] |= inside[i] << (h * HALF);
+            }
         }
 
         x10[h] = x[1][h] - x[0][h], x20[h] = x[2][h] - x[0][h];

@@ -110,10 +110,8 @@ LANES_INLINE void positions(const luz_vertex *vertices, const float *model,
         vf64 window_x = (x_ndc + 1.0) * 0.5 * width;
         vf64 window_y = (1.0 - y_ndc) * 0.5 * height;
         const double limit = LUZ_COORDINATE_LIMIT / LUZ_SUBPIXEL_ONE;
-        window_x = selectd(window_x > limit, splatd(limit), window_x);
-        window_x = selectd(window_x < -limit, splatd(-limit), window_x);
-        window_y = selectd(window_y > limit, splatd(limit), window_y);
-        window_y = selectd(window_y < -limit, splatd(-limit), window_y);
+        window_x = clamp_to_limit(window_x, limit);
+        window_y = clamp_to_limit(window_y, limit);
         snapped_x_half[h] =
             __builtin_convertvector(round_to_even(window_x * (double)LUZ_SUBPIXEL_ONE), half_ints);
         snapped_y_half[h] =
