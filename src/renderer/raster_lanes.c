@@ -142,6 +142,27 @@ static inline __attribute__((always_inline)) lane_constants make_lane_constants(
     return lanes;
 }
 
+typedef uint32_t group_u32 __attribute__((vector_size(GROUP_LANES * sizeof(uint32_t))));
+
+/* One group's depth tests: the covered lanes whose z is LESS than the
+ * buffers' take z and the id, the others keep theirs. */
+static inline __attribute__((always_inline)) void
+test_group(float *depth_at, uint32_t *visibility_at, group_i32 covered, group_f32 z, group_i32 id)
+{
+    group_f32 old_depth;
+    group_i32 old_id;
+    memcpy(&old_depth, depth_at, sizeof old_depth);
+    memcpy(&old_id, visibility_at, sizeof old_id);
+    const group_i32 pass = covered & (z < old_depth);    /* GL_LESS, per sample */
+    group_i32 z_bits, old_bits;
+    memcpy(&z_bits, &z, sizeof z_bits);
+    memcpy(&old_bits, &old_depth, sizeof old_bits);
+    const group_i32 new_bits = (pass & z_bits) | (~pass & old_bits);
+    const group_i32 new_id = (pass & id) | (~pass & old_id);
+    memcpy(depth_at, &new_bits, sizeof new_bits);
+    memcpy(visibility_at, &new_id, sizeof new_id);
+}
+
 /* A triangle's rows [y_begin, y_end): its samples' depth tests, each
  * lane's count of them taken from `counted` (minus one a test), which is
  * returned. */
@@ -167,75 +188,95 @@ raster_groups_of(const lane_constants *lanes, const luz_triangle *triangle, uint
     const group_f32 depth_dy = (group_f32){0} + depth.dy;
     const group_f32 depth_value = (group_f32){0} + depth.value;
     const group_i32 id = (group_i32){0} + (int32_t)triangle_id;
+    const size_t row_stride = (size_t)width * LUZ_MAX_SAMPLES;
+    if (small_edges) {
+        /* The box's groups column by column, each down its rows: what a
+         * column keeps (its lanes' x, the box's lanes, the depth's x term,
+         * luz_raster_sample_depth's depth_dx (x + sx - reference_x)) is
+         * worked out once, and each edge's E moves by 256 b a row. That is
+         * exact: every E the lanes take fits 32 bits (small_edges), so the
+         * difference of two does too, and the steps are made in unsigned
+         * lanes, modulo 2^32, which give each row's E itself. The samples
+         * are independent, so the order changes no bit. */
+        for (int x0 = triangle->min_x; x0 <= triangle->max_x; x0 += GROUP_PIXELS) {
+            /* The group's first pixel, moved left at the row's end. */
+            const int at = x0 + GROUP_PIXELS <= width ? x0 : width - GROUP_PIXELS;
+            const group_i32 x = (group_i32){0} + at + lane_pixel;
+            const group_i32 in_box =
+                (x >= (group_i32){0} + x0) & (x <= (group_i32){0} + triangle->max_x);
+            const group_f32 x_float = __builtin_convertvector(x, group_f32);
+            const group_f32 depth_x = depth_dx * ((x_float + lane_offset_x) - reference_x);
+            group_u32 e[3];
+            uint32_t step[3];
+            for (int k = 0; k < 3; k++) {
+                const luz_edge *edge = &triangle->edges[k];
+                const int32_t base = (int32_t)((int64_t)edge->a * ((int64_t)at * LUZ_SUBPIXEL_ONE) +
+                                               (int64_t)edge->b * ((int64_t)y_begin * LUZ_SUBPIXEL_ONE) +
+                                               edge->c);
+                e[k] = (group_u32)(base + edge_at_lane[k]);
+                step[k] = (uint32_t)((int64_t)edge->b * LUZ_SUBPIXEL_ONE);
+            }
+            float *depth_at = buffers->depth + (size_t)y_begin * row_stride + (size_t)at * LUZ_MAX_SAMPLES;
+            uint32_t *visibility_at =
+                buffers->visibility + (size_t)y_begin * row_stride + (size_t)at * LUZ_MAX_SAMPLES;
+            for (int y = y_begin; y < y_end; y++) {
+                /* E >= 0 for all three. */
+                const group_i32 covered = in_box & ((group_i32)(e[0] | e[1] | e[2]) >= (group_i32){0});
+                /* luz_raster_sample_row_depth and luz_raster_sample_depth,
+                 * lane by lane. */
+                const group_f32 row_depth =
+                    depth_value + depth_dy * (((group_f32){0} + (float)y + lane_offset_y) - reference_y);
+                test_group(depth_at, visibility_at, covered, row_depth + depth_x, id);
+                counted += covered;
+                for (int k = 0; k < 3; k++) e[k] += step[k];
+                depth_at += row_stride;
+                visibility_at += row_stride;
+            }
+        }
+        return counted;
+    }
     for (int y = y_begin; y < y_end; y++) {
         /* The row's pixels to visit, and each lane's sample's span. */
-        int first_x = triangle->min_x, last_x = triangle->max_x;
-        group_i32 span_first = {0}, span_last = {0};
-        if (!small_edges) {
-            int32_t first[LUZ_MAX_SAMPLES], last[LUZ_MAX_SAMPLES];
-            first_x = triangle->max_x + 1;
-            last_x = triangle->min_x - 1;
-            for (int s = 0; s < LUZ_MAX_SAMPLES; s++) {
-                int64_t span_begin, span_end;
-                luz_raster_row_span_at(triangle, y, luz_raster_is_small(triangle),
-                                       luz_sample_offset_of(LUZ_MAX_SAMPLES, s), &span_begin,
-                                       &span_end);
-                /* Within the box (luz_raster_row_span_at narrows it), or
-                 * empty: each fits an int. */
-                if (span_begin > span_end) {
-                    first[s] = triangle->max_x + 1;
-                    last[s] = triangle->max_x;
-                    continue;
-                }
-                first[s] = (int32_t)span_begin;
-                last[s] = (int32_t)span_end;
-                if (first[s] < first_x) first_x = first[s];
-                if (last[s] > last_x) last_x = last[s];
+        int32_t first[LUZ_MAX_SAMPLES], last[LUZ_MAX_SAMPLES];
+        int first_x = triangle->max_x + 1, last_x = triangle->min_x - 1;
+        for (int s = 0; s < LUZ_MAX_SAMPLES; s++) {
+            int64_t span_begin, span_end;
+            luz_raster_row_span_at(triangle, y, small, luz_sample_offset_of(LUZ_MAX_SAMPLES, s),
+                                   &span_begin, &span_end);
+            /* Within the box (luz_raster_row_span_at narrows it), or
+             * empty: each fits an int. */
+            if (span_begin > span_end) {
+                first[s] = triangle->max_x + 1;
+                last[s] = triangle->max_x;
+                continue;
             }
-            for (int l = 0; l < GROUP_LANES; l++) {
-                span_first[l] = first[l % LUZ_MAX_SAMPLES];
-                span_last[l] = last[l % LUZ_MAX_SAMPLES];
-            }
-            if (first_x > last_x) continue;
+            first[s] = (int32_t)span_begin;
+            last[s] = (int32_t)span_end;
+            if (first[s] < first_x) first_x = first[s];
+            if (last[s] > last_x) last_x = last[s];
+        }
+        if (first_x > last_x) continue;
+        group_i32 span_first, span_last;
+        for (int l = 0; l < GROUP_LANES; l++) {
+            span_first[l] = first[l % LUZ_MAX_SAMPLES];
+            span_last[l] = last[l % LUZ_MAX_SAMPLES];
         }
         /* luz_raster_sample_row_depth, lane by lane. */
         const group_f32 row_depth =
             depth_value + depth_dy * (((group_f32){0} + (float)y + lane_offset_y) - reference_y);
-        float *depth_row = buffers->depth + (size_t)y * (size_t)width * LUZ_MAX_SAMPLES;
-        uint32_t *visibility_row = buffers->visibility + (size_t)y * (size_t)width * LUZ_MAX_SAMPLES;
+        float *depth_row = buffers->depth + (size_t)y * row_stride;
+        uint32_t *visibility_row = buffers->visibility + (size_t)y * row_stride;
         for (int x0 = first_x; x0 <= last_x; x0 += GROUP_PIXELS) {
             /* The group's first pixel, moved left at the row's end. */
             const int at = x0 + GROUP_PIXELS <= width ? x0 : width - GROUP_PIXELS;
             const group_i32 x = (group_i32){0} + at + lane_pixel;
-            group_i32 covered = (x >= (group_i32){0} + x0) & (x <= (group_i32){0} + last_x);
-            if (small_edges) {
-                group_i32 any_outside = {0};
-                for (int k = 0; k < 3; k++) {
-                    const luz_edge *edge = &triangle->edges[k];
-                    const int32_t base = (int32_t)(
-                        (int64_t)edge->a * ((int64_t)at * LUZ_SUBPIXEL_ONE) +
-                        (int64_t)edge->b * ((int64_t)y * LUZ_SUBPIXEL_ONE) + edge->c);
-                    any_outside |= base + edge_at_lane[k];
-                }
-                covered &= any_outside >= (group_i32){0};    /* E >= 0 for all three */
-            } else {
-                covered &= (x >= span_first) & (x <= span_last);
-            }
+            const group_i32 covered = (x >= (group_i32){0} + x0) & (x <= (group_i32){0} + last_x) &
+                                      (x >= span_first) & (x <= span_last);
             /* luz_raster_sample_depth, lane by lane. */
-            group_f32 x_float = __builtin_convertvector(x, group_f32);
+            const group_f32 x_float = __builtin_convertvector(x, group_f32);
             const group_f32 z = row_depth + depth_dx * ((x_float + lane_offset_x) - reference_x);
-            group_f32 old_depth;
-            group_i32 old_id;
-            memcpy(&old_depth, depth_row + (size_t)at * LUZ_MAX_SAMPLES, sizeof old_depth);
-            memcpy(&old_id, visibility_row + (size_t)at * LUZ_MAX_SAMPLES, sizeof old_id);
-            const group_i32 pass = covered & (z < old_depth);    /* GL_LESS, per sample */
-            group_i32 z_bits, old_bits;
-            memcpy(&z_bits, &z, sizeof z_bits);
-            memcpy(&old_bits, &old_depth, sizeof old_bits);
-            const group_i32 new_bits = (pass & z_bits) | (~pass & old_bits);
-            const group_i32 new_id = (pass & id) | (~pass & old_id);
-            memcpy(depth_row + (size_t)at * LUZ_MAX_SAMPLES, &new_bits, sizeof new_bits);
-            memcpy(visibility_row + (size_t)at * LUZ_MAX_SAMPLES, &new_id, sizeof new_id);
+            test_group(depth_row + (size_t)at * LUZ_MAX_SAMPLES,
+                       visibility_row + (size_t)at * LUZ_MAX_SAMPLES, covered, z, id);
             counted += covered;
         }
     }

@@ -155,9 +155,13 @@ make_plane_eight(__m512d x10, __m512d x20, __m512d y10, __m512d y20, __m512d inv
  * those whose box, (min_x, min_y) and box_width x box_height pixels, has a
  * sample where the three edges' E = a X + b Y + c >= 0. The pixels are
  * visited in every lane at once, column by column and row by row from
- * each box's corner, until each lane tested has found one or run out
- * (|a|, |b| < 2^26 and samples below 2^23: each product fits 32 x 32 ->
- * 64 bits, as setup.c's proof has it). */
+ * each box's corner, until each lane tested has found one or run out.
+ * E at each sample of the box's first pixel is worked out once (|a|, |b| <
+ * 2^26 and samples below 2^23: each product fits 32 x 32 -> 64 bits, as
+ * setup.c's proof has it); a pixel's is that plus 256 a its column and
+ * 256 b its row, which the edge's two terms keep, the same for every
+ * sample (exact: each |E| below 2^52). The three edges' E are or-ed, so
+ * one sign test a sample says whether all three pass. */
 static inline __attribute__((always_inline)) __mmask8
 covered_lanes(__mmask8 testing, __m512i min_x, __m512i min_y, __m512i box_width,
               __m512i box_height, const __m512i a[3], const __m512i b[3], const __m512i c[3],
@@ -165,34 +169,49 @@ covered_lanes(__mmask8 testing, __m512i min_x, __m512i min_y, __m512i box_width,
 {
     const __m512i one = _mm512_set1_epi64(1), zero = _mm512_setzero_si512();
     const __m512i centres = _mm512_mullo_epi64(box_width, box_height);
-    __m512i column = zero, row = zero, visited = zero;
+    const __m512i corner_x = _mm512_slli_epi64(min_x, LUZ_SUBPIXEL_BITS);
+    const __m512i corner_y = _mm512_slli_epi64(min_y, LUZ_SUBPIXEL_BITS);
+    __m512i first[LUZ_MAX_SAMPLES][3], step_x[3], step_y[3], column_term[3], row_term[3];
+    for (int s = 0; s < samples; s++) {
+        const luz_sample_offset offset = luz_sample_offset_of(samples, s);
+        const __m512i sample_x = _mm512_add_epi64(corner_x, _mm512_set1_epi64(offset.x));
+        const __m512i sample_y = _mm512_add_epi64(corner_y, _mm512_set1_epi64(offset.y));
+        for (int k = 0; k < 3; k++)
+            first[s][k] = _mm512_add_epi64(_mm512_add_epi64(_mm512_mul_epi32(a[k], sample_x),
+                                                            _mm512_mul_epi32(b[k], sample_y)),
+                                           c[k]);
+    }
+    for (int k = 0; k < 3; k++) {
+        step_x[k] = _mm512_slli_epi64(a[k], LUZ_SUBPIXEL_BITS);
+        step_y[k] = _mm512_slli_epi64(b[k], LUZ_SUBPIXEL_BITS);
+        column_term[k] = zero;
+        row_term[k] = zero;
+    }
+    __m512i column = zero, visited = zero;
     __mmask8 covered = 0, left = testing;
     while (left != 0) {
-        const __m512i corner_x =
-            _mm512_slli_epi64(_mm512_add_epi64(min_x, column), LUZ_SUBPIXEL_BITS);
-        const __m512i corner_y =
-            _mm512_slli_epi64(_mm512_add_epi64(min_y, row), LUZ_SUBPIXEL_BITS);
+        __m512i offset[3];
+        for (int k = 0; k < 3; k++) offset[k] = _mm512_add_epi64(column_term[k], row_term[k]);
         __mmask8 inside_any = 0;
         for (int s = 0; s < samples; s++) {
-            const luz_sample_offset offset = luz_sample_offset_of(samples, s);
-            const __m512i sample_x = _mm512_add_epi64(corner_x, _mm512_set1_epi64(offset.x));
-            const __m512i sample_y = _mm512_add_epi64(corner_y, _mm512_set1_epi64(offset.y));
-            __mmask8 inside = left;
-            for (int k = 0; k < 3; k++)
-                inside &= _mm512_cmpge_epi64_mask(
-                    _mm512_add_epi64(_mm512_add_epi64(_mm512_mul_epi32(a[k], sample_x),
-                                                      _mm512_mul_epi32(b[k], sample_y)),
-                                     c[k]),
-                    zero);
-            inside_any |= inside;
+            const __m512i any = _mm512_or_si512(
+                _mm512_or_si512(_mm512_add_epi64(first[s][0], offset[0]),
+                                _mm512_add_epi64(first[s][1], offset[1])),
+                _mm512_add_epi64(first[s][2], offset[2]));
+            inside_any |= _mm512_cmpge_epi64_mask(any, zero);
         }
+        inside_any &= left;
         covered |= inside_any;
         visited = _mm512_add_epi64(visited, one);
         left &= (__mmask8)~inside_any & _mm512_cmplt_epi64_mask(visited, centres);
         column = _mm512_add_epi64(column, one);
         const __mmask8 wrap = _mm512_cmpeq_epi64_mask(column, box_width);
         column = _mm512_mask_mov_epi64(column, wrap, zero);
-        row = _mm512_mask_add_epi64(row, wrap, row, one);
+        for (int k = 0; k < 3; k++) {
+            column_term[k] = _mm512_mask_mov_epi64(_mm512_add_epi64(column_term[k], step_x[k]),
+                                                   wrap, zero);
+            row_term[k] = _mm512_mask_add_epi64(row_term[k], wrap, row_term[k], step_y[k]);
+        }
     }
     return covered;
 }

@@ -109,29 +109,41 @@ LANES_INLINE void make_plane_half(vf64 x10, vf64 x20, vf64 y10, vf64 y20,
 /* setup.c's covers_a_centre (covers_a_sample for `samples` samples a
  * pixel, luz_sample_offset_of) for the lanes of half h in testing: those
  * whose box, (min_x, min_y) and box_width x box_height pixels, has a
- * sample where the three edges' E = a X + b Y + c >= 0 (|a|, |b| < 2^26,
- * samples below 2^23: each product exact in 64 bits). */
+ * sample where the three edges' E = a X + b Y + c >= 0. E at each sample
+ * of the box's first pixel is worked out once (|a|, |b| < 2^26, samples
+ * below 2^23: each product exact in 64 bits); a pixel's is that plus
+ * 256 a its column and 256 b its row, which the edge's two terms keep,
+ * the same for every sample (exact: each |E| below 2^52). The three
+ * edges' E are or-ed, so one sign a sample says whether all three pass. */
 LANES_INLINE unsigned covered_half(unsigned testing, vi64 min_x, vi64 min_y, vi64 box_width,
                                    vi64 box_height, const vi64 a[3], const vi64 b[3],
                                    const vi64 c[3], int samples)
 {
     const vi64 centres = multiply_wide(box_width, box_height);   /* at most 16 */
-    vi64 column = splat64(0), row = splat64(0), visited = splat64(0);
+    const vi64 corner_x = min_x << LUZ_SUBPIXEL_BITS, corner_y = min_y << LUZ_SUBPIXEL_BITS;
+    vi64 first[LUZ_MAX_SAMPLES][3], step_x[3], step_y[3], column_term[3], row_term[3];
+    for (int s = 0; s < samples; s++) {
+        const luz_sample_offset offset = luz_sample_offset_of(samples, s);
+        const vi64 sample_x = corner_x + offset.x, sample_y = corner_y + offset.y;
+        for (int k = 0; k < 3; k++)
+            first[s][k] = multiply_wide(a[k], sample_x) + multiply_wide(b[k], sample_y) + c[k];
+    }
+    for (int k = 0; k < 3; k++) {
+        step_x[k] = multiply_wide(a[k], splat64(LUZ_SUBPIXEL_ONE));
+        step_y[k] = multiply_wide(b[k], splat64(LUZ_SUBPIXEL_ONE));
+        column_term[k] = splat64(0);
+        row_term[k] = splat64(0);
+    }
+    vi64 column = splat64(0), visited = splat64(0);
     unsigned covered = 0, left = testing;
     while (left != 0) {
-        const vi64 corner_x = (min_x + column) << LUZ_SUBPIXEL_BITS;
-        const vi64 corner_y = (min_y + row) << LUZ_SUBPIXEL_BITS;
+        vi64 offset[3];
+        for (int k = 0; k < 3; k++) offset[k] = column_term[k] + row_term[k];
         unsigned inside_any = 0;
-        for (int s = 0; s < samples; s++) {
-            const luz_sample_offset offset = luz_sample_offset_of(samples, s);
-            const vi64 sample_x = corner_x + offset.x, sample_y = corner_y + offset.y;
-            unsigned inside = left;
-            for (int k = 0; k < 3; k++)
-                inside &= ~negative_bits64(multiply_wide(a[k], sample_x) +
-                                           multiply_wide(b[k], sample_y) + c[k]);
-            inside_any |= inside;
-        }
-        const unsigned inside = inside_any;
+        for (int s = 0; s < samples; s++)
+            inside_any |= ~negative_bits64((first[s][0] + offset[0]) | (first[s][1] + offset[1]) |
+                                           (first[s][2] + offset[2]));
+        const unsigned inside = inside_any & left;
         covered |= inside;
         visited += 1;
         left &= ~inside & negative_bits64(visited - centres);
@@ -140,7 +152,10 @@ LANES_INLINE unsigned covered_half(unsigned testing, vi64 min_x, vi64 min_y, vi6
          * lanes tested; the others' are never read). */
         const vi64 wrap = ~negative_mask64(column - box_width);
         column = select64(wrap, splat64(0), column);
-        row -= wrap;   /* wrap is -1 where a row ends */
+        for (int k = 0; k < 3; k++) {
+            column_term[k] = select64(wrap, splat64(0), column_term[k] + step_x[k]);
+            row_term[k] += wrap & step_y[k];   /* wrap is -1 where a row ends */
+        }
     }
     return covered;
 }
