@@ -43,7 +43,11 @@
  *     separate compilations, not target attributes on one function,
  *     because a vector must be as wide as the registers: GCC 12 compiles
  *     32-byte vector comparisons for SSE2 one element at a time, which
- *     made an 8-lane baseline no faster than the reference.
+ *     made an 8-lane baseline no faster than the reference. GCC 12.2
+ *     miscompiles the scalar variant's one-lane masks at -O2 (a mask
+ *     folded to 0: trilinear's second level lost), so meson.build
+ *     compiles it with -fno-tree-vrp (docs/platforms.md, "A GCC bug in
+ *     one-lane vectors").
  *
  * Agreement with the reference. Each lane performs the IEEE operations
  * that fragment.c, texture.c and shade.h perform for its pixel, in the same
@@ -1167,8 +1171,10 @@ uint64_t VARIANT_ROWS(const luz_uniforms *uniforms, const luz_draw *draws,
              * their queue is shaded, after this store. */
             if (count == LANES)
                 memcpy(out, &pixels, sizeof pixels);
+#if LANES > 1   /* with one lane no packet is short */
             else
                 memcpy(out, &pixels, (size_t)count * 4);
+#endif
             if (queued != 0)
                 queue_lanes(&u, draws, by_id, framebuffer->colour, queues, queued, ids, NULL, x,
                             y, (uint32_t)((size_t)y * width + (size_t)x));
