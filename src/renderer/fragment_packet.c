@@ -1106,6 +1106,34 @@ INLINE bool one_draw_packet(const luz_triangle *const *by_id, vuint ids, unsigne
     return one_draw;
 }
 
+/* A packet of the rows or of the list, its lanes of `covered` (not none)
+ * those of triangles `ids`, at centres (centre_x, centre_y): when they
+ * are more than half the packet and all one draw's (one_draw_packet),
+ * shaded where they lie into those lanes of *pixels, and no lane is left
+ * to queue (0); else *pixels is left as it is and every lane of covered
+ * is returned, for its draw's queue. */
+INLINE unsigned shade_here_or_queue(const packet_uniforms *u, const luz_draw *draws,
+                                    const luz_triangle *const *by_id, vuint ids,
+                                    unsigned covered, vfloat centre_x, vfloat centre_y,
+                                    vuint *pixels)
+{
+    const uint32_t first_id = ids[__builtin_ctz(covered)];
+    const luz_triangle *triangle = by_id[first_id];
+    const unsigned first_triangle = lane_bits((vint)(ids == first_id)) & covered;
+    if (!one_draw_packet(by_id, ids, covered, first_triangle, triangle->draw_index))
+        return covered;
+    lane_triangles triangles;
+    if (first_triangle == covered)
+        one_triangle(&triangles, triangle, centre_x, centre_y);
+    else
+        gather_triangles(&triangles, by_id, ids, covered, triangle, centre_x, centre_y);
+    const vint mine = (vint)(ids != 0u);
+    const vuint shade =
+        shade_lanes(u, &draws[triangle->draw_index].material, &triangles, mine, covered);
+    *pixels = (vuint)select_int(mine, (vint)shade, (vint)*pixels);
+    return 0;
+}
+
 /* The packet loop of this variant. */
 uint64_t VARIANT_ROWS(const luz_uniforms *uniforms, const luz_draw *draws,
                       const luz_triangle *const *by_id, luz_framebuffer *framebuffer,
@@ -1144,27 +1172,10 @@ uint64_t VARIANT_ROWS(const luz_uniforms *uniforms, const luz_draw *draws,
             unsigned queued = 0;
             if (covered != 0) {
                 shaded += (uint64_t)__builtin_popcount(covered);
-                const uint32_t first_id = ids[__builtin_ctz(covered)];
-                const luz_triangle *triangle = by_id[first_id];
-                const unsigned first_triangle = lane_bits((vint)(ids == first_id)) & covered;
-                const bool one_draw =
-                    one_draw_packet(by_id, ids, covered, first_triangle, triangle->draw_index);
-                if (one_draw) {
-                    /* Pixel centres as fragment.c computes them: (float)x + 0.5. */
-                    const vfloat centre_x = (lane_x + (float)x) + 0.5f;
-                    lane_triangles triangles;
-                    if (first_triangle == covered)
-                        one_triangle(&triangles, triangle, centre_x, splat(centre_y));
-                    else
-                        gather_triangles(&triangles, by_id, ids, covered, triangle, centre_x,
-                                         splat(centre_y));
-                    const vint mine = (vint)(ids != 0u);
-                    const vuint shade = shade_lanes(&u, &draws[triangle->draw_index].material,
-                                                    &triangles, mine, covered);
-                    pixels = (vuint)select_int(mine, (vint)shade, (vint)pixels);
-                } else {
-                    queued = covered;
-                }
+                /* Pixel centres as fragment.c computes them: (float)x + 0.5. */
+                queued = shade_here_or_queue(&u, draws, by_id, ids, covered,
+                                             (lane_x + (float)x) + 0.5f, splat(centre_y),
+                                             &pixels);
             }
             /* Lanes are in memory order, so a short packet's first count
              * lanes are its pixels. Queued lanes are written again when
@@ -1222,23 +1233,8 @@ uint64_t VARIANT_LIST(const luz_uniforms *uniforms, const luz_draw *draws,
         vuint pixels = background;
         unsigned queued = 0;
         if (covered != 0) {
-            const uint32_t first_id = ids[__builtin_ctz(covered)];
-            const luz_triangle *triangle = by_id[first_id];
-            const unsigned first_triangle = lane_bits((vint)(ids == first_id)) & covered;
-            if (one_draw_packet(by_id, ids, covered, first_triangle, triangle->draw_index)) {
-                lane_triangles triangles;
-                if (first_triangle == covered)
-                    one_triangle(&triangles, triangle, centre_x, centre_y);
-                else
-                    gather_triangles(&triangles, by_id, ids, covered, triangle, centre_x,
-                                     centre_y);
-                const vint mine = (vint)(ids != 0u);
-                const vuint shade = shade_lanes(&u, &draws[triangle->draw_index].material,
-                                                &triangles, mine, covered);
-                pixels = (vuint)select_int(mine, (vint)shade, (vint)pixels);
-            } else {
-                queued = covered;
-            }
+            queued = shade_here_or_queue(&u, draws, by_id, ids, covered, centre_x, centre_y,
+                                         &pixels);
         }
         /* Queued lanes are written again when their queue is shaded. */
         memcpy(colours + begin, &pixels, (size_t)lanes * sizeof *colours);
