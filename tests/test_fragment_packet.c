@@ -152,6 +152,21 @@ static void assert_agreement(const char *name, const luz_scene *scene,
     luz_framebuffer_destroy(expected);
 }
 
+/* Renders the scene at half the test size with every supported variant of
+ * the fast path, and asserts that each gives `expected`'s bytes. */
+static void assert_every_variant_same_bytes(const luz_scene *scene,
+                                            const luz_texture_set *texture_set,
+                                            const luz_framebuffer *expected)
+{
+    for (size_t v = 0; v < VARIANT_COUNT; v++) {
+        if (!luz_isa_available(variants[v])) continue;
+        luz_framebuffer *got = render(scene, texture_set, HALF_WIDTH, HALF_HEIGHT, 1,
+                                      (stage){false, variants[v]});
+        assert_memory_equal(got->colour, expected->colour, (size_t)HALF_WIDTH * HALF_HEIGHT * 4);
+        luz_framebuffer_destroy(got);
+    }
+}
+
 /* The number of shaded pixels whose colour differs between the reference
  * images of the scene with bilinear and with trilinear filtering: 0 when
  * every pixel is magnified (trilinear then samples level 0 alone). */
@@ -175,21 +190,29 @@ static const luz_filter filters[] = {LUZ_FILTER_NEAREST, LUZ_FILTER_BILINEAR,
                                      LUZ_FILTER_TRILINEAR};
 #define FILTER_COUNT (sizeof filters / sizeof filters[0])
 
+/* assert_agreement for the scene with each filter, the case named
+ * "<prefix> <filter>", at the full test size. */
+static void assert_agreement_each_filter(const char *prefix, luz_scene scene)
+{
+    for (size_t f = 0; f < FILTER_COUNT; f++) {
+        scene.filter = filters[f];
+        char name[64];
+        snprintf(name, sizeof name, "%s %s", prefix, luz_filter_name(filters[f]));
+        assert_agreement(name, &scene, lab_textures(), WIDTH, HEIGHT);
+    }
+}
+
 
 static void default_scene_with_each_filter(void **state)
 {
     (void)state;
     const double times[] = {0.0, 3.0, 8.0};
     for (size_t t = 0; t < sizeof times / sizeof times[0]; t++) {
-        for (size_t f = 0; f < FILTER_COUNT; f++) {
-            luz_scene scene = luz_scene_defaults();
-            scene.time_seconds = times[t];
-            scene.filter = filters[f];
-            char name[64];
-            snprintf(name, sizeof name, "default t=%g %s", times[t],
-                     luz_filter_name(filters[f]));
-            assert_agreement(name, &scene, lab_textures(), WIDTH, HEIGHT);
-        }
+        luz_scene scene = luz_scene_defaults();
+        scene.time_seconds = times[t];
+        char prefix[32];
+        snprintf(prefix, sizeof prefix, "default t=%g", times[t]);
+        assert_agreement_each_filter(prefix, scene);
     }
 }
 
@@ -224,12 +247,7 @@ static void camera_close_to_a_cube(void **state)
     assert_int_equal(minified_pixels(&scene, &shaded), 0);
     assert_int_equal(shaded, (size_t)WIDTH * HEIGHT);
 
-    for (size_t f = 0; f < FILTER_COUNT; f++) {
-        scene.filter = filters[f];
-        char name[64];
-        snprintf(name, sizeof name, "close %s", luz_filter_name(filters[f]));
-        assert_agreement(name, &scene, lab_textures(), WIDTH, HEIGHT);
-    }
+    assert_agreement_each_filter("close", scene);
 }
 
 /* 1000 cubes (SCENE.md's tiles) seen from 50 units away; those within the
@@ -249,12 +267,7 @@ static void camera_far_from_tiny_cubes(void **state)
     assert_true(shaded > 40000);
     assert_true(minified * 10 > shaded * 9);
 
-    for (size_t f = 0; f < FILTER_COUNT; f++) {
-        scene.filter = filters[f];
-        char name[64];
-        snprintf(name, sizeof name, "far %s", luz_filter_name(filters[f]));
-        assert_agreement(name, &scene, lab_textures(), WIDTH, HEIGHT);
-    }
+    assert_agreement_each_filter("far", scene);
 }
 
 /* ---- lights at the edges of their ranges ------------------------------- */
@@ -348,14 +361,7 @@ static void spot_edges_same_bytes_in_both_paths(void **state)
         print_message("spot edges, %d sample(s): %zu pixels lit, %zu shaded and dark\n",
                       samples, lit, dark);
         assert_true(lit > 1000 && dark > 1000);
-        for (size_t v = 0; v < VARIANT_COUNT; v++) {
-            if (!luz_isa_available(variants[v])) continue;
-            luz_framebuffer *got = render(&scene, &none, HALF_WIDTH, HALF_HEIGHT, 1,
-                                          (stage){false, variants[v]});
-            assert_memory_equal(got->colour, expected->colour,
-                                (size_t)HALF_WIDTH * HALF_HEIGHT * 4);
-            luz_framebuffer_destroy(got);
-        }
+        assert_every_variant_same_bytes(&scene, &none, expected);
         luz_framebuffer_destroy(expected);
     }
 }
@@ -522,14 +528,7 @@ static void output_same_bytes_in_both_paths(void **state)
                       luz_tone_map_name(outputs[o].tone_map), (double)outputs[o].exposure,
                       samples, moved.pixels - moved.identical, moved.pixels);
         assert_true((moved.pixels - moved.identical) * 3 > moved.pixels);
-        for (size_t v = 0; v < VARIANT_COUNT; v++) {
-            if (!luz_isa_available(variants[v])) continue;
-            luz_framebuffer *got = render(&scene, &none, HALF_WIDTH, HALF_HEIGHT, 1,
-                                          (stage){false, variants[v]});
-            assert_memory_equal(got->colour, expected->colour,
-                                (size_t)HALF_WIDTH * HALF_HEIGHT * 4);
-            luz_framebuffer_destroy(got);
-        }
+        assert_every_variant_same_bytes(&scene, &none, expected);
         luz_framebuffer_destroy(expected);
 
         char name[64];
