@@ -29,13 +29,31 @@ typedef struct window_point {
     double x, y;
 } window_point;
 
-static luz_clip_vertex vertex_at(window_point p, float z_ndc)
+/* The clip-space vertex (w = 1) that lands at window point p of a
+ * width x height framebuffer, at depth z_ndc. */
+static luz_clip_vertex vertex_in(window_point p, float z_ndc, int width, int height)
 {
     luz_clip_vertex vertex;
     memset(&vertex, 0, sizeof vertex);
-    vertex.position = (luz_vec4){(float)(2.0 * p.x / SIZE - 1.0), (float)(1.0 - 2.0 * p.y / SIZE),
-                                 z_ndc, 1.0f};
+    vertex.position = (luz_vec4){(float)(2.0 * p.x / width - 1.0),
+                                 (float)(1.0 - 2.0 * p.y / height), z_ndc, 1.0f};
     return vertex;
+}
+
+static luz_clip_vertex vertex_at(window_point p, float z_ndc)
+{
+    return vertex_in(p, z_ndc, SIZE, SIZE);
+}
+
+/* Four samples' setup of the triangle v, or of its corners the other way
+ * round where v is a back face: whether either is visible. */
+static bool set_up_either_way(const luz_clip_vertex v[3], int width, int height,
+                              luz_triangle *out)
+{
+    return luz_setup_triangle_samples(&v[0], &v[1], &v[2], width, height, 0,
+                                      LUZ_INTERPOLATION_PERSPECTIVE, 4, out) == LUZ_SETUP_VISIBLE ||
+           luz_setup_triangle_samples(&v[0], &v[2], &v[1], width, height, 0,
+                                      LUZ_INTERPOLATION_PERSPECTIVE, 4, out) == LUZ_SETUP_VISIBLE;
 }
 
 static int setup_framebuffer(void **state)
@@ -542,21 +560,11 @@ static void test_four_samples_in_lanes_match_the_definition(void **state)
                 for (int j = 0; j < 3; j++) {
                     const double x = cx + random_coordinate(&seed, -reach_x, reach_x);
                     const double y = cy + random_coordinate(&seed, -reach_y, reach_y);
-                    memset(&v[j], 0, sizeof v[j]);
-                    v[j].position = (luz_vec4){(float)(2.0 * x / width - 1.0),
-                                               (float)(1.0 - 2.0 * y / height),
-                                               (float)random_coordinate(&seed, -0.9, 0.9), 1.0f};
+                    v[j] = vertex_in((window_point){x, y},
+                                     (float)random_coordinate(&seed, -0.9, 0.9), width, height);
                 }
                 luz_triangle triangle;
-                if (luz_setup_triangle_samples(&v[0], &v[1], &v[2], width, height, 0,
-                                               LUZ_INTERPOLATION_PERSPECTIVE, 4,
-                                               &triangle) != LUZ_SETUP_VISIBLE) {
-                    /* A back face: the same corners the other way round. */
-                    if (luz_setup_triangle_samples(&v[0], &v[2], &v[1], width, height, 0,
-                                                   LUZ_INTERPOLATION_PERSPECTIVE, 4,
-                                                   &triangle) != LUZ_SETUP_VISIBLE)
-                        continue;
-                }
+                if (!set_up_either_way(v, width, height, &triangle)) continue;
                 drawn++;
                 small_tall += kind == 3 && luz_raster_is_small(&triangle) &&
                               triangle.max_y - triangle.min_y > 1500;
@@ -670,19 +678,11 @@ static void test_four_samples_edges_past_2_30_at_one_corner(void **state)
         for (int j = 0; j < 3; j++) {
             const double x = random_coordinate(&seed, -24.0, WIDTH + 24.0);
             const double y = random_coordinate(&seed, -400.0, HEIGHT + 400.0);
-            memset(&v[j], 0, sizeof v[j]);
-            v[j].position = (luz_vec4){(float)(2.0 * x / WIDTH - 1.0),
-                                       (float)(1.0 - 2.0 * y / HEIGHT),
-                                       (float)random_coordinate(&seed, -0.9, 0.9), 1.0f};
+            v[j] = vertex_in((window_point){x, y}, (float)random_coordinate(&seed, -0.9, 0.9),
+                             WIDTH, HEIGHT);
         }
         luz_triangle triangle;
-        if (luz_setup_triangle_samples(&v[0], &v[1], &v[2], WIDTH, HEIGHT, 0,
-                                       LUZ_INTERPOLATION_PERSPECTIVE, 4,
-                                       &triangle) != LUZ_SETUP_VISIBLE &&
-            luz_setup_triangle_samples(&v[0], &v[2], &v[1], WIDTH, HEIGHT, 0,
-                                       LUZ_INTERPOLATION_PERSPECTIVE, 4,
-                                       &triangle) != LUZ_SETUP_VISIBLE)
-            continue;
+        if (!set_up_either_way(v, WIDTH, HEIGHT, &triangle)) continue;
         if (!luz_raster_is_small(&triangle)) continue;
         const unsigned past = corners_past(&triangle, (int64_t)1 << 30);
         if (past == 0 || (past & (past - 1)) != 0 || (corners_found & past) != 0) continue;
@@ -744,16 +744,10 @@ static void test_four_samples_short_edges_fit_32_bits(void **state)
         for (int j = 0; j < 3; j++) {
             const double x = cx + random_coordinate(&seed, -32.0, 32.0);
             const double y = cy + random_coordinate(&seed, -32.0, 32.0);
-            memset(&v[j], 0, sizeof v[j]);
-            v[j].position = (luz_vec4){(float)(2.0 * x / WIDTH - 1.0),
-                                       (float)(1.0 - 2.0 * y / HEIGHT), 0.5f, 1.0f};
+            v[j] = vertex_in((window_point){x, y}, 0.5f, WIDTH, HEIGHT);
         }
         luz_triangle t;
-        if (luz_setup_triangle_samples(&v[0], &v[1], &v[2], WIDTH, HEIGHT, 0,
-                                       LUZ_INTERPOLATION_PERSPECTIVE, 4, &t) != LUZ_SETUP_VISIBLE &&
-            luz_setup_triangle_samples(&v[0], &v[2], &v[1], WIDTH, HEIGHT, 0,
-                                       LUZ_INTERPOLATION_PERSPECTIVE, 4, &t) != LUZ_SETUP_VISIBLE)
-            continue;
+        if (!set_up_either_way(v, WIDTH, HEIGHT, &t)) continue;
         bool short_edges = true;
         for (int k = 0; k < 3; k++)
             short_edges &= llabs(t.edges[k].a) < (1 << 14) && llabs(t.edges[k].b) < (1 << 14);
