@@ -140,8 +140,8 @@ static uint64_t raster_band(const frame_job *job, luz_framebuffer *framebuffer,
     const uint32_t *ids = job->geometry.band_ids;
     const size_t list_end = band_start[band_index + 1];
     luz_raster_list_function *raster_list = job->renderer->kernels.raster_list;
-    if (samples && raster_list && overdraw == NULL && job->uniforms.bug != LUZ_BUG_NO_DEPTH_TEST &&
-        samples->samples == LUZ_MAX_SAMPLES && samples->width >= LUZ_RASTER_GROUP_PIXELS)
+    if (samples && raster_list && job->uniforms.bug != LUZ_BUG_NO_DEPTH_TEST &&
+        luz_raster_in_lanes(samples, overdraw))
         return raster_list(by_id, ids, band_start[band_index], list_end, samples, first_row,
                            end_row);
     for (size_t k = band_start[band_index]; k < list_end; k++) {

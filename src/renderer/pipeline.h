@@ -703,6 +703,17 @@ luz_prefetch_triangle_ahead(const luz_triangle *const *by_id, const uint32_t *id
     }
 }
 
+/* Whether the raster in lanes (a luz_raster_groups_function or
+ * luz_raster_list_function) may test these buffers: four samples, at
+ * least LUZ_RASTER_GROUP_PIXELS wide, and no overdraw to count (the
+ * kernels count none). One test for raster.c's one triangle and frame.c's
+ * band list, so the two paths take the kernels on the same frames. */
+static inline bool luz_raster_in_lanes(const luz_sample_buffers *buffers, const uint32_t *overdraw)
+{
+    return overdraw == NULL && buffers->samples == LUZ_MAX_SAMPLES &&
+           buffers->width >= LUZ_RASTER_GROUP_PIXELS;
+}
+
 /* Covers every sample of rows [first_row, end_row) inside the triangle
  * (sample k at luz_sample_offset_of(buffers->samples, k)) into buffers'
  * depth and visibility: depth interpolated at the sample, LESS, the

@@ -156,9 +156,8 @@ uint64_t luz_raster_triangle_counting(const luz_triangle *triangle, uint32_t tri
  * The lanes are raster_lanes.c's, compiled once per instruction set
  * (cpu.c's table gives one). With fewer than four pixels a row, with the
  * overdraw view's counts, or without lanes (the scalar set), the samples
- * are tested one at a time instead (raster_samples_one_by_one). */
-
-#define GROUP_PIXELS LUZ_RASTER_GROUP_PIXELS
+ * are tested one at a time instead (raster_samples_one_by_one;
+ * luz_raster_in_lanes says which). */
 
 /* Every sample of the box's pixels in rows [y_begin, y_end), one at a
  * time: the definition that the lanes compute, and the overdraw
@@ -203,7 +202,7 @@ uint64_t luz_raster_triangle_samples(const luz_triangle *triangle, uint32_t tria
     int y_begin = triangle->min_y > first_row ? triangle->min_y : first_row;
     int y_end = triangle->max_y + 1 < end_row ? triangle->max_y + 1 : end_row;
     if (y_begin >= y_end) return 0;
-    if (overdraw != NULL || buffers->width < GROUP_PIXELS || buffers->samples != LUZ_MAX_SAMPLES)
+    if (!luz_raster_in_lanes(buffers, overdraw))
         return raster_samples_one_by_one(triangle, triangle_id, buffers, y_begin, y_end,
                                          overdraw);
     if (groups == NULL)
