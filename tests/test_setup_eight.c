@@ -328,7 +328,14 @@ static void test_lanes_agree_with_setup(void **state)
         const uint32_t kind = test_random(&random) % 100;
         const int32_t base_x = (int32_t)(test_random(&random) % (256 * (WIDTH + 8))) - 256 * 4;
         const int32_t base_y = (int32_t)(test_random(&random) % (256 * (HEIGHT + 8))) - 256 * 4;
-        const int32_t reach = kind < 50 ? 256 : kind < 80 ? 640 : 256 * 12;
+        /* Corners within a pixel, 2.5 and 12 pixels of a point, and for
+         * kinds 90-94 within 200 pixels: a doubled area past 2^31, which
+         * setup_lanes.c's 32-bit lanes for near corners (NEAR_EXTENT) must
+         * leave to the 64-bit ones. */
+        const int32_t reach = kind < 50   ? 256
+                              : kind < 80 ? 640
+                              : kind >= 90 && kind <= 94 ? 256 * 200
+                                                         : 256 * 12;
         for (int k = 0; k < 3; k++) {
             const uint32_t i = 3 * t + (uint32_t)k;
             m.indices[i] = i;
