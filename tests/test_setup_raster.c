@@ -728,7 +728,13 @@ static void test_four_samples_edges_past_2_30_at_one_corner(void **state)
  * with corners off a 40 x 40 viewport (clamped boxes), under four
  * samples' setup: every one that passes the shortcut stays below the
  * bound at all four corners, and the largest |E| comes within a factor
- * of four of it (the bound is not loose enough to hide a wrong proof). */
+ * of four of it (the bound is not loose enough to hide a wrong proof).
+ * This checks the proof, with its own copy of the shortcut's condition:
+ * edges_fit_32_bits itself is static in raster_lanes.c, and a wrong
+ * threshold there shows only where it lets an edge past 2^30, in the list
+ * kernel's comparison with the definition (today's review: raising the
+ * threshold to 2^16 leaves this suite green, since no triangle that
+ * reaches the shortcut is that long). */
 static void test_four_samples_short_edges_fit_32_bits(void **state)
 {
     (void)state;
